@@ -1,0 +1,160 @@
+// tracer: render a scene file, check it, or print it as resolved JSON.
+// Exit codes: 0 success; 1 the scene has errors; 2 bad command line; 3 the scene file cannot
+// be read or the image cannot be written; 130 interrupted (Ctrl-C). Nothing is written to the
+// output path unless the render completed.
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/progress.h"
+#include "frontend/load_scene.h"
+#include "frontend/reference_doc.h"
+#include "frontend/scene_json.h"
+#include "render/image_output.h"
+#include "render/renderer.h"
+
+namespace {
+
+enum ExitCode { kOk = 0, kSceneError = 1, kUsageError = 2, kIoError = 3, kInterrupted = 130 };
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int) { g_interrupted = true; }
+
+struct Options {
+    std::string scene;
+    std::string output;
+    int threads = 0;
+    bool quiet = false;
+    bool check = false;
+    bool dump_json = false;
+    bool reference = false;
+};
+
+// Loads and validates the scene, printing its diagnostics; nullopt on errors.
+std::optional<tracer::SceneDescription> load(const std::string& path, int& exit_code) {
+    tracer::LoadResult result = tracer::load_scene(path);
+    result.diagnostics.print(std::cerr);
+    if (!result.scene) exit_code = result.unreadable ? kIoError : kSceneError;
+    return std::move(result.scene);
+}
+
+std::string millions(uint64_t count) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f M", double(count) / 1e6);
+    return text;
+}
+
+int render_to_file(const Options& options) {
+    // Step 1: check everything that can be checked before spending time on pixels.
+    if (auto problem = tracer::check_output_path(options.output)) {
+        std::cerr << "tracer: error: " << *problem << '\n';
+        return kIoError;
+    }
+    int exit_code = kOk;
+    auto scene = load(options.scene, exit_code);
+    if (!scene) return exit_code;
+    if (!scene->meshes.empty())
+        std::cerr << options.scene << ": warning: mesh rendering is not implemented yet; "
+                  << scene->meshes.size() << " mesh block(s) skipped\n";
+
+    // Step 2: render, stoppable with Ctrl-C.
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+    tracer::ProgressLine progress(!options.quiet);
+    tracer::RenderOptions render_options;
+    render_options.threads = options.threads;
+    render_options.cancel = &g_interrupted;
+    render_options.progress = [&](double fraction) { progress.update(fraction); };
+    tracer::Image image;
+    tracer::RenderStats stats;
+    bool complete = tracer::render(*scene, render_options, image, stats);
+    progress.finish();
+    if (!complete) {
+        std::cerr << "tracer: interrupted; nothing written\n";
+        return kInterrupted;
+    }
+
+    // Step 3: write atomically and summarise.
+    if (auto problem = tracer::write_image(options.output, image)) {
+        std::cerr << "tracer: error: " << *problem << '\n';
+        return kIoError;
+    }
+    if (!options.quiet) {
+        const tracer::RayCounts& rays = stats.rays;
+        std::fprintf(stderr,
+                     "%s: %dx%d, %d spp, %d threads, %.3f s, %srays (%s primary, %s shadow, %s reflection), "
+                     "%.1f Mrays/s\n",
+                     options.output.c_str(), image.width, image.height, scene->render.samples, stats.threads,
+                     stats.seconds, millions(rays.total()).c_str(), millions(rays.primary).c_str(),
+                     millions(rays.shadow).c_str(), millions(rays.reflection).c_str(),
+                     double(rays.total()) / stats.seconds / 1e6);
+    }
+    return kOk;
+}
+
+int check_only(const Options& options) {
+    int exit_code = kOk;
+    auto scene = load(options.scene, exit_code);
+    if (!scene) return exit_code;
+    std::cout << options.scene << ": ok (" << scene->spheres.size() << " spheres, " << scene->planes.size()
+              << " planes, " << scene->meshes.size() << " meshes, " << scene->lights.size() << " lights, "
+              << scene->materials.size() << " materials)\n";
+    return kOk;
+}
+
+int dump_json(const Options& options) {
+    int exit_code = kOk;
+    auto scene = load(options.scene, exit_code);
+    if (!scene) return exit_code;
+    std::cout << tracer::scene_to_json(*scene).dump(2) << '\n';
+    return kOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options options;
+    CLI::App app{"tracer: renders scene files with Whitted ray tracing and Phong shading.", "tracer"};
+    app.set_version_flag("--version", std::string("tracer ") + TRACER_VERSION);
+    app.add_option("scene", options.scene, "The scene file (.scn)");
+    app.add_option("-o,--output", options.output, "The image to write; the format follows the extension (.png, .exr, ...)");
+    app.add_option("--threads", options.threads, "Render threads (default: every core)")->check(CLI::Range(1, 1024));
+    app.add_flag("-q,--quiet", options.quiet, "No progress indicator and no summary line");
+    app.add_flag("--check", options.check, "Only check the scene; report every problem found");
+    app.add_flag("--dump-json", options.dump_json, "Print the resolved scene description as JSON on stdout");
+    app.add_flag("--reference", options.reference, "Print the scene language reference (Markdown) on stdout");
+    app.footer("Exit codes: 0 success, 1 scene errors, 2 bad command line, 3 cannot read the scene or write "
+               "the image, 130 interrupted.\nExamples:\n  tracer scenes/task2.scn -o out.png\n"
+               "  tracer --check scenes/task2.scn");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return kUsageError;
+    }
+
+    auto usage_error = [](const std::string& message) {
+        std::cerr << "tracer: error: " << message << "\nRun 'tracer --help' for the options.\n";
+        return int(kUsageError);
+    };
+    if (options.reference) {
+        std::cout << tracer::reference_markdown();
+        return kOk;
+    }
+    if (options.scene.empty()) return usage_error("no scene file given");
+    if (options.check && options.dump_json) return usage_error("--check and --dump-json cannot be combined");
+    if ((options.check || options.dump_json) && !options.output.empty())
+        return usage_error("-o is for rendering; it cannot be combined with --check or --dump-json");
+    if (options.check) return check_only(options);
+    if (options.dump_json) return dump_json(options);
+    if (options.output.empty()) return usage_error("no output image given (-o out.png)");
+    return render_to_file(options);
+}

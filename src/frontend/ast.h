@@ -1,0 +1,52 @@
+// The scene as written: blocks of `key value` entries, before any meaning is given to them.
+// The parser builds it without knowing which keys exist; validation checks it against the
+// block tables (schema.h) and produces the scene description.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "frontend/source.h"
+
+namespace tracer {
+
+struct Body;
+
+struct Value {
+    enum class Kind { Number, Vector, String, Identifier, Block };
+    Kind kind = Kind::Number;
+    Span span;
+    double number = 0;               // Number
+    std::vector<double> components;  // Vector
+    std::vector<Span> component_spans;
+    std::string text;                // String (contents) or Identifier
+    std::shared_ptr<Body> body;      // Block (an inline block such as `material { ... }`)
+};
+
+struct Entry {
+    std::string key;
+    Span key_span;
+    Value value;
+};
+
+struct Body {
+    Span open_brace;
+    Span close_brace;
+    std::vector<Entry> entries;
+};
+
+struct Block {
+    std::string kind;
+    Span kind_span;
+    std::string name;  // empty when the block has no name
+    Span name_span;
+    Body body;
+    bool broken = false;  // a syntax error was reported inside; do not validate further
+};
+
+struct SceneAst {
+    std::vector<Block> blocks;
+};
+
+}  // namespace tracer

@@ -1,0 +1,73 @@
+// Errors, warnings and notes about a scene, printed as
+//   file:line:col: error: message
+//   <the source line>
+//   <a caret under the offending token>
+// The collector stops accepting errors after a limit so one mistake cannot flood the terminal.
+#pragma once
+
+#include <deque>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frontend/source.h"
+
+namespace tracer {
+
+enum class Severity { Error, Warning, Note };
+
+// A resolved position: enough to print a message without the source file at hand.
+struct Location {
+    std::string path;
+    int line = 0;  // 0: the message concerns the whole file
+    int column = 0;
+    int length = 1;
+    std::string line_text;
+};
+
+struct Diagnostic {
+    Severity severity = Severity::Error;
+    Location location;
+    std::string message;
+    std::vector<Diagnostic> notes;
+};
+
+class Diagnostics {
+public:
+    static constexpr int kMaxErrors = 20;
+
+    // Resolves `span` in `file` into a printable location.
+    static Location locate(const SourceFile& file, Span span);
+    // A location for a message about a whole file.
+    static Location whole_file(const std::string& path);
+
+    // Records a diagnostic; errors past the limit are dropped. Returns the stored one (or
+    // nullptr when dropped) so notes can be attached.
+    Diagnostic* report(Severity severity, Location location, std::string message);
+    Diagnostic* error(const SourceFile& file, Span span, std::string message);
+    Diagnostic* warning(const SourceFile& file, Span span, std::string message);
+    // Attaches a note pointing at `span` to `parent` (no-op when parent is null).
+    static void note(Diagnostic* parent, const SourceFile& file, Span span, std::string message);
+
+    int error_count() const { return errors_; }
+    int warning_count() const { return warnings_; }
+    bool has_errors() const { return errors_ > 0; }
+    // True once the error limit is reached: callers stop looking for more.
+    bool saturated() const { return errors_ >= kMaxErrors; }
+    const std::deque<Diagnostic>& all() const { return list_; }
+
+    // Prints every diagnostic in the order reported, then a limit notice if it was hit.
+    void print(std::ostream& out) const;
+
+private:
+    std::deque<Diagnostic> list_;  // a deque: returned pointers stay valid
+    int errors_ = 0;
+    int warnings_ = 0;
+    bool dropped_ = false;
+};
+
+// Formats one diagnostic (and its notes) exactly as `print` does.
+std::string format_diagnostic(const Diagnostic& diagnostic);
+
+}  // namespace tracer

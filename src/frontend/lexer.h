@@ -1,0 +1,48 @@
+// The scene language's tokens: identifiers, numbers, strings, { } ( ) and commas.
+// Comments run from '#' to the end of the line. Bad characters and malformed numbers are
+// reported once and come back as Error tokens, so the parser never sees them twice.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "frontend/diagnostics.h"
+#include "frontend/source.h"
+
+namespace tracer {
+
+enum class TokenKind { Identifier, Number, String, LBrace, RBrace, LParen, RParen, Comma, End, Error };
+
+struct Token {
+    TokenKind kind = TokenKind::End;
+    Span span;
+    std::string_view text;  // the token as written
+    double number = 0;      // Number: its value (always finite)
+    std::string string;     // String: the contents with escapes resolved
+};
+
+// A readable name for a token kind, for messages ("'{'", "a number", ...).
+std::string describe(TokenKind kind);
+// A readable description of one token as written ("'radius'", "end of file").
+std::string describe(const Token& token);
+
+class Lexer {
+public:
+    Lexer(const SourceFile& file, Diagnostics& diagnostics);
+
+    // Returns the next token, reporting and skipping over anything malformed.
+    Token next();
+
+private:
+    Token make(TokenKind kind, uint32_t begin);
+    Token lex_number(uint32_t begin);
+    Token lex_string(uint32_t begin);
+    void skip_space_and_comments();
+
+    const SourceFile& file_;
+    Diagnostics& diagnostics_;
+    std::string_view text_;
+    uint32_t pos_ = 0;
+};
+
+}  // namespace tracer

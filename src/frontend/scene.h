@@ -1,0 +1,78 @@
+// The validated scene description: what the front end hands to the renderer, to the JSON dump
+// and (through the JSON) to the Mitsuba converter. Every default is filled in, materials are
+// resolved to indices, paths are absolute and every value is in its documented range.
+#pragma once
+
+#include <glm/vec3.hpp>
+#include <string>
+#include <vector>
+
+namespace tracer {
+
+using dvec3 = glm::dvec3;
+
+struct Material {
+    std::string name;   // empty for a material written inline in a shape
+    dvec3 ka{0.0};      // ambient, added once, never shadowed
+    dvec3 kd{0.0};      // diffuse
+    dvec3 ks{0.0};      // specular
+    dvec3 km{0.0};      // mirror reflection
+    double n = 1.0;     // specular (Phong) exponent
+};
+
+struct Camera {
+    dvec3 eye{0.0};
+    dvec3 lookat{0.0, 0.0, -1.0};
+    dvec3 up{0.0, 1.0, 0.0};
+    double fovy_degrees = 45.0;  // vertical field of view
+    double focal = 1.0;          // distance to the image plane (cancels out of the image)
+};
+
+struct RenderSettings {
+    int width = 1200;
+    int height = 800;
+    int max_depth = 4;        // reflection bounces after the primary hit
+    int samples = 1;          // samples per pixel, a perfect square (N x N stratified)
+    dvec3 background{0.0};    // colour of rays that leave the scene
+    bool shadows = true;      // trace shadow rays to the lights
+};
+
+struct Sphere {
+    dvec3 center{0.0};
+    double radius = 1.0;
+    int material = 0;  // index into SceneDescription::materials
+};
+
+struct Plane {
+    dvec3 point{0.0};
+    dvec3 normal{0.0, 1.0, 0.0};  // unit length
+    int material = 0;
+};
+
+struct Light {
+    dvec3 position{0.0};
+    dvec3 color{1.0};
+};
+
+// A triangle mesh from an OBJ file, placed by scale, then rotation, then translation.
+struct Mesh {
+    std::string path;  // absolute
+    dvec3 scale{1.0};
+    dvec3 rotate_axis{0.0, 1.0, 0.0};  // unit length
+    double rotate_degrees = 0.0;
+    dvec3 translate{0.0};
+    int material = 0;
+};
+
+struct SceneDescription {
+    std::string source_path;  // absolute path of the scene file
+    RenderSettings render;
+    Camera camera;
+    std::vector<Material> materials;
+    std::vector<Sphere> spheres;
+    std::vector<Plane> planes;
+    std::vector<Mesh> meshes;
+    std::vector<Light> lights;
+};
+
+}  // namespace tracer

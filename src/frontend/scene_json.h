@@ -1,0 +1,14 @@
+// The resolved scene description as JSON: what `tracer --dump-json` prints and what later
+// tools (the Mitsuba converter) read instead of parsing .scn files themselves.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "frontend/scene.h"
+
+namespace tracer {
+
+// Every default filled in; each shape carries its full material; paths are absolute.
+nlohmann::ordered_json scene_to_json(const SceneDescription& scene);
+
+}  // namespace tracer

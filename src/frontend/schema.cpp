@@ -1,0 +1,177 @@
+#include "frontend/schema.h"
+
+namespace tracer {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Key constructors, so each table row reads: name, type, default, range, meaning.
+KeySpec key(std::string_view name, ValueType type, std::string_view default_value,
+            std::string_view meaning) {
+    KeySpec spec{};
+    spec.name = name;
+    spec.type = type;
+    spec.default_value = default_value;
+    spec.meaning = meaning;
+    return spec;
+}
+KeySpec ranged(KeySpec spec, double min, double max, bool min_open = false, bool max_open = false) {
+    spec.min = min;
+    spec.max = max;
+    spec.min_open = min_open;
+    spec.max_open = max_open;
+    return spec;
+}
+KeySpec nonzero(KeySpec spec) {
+    spec.nonzero = true;
+    return spec;
+}
+KeySpec nested(KeySpec spec, const BlockSpec* block) {
+    spec.block = block;
+    return spec;
+}
+
+const BlockSpec kRender{
+    "render", false, true, Occurs::AtMostOnce,
+    "Image and tracing settings. The whole block is optional.",
+    {
+        ranged(key("width", ValueType::Integer, "1200", "Image width in pixels."), 1, 16384),
+        ranged(key("height", ValueType::Integer, "800", "Image height in pixels."), 1, 16384),
+        ranged(key("max_depth", ValueType::Integer, "4",
+                   "Reflection bounces after the primary hit; the ray that would be one more "
+                   "bounce returns black."), 0, 100000),
+        ranged(key("samples", ValueType::Integer, "1",
+                   "Samples per pixel: a perfect square N*N, stratified over the pixel, box "
+                   "filter. 1 is one ray through the pixel centre."), 1, 4096),
+        ranged(key("background", ValueType::Triple, "0",
+                   "Colour of rays that leave the scene."), 0, kInf),
+        key("shadows", ValueType::Boolean, "true", "Trace shadow rays to the lights."),
+    },
+    "render {\n  width 600\n  height 400\n  max_depth 4\n  background (0, 0, 0)\n}\n",
+};
+
+const BlockSpec kCamera{
+    "camera", false, true, Occurs::ExactlyOnce,
+    "A pinhole camera. Exactly one per scene.",
+    {
+        key("eye", ValueType::Vector, "", "Position of the eye."),
+        key("lookat", ValueType::Vector, "", "The point at the centre of the image."),
+        nonzero(key("up", ValueType::Vector, "(0, 1, 0)",
+                    "Which way is up; must not be parallel to the viewing direction.")),
+        ranged(key("fovy", ValueType::Number, "45", "Vertical field of view in degrees."), 0, 180,
+               true, true),
+        ranged(key("focal", ValueType::Number, "1",
+                   "Distance from the eye to the image plane (it does not change the image)."),
+               0, kInf, true),
+    },
+    "camera {\n  eye (0, 0, 7)\n  lookat (0, 0, 0)\n  up (0, 1, 0)\n  fovy 45\n}\n",
+};
+
+const BlockSpec kMaterial{
+    "material", true, true, Occurs::Any,
+    "A named Phong material, used by shapes as `material NAME`. The same keys may be written "
+    "inline in a shape: `material { kd 0.5 }`. Leaving every key out gives a black material.",
+    {
+        ranged(key("ka", ValueType::Triple, "0", "Ambient colour, added once and never shadowed."), 0, kInf),
+        ranged(key("kd", ValueType::Triple, "0", "Diffuse colour."), 0, kInf),
+        ranged(key("ks", ValueType::Triple, "0", "Specular colour."), 0, kInf),
+        ranged(key("km", ValueType::Triple, "0", "Mirror reflectance."), 0, kInf),
+        ranged(key("n", ValueType::Number, "1", "Phong exponent of the specular highlight."), 0, kInf),
+    },
+    "material shiny_green {\n  ka 0.1\n  kd (0.2, 1.0, 0.2)\n  ks 1\n  n 100\n}\n"
+    "sphere {\n  center (0, 0, 0)\n  radius 1\n  material shiny_green\n}\n",
+};
+
+const BlockSpec kSphere{
+    "sphere", false, true, Occurs::Any,
+    "A sphere.",
+    {
+        key("center", ValueType::Vector, "", "Centre."),
+        ranged(key("radius", ValueType::Number, "", "Radius."), 0, kInf, true),
+        key("material", ValueType::MaterialRef, "", "A material name or an inline material block."),
+    },
+    "sphere {\n  center (1, -0.5, 3)\n  radius 0.5\n  material { ka 0.1 kd (0, 0, 1) ks 1 n 10 }\n}\n",
+};
+
+const BlockSpec kPlane{
+    "plane", false, true, Occurs::Any,
+    "An infinite plane, visible from both sides.",
+    {
+        key("point", ValueType::Vector, "", "Any point on the plane."),
+        nonzero(key("normal", ValueType::Vector, "", "The plane's normal (normalised for you).")),
+        key("material", ValueType::MaterialRef, "", "A material name or an inline material block."),
+    },
+    "plane {\n  point (0, -1, 0)\n  normal (0, 1, 0)\n  material { ka 0.1 kd 1 }\n}\n",
+};
+
+const BlockSpec kRotate{
+    "rotate", false, false, Occurs::AtMostOnce,
+    "A rotation about an axis through the origin (inside `mesh`).",
+    {
+        nonzero(key("axis", ValueType::Vector, "(0, 1, 0)", "Rotation axis (normalised for you).")),
+        key("angle", ValueType::Number, "0", "Angle in degrees, counter-clockwise looking down the axis."),
+    },
+    "",
+};
+
+const BlockSpec kMesh{
+    "mesh", false, true, Occurs::Any,
+    "A triangle mesh from an OBJ file, placed by scale, then rotate, then translate.",
+    {
+        key("file", ValueType::Path, "", "The OBJ file, relative to the scene file's folder."),
+        ranged(key("scale", ValueType::Triple, "1", "Scale factor, uniform or per axis."), 0, kInf, true),
+        nested(key("rotate", ValueType::Block, "{ axis (0, 1, 0) angle 0 }",
+                   "Rotation, applied after scaling: `rotate { axis (x, y, z) angle degrees }`."),
+               &kRotate),
+        key("translate", ValueType::Vector, "(0, 0, 0)", "Translation, applied last."),
+        key("material", ValueType::MaterialRef, "", "A material name or an inline material block."),
+    },
+    "mesh {\n  file \"../scenes/meshes/tetrahedron.obj\"\n  scale 0.5\n"
+    "  rotate { axis (0, 1, 0) angle 30 }\n  translate (0, -0.5, 0)\n  material { kd 0.8 }\n}\n",
+};
+
+const BlockSpec kLight{
+    "light", false, true, Occurs::Any,
+    "A point light without fall-off.",
+    {
+        key("position", ValueType::Vector, "", "Position."),
+        ranged(key("color", ValueType::Triple, "1", "Colour; multiplies diffuse and specular."), 0, kInf),
+    },
+    "light {\n  position (0, 3, -2)\n  color 0.2\n}\n",
+};
+
+}  // namespace
+
+const KeySpec* BlockSpec::find_key(std::string_view key_name) const {
+    for (const KeySpec& spec : keys)
+        if (spec.name == key_name) return &spec;
+    return nullptr;
+}
+
+const std::vector<const BlockSpec*>& all_block_specs() {
+    static const std::vector<const BlockSpec*> specs{&kCamera, &kRender, &kMaterial, &kSphere,
+                                                     &kPlane,  &kMesh,   &kRotate,   &kLight};
+    return specs;
+}
+
+const BlockSpec* find_block_spec(std::string_view kind) {
+    for (const BlockSpec* spec : all_block_specs())
+        if (spec->top_level && spec->kind == kind) return spec;
+    return nullptr;
+}
+
+std::string_view describe(ValueType type) {
+    switch (type) {
+        case ValueType::Number: return "a number";
+        case ValueType::Integer: return "a whole number";
+        case ValueType::Boolean: return "true or false";
+        case ValueType::Vector: return "a vector (x, y, z)";
+        case ValueType::Triple: return "a number or a vector (x, y, z)";
+        case ValueType::Path: return "a file path in double quotes";
+        case ValueType::MaterialRef: return "a material name or an inline material { ... }";
+        case ValueType::Block: return "a block { ... }";
+    }
+    return "a value";
+}
+
+}  // namespace tracer

@@ -1,0 +1,61 @@
+// One table per block kind: its keys, their types, defaults, ranges and meanings.
+// The same tables drive validation, "did you mean" suggestions and grammar/reference.md,
+// so the three cannot drift apart.
+#pragma once
+
+#include <limits>
+#include <string_view>
+#include <vector>
+
+namespace tracer {
+
+enum class ValueType {
+    Number,       // a number
+    Integer,      // a whole number
+    Boolean,      // true or false
+    Vector,       // (x, y, z)
+    Triple,       // a number (meaning (v, v, v)) or (x, y, z): colours, per-axis scale
+    Path,         // "a string", a file path relative to the scene file
+    MaterialRef,  // the name of a material block, or an inline { ... } material
+    Block,        // a nested { ... } block with its own table
+};
+
+struct BlockSpec;
+
+struct KeySpec {
+    std::string_view name;
+    ValueType type;
+    std::string_view default_value;  // written in scene syntax; empty means required
+    double min = -std::numeric_limits<double>::infinity();  // applies to every component
+    double max = std::numeric_limits<double>::infinity();
+    bool min_open = false;  // true: the minimum itself is not allowed
+    bool max_open = false;
+    bool nonzero = false;   // vectors: must not have zero length
+    std::string_view meaning;
+    const BlockSpec* block = nullptr;  // ValueType::Block: the nested block's table
+
+    bool required() const { return default_value.empty(); }
+};
+
+enum class Occurs { ExactlyOnce, AtMostOnce, Any };
+
+struct BlockSpec {
+    std::string_view kind;
+    bool named;     // `material shiny { ... }`: the block must have a name
+    bool top_level; // false for blocks that only appear nested (rotate)
+    Occurs occurs;
+    std::string_view summary;
+    std::vector<KeySpec> keys;
+    std::string_view example;  // a complete, valid fragment shown in the reference
+
+    const KeySpec* find_key(std::string_view key) const;
+};
+
+// Every block kind, top-level and nested, in the order the reference documents them.
+const std::vector<const BlockSpec*>& all_block_specs();
+// The top-level block kind called `kind`, or nullptr.
+const BlockSpec* find_block_spec(std::string_view kind);
+// A readable name for a value type ("a number or (x, y, z)").
+std::string_view describe(ValueType type);
+
+}  // namespace tracer

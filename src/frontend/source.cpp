@@ -1,0 +1,33 @@
+#include "frontend/source.h"
+
+#include <algorithm>
+
+namespace tracer {
+
+SourceFile::SourceFile(std::string path, std::string text)
+    : path_(std::move(path)), text_(std::move(text)) {
+    line_starts_.push_back(0);
+    for (uint32_t i = 0; i < text_.size(); ++i)
+        if (text_[i] == '\n') line_starts_.push_back(i + 1);
+}
+
+std::string_view SourceFile::slice(Span span) const {
+    return std::string_view(text_).substr(span.begin, span.end - span.begin);
+}
+
+LineCol SourceFile::locate(uint32_t offset) const {
+    auto next = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
+    int line = int(next - line_starts_.begin());
+    return {line, int(offset - line_starts_[line - 1]) + 1};
+}
+
+std::string_view SourceFile::line_text(int line) const {
+    if (line < 1 || line > int(line_starts_.size())) return {};
+    uint32_t begin = line_starts_[line - 1];
+    uint32_t end = line < int(line_starts_.size()) ? line_starts_[line] : uint32_t(text_.size());
+    std::string_view text = std::string_view(text_).substr(begin, end - begin);
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
+    return text;
+}
+
+}  // namespace tracer

@@ -1,0 +1,44 @@
+#include "frontend/suggest.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace tracer {
+
+int edit_distance(std::string_view a, std::string_view b) {
+    auto lower = [](char c) { return char(std::tolower(static_cast<unsigned char>(c))); };
+    const size_t n = a.size(), m = b.size();
+    std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1));
+    for (size_t i = 0; i <= n; ++i) d[i][0] = int(i);
+    for (size_t j = 0; j <= m; ++j) d[0][j] = int(j);
+    for (size_t i = 1; i <= n; ++i) {
+        for (size_t j = 1; j <= m; ++j) {
+            int cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1]))
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    }
+    return d[n][m];
+}
+
+std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates) {
+    // Allow about one edit per three letters: "radus" -> "radius", but not "x" -> "n".
+    int best = std::max(1, int(word.size()) / 3) + 1;
+    std::string_view found;
+    for (std::string_view candidate : candidates) {
+        int distance = edit_distance(word, candidate);
+        if (distance < best && distance < int(candidate.size())) {
+            best = distance;
+            found = candidate;
+        }
+    }
+    return std::string(found);
+}
+
+std::string did_you_mean(std::string_view word, const std::vector<std::string_view>& candidates) {
+    std::string match = closest_match(word, candidates);
+    return match.empty() ? "" : "; did you mean '" + match + "'?";
+}
+
+}  // namespace tracer

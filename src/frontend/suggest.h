@@ -1,0 +1,19 @@
+// "Did you mean ...?" for misspelled names.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tracer {
+
+// Edit distance with adjacent transpositions (optimal string alignment), ignoring case.
+int edit_distance(std::string_view a, std::string_view b);
+
+// The candidate closest to `word` if it is close enough to be a likely typo, else "".
+std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates);
+
+// "; did you mean 'x'?" or "" — to append to a message.
+std::string did_you_mean(std::string_view word, const std::vector<std::string_view>& candidates);
+
+}  // namespace tracer

@@ -1,0 +1,483 @@
+#include "frontend/validate.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include <glm/geometric.hpp>
+
+#include "frontend/parser.h"
+#include "frontend/schema.h"
+#include "frontend/suggest.h"
+
+namespace tracer {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string format_number(double value) {
+    char buffer[32];
+    auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
+}
+
+std::string describe_found(const Value& value) {
+    switch (value.kind) {
+        case Value::Kind::Number: return "the number " + format_number(value.number);
+        case Value::Kind::Vector:
+            return "a vector with " + std::to_string(value.components.size()) + " component" +
+                   (value.components.size() == 1 ? "" : "s");
+        case Value::Kind::String: return "a string";
+        case Value::Kind::Identifier: return "'" + value.text + "'";
+        case Value::Kind::Block: return "a block { ... }";
+    }
+    return "a value";
+}
+
+bool names_nan_or_infinity(const Value& value) {
+    if (value.kind != Value::Kind::Identifier) return false;
+    std::string word;
+    for (char c : value.text) word += char(std::tolower(static_cast<unsigned char>(c)));
+    return word == "nan" || word == "inf" || word == "infinity";
+}
+
+// A key's default, parsed once from the scene syntax written in its table row.
+const Value& default_of(const KeySpec& key) {
+    static std::mutex mutex;
+    static std::map<const KeySpec*, Value> cache;
+    std::lock_guard lock(mutex);
+    auto found = cache.find(&key);
+    if (found != cache.end()) return found->second;
+    SourceFile file("<default>", std::string(key.default_value));
+    Diagnostics ignored;
+    Value value;
+    if (!parse_single_value(file, ignored, value)) std::abort();  // a broken table: a bug
+    return cache.emplace(&key, std::move(value)).first->second;
+}
+
+// Scales a vector to unit length without overflow or underflow; zero stays zero.
+dvec3 normalized(dvec3 v) {
+    double largest = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+    if (largest == 0 || !std::isfinite(largest)) return dvec3(0.0);
+    return glm::normalize(v / largest);
+}
+
+// The checked values of one block, with table defaults behind them.
+class Fields {
+public:
+    explicit Fields(const BlockSpec& spec) : spec_(&spec) {}
+
+    void set(const KeySpec& key, const Value& value, Span key_span) {
+        given_[key.name] = {&value, key_span};
+    }
+    void set_child(const KeySpec& key, std::unique_ptr<Fields> child) {
+        children_[key.name] = std::move(child);
+    }
+    bool has(std::string_view name) const { return given_.count(name) > 0; }
+    Span key_span(std::string_view name) const { return given_.at(name).key_span; }
+    Span value_span(std::string_view name) const {
+        return has(name) ? given_.at(name).value->span : Span{};
+    }
+
+    const Value& get(std::string_view name) const {
+        auto found = given_.find(name);
+        return found != given_.end() ? *found->second.value : default_of(*spec_->find_key(name));
+    }
+    double number(std::string_view name) const { return get(name).number; }
+    int integer(std::string_view name) const { return int(get(name).number); }
+    bool boolean(std::string_view name) const { return get(name).text == "true"; }
+    std::string text(std::string_view name) const { return get(name).text; }
+    dvec3 triple(std::string_view name) const {
+        const Value& value = get(name);
+        if (value.kind == Value::Kind::Number) return dvec3(value.number);
+        return {value.components[0], value.components[1], value.components[2]};
+    }
+    // The checked fields of a nested block (written, or the table's default).
+    const Fields* child(std::string_view name) const {
+        auto found = children_.find(name);
+        return found != children_.end() ? found->second.get() : nullptr;
+    }
+
+private:
+    struct Given {
+        const Value* value;
+        Span key_span;
+    };
+    const BlockSpec* spec_;
+    std::map<std::string_view, Given> given_;
+    std::map<std::string_view, std::unique_ptr<Fields>> children_;
+};
+
+class Validator {
+public:
+    Validator(const SourceFile& file, Diagnostics& diagnostics, const ValidateOptions& options)
+        : file_(file), diagnostics_(diagnostics), options_(options) {
+        std::error_code ignored;
+        scene_dir_ = fs::absolute(fs::path(file.path()), ignored).parent_path();
+        scene_.source_path = fs::absolute(fs::path(file.path()), ignored).lexically_normal().string();
+    }
+
+    std::optional<SceneDescription> run(const SceneAst& ast);
+
+private:
+    // Generic checks driven by the tables.
+    bool check_block_header(const Block& block, const BlockSpec& spec);
+    bool check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields);
+    bool check_value(const Value& value, const KeySpec& key, Fields& fields);
+    bool check_number(double number, Span span, const KeySpec& key);
+    bool type_error(const Value& value, const KeySpec& key, const std::string& extra = "");
+
+    // Builders: checked fields -> scene description.
+    void add_named_material(const Block& block);
+    int material_index(const Fields& fields);
+    Material build_material(const Fields& fields, std::string name);
+    void build(const Block& block, const Fields& fields);
+    void build_render(const Block& block, const Fields& fields);
+    void build_camera(const Block& block, const Fields& fields);
+    void build_mesh(const Fields& fields);
+
+    const SourceFile& file_;
+    Diagnostics& diagnostics_;
+    ValidateOptions options_;
+    fs::path scene_dir_;
+    SceneDescription scene_;
+
+    struct NamedMaterial {
+        int index = -1;  // -1: the material's own block had errors
+        Span name_span;
+        bool used = false;
+    };
+    std::map<std::string, NamedMaterial, std::less<>> named_;
+    std::map<std::string_view, const Block*> first_of_kind_;
+};
+
+std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
+    // Step 1: block kinds, names and counts; named materials first so shapes may use a
+    // material defined further down the file.
+    std::vector<std::pair<const Block*, const BlockSpec*>> shapes_and_settings;
+    for (const Block& block : ast.blocks) {
+        if (diagnostics_.saturated()) break;
+        const BlockSpec* spec = find_block_spec(block.kind);
+        if (!spec) {
+            std::vector<std::string_view> kinds;
+            for (const BlockSpec* s : all_block_specs())
+                if (s->top_level) kinds.push_back(s->kind);
+            diagnostics_.error(file_, block.kind_span,
+                               "unknown block '" + block.kind + "'" + did_you_mean(block.kind, kinds));
+            continue;
+        }
+        if (!check_block_header(block, *spec)) continue;
+        if (spec->kind == "material")
+            add_named_material(block);
+        else if (!block.broken)
+            shapes_and_settings.emplace_back(&block, spec);
+    }
+
+    // Step 2: everything else, now that every material name is known.
+    for (auto [block, spec] : shapes_and_settings) {
+        if (diagnostics_.saturated()) break;
+        Fields fields(*spec);
+        if (check_body(block->body, *spec, block->kind_span, fields)) build(*block, fields);
+    }
+
+    // Step 3: whole-scene checks.
+    if (!options_.fragment && !first_of_kind_.count("camera") && !diagnostics_.saturated())
+        diagnostics_.report(Severity::Error, Diagnostics::whole_file(file_.path()),
+                            "the scene has no camera block; add one, e.g. camera { eye (0, 0, 7) lookat (0, 0, 0) }");
+    if (!options_.fragment)
+        for (const auto& [name, material] : named_)
+            if (!material.used && material.index >= 0)
+                diagnostics_.warning(file_, material.name_span, "material '" + name + "' is never used");
+
+    if (diagnostics_.has_errors()) return std::nullopt;
+    return std::move(scene_);
+}
+
+// Names and counts: `material NAME`, no name elsewhere, one camera, at most one render block.
+bool Validator::check_block_header(const Block& block, const BlockSpec& spec) {
+    if (spec.named && block.name.empty()) {
+        diagnostics_.error(file_, block.kind_span,
+                           "a " + block.kind + " block needs a name: " + block.kind + " NAME { ... }");
+        return false;
+    }
+    if (!spec.named && !block.name.empty()) {
+        diagnostics_.error(file_, block.name_span,
+                           "a " + block.kind + " block takes no name; write " + block.kind + " { ... }");
+        return false;
+    }
+    auto [first, inserted] = first_of_kind_.emplace(spec.kind, &block);
+    if (!inserted && spec.occurs != Occurs::Any) {
+        Diagnostic* d = diagnostics_.error(file_, block.kind_span,
+                                           "a scene has only one " + block.kind + " block");
+        Diagnostics::note(d, file_, first->second->kind_span, "the first " + block.kind + " block is here");
+        return false;
+    }
+    return true;
+}
+
+bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields) {
+    bool ok = true;
+    for (const Entry& entry : body.entries) {
+        if (diagnostics_.saturated()) return false;
+        const KeySpec* key = spec.find_key(entry.key);
+        if (!key) {
+            std::vector<std::string_view> names;
+            for (const KeySpec& k : spec.keys) names.push_back(k.name);
+            diagnostics_.error(file_, entry.key_span,
+                               "unknown key '" + entry.key + "' in " + std::string(spec.kind) +
+                                   did_you_mean(entry.key, names));
+            ok = false;
+            continue;
+        }
+        if (fields.has(key->name)) {
+            Diagnostic* d = diagnostics_.error(file_, entry.key_span, "duplicate key '" + entry.key + "'");
+            Diagnostics::note(d, file_, fields.key_span(key->name), "'" + entry.key + "' was first set here");
+            ok = false;
+            continue;
+        }
+        fields.set(*key, entry.value, entry.key_span);
+        ok = check_value(entry.value, *key, fields) && ok;
+    }
+    for (const KeySpec& key : spec.keys) {
+        if (key.required() && !fields.has(key.name)) {
+            diagnostics_.error(file_, owner,
+                               std::string(spec.kind) + " is missing the required key '" +
+                                   std::string(key.name) + "' (" + std::string(describe(key.type)) + ")");
+            ok = false;
+        }
+        // Nested blocks left out still get their defaults as checked fields.
+        if (key.type == ValueType::Block && !fields.has(key.name)) {
+            auto child = std::make_unique<Fields>(*key.block);
+            fields.set_child(key, std::move(child));
+        }
+    }
+    return ok;
+}
+
+bool Validator::type_error(const Value& value, const KeySpec& key, const std::string& extra) {
+    std::string message = "'" + std::string(key.name) + "' expects " + std::string(describe(key.type)) +
+                          ", found " + describe_found(value);
+    if (names_nan_or_infinity(value)) message += " (NaN and infinity are not allowed)";
+    diagnostics_.error(file_, value.span, message + extra);
+    return false;
+}
+
+bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fields) {
+    using Kind = Value::Kind;
+    auto check_vector = [&] {
+        if (value.components.size() != 3) return type_error(value, key);
+        bool ok = true;
+        for (size_t i = 0; i < 3; ++i)
+            ok = check_number(value.components[i], value.component_spans[i], key) && ok;
+        dvec3 v{value.components[0], value.components[1], value.components[2]};
+        if (ok && key.nonzero && normalized(v) == dvec3(0.0)) {
+            diagnostics_.error(file_, value.span, "'" + std::string(key.name) + "' must not be the zero vector");
+            return false;
+        }
+        return ok;
+    };
+    switch (key.type) {
+        case ValueType::Number:
+            return value.kind == Kind::Number ? check_number(value.number, value.span, key) : type_error(value, key);
+        case ValueType::Integer:
+            if (value.kind != Kind::Number || std::floor(value.number) != value.number)
+                return type_error(value, key);
+            return check_number(value.number, value.span, key);
+        case ValueType::Boolean:
+            if (value.kind == Kind::Identifier && (value.text == "true" || value.text == "false")) return true;
+            return type_error(value, key,
+                              value.kind == Kind::Identifier ? did_you_mean(value.text, {"true", "false"}) : "");
+        case ValueType::Vector:
+            return value.kind == Kind::Vector ? check_vector() : type_error(value, key);
+        case ValueType::Triple:
+            if (value.kind == Kind::Number) return check_number(value.number, value.span, key);
+            return value.kind == Kind::Vector ? check_vector() : type_error(value, key);
+        case ValueType::Path:
+            if (value.kind != Kind::String) return type_error(value, key);
+            if (value.text.empty()) {
+                diagnostics_.error(file_, value.span, "'" + std::string(key.name) + "' must not be empty");
+                return false;
+            }
+            return true;
+        case ValueType::MaterialRef:
+            if (value.kind == Kind::Identifier) return true;
+            if (value.kind == Kind::Block) {
+                auto child = std::make_unique<Fields>(*find_block_spec("material"));
+                bool ok = check_body(*value.body, *find_block_spec("material"), value.span, *child);
+                fields.set_child(key, std::move(child));
+                return ok;
+            }
+            return type_error(value, key);
+        case ValueType::Block: {
+            if (value.kind != Kind::Block) return type_error(value, key);
+            auto child = std::make_unique<Fields>(*key.block);
+            bool ok = check_body(*value.body, *key.block, value.span, *child);
+            fields.set_child(key, std::move(child));
+            return ok;
+        }
+    }
+    return false;
+}
+
+bool Validator::check_number(double number, Span span, const KeySpec& key) {
+    bool below = key.min_open ? number <= key.min : number < key.min;
+    bool above = key.max_open ? number >= key.max : number > key.max;
+    if (!below && !above) return true;
+    std::string name = "'" + std::string(key.name) + "'";
+    std::string rule;
+    if (std::isinf(key.max))
+        rule = key.min == 0 && !key.min_open ? "must not be negative"
+                                             : std::string("must be ") + (key.min_open ? "greater than " : "at least ") +
+                                                   format_number(key.min);
+    else if (key.min_open || key.max_open)
+        rule = "must be greater than " + format_number(key.min) + " and less than " + format_number(key.max);
+    else
+        rule = "must be between " + format_number(key.min) + " and " + format_number(key.max);
+    diagnostics_.error(file_, span, name + " " + rule + ", found " + format_number(number));
+    return false;
+}
+
+void Validator::add_named_material(const Block& block) {
+    auto [entry, inserted] = named_.try_emplace(block.name);
+    if (!inserted) {
+        Diagnostic* d = diagnostics_.error(file_, block.name_span, "material '" + block.name + "' is defined twice");
+        Diagnostics::note(d, file_, entry->second.name_span, "the first definition is here");
+        return;
+    }
+    entry->second.name_span = block.name_span;
+    if (block.broken) return;  // already reported; keep the name so uses of it are not errors too
+    Fields fields(*find_block_spec("material"));
+    if (!check_body(block.body, *find_block_spec("material"), block.kind_span, fields)) return;
+    entry->second.index = int(scene_.materials.size());
+    scene_.materials.push_back(build_material(fields, block.name));
+}
+
+Material Validator::build_material(const Fields& fields, std::string name) {
+    Material material;
+    material.name = std::move(name);
+    material.ka = fields.triple("ka");
+    material.kd = fields.triple("kd");
+    material.ks = fields.triple("ks");
+    material.km = fields.triple("km");
+    material.n = fields.number("n");
+    return material;
+}
+
+// The index of the shape's material: a named one, or its inline block added to the list.
+int Validator::material_index(const Fields& fields) {
+    const Value& value = fields.get("material");
+    if (value.kind == Value::Kind::Block) {
+        scene_.materials.push_back(build_material(*fields.child("material"), ""));
+        return int(scene_.materials.size()) - 1;
+    }
+    auto found = named_.find(value.text);
+    if (found == named_.end()) {
+        std::vector<std::string_view> names;
+        for (const auto& [name, material] : named_) names.push_back(name);
+        diagnostics_.error(file_, value.span,
+                           "undefined material '" + value.text + "'" + did_you_mean(value.text, names));
+        return -1;
+    }
+    found->second.used = true;
+    return found->second.index;
+}
+
+void Validator::build(const Block& block, const Fields& fields) {
+    const std::string& kind = block.kind;
+    if (kind == "render") return build_render(block, fields);
+    if (kind == "camera") return build_camera(block, fields);
+    if (kind == "mesh") return build_mesh(fields);
+    if (kind == "light") {
+        scene_.lights.push_back({fields.triple("position"), fields.triple("color")});
+    } else if (kind == "sphere") {
+        scene_.spheres.push_back({fields.triple("center"), fields.number("radius"), material_index(fields)});
+    } else if (kind == "plane") {
+        scene_.planes.push_back(
+            {fields.triple("point"), normalized(fields.triple("normal")), material_index(fields)});
+    }
+}
+
+void Validator::build_render(const Block& block, const Fields& fields) {
+    RenderSettings& render = scene_.render;
+    render.width = fields.integer("width");
+    render.height = fields.integer("height");
+    render.max_depth = fields.integer("max_depth");
+    render.samples = fields.integer("samples");
+    render.background = fields.triple("background");
+    render.shadows = fields.boolean("shadows");
+
+    constexpr long long kMaxPixels = 8192LL * 8192LL;
+    if (1LL * render.width * render.height > kMaxPixels)
+        diagnostics_.error(file_, block.kind_span,
+                           "the image would have " + std::to_string(1LL * render.width * render.height) +
+                               " pixels; the limit is " + std::to_string(kMaxPixels) + " (8192 x 8192)");
+    int root = int(std::lround(std::sqrt(double(render.samples))));
+    if (root * root != render.samples) {
+        int lower = int(std::floor(std::sqrt(double(render.samples))));
+        diagnostics_.error(file_, fields.value_span("samples"),
+                           "'samples' must be a perfect square (N x N stratified samples); try " +
+                               std::to_string(lower * lower) + " or " + std::to_string((lower + 1) * (lower + 1)));
+    }
+}
+
+void Validator::build_camera(const Block& block, const Fields& fields) {
+    Camera& camera = scene_.camera;
+    camera.eye = fields.triple("eye");
+    camera.lookat = fields.triple("lookat");
+    camera.up = fields.triple("up");
+    camera.fovy_degrees = fields.number("fovy");
+    camera.focal = fields.number("focal");
+
+    dvec3 forward = normalized(camera.lookat - camera.eye);
+    if (forward == dvec3(0.0)) {
+        diagnostics_.error(file_, fields.value_span("lookat"),
+                           "'lookat' must differ from 'eye' (they set the viewing direction)");
+        return;
+    }
+    if (glm::length(glm::cross(forward, normalized(camera.up))) < 1e-9) {
+        Span at = fields.has("up") ? fields.value_span("up") : block.kind_span;
+        diagnostics_.error(file_, at,
+                           std::string("'up'") + (fields.has("up") ? "" : " (by default (0, 1, 0))") +
+                               " is parallel to the viewing direction; choose an 'up' that is not");
+    }
+}
+
+void Validator::build_mesh(const Fields& fields) {
+    Mesh mesh;
+    fs::path path = fields.text("file");
+    if (path.is_relative()) path = scene_dir_ / path;
+    mesh.path = path.lexically_normal().string();
+    std::error_code error;
+    std::string problem;
+    if (!fs::exists(path, error))
+        problem = "no such file";
+    else if (fs::is_directory(path, error))
+        problem = "it is a directory";
+    else if (!std::ifstream(path).good())
+        problem = "it cannot be opened for reading";
+    if (!problem.empty())
+        diagnostics_.error(file_, fields.value_span("file"),
+                           "cannot read mesh file '" + mesh.path + "': " + problem);
+
+    mesh.scale = fields.triple("scale");
+    const Fields& rotate = *fields.child("rotate");
+    mesh.rotate_axis = normalized(rotate.triple("axis"));
+    mesh.rotate_degrees = rotate.number("angle");
+    mesh.translate = fields.triple("translate");
+    mesh.material = material_index(fields);
+    scene_.meshes.push_back(mesh);
+}
+
+}  // namespace
+
+std::optional<SceneDescription> validate_scene(const SceneAst& ast, const SourceFile& file,
+                                               Diagnostics& diagnostics, const ValidateOptions& options) {
+    return Validator(file, diagnostics, options).run(ast);
+}
+
+}  // namespace tracer

@@ -1,0 +1,26 @@
+// Gives meaning to a parsed scene: checks every block against its table (schema.h), fills
+// in defaults, resolves materials and paths, and reports every problem it finds.
+#pragma once
+
+#include <optional>
+
+#include "frontend/ast.h"
+#include "frontend/diagnostics.h"
+#include "frontend/scene.h"
+#include "frontend/source.h"
+
+namespace tracer {
+
+struct ValidateOptions {
+    // A fragment (such as an example in the reference) need not have a camera, and its
+    // unused materials are not worth a warning.
+    bool fragment = false;
+};
+
+// The scene description, or nothing if any error was reported (the errors are in
+// `diagnostics`). Relative paths resolve against the folder of `file`.
+std::optional<SceneDescription> validate_scene(const SceneAst& ast, const SourceFile& file,
+                                               Diagnostics& diagnostics,
+                                               const ValidateOptions& options = {});
+
+}  // namespace tracer

@@ -1,0 +1,24 @@
+// Image files through OpenImageIO, format chosen by the file extension. 8-bit formats get
+// round(255 v) of v clamped to [0, 1], no gamma; float formats (EXR, HDR, PFM) get the
+// unclamped values. Files are written to a temporary name and renamed, so a failed or
+// interrupted write never leaves a truncated image behind.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "render/renderer.h"
+
+namespace tracer {
+
+// An error message if `path` cannot be written as an image (unknown extension, no such
+// folder), checked before rendering so no time is wasted.
+std::optional<std::string> check_output_path(const std::string& path);
+
+// Writes the image; returns an error message on failure (and leaves `path` untouched).
+std::optional<std::string> write_image(const std::string& path, const Image& image);
+
+// round(255 v) of v clamped to [0, 1]: the 8-bit value of conventions.md.
+unsigned char to_8bit(double value);
+
+}  // namespace tracer

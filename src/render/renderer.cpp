@@ -1,0 +1,75 @@
+#include "render/renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "render/camera.h"
+#include "render/world.h"
+
+namespace tracer {
+
+Color Image::pixel(int x, int y) const {
+    const double* p = &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3];
+    return {p[0], p[1], p[2]};
+}
+
+// The mean of N x N rays through the centres of a regular grid of sub-pixel cells (N = 1:
+// the pixel centre).
+static Color shade_pixel(const World& world, const PinholeCamera& camera, const RenderSettings& settings,
+                         int x, int y, int grid, RayCounts& counts) {
+    Color sum(0.0);
+    for (int sy = 0; sy < grid; ++sy)
+        for (int sx = 0; sx < grid; ++sx) {
+            const Real px = x + (sx + Real(0.5)) / grid;
+            const Real py = y + (sy + Real(0.5)) / grid;
+            sum += trace(world, settings, camera.ray_through(px, py), counts);
+        }
+    return sum / double(grid * grid);
+}
+
+bool render(const SceneDescription& scene, const RenderOptions& options, Image& image, RenderStats& stats) {
+    const auto start = std::chrono::steady_clock::now();
+    const RenderSettings& settings = scene.render;
+    const World world(scene);
+    const PinholeCamera camera(scene.camera, settings.width, settings.height);
+    const int grid = int(std::lround(std::sqrt(double(settings.samples))));
+
+    image.width = settings.width;
+    image.height = settings.height;
+    image.rgb.assign(size_t(settings.width) * size_t(settings.height) * 3, 0.0);
+
+    int threads = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
+    threads = std::max(1, std::min(threads, settings.height));
+    std::atomic<int> next_row{0};
+    std::atomic<int> rows_done{0};
+    std::mutex merge;
+    stats = {};
+    stats.threads = threads;
+
+    auto worker = [&](int index) {
+        RayCounts counts;
+        for (int y; (y = next_row.fetch_add(1)) < settings.height;) {
+            if (options.cancel && options.cancel->load()) break;
+            for (int x = 0; x < settings.width; ++x) {
+                const Color c = shade_pixel(world, camera, settings, x, y, grid, counts);
+                double* out = &image.rgb[(size_t(y) * size_t(settings.width) + size_t(x)) * 3];
+                out[0] = c.r, out[1] = c.g, out[2] = c.b;
+            }
+            const int done = rows_done.fetch_add(1) + 1;
+            if (index == 0 && options.progress) options.progress(double(done) / settings.height);
+        }
+        std::lock_guard lock(merge);
+        stats.rays += counts;
+    };
+    std::vector<std::thread> pool;
+    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i);
+    worker(0);
+    for (std::thread& t : pool) t.join();
+
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return !(options.cancel && options.cancel->load()) && rows_done.load() == settings.height;
+}
+
+}  // namespace tracer

@@ -1,0 +1,40 @@
+// The render loop: every pixel of the image, on every core. Rows are handed out one at a
+// time from a shared counter (dynamic scheduling), so a slow row never idles a thread.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <vector>
+
+#include "frontend/scene.h"
+#include "render/whitted.h"
+
+namespace tracer {
+
+// Linear RGB, unclamped, row 0 at the top of the view.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<double> rgb;  // width * height * 3, kept in double so 8-bit rounding is exact
+
+    Color pixel(int x, int y) const;
+};
+
+struct RenderOptions {
+    int threads = 0;  // 0: one per hardware thread
+    // Called now and then from a worker with the finished fraction in [0, 1].
+    std::function<void(double)> progress;
+    // When set to true, workers stop after their current row and render() returns false.
+    const std::atomic<bool>* cancel = nullptr;
+};
+
+struct RenderStats {
+    double seconds = 0;
+    int threads = 0;
+    RayCounts rays;
+};
+
+// Renders the scene into `image`; false if cancelled (the image is then incomplete).
+bool render(const SceneDescription& scene, const RenderOptions& options, Image& image, RenderStats& stats);
+
+}  // namespace tracer

@@ -1,0 +1,65 @@
+#include "render/whitted.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace tracer {
+
+RayCounts& RayCounts::operator+=(const RayCounts& other) {
+    primary += other.primary;
+    shadow += other.shadow;
+    reflection += other.reflection;
+    return *this;
+}
+
+// Phong terms of every light that the point sees (no ambient).
+static Color direct_light(const World& world, const RenderSettings& settings, const Material& material,
+                          const Vec3& point, const Vec3& normal, const Vec3& to_viewer, RayCounts& counts) {
+    Color sum(0.0);
+    for (const Light& light : world.lights()) {
+        Vec3 to_light = Vec3(light.position) - point;
+        const Real distance = glm::length(to_light);
+        to_light /= distance;
+        if (settings.shadows) {
+            ++counts.shadow;
+            if (world.occluded({point, to_light}, {kSelfHitEpsilon, distance})) continue;
+        }
+        const Real n_dot_l = glm::dot(normal, to_light);
+        const Vec3 reflected_light = 2 * n_dot_l * normal - to_light;  // R = 2(N.L)N - L
+        const Real r_dot_v = std::max(Real(0), glm::dot(reflected_light, to_viewer));
+        sum += light.color * (material.kd * double(std::max(Real(0), n_dot_l)) +
+                              material.ks * std::pow(double(r_dot_v), material.n));
+    }
+    return sum;
+}
+
+// The recursion colour = local + km * trace(reflected) has a single child, so it runs as a
+// loop: `weight` is the product of the km of the mirrors passed so far. This keeps any
+// max_depth off the call stack and stops as soon as a surface reflects nothing.
+Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCounts& counts) {
+    ++counts.primary;
+    Color color(0.0);
+    Color weight(1.0);
+    for (int depth = 0;; ++depth) {
+        // Step 1: the nearest surface, or the background.
+        const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity});
+        if (!hit) return color + weight * settings.background;
+
+        // Step 2: local Phong shading with the normal facing the incoming ray.
+        const Material& material = world.materials()[size_t(hit->material)];
+        const Vec3 normal = glm::dot(hit->normal, ray.direction) > 0 ? -hit->normal : hit->normal;
+        const Vec3 to_viewer = -ray.direction;
+        color += weight * (material.ka + direct_light(world, settings, material, hit->point, normal,
+                                                      to_viewer, counts));
+
+        // Step 3: continue along the mirror direction D - 2(D.N)N.
+        weight *= material.km;
+        if (depth == settings.max_depth || weight == Color(0.0)) return color;
+        ++counts.reflection;
+        ray = {hit->point, ray.direction - 2 * glm::dot(ray.direction, normal) * normal};
+    }
+}
+
+}  // namespace tracer

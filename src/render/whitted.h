@@ -1,0 +1,31 @@
+// Whitted ray tracing with Phong shading, exactly as conventions.md states it:
+//   colour = ka + sum over unblocked lights of Lc (kd max(0, N.L) + ks max(0, R.V)^n)
+//          + km trace(reflected ray)
+#pragma once
+
+#include <cstdint>
+
+#include "frontend/scene.h"
+#include "render/types.h"
+#include "render/world.h"
+
+namespace tracer {
+
+// Secondary rays ignore hits closer than this (scene units), so they do not re-hit the
+// surface they leave. conventions.md: 1e-4 reproduces Figure 1.
+constexpr Real kSelfHitEpsilon = 1e-4;
+
+struct RayCounts {
+    uint64_t primary = 0;
+    uint64_t shadow = 0;
+    uint64_t reflection = 0;
+
+    uint64_t total() const { return primary + shadow + reflection; }
+    RayCounts& operator+=(const RayCounts& other);
+};
+
+// The colour seen along a primary ray: its hit shaded, plus up to settings.max_depth mirror
+// bounces (the ray that would be one bounce more returns black).
+Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCounts& counts);
+
+}  // namespace tracer

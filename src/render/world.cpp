@@ -1,0 +1,52 @@
+#include "render/world.h"
+
+#include "render/geometry.h"
+
+namespace tracer {
+
+World::World(const SceneDescription& scene) : materials_(scene.materials), lights_(scene.lights) {
+    for (const Sphere& s : scene.spheres) spheres_.push_back({Vec3(s.center), Real(s.radius), s.material});
+    for (const Plane& p : scene.planes) planes_.push_back({Vec3(p.point), Vec3(p.normal), p.material});
+}
+
+std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range) const {
+    // Each hit shrinks range.max, so later primitives only count when they are nearer.
+    const SphereShape* nearest_sphere = nullptr;
+    const PlaneShape* nearest_plane = nullptr;
+    for (const SphereShape& s : spheres_) {
+        if (auto t = intersect_sphere(ray, s.center, s.radius, range)) {
+            range.max = *t;
+            nearest_sphere = &s;
+        }
+    }
+    for (const PlaneShape& p : planes_) {
+        if (auto t = intersect_plane(ray, p.point, p.normal, range)) {
+            range.max = *t;
+            nearest_plane = &p;
+            nearest_sphere = nullptr;
+        }
+    }
+    if (!nearest_sphere && !nearest_plane) return std::nullopt;
+
+    SurfaceHit hit;
+    hit.t = range.max;
+    hit.point = ray.at(hit.t);
+    if (nearest_plane) {
+        hit.normal = nearest_plane->normal;
+        hit.material = nearest_plane->material;
+    } else {
+        hit.normal = (hit.point - nearest_sphere->center) / nearest_sphere->radius;
+        hit.material = nearest_sphere->material;
+    }
+    return hit;
+}
+
+bool World::occluded(const Ray& ray, Interval range) const {
+    for (const SphereShape& s : spheres_)
+        if (intersect_sphere(ray, s.center, s.radius, range)) return true;
+    for (const PlaneShape& p : planes_)
+        if (intersect_plane(ray, p.point, p.normal, range)) return true;
+    return false;
+}
+
+}  // namespace tracer
