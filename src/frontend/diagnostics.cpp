@@ -1,6 +1,7 @@
 #include "frontend/diagnostics.h"
 
 #include <algorithm>
+#include <climits>
 #include <ostream>
 #include <sstream>
 
@@ -82,7 +83,14 @@ std::string format_diagnostic(const Diagnostic& diagnostic) {
 }
 
 void Diagnostics::print(std::ostream& out) const {
-    for (const Diagnostic& d : list_) out << format_diagnostic(d);
+    // In file order, whatever stage found them; whole-file messages last.
+    std::vector<const Diagnostic*> ordered;
+    for (const Diagnostic& d : list_) ordered.push_back(&d);
+    std::stable_sort(ordered.begin(), ordered.end(), [](const Diagnostic* a, const Diagnostic* b) {
+        auto key = [](const Location& at) { return std::pair(at.line == 0 ? INT_MAX : at.line, at.column); };
+        return key(a->location) < key(b->location);
+    });
+    for (const Diagnostic* d : ordered) out << format_diagnostic(*d);
     if (dropped_)
         out << "error: too many errors (" << kMaxErrors << "), stopping; fix these and run again\n";
 }

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 
 namespace tracer {
 
@@ -90,6 +91,12 @@ Token Lexer::next() {
     return bad;
 }
 
+// True if a number that from_chars found out of range is too large (not too small).
+static bool overflows(std::string_view text) {
+    // strtod tells the two apart (HUGE_VAL vs 0); the program runs in the "C" locale.
+    return std::isinf(std::strtod(std::string(text).c_str(), nullptr));
+}
+
 // number = [ "+" | "-" ] ( digits [ "." { digit } ] | "." digits ) [ ( "e" | "E" ) [ "+" | "-" ] digits ]
 Token Lexer::lex_number(uint32_t begin) {
     auto digits = [&] {
@@ -124,7 +131,7 @@ Token Lexer::lex_number(uint32_t begin) {
     if (digits_text.front() == '+') digits_text.remove_prefix(1);
     auto [end, status] = std::from_chars(digits_text.data(), digits_text.data() + digits_text.size(),
                                          token.number);
-    if (status == std::errc::result_out_of_range && std::fabs(token.number) < 1.0) {
+    if (status == std::errc::result_out_of_range && !overflows(digits_text)) {
         token.number = 0;  // underflow: tiny numbers round to zero, as everywhere else
     } else if (status != std::errc() || end != digits_text.data() + digits_text.size() ||
                !std::isfinite(token.number)) {

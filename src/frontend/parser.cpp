@@ -52,9 +52,7 @@ private:
 
 const Token& Parser::peek(size_t ahead) {
     while (lookahead_.size() <= ahead) {
-        Token token = lexer_.next();
-        if (token.kind == TokenKind::Error) continue;  // already reported by the lexer
-        lookahead_.push_back(std::move(token));
+        lookahead_.push_back(lexer_.next());
     }
     return lookahead_[ahead];
 }
@@ -67,7 +65,8 @@ Token Parser::take() {
 }
 
 void Parser::fail(const Token& token, std::string message) {
-    diagnostics_.error(file_, token.span, std::move(message));
+    // The lexer has already reported an Error token: one message per mistake.
+    if (token.kind != TokenKind::Error) diagnostics_.error(file_, token.span, std::move(message));
     throw SyntaxError{};
 }
 
@@ -77,7 +76,8 @@ SceneAst Parser::parse_scene() {
     while (!at(TokenKind::End) && !diagnostics_.saturated()) {
         if (!at(TokenKind::Identifier)) {
             Token stray = take();
-            diagnostics_.error(file_, stray.span,
+            if (stray.kind != TokenKind::Error)
+                diagnostics_.error(file_, stray.span,
                                stray.kind == TokenKind::RBrace
                                    ? "unexpected '}': no block is open here"
                                    : "expected a block such as 'sphere { ... }', found " + describe(stray));

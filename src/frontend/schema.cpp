@@ -52,7 +52,7 @@ const BlockSpec kRender{
 
 const BlockSpec kCamera{
     "camera", false, true, Occurs::ExactlyOnce,
-    "A pinhole camera. Exactly one per scene.",
+    "A pinhole camera.",
     {
         key("eye", ValueType::Vector, "", "Position of the eye."),
         key("lookat", ValueType::Vector, "", "The point at the centre of the image."),

@@ -135,6 +135,7 @@ private:
     // Builders: checked fields -> scene description.
     void add_named_material(const Block& block);
     int material_index(const Fields& fields);
+    bool check_material_name(const Value& value);
     Material build_material(const Fields& fields, std::string name);
     void build(const Block& block, const Fields& fields);
     void build_render(const Block& block, const Fields& fields);
@@ -305,7 +306,7 @@ bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fiel
             }
             return true;
         case ValueType::MaterialRef:
-            if (value.kind == Kind::Identifier) return true;
+            if (value.kind == Kind::Identifier) return check_material_name(value);
             if (value.kind == Kind::Block) {
                 auto child = std::make_unique<Fields>(*find_block_spec("material"));
                 bool ok = check_body(*value.body, *find_block_spec("material"), value.span, *child);
@@ -375,16 +376,21 @@ int Validator::material_index(const Fields& fields) {
         scene_.materials.push_back(build_material(*fields.child("material"), ""));
         return int(scene_.materials.size()) - 1;
     }
+    return named_.at(value.text).index;  // check_material_name made sure it exists
+}
+
+// A material used by name must be defined somewhere in the file; marks it used.
+bool Validator::check_material_name(const Value& value) {
     auto found = named_.find(value.text);
     if (found == named_.end()) {
         std::vector<std::string_view> names;
         for (const auto& [name, material] : named_) names.push_back(name);
         diagnostics_.error(file_, value.span,
                            "undefined material '" + value.text + "'" + did_you_mean(value.text, names));
-        return -1;
+        return false;
     }
     found->second.used = true;
-    return found->second.index;
+    return true;
 }
 
 void Validator::build(const Block& block, const Fields& fields) {

@@ -1,0 +1,108 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "frontend/load_scene.h"
+#include "frontend/scene_json.h"
+
+namespace tracer {
+namespace {
+
+const std::string kCamera = "camera { eye (0, 0, 7) lookat (0, 0, 0) }\n";
+
+LoadResult load(const std::string& text) { return load_scene_text("/scenes/t.scn", text); }
+
+std::vector<std::string> messages(const LoadResult& result) {
+    std::vector<std::string> out;
+    for (const Diagnostic& d : result.diagnostics.all()) out.push_back(d.message);
+    return out;
+}
+
+TEST(Validate, DefaultsFillEverythingLeftOut) {
+    LoadResult r = load(kCamera);
+    ASSERT_TRUE(r.scene) << format_diagnostic(r.diagnostics.all().front());
+    EXPECT_EQ(r.scene->render.width, 1200);
+    EXPECT_EQ(r.scene->render.height, 800);
+    EXPECT_EQ(r.scene->render.max_depth, 4);
+    EXPECT_EQ(r.scene->render.samples, 1);
+    EXPECT_TRUE(r.scene->render.shadows);
+    EXPECT_EQ(r.scene->camera.up, dvec3(0, 1, 0));
+    EXPECT_EQ(r.scene->camera.fovy_degrees, 45);
+    EXPECT_EQ(r.scene->camera.focal, 1);
+}
+
+TEST(Validate, MaterialsByNameInlineAndBeforeDefinition) {
+    LoadResult r = load(kCamera +
+                        "sphere { center (0, 0, 0) radius 1 material later }\n"
+                        "sphere { center (0, 0, 0) radius 2 material { ka 0.1 kd (0.2, 1, 0.2) } }\n"
+                        "material later { km 0.8 n 5 }\n");
+    ASSERT_TRUE(r.scene);
+    ASSERT_EQ(r.scene->materials.size(), 2u);
+    const Material& later = r.scene->materials[size_t(r.scene->spheres[0].material)];
+    EXPECT_EQ(later.name, "later");
+    EXPECT_EQ(later.km, dvec3(0.8));  // one number means grey
+    EXPECT_EQ(later.n, 5);
+    EXPECT_EQ(later.kd, dvec3(0.0));
+    const Material& inline_material = r.scene->materials[size_t(r.scene->spheres[1].material)];
+    EXPECT_EQ(inline_material.name, "");
+    EXPECT_EQ(inline_material.kd, dvec3(0.2, 1, 0.2));
+    EXPECT_EQ(r.diagnostics.warning_count(), 0);
+}
+
+TEST(Validate, PlaneNormalsAreNormalisedAndPathsMadeAbsolute) {
+    LoadResult r = load(kCamera + "plane { point (0, 0, 0) normal (0, 1e-200, 0) material { kd 1 } }\n");
+    ASSERT_TRUE(r.scene);
+    EXPECT_EQ(r.scene->planes[0].normal, dvec3(0, 1, 0));  // no underflow to a zero vector
+
+    std::string dir = std::filesystem::path(TRACER_SOURCE_DIR) / "scenes";
+    LoadResult m = load_scene_text(dir + "/x.scn", kCamera +
+                                   "mesh { file \"meshes/tetrahedron.obj\" material { kd 1 } }\n");
+    ASSERT_TRUE(m.scene);
+    EXPECT_EQ(m.scene->meshes[0].path, dir + "/meshes/tetrahedron.obj");
+    EXPECT_EQ(m.scene->meshes[0].rotate_degrees, 0);  // the nested block's defaults
+    EXPECT_EQ(m.scene->meshes[0].rotate_axis, dvec3(0, 1, 0));
+}
+
+TEST(Validate, UnusedMaterialIsAWarningNotAnError) {
+    LoadResult r = load(kCamera + "material spare { kd 1 }\n");
+    EXPECT_TRUE(r.scene);
+    EXPECT_EQ(r.diagnostics.warning_count(), 1);
+    EXPECT_EQ(messages(r), std::vector<std::string>{"material 'spare' is never used"});
+}
+
+TEST(Validate, ErrorsInOneBlockDoNotCascade) {
+    // The broken material's name stays known, so its users are not reported as well.
+    LoadResult r = load(kCamera + "material m { kd ( }\nsphere { center (0, 0, 0) radius 1 material m }\n");
+    EXPECT_FALSE(r.scene);
+    EXPECT_EQ(r.diagnostics.error_count(), 1);
+}
+
+TEST(Validate, CameraGeometryIsChecked) {
+    EXPECT_EQ(messages(load("camera { eye (1, 2, 3) lookat (1, 2, 3) }")),
+              std::vector<std::string>{"'lookat' must differ from 'eye' (they set the viewing direction)"});
+    EXPECT_EQ(messages(load("camera { eye (0, 5, 0) lookat (0, 0, 0) }")),
+              std::vector<std::string>{"'up' (by default (0, 1, 0)) is parallel to the viewing direction; "
+                                       "choose an 'up' that is not"});
+    EXPECT_TRUE(load("camera { eye (0, 5, 0) lookat (0, 0, 0) up (0, 0, -1) }").scene);
+}
+
+TEST(Validate, SamplesMustBeAPerfectSquare) {
+    EXPECT_TRUE(load(kCamera + "render { samples 16 }").scene);
+    EXPECT_EQ(messages(load(kCamera + "render { samples 8 }")),
+              std::vector<std::string>{"'samples' must be a perfect square (N x N stratified samples); try 4 or 9"});
+}
+
+TEST(Validate, JsonDumpIsFullyResolved) {
+    LoadResult r = load(kCamera + "material m { kd 0.5 }\nsphere { center (1, 2, 3) radius 1 material m }\n");
+    ASSERT_TRUE(r.scene);
+    auto json = scene_to_json(*r.scene);
+    EXPECT_EQ(json["source"], "/scenes/t.scn");
+    EXPECT_EQ(json["render"]["max_depth"], 4);
+    EXPECT_EQ(json["spheres"][0]["material"]["name"], "m");
+    EXPECT_EQ(json["spheres"][0]["material"]["kd"], nlohmann::json::array({0.5, 0.5, 0.5}));
+    EXPECT_EQ(json["spheres"][0]["material"]["ka"], nlohmann::json::array({0.0, 0.0, 0.0}));
+    EXPECT_EQ(json["camera"]["up"], nlohmann::json::array({0.0, 1.0, 0.0}));
+}
+
+}  // namespace
+}  // namespace tracer

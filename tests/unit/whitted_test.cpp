@@ -1,0 +1,104 @@
+// The shading rules of conventions.md, each on a scene small enough to work out by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/whitted.h"
+
+namespace tracer {
+namespace {
+
+SceneDescription one_sphere(Material material, Light light) {
+    SceneDescription scene;
+    scene.materials = {material};
+    scene.spheres = {{{0, 0, 0}, 1.0, 0}};
+    scene.lights = {light};
+    return scene;
+}
+
+Material phong(dvec3 ka, dvec3 kd, dvec3 ks, double n, dvec3 km = dvec3(0)) {
+    Material m;
+    m.ka = ka, m.kd = kd, m.ks = ks, m.n = n, m.km = km;
+    return m;
+}
+
+const Ray kDown{{0, 0, 5}, {0, 0, -1}};  // hits the unit sphere at (0, 0, 1), normal +z
+
+TEST(Whitted, PhongTermsAddUpWithLightColourOnDiffuseAndSpecularOnly) {
+    SceneDescription scene = one_sphere(phong(dvec3(0.1), dvec3(0.2, 0.4, 0.6), dvec3(0.5), 10),
+                                        {{0, 0, 10}, {0.5, 1.0, 0.25}});
+    World world(scene);
+    RayCounts counts;
+    Color c = trace(world, scene.render, kDown, counts);
+    // N.L = 1 and R.V = 1: colour = ka + Lc (kd + ks); ambient is not scaled by the light.
+    EXPECT_NEAR(c.r, 0.1 + 0.5 * (0.2 + 0.5), 1e-12);
+    EXPECT_NEAR(c.g, 0.1 + 1.0 * (0.4 + 0.5), 1e-12);
+    EXPECT_NEAR(c.b, 0.1 + 0.25 * (0.6 + 0.5), 1e-12);
+    EXPECT_EQ(counts.primary, 1u);
+    EXPECT_EQ(counts.shadow, 1u);
+}
+
+TEST(Whitted, SpecularUsesPhongReflectionNotTheHalfVector) {
+    // Light 45 degrees off the normal, viewer on the normal: Phong's R.V is cos 45 degrees,
+    // Blinn-Phong's N.H would be cos 22.5 degrees.
+    SceneDescription scene = one_sphere(phong(dvec3(0), dvec3(0), dvec3(1), 1), {{10, 0, 11}, dvec3(1)});
+    World world(scene);
+    RayCounts counts;
+    Color c = trace(world, scene.render, kDown, counts);
+    EXPECT_NEAR(c.r, std::cos(M_PI / 4), 1e-12);
+}
+
+TEST(Whitted, ShadowedPointKeepsOnlyAmbient) {
+    SceneDescription scene = one_sphere(phong(dvec3(0.1), dvec3(1), dvec3(1), 10), {{0, 0, 10}, dvec3(1)});
+    scene.spheres.push_back({{0, 0, 3}, 0.5, 0});  // hides the light from (0, 0, 1)
+    World world(scene);
+    RayCounts counts;
+    Ray beside_blocker{{0.8, 0, 5}, {0, 0, -1}};  // hits (0.8, 0, 0.6); its shadow ray passes the blocker
+    EXPECT_GT(trace(world, scene.render, beside_blocker, counts).r, 0.1);
+    Ray behind_blocker{{0, 0, 2}, {0, 0, -1}};
+    EXPECT_NEAR(trace(world, scene.render, behind_blocker, counts).r, 0.1, 1e-12);
+
+    scene.render.shadows = false;
+    World no_shadows(scene);
+    RayCounts no_shadow_counts;
+    EXPECT_GT(trace(no_shadows, scene.render, behind_blocker, no_shadow_counts).r, 0.1);
+    EXPECT_EQ(no_shadow_counts.shadow, 0u);
+}
+
+TEST(Whitted, MirrorRecursionStopsAfterMaxDepthBounces) {
+    // Two facing mirrors; a ray along their normal bounces forever. Each mirror also has
+    // ambient 1, so the colour counts the levels shaded: 1 + 0.5 + 0.25 + ...
+    SceneDescription scene;
+    scene.materials = {phong(dvec3(1), dvec3(0), dvec3(0), 1, dvec3(0.5))};
+    scene.planes = {{{0, 0, -1}, {0, 0, 1}, 0}, {{0, 0, 1}, {0, 0, -1}, 0}};
+    scene.render.background = dvec3(7);  // must not appear: the level past max_depth is black
+    for (int depth : {0, 1, 4, 10}) {
+        scene.render.max_depth = depth;
+        World world(scene);
+        RayCounts counts;
+        Color c = trace(world, scene.render, {{0, 0, 0}, {0, 0, 1}}, counts);
+        EXPECT_NEAR(c.r, 2 - std::pow(0.5, depth), 1e-12) << "depth " << depth;
+        EXPECT_EQ(counts.reflection, uint64_t(depth));
+    }
+}
+
+TEST(Whitted, MissesReturnTheBackgroundWeightedByTheMirror) {
+    SceneDescription scene = one_sphere(phong(dvec3(0), dvec3(0), dvec3(0), 1, dvec3(0.5)), {{0, 0, 10}, dvec3(0)});
+    scene.render.background = dvec3(0.2);
+    World world(scene);
+    RayCounts counts;
+    EXPECT_NEAR(trace(world, scene.render, {{0, 0, 5}, {0, 1, 0}}, counts).r, 0.2, 1e-12);
+    EXPECT_NEAR(trace(world, scene.render, kDown, counts).r, 0.1, 1e-12);  // 0.5 x background
+}
+
+TEST(Whitted, NormalFacesTheRaySoInsidesAreLit) {
+    // Camera inside a sphere, light inside too: the inner surface is lit.
+    SceneDescription scene = one_sphere(phong(dvec3(0), dvec3(1), dvec3(0), 1), {{0, 0.5, 0}, dvec3(1)});
+    World world(scene);
+    RayCounts counts;
+    Color c = trace(world, scene.render, {{0, 0, 0}, {0, 1, 0}}, counts);
+    EXPECT_NEAR(c.r, 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace tracer
