@@ -28,10 +28,7 @@ Location Diagnostics::whole_file(const std::string& path) {
 
 Diagnostic* Diagnostics::report(Severity severity, Location location, std::string message) {
     if (severity == Severity::Error) {
-        if (saturated()) {
-            dropped_ = true;
-            return nullptr;
-        }
+        if (saturated()) return nullptr;
         ++errors_;
     } else if (severity == Severity::Warning) {
         ++warnings_;
@@ -91,8 +88,8 @@ void Diagnostics::print(std::ostream& out) const {
         return key(a->location) < key(b->location);
     });
     for (const Diagnostic* d : ordered) out << format_diagnostic(*d);
-    if (dropped_)
-        out << "error: too many errors (" << kMaxErrors << "), stopping; fix these and run again\n";
+    if (saturated())
+        out << "error: stopped after " << kMaxErrors << " errors; fix these and run again to see any others\n";
 }
 
 }  // namespace tracer

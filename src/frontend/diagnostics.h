@@ -64,7 +64,6 @@ private:
     std::deque<Diagnostic> list_;  // a deque: returned pointers stay valid
     int errors_ = 0;
     int warnings_ = 0;
-    bool dropped_ = false;
 };
 
 // Formats one diagnostic (and its notes) exactly as `print` does.

@@ -38,11 +38,16 @@ std::string describe(const Token& token) {
 Lexer::Lexer(const SourceFile& file, Diagnostics& diagnostics)
     : file_(file), diagnostics_(diagnostics), text_(file.text()) {}
 
+void Lexer::report(Span span, std::string message) {
+    if (!quiet_) diagnostics_.error(file_, span, std::move(message));
+}
+
 Token Lexer::make(TokenKind kind, uint32_t begin) {
     Token token;
     token.kind = kind;
     token.span = {begin, pos_};
     token.text = text_.substr(begin, pos_ - begin);
+    last_end_ = pos_;
     return token;
 }
 
@@ -62,7 +67,12 @@ void Lexer::skip_space_and_comments() {
 Token Lexer::next() {
     skip_space_and_comments();
     uint32_t begin = pos_;
-    if (pos_ >= text_.size()) return make(TokenKind::End, begin);
+    if (pos_ >= text_.size()) {
+        const uint32_t after_last_token = last_end_;
+        Token end = make(TokenKind::End, begin);
+        end.span = {after_last_token, after_last_token};
+        return end;
+    }
 
     char c = text_[pos_];
     switch (c) {
@@ -87,7 +97,7 @@ Token Lexer::next() {
     ++pos_;
     while (pos_ < text_.size() && (static_cast<unsigned char>(text_[pos_]) & 0xC0) == 0x80) ++pos_;
     Token bad = make(TokenKind::Error, begin);
-    diagnostics_.error(file_, bad.span, "unexpected character '" + std::string(bad.text) + "'");
+    report( bad.span, "unexpected character '" + std::string(bad.text) + "'");
     return bad;
 }
 
@@ -124,7 +134,7 @@ Token Lexer::lex_number(uint32_t begin) {
     Token token = make(TokenKind::Number, begin);
     if (!ok || glued) {
         token.kind = TokenKind::Error;
-        diagnostics_.error(file_, token.span, "malformed number '" + std::string(token.text) + "'");
+        report( token.span, "malformed number '" + std::string(token.text) + "'");
         return token;
     }
     std::string_view digits_text = token.text;
@@ -136,7 +146,7 @@ Token Lexer::lex_number(uint32_t begin) {
     } else if (status != std::errc() || end != digits_text.data() + digits_text.size() ||
                !std::isfinite(token.number)) {
         token.kind = TokenKind::Error;
-        diagnostics_.error(file_, token.span,
+        report( token.span,
                            "number '" + std::string(token.text) + "' is out of range (it would be infinite)");
     }
     return token;
@@ -154,7 +164,7 @@ Token Lexer::lex_string(uint32_t begin) {
     }
     if (pos_ >= text_.size() || text_[pos_] != '"') {
         Token bad = make(TokenKind::Error, begin);
-        diagnostics_.error(file_, bad.span, "unterminated string (a string ends with '\"' on the same line)");
+        report( bad.span, "unterminated string (a string ends with '\"' on the same line)");
         return bad;
     }
     ++pos_;

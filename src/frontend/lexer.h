@@ -32,9 +32,13 @@ public:
 
     // Returns the next token, reporting and skipping over anything malformed.
     Token next();
+    // While quiet, malformed input still becomes Error tokens but is not reported (used
+    // while the parser skips the rest of a block it has already reported).
+    void set_quiet(bool quiet) { quiet_ = quiet; }
 
 private:
     Token make(TokenKind kind, uint32_t begin);
+    void report(Span span, std::string message);
     Token lex_number(uint32_t begin);
     Token lex_string(uint32_t begin);
     void skip_space_and_comments();
@@ -43,6 +47,8 @@ private:
     Diagnostics& diagnostics_;
     std::string_view text_;
     uint32_t pos_ = 0;
+    uint32_t last_end_ = 0;  // end of the last token, where "end of file" is shown
+    bool quiet_ = false;
 };
 
 }  // namespace tracer

@@ -216,6 +216,12 @@ void Parser::parse_vector(Value& value) {
 
 // Skips to the '}' that closes the current top-level block (or the end of the file).
 void Parser::skip_to_block_end() {
+    // The block is already reported: what the lexer finds in the rest of it is no news.
+    lexer_.set_quiet(true);
+    struct LoudAgain {
+        Lexer& lexer;
+        ~LoudAgain() { lexer.set_quiet(false); }
+    } loud_again{lexer_};
     if (open_.empty()) {
         // The error came before the block's '{': skip to that brace, unless a block starts first.
         while (!at(TokenKind::End) && !at(TokenKind::LBrace) &&
@@ -227,11 +233,9 @@ void Parser::skip_to_block_end() {
     int depth = int(open_.size());
     while (depth > 0) {
         if (at(TokenKind::End)) {
-            if (!open_.empty()) {
-                Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
-                Diagnostics::note(d, file_, open_.front().span,
-                                  "to close the '" + open_.front().owner + "' block opened here");
-            }
+            Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
+            Diagnostics::note(d, file_, open_.front().span,
+                              "to close the '" + open_.front().owner + "' block opened here");
             return;
         }
         TokenKind kind = take().kind;

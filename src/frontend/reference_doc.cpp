@@ -9,24 +9,18 @@
 namespace tracer {
 namespace {
 
-std::string number_text(double value) {
-    char buffer[32];
-    auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return std::string(buffer, result.ptr);
-}
-
 // The allowed values of a key, e.g. "> 0", ">= 0", "0 < x < 180", "1 to 16384".
 std::string allowed_text(const KeySpec& key) {
     std::string text;
     bool has_min = !std::isinf(key.min), has_max = !std::isinf(key.max);
     if (has_min && has_max) {
         if (key.min_open || key.max_open)
-            text = number_text(key.min) + (key.min_open ? " < x " : " <= x ") + (key.max_open ? "< " : "<= ") +
-                   number_text(key.max);
+            text = format_number(key.min) + (key.min_open ? " < x " : " <= x ") + (key.max_open ? "< " : "<= ") +
+                   format_number(key.max);
         else
-            text = number_text(key.min) + " to " + number_text(key.max);
+            text = format_number(key.min) + " to " + format_number(key.max);
     } else if (has_min) {
-        text = (key.min_open ? "> " : ">= ") + number_text(key.min);
+        text = (key.min_open ? "> " : ">= ") + format_number(key.min);
     }
     if (key.type == ValueType::Triple && has_min) text += " (each component)";
     if (key.nonzero) text += text.empty() ? "not zero length" : "; not zero length";

@@ -1,5 +1,8 @@
 #include "frontend/schema.h"
 
+#include <charconv>
+#include <cmath>
+
 namespace tracer {
 namespace {
 
@@ -158,6 +161,15 @@ const BlockSpec* find_block_spec(std::string_view kind) {
     for (const BlockSpec* spec : all_block_specs())
         if (spec->top_level && spec->kind == kind) return spec;
     return nullptr;
+}
+
+std::string format_number(double value) {
+    char buffer[32];
+    // Whole numbers below 1e15 in plain digits; everything else in the shortest exact form.
+    auto result = std::floor(value) == value && std::fabs(value) < 1e15
+                      ? std::to_chars(buffer, buffer + sizeof buffer, (long long)value)
+                      : std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
 }
 
 std::string_view describe(ValueType type) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <limits>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -55,6 +56,9 @@ struct BlockSpec {
 const std::vector<const BlockSpec*>& all_block_specs();
 // The top-level block kind called `kind`, or nullptr.
 const BlockSpec* find_block_spec(std::string_view kind);
+// A number as messages and the reference print it: 100000, 0.5, 1e-30.
+std::string format_number(double value);
+
 // A readable name for a value type ("a number or (x, y, z)").
 std::string_view describe(ValueType type);
 

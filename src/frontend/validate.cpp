@@ -20,12 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string format_number(double value) {
-    char buffer[32];
-    auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return std::string(buffer, result.ptr);
-}
-
 std::string describe_found(const Value& value) {
     switch (value.kind) {
         case Value::Kind::Number: return "the number " + format_number(value.number);
@@ -190,7 +184,8 @@ std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
     if (!options_.fragment && !first_of_kind_.count("camera") && !diagnostics_.saturated())
         diagnostics_.report(Severity::Error, Diagnostics::whole_file(file_.path()),
                             "the scene has no camera block; add one, e.g. camera { eye (0, 0, 7) lookat (0, 0, 0) }");
-    if (!options_.fragment)
+    // With errors around, an unused material is usually a misspelled use: no extra noise.
+    if (!options_.fragment && !diagnostics_.has_errors())
         for (const auto& [name, material] : named_)
             if (!material.used && material.index >= 0)
                 diagnostics_.warning(file_, material.name_span, "material '" + name + "' is never used");
@@ -223,12 +218,14 @@ bool Validator::check_block_header(const Block& block, const BlockSpec& spec) {
 
 bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields) {
     bool ok = true;
+    std::vector<std::string> suggested;  // keys offered in "did you mean": not reported missing
     for (const Entry& entry : body.entries) {
         if (diagnostics_.saturated()) return false;
         const KeySpec* key = spec.find_key(entry.key);
         if (!key) {
             std::vector<std::string_view> names;
             for (const KeySpec& k : spec.keys) names.push_back(k.name);
+            suggested.push_back(closest_match(entry.key, names));
             diagnostics_.error(file_, entry.key_span,
                                "unknown key '" + entry.key + "' in " + std::string(spec.kind) +
                                    did_you_mean(entry.key, names));
@@ -245,7 +242,8 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
         ok = check_value(entry.value, *key, fields) && ok;
     }
     for (const KeySpec& key : spec.keys) {
-        if (key.required() && !fields.has(key.name)) {
+        bool misspelled = std::find(suggested.begin(), suggested.end(), key.name) != suggested.end();
+        if (key.required() && !fields.has(key.name) && !misspelled) {
             diagnostics_.error(file_, owner,
                                std::string(spec.kind) + " is missing the required key '" +
                                    std::string(key.name) + "' (" + std::string(describe(key.type)) + ")");

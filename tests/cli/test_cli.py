@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""The command line's contract: exit codes, nothing written on failure, the JSON dump.
+
+    test_cli.py --tracer build/release/tracer
+"""
+import argparse
+import json
+import os
+import pathlib
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+TASK2 = ROOT / "scenes" / "task2.scn"
+TRACER = ""
+
+SMALL_SCENE = """camera { eye (0, 0, 7) lookat (0, 0, 0) }
+render { width 64 height 48 }
+sphere { center (0, 0, 0) radius 1 material { ka 0.1 kd (1, 0.5, 0.25) ks 0.5 n 20 } }
+light { position (2, 3, 4) color 2 }
+"""
+
+
+def run(*args, **kwargs):
+    return subprocess.run([TRACER, *map(str, args)], capture_output=True, text=True, timeout=120, **kwargs)
+
+
+class CommandLine(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.tmp = pathlib.Path(self.dir.name)
+        self.small = self.tmp / "small.scn"
+        self.small.write_text(SMALL_SCENE)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def leftovers(self):
+        return sorted(p.name for p in self.tmp.iterdir() if p.name != "small.scn" and not p.name.endswith(".scn"))
+
+    def test_help_and_version(self):
+        self.assertEqual(run("--help").returncode, 0)
+        self.assertIn("Exit codes", run("--help").stdout)
+        version = run("--version")
+        self.assertEqual(version.returncode, 0)
+        self.assertRegex(version.stdout, r"tracer \d+\.\d+\.\d+")
+
+    def test_usage_errors_exit_2(self):
+        self.assertEqual(run().returncode, 2)
+        self.assertEqual(run(self.small).returncode, 2)  # no -o
+        self.assertEqual(run("--no-such-option", self.small).returncode, 2)
+        self.assertEqual(run(self.small, "-o", self.tmp / "a.png", "--threads", "0").returncode, 2)
+        self.assertEqual(run("--check", "--dump-json", self.small).returncode, 2)
+        self.assertEqual(self.leftovers(), [])
+
+    def test_render_writes_png_and_summary(self):
+        out = self.tmp / "out.png"
+        result = run(self.small, "-o", out, "--threads", "2")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertTrue(out.exists())
+        self.assertEqual(out.read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
+        self.assertRegex(result.stderr, r"64x48, 1 spp, 2 threads, .* Mrays/s")
+        self.assertEqual(self.leftovers(), ["out.png"])  # no temporary file left behind
+        quiet = run(self.small, "-o", out, "--quiet")
+        self.assertEqual((quiet.returncode, quiet.stderr), (0, ""))
+
+    def test_exr_output(self):
+        out = self.tmp / "out.exr"
+        result = run(self.small, "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(out.read_bytes()[:4], b"\x76\x2f\x31\x01")  # OpenEXR magic number
+
+    def test_scene_errors_exit_1_and_write_nothing(self):
+        bad = self.tmp / "bad.scn"
+        bad.write_text(SMALL_SCENE.replace("radius 1", "radius -1"))
+        out = self.tmp / "out.png"
+        result = run(bad, "-o", out)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("bad.scn:3:", result.stderr)
+        self.assertFalse(out.exists())
+        self.assertEqual(self.leftovers(), [])
+
+    def test_failed_render_keeps_an_existing_output(self):
+        out = self.tmp / "out.png"
+        out.write_bytes(b"previous image")
+        bad = self.tmp / "bad.scn"
+        bad.write_text("camera {")
+        self.assertEqual(run(bad, "-o", out).returncode, 1)
+        self.assertEqual(out.read_bytes(), b"previous image")
+
+    def test_unreadable_scene_or_output_exit_3(self):
+        missing = run(self.tmp / "missing.scn", "-o", self.tmp / "out.png")
+        self.assertEqual(missing.returncode, 3)
+        self.assertIn("missing.scn: error: cannot read the scene file", missing.stderr)
+        self.assertEqual(run("--check", self.tmp).returncode, 3)  # a directory
+        self.assertEqual(run(self.small, "-o", self.tmp / "out.unknownformat").returncode, 3)
+        self.assertEqual(run(self.small, "-o", self.tmp / "no" / "such" / "folder.png").returncode, 3)
+        self.assertEqual(self.leftovers(), [])
+
+    def test_interrupted_render_writes_nothing(self):
+        big = self.tmp / "big.scn"
+        big.write_text(SMALL_SCENE.replace("width 64 height 48", "width 4096 height 4096 samples 64"))
+        out = self.tmp / "out.png"
+        proc = subprocess.Popen([TRACER, big, "-o", out, "--threads", "1"], stderr=subprocess.PIPE, text=True)
+        time.sleep(1.0)
+        proc.send_signal(signal.SIGINT)
+        _, stderr = proc.communicate(timeout=60)
+        self.assertEqual(proc.returncode, 130, stderr)
+        self.assertIn("interrupted; nothing written", stderr)
+        self.assertFalse(out.exists())
+        self.assertEqual(self.leftovers(), [])
+
+    def test_check_reports_ok_on_stdout(self):
+        result = run("--check", TASK2)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("ok (4 spheres, 2 planes, 0 meshes, 2 lights, 5 materials)", result.stdout)
+
+    def test_dump_json_is_resolved(self):
+        result = run("--dump-json", TASK2)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        scene = json.loads(result.stdout)
+        self.assertEqual(scene["source"], str(TASK2))
+        self.assertEqual(scene["render"], {"width": 1200, "height": 800, "max_depth": 4, "samples": 1,
+                                           "background": [0.0, 0.0, 0.0], "shadows": True})
+        self.assertEqual(scene["camera"]["fovy"], 45.0)
+        self.assertEqual(len(scene["spheres"]), 4)
+        self.assertEqual(scene["spheres"][3]["radius"], 1.0)
+        self.assertEqual(scene["spheres"][3]["material"]["km"], [0.8, 0.8, 0.8])
+        self.assertEqual(scene["planes"][1]["normal"], [0.0, 0.0, 1.0])
+        self.assertEqual(scene["lights"][1], {"position": [-2.0, 1.0, 4.0], "color": [0.5, 0.5, 0.5]})
+
+    def test_dump_json_of_a_bad_scene_prints_nothing_on_stdout(self):
+        bad = self.tmp / "bad.scn"
+        bad.write_text("camera { eye (0, 0, 7) }")
+        result = run("--dump-json", bad)
+        self.assertEqual((result.returncode, result.stdout), (1, ""))
+
+    def test_reference_matches_committed_file(self):
+        self.assertEqual(run("--reference").stdout, (ROOT / "grammar" / "reference.md").read_text())
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--tracer", required=True)
+    args, rest = parser.parse_known_args()
+    TRACER = str(pathlib.Path(args.tracer).resolve())
+    unittest.main(argv=[sys.argv[0], *rest], verbosity=1)
