@@ -1,9 +1,14 @@
-// Ray-primitive intersection as pure functions: geometry in, ray parameter out.
+// Ray-primitive intersection as pure functions: geometry in, ray parameter out. Defined here,
+// inline, because they are the innermost loop of every ray.
 // They never return NaN: a miss is std::nullopt, and comparisons are written so that NaN
 // inputs fall through to a miss.
 #pragma once
 
+#include <cmath>
 #include <optional>
+#include <utility>
+
+#include <glm/geometric.hpp>
 
 #include "render/types.h"
 
@@ -12,10 +17,39 @@ namespace tracer {
 // Nearest t in `range` where `ray` meets the sphere, from outside or inside.
 // Uses the discriminant form of Haines et al. (Ray Tracing Gems ch. 7), which stays accurate
 // for small spheres far from the ray origin.
-std::optional<Real> intersect_sphere(const Ray& ray, const Vec3& center, Real radius, Interval range);
+inline std::optional<Real> intersect_sphere(const Ray& ray, const Vec3& center, Real radius, Interval range) {
+    const Vec3 f = ray.origin - center;
+    const Vec3& d = ray.direction;
+    const Real b = glm::dot(f, d);  // half of the usual b
+    const Real c = glm::dot(f, f) - radius * radius;
+    // Origin outside (c > 0) and moving away (b > 0): both roots are negative. Most rays
+    // leave here, without a division.
+    if (c > 0 && b > 0) return std::nullopt;
+    const Real a = glm::dot(d, d);
+    // b^2 - ac computed as a (r^2 - |f - (b/a) d|^2): no cancellation when the sphere is small
+    // and far away.
+    const Vec3 chord = f - (b / a) * d;
+    const Real discriminant = a * (radius * radius - glm::dot(chord, chord));
+    if (!(discriminant >= 0)) return std::nullopt;
+    // The root with the larger magnitude first (no cancellation), the other from t0 t1 = c/a.
+    const Real q = -(b + std::copysign(std::sqrt(discriminant), b));
+    if (q == 0) return std::nullopt;  // origin on the surface, ray tangent: t = 0 twice
+    Real t0 = c / q, t1 = q / a;
+    if (t0 > t1) std::swap(t0, t1);
+    if (range.contains(t0)) return t0;
+    if (range.contains(t1)) return t1;
+    return std::nullopt;
+}
 
 // t in `range` where `ray` meets the infinite plane through `point` with normal `normal`
 // (either side); a ray parallel to the plane misses.
-std::optional<Real> intersect_plane(const Ray& ray, const Vec3& point, const Vec3& normal, Interval range);
+inline std::optional<Real> intersect_plane(const Ray& ray, const Vec3& point, const Vec3& normal,
+                                           Interval range) {
+    const Real denominator = glm::dot(normal, ray.direction);
+    if (denominator == 0) return std::nullopt;
+    const Real t = glm::dot(point - ray.origin, normal) / denominator;
+    if (range.contains(t)) return t;
+    return std::nullopt;
+}
 
 }  // namespace tracer

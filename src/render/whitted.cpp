@@ -14,7 +14,9 @@ RayCounts& RayCounts::operator+=(const RayCounts& other) {
     return *this;
 }
 
-// Phong terms of every light that the point sees (no ambient).
+// Phong terms of every light that the point sees (no ambient). A light whose unshadowed
+// term is exactly zero (a mirror with kd = ks = 0, a back face without specular) adds
+// nothing either way, so it costs no shadow ray.
 static Color direct_light(const World& world, const RenderSettings& settings, const Material& material,
                           const Vec3& point, const Vec3& normal, const Vec3& to_viewer, RayCounts& counts) {
     Color sum(0.0);
@@ -22,15 +24,18 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         Vec3 to_light = Vec3(light.position) - point;
         const Real distance = glm::length(to_light);
         to_light /= distance;
+        const Real n_dot_l = glm::dot(normal, to_light);
+        const Vec3 reflected_light = 2 * n_dot_l * normal - to_light;  // R = 2(N.L)N - L
+        const Real r_dot_v = std::max(Real(0), glm::dot(reflected_light, to_viewer));
+        const Color diffuse = material.kd * double(std::max(Real(0), n_dot_l));
+        const Color specular = material.ks == Color(0.0) ? Color(0.0) : material.ks * std::pow(double(r_dot_v), material.n);
+        const Color term = light.color * (diffuse + specular);
+        if (term == Color(0.0)) continue;
         if (settings.shadows) {
             ++counts.shadow;
             if (world.occluded({point, to_light}, {kSelfHitEpsilon, distance})) continue;
         }
-        const Real n_dot_l = glm::dot(normal, to_light);
-        const Vec3 reflected_light = 2 * n_dot_l * normal - to_light;  // R = 2(N.L)N - L
-        const Real r_dot_v = std::max(Real(0), glm::dot(reflected_light, to_viewer));
-        sum += light.color * (material.kd * double(std::max(Real(0), n_dot_l)) +
-                              material.ks * std::pow(double(r_dot_v), material.n));
+        sum += term;
     }
     return sum;
 }
