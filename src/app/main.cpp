@@ -6,16 +6,19 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "app/progress.h"
+#include "app/stats.h"
 #include "frontend/load_scene.h"
 #include "frontend/reference_doc.h"
 #include "frontend/scene_json.h"
 #include "render/image_output.h"
+#include "render/mesh_loader.h"
 #include "render/renderer.h"
 
 namespace {
@@ -34,14 +37,35 @@ struct Options {
     bool check = false;
     bool dump_json = false;
     bool reference = false;
+    std::string accel;  // empty: the scene's
+    int leaf_size = 0;  // 0: the scene's
+    bool stats = false;
+    std::string stats_json;
 };
 
-// Loads and validates the scene, printing its diagnostics; nullopt on errors.
-std::optional<tracer::SceneDescription> load(const std::string& path, int& exit_code) {
-    tracer::LoadResult result = tracer::load_scene(path);
+// A validated scene with its meshes loaded: everything a render needs.
+struct LoadedScene {
+    tracer::SceneDescription scene;
+    std::vector<tracer::TriangleMesh> meshes;
+};
+
+// Loads and validates the scene and reads its meshes, printing every diagnostic; nullopt on
+// errors (with `exit_code` set).
+std::optional<LoadedScene> load(const Options& options, int& exit_code) {
+    tracer::LoadResult result = tracer::load_scene(options.scene);
+    std::optional<std::vector<tracer::TriangleMesh>> meshes;
+    if (result.scene) {
+        tracer::RenderSettings& render = result.scene->render;
+        if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
+        if (options.leaf_size > 0) render.leaf_size = options.leaf_size;
+        meshes = tracer::load_meshes(*result.scene, result.diagnostics);
+    }
     result.diagnostics.print(std::cerr);
-    if (!result.scene) exit_code = result.unreadable ? kIoError : kSceneError;
-    return std::move(result.scene);
+    if (!result.scene || !meshes) {
+        exit_code = result.unreadable ? kIoError : kSceneError;
+        return std::nullopt;
+    }
+    return LoadedScene{std::move(*result.scene), std::move(*meshes)};
 }
 
 std::string millions(uint64_t count) {
@@ -57,11 +81,10 @@ int render_to_file(const Options& options) {
         return kIoError;
     }
     int exit_code = kOk;
-    auto scene = load(options.scene, exit_code);
-    if (!scene) return exit_code;
-    if (!scene->meshes.empty())
-        std::cerr << options.scene << ": warning: mesh rendering is not implemented yet; "
-                  << scene->meshes.size() << " mesh block(s) skipped\n";
+    auto loaded = load(options, exit_code);
+    if (!loaded) return exit_code;
+    const tracer::SceneDescription* scene = &loaded->scene;
+    const tracer::World world(loaded->scene, std::move(loaded->meshes));
 
     // Step 2: render, stoppable with Ctrl-C.
     std::signal(SIGINT, on_interrupt);
@@ -73,7 +96,7 @@ int render_to_file(const Options& options) {
     render_options.progress = [&](double fraction) { progress.update(fraction); };
     tracer::Image image;
     tracer::RenderStats stats;
-    bool complete = tracer::render(*scene, render_options, image, stats);
+    bool complete = tracer::render(world, *scene, render_options, image, stats);
     progress.finish();
     if (!complete) {
         std::cerr << "tracer: interrupted; nothing written\n";
@@ -84,6 +107,16 @@ int render_to_file(const Options& options) {
     if (auto problem = tracer::write_image(options.output, image)) {
         std::cerr << "tracer: error: " << *problem << '\n';
         return kIoError;
+    }
+    const auto figures = tracer::render_stats_json(world, *scene, stats);
+    if (options.stats) std::cerr << tracer::render_stats_text(figures);
+    if (!options.stats_json.empty()) {
+        std::ofstream out(options.stats_json);
+        out << figures.dump(2) << '\n';
+        if (!out) {
+            std::cerr << "tracer: error: cannot write '" << options.stats_json << "'\n";
+            return kIoError;
+        }
     }
     if (!options.quiet) {
         const tracer::RayCounts& rays = stats.rays;
@@ -100,8 +133,9 @@ int render_to_file(const Options& options) {
 
 int check_only(const Options& options) {
     int exit_code = kOk;
-    auto scene = load(options.scene, exit_code);
-    if (!scene) return exit_code;
+    auto loaded = load(options, exit_code);
+    if (!loaded) return exit_code;
+    const tracer::SceneDescription* scene = &loaded->scene;
     std::cout << options.scene << ": ok (" << scene->spheres.size() << " spheres, " << scene->planes.size()
               << " planes, " << scene->meshes.size() << " meshes, " << scene->lights.size() << " lights, "
               << scene->materials.size() << " materials)\n";
@@ -110,9 +144,9 @@ int check_only(const Options& options) {
 
 int dump_json(const Options& options) {
     int exit_code = kOk;
-    auto scene = load(options.scene, exit_code);
-    if (!scene) return exit_code;
-    std::cout << tracer::scene_to_json(*scene).dump(2) << '\n';
+    auto loaded = load(options, exit_code);
+    if (!loaded) return exit_code;
+    std::cout << tracer::scene_to_json(loaded->scene).dump(2) << '\n';
     return kOk;
 }
 
@@ -126,6 +160,11 @@ int main(int argc, char** argv) {
     app.add_option("-o,--output", options.output, "The image to write; the format follows the extension (.png, .exr, ...)");
     app.add_option("--threads", options.threads, "Render threads (default: every core)")->check(CLI::Range(1, 1024));
     app.add_flag("-q,--quiet", options.quiet, "No progress indicator and no summary line");
+    app.add_option("--accel", options.accel, "Override the scene's mesh accelerator")
+        ->check(CLI::IsMember({"none", "box", "median", "sah"}));
+    app.add_option("--leaf-size", options.leaf_size, "Override the scene's BVH leaf size")->check(CLI::Range(1, 255));
+    app.add_flag("--stats", options.stats, "Print BVH and ray statistics on stderr");
+    app.add_option("--stats-json", options.stats_json, "Write the statistics as JSON to this file");
     app.add_flag("--check", options.check, "Only check the scene; report every problem found");
     app.add_flag("--dump-json", options.dump_json, "Print the resolved scene description as JSON on stdout");
     app.add_flag("--reference", options.reference, "Print the scene language reference (Markdown) on stdout");

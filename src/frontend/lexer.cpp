@@ -30,9 +30,7 @@ std::string describe(TokenKind kind) {
 
 std::string describe(const Token& token) {
     if (token.kind == TokenKind::End) return "end of file";
-    std::string quoted = "'";  // built step by step: GCC 12 warns falsely on "'" + string (bug 105329)
-    quoted.append(token.text).append("'");
-    return quoted;
+    return "'" + std::string(token.text) + "'";
 }
 
 Lexer::Lexer(const SourceFile& file, Diagnostics& diagnostics)

@@ -5,6 +5,7 @@
 
 #include <glm/vec3.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tracer {
@@ -28,6 +29,14 @@ struct Camera {
     double focal = 1.0;          // distance to the image plane (cancels out of the image)
 };
 
+// How rays find triangles: every triangle (none), one bounding box around the mesh (box),
+// or a bounding volume hierarchy built by median splits (median) or the SAH (sah).
+enum class Accelerator { None, Box, Median, Sah };
+
+// The scene-language name of an accelerator ("sah"), and back (false if unknown).
+const char* accelerator_name(Accelerator accelerator);
+bool accelerator_from_name(std::string_view name, Accelerator& out);
+
 struct RenderSettings {
     int width = 1200;
     int height = 800;
@@ -35,6 +44,8 @@ struct RenderSettings {
     int samples = 1;          // samples per pixel, a perfect square (N x N stratified)
     dvec3 background{0.0};    // colour of rays that leave the scene
     bool shadows = true;      // trace shadow rays to the lights
+    Accelerator accel = Accelerator::Sah;
+    int leaf_size = 3;        // most triangles in a BVH leaf (median; sah may make smaller leaves)
 };
 
 struct Sphere {

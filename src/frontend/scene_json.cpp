@@ -23,7 +23,8 @@ Json scene_to_json(const SceneDescription& scene) {
     const RenderSettings& r = scene.render;
     out["render"] = {{"width", r.width},          {"height", r.height},
                      {"max_depth", r.max_depth},  {"samples", r.samples},
-                     {"background", vec(r.background)}, {"shadows", r.shadows}};
+                     {"background", vec(r.background)}, {"shadows", r.shadows},
+                     {"accel", accelerator_name(r.accel)}, {"leaf_size", r.leaf_size}};
     const Camera& c = scene.camera;
     out["camera"] = {{"eye", vec(c.eye)}, {"lookat", vec(c.lookat)}, {"up", vec(c.up)},
                      {"fovy", c.fovy_degrees}, {"focal", c.focal}};

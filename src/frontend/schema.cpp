@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "frontend/scene.h"
+
 namespace tracer {
 namespace {
 
@@ -29,6 +31,10 @@ KeySpec nonzero(KeySpec spec) {
     spec.nonzero = true;
     return spec;
 }
+KeySpec one_of(KeySpec spec, std::vector<std::string_view> choices) {
+    spec.choices = std::move(choices);
+    return spec;
+}
 KeySpec nested(KeySpec spec, const BlockSpec* block) {
     spec.block = block;
     return spec;
@@ -49,6 +55,14 @@ const BlockSpec kRender{
         ranged(key("background", ValueType::Triple, "0",
                    "Colour of rays that leave the scene."), 0, kInf),
         key("shadows", ValueType::Boolean, "true", "Trace shadow rays to the lights."),
+        one_of(key("accel", ValueType::Choice, "sah",
+                   "How rays find a mesh's triangles: `none` tests every triangle, `box` one bounding "
+                   "box around the mesh, `median` a BVH split at the median centroid (x, y, z by "
+                   "depth), `sah` a BVH built with the surface-area heuristic."),
+               {"none", "box", "median", "sah"}),
+        ranged(key("leaf_size", ValueType::Integer, "3",
+                   "Most triangles in a BVH leaf (`median` splits every larger node; `sah` may stop "
+                   "earlier where splitting does not pay)."), 1, 255),
     },
     "render {\n  width 600\n  height 400\n  max_depth 4\n  background (0, 0, 0)\n}\n",
 };
@@ -163,6 +177,25 @@ const BlockSpec* find_block_spec(std::string_view kind) {
     return nullptr;
 }
 
+const char* accelerator_name(Accelerator accelerator) {
+    switch (accelerator) {
+        case Accelerator::None: return "none";
+        case Accelerator::Box: return "box";
+        case Accelerator::Median: return "median";
+        case Accelerator::Sah: return "sah";
+    }
+    return "sah";
+}
+
+bool accelerator_from_name(std::string_view name, Accelerator& out) {
+    for (Accelerator a : {Accelerator::None, Accelerator::Box, Accelerator::Median, Accelerator::Sah})
+        if (name == accelerator_name(a)) {
+            out = a;
+            return true;
+        }
+    return false;
+}
+
 std::string format_number(double value) {
     char buffer[32];
     // Whole numbers below 1e15 in plain digits; everything else in the shortest exact form.
@@ -182,6 +215,7 @@ std::string_view describe(ValueType type) {
         case ValueType::Path: return "a file path in double quotes";
         case ValueType::MaterialRef: return "a material name or an inline material { ... }";
         case ValueType::Block: return "a block { ... }";
+        case ValueType::Choice: return "a name";
     }
     return "a value";
 }

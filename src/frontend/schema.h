@@ -19,6 +19,7 @@ enum class ValueType {
     Path,         // "a string", a file path relative to the scene file
     MaterialRef,  // the name of a material block, or an inline { ... } material
     Block,        // a nested { ... } block with its own table
+    Choice,       // one of the names listed in KeySpec::choices
 };
 
 struct BlockSpec;
@@ -34,6 +35,7 @@ struct KeySpec {
     bool nonzero = false;   // vectors: must not have zero length
     std::string_view meaning;
     const BlockSpec* block = nullptr;  // ValueType::Block: the nested block's table
+    std::vector<std::string_view> choices;  // ValueType::Choice: the allowed names
 
     bool required() const { return default_value.empty(); }
 };

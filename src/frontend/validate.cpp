@@ -312,6 +312,17 @@ bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fiel
                 return ok;
             }
             return type_error(value, key);
+        case ValueType::Choice: {
+            if (value.kind == Kind::Identifier &&
+                std::find(key.choices.begin(), key.choices.end(), value.text) != key.choices.end())
+                return true;
+            std::string allowed;
+            for (std::string_view choice : key.choices) allowed += (allowed.empty() ? "" : ", ") + std::string(choice);
+            std::string hint = value.kind == Kind::Identifier ? did_you_mean(value.text, key.choices) : "";
+            diagnostics_.error(file_, value.span, "'" + std::string(key.name) + "' must be one of " + allowed +
+                                                      ", found " + describe_found(value) + hint);
+            return false;
+        }
         case ValueType::Block: {
             if (value.kind != Kind::Block) return type_error(value, key);
             auto child = std::make_unique<Fields>(*key.block);
@@ -414,6 +425,8 @@ void Validator::build_render(const Block& block, const Fields& fields) {
     render.samples = fields.integer("samples");
     render.background = fields.triple("background");
     render.shadows = fields.boolean("shadows");
+    accelerator_from_name(fields.text("accel"), render.accel);
+    render.leaf_size = fields.integer("leaf_size");
 
     constexpr long long kMaxPixels = 8192LL * 8192LL;
     if (1LL * render.width * render.height > kMaxPixels)

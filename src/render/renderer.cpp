@@ -29,10 +29,10 @@ static Color shade_pixel(const World& world, const PinholeCamera& camera, const 
     return sum / double(grid * grid);
 }
 
-bool render(const SceneDescription& scene, const RenderOptions& options, Image& image, RenderStats& stats) {
+bool render(const World& world, const SceneDescription& scene, const RenderOptions& options, Image& image,
+            RenderStats& stats) {
     const auto start = std::chrono::steady_clock::now();
     const RenderSettings& settings = scene.render;
-    const World world(scene);
     const PinholeCamera camera(scene.camera, settings.width, settings.height);
     const int grid = int(std::lround(std::sqrt(double(settings.samples))));
 

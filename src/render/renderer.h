@@ -8,6 +8,7 @@
 
 #include "frontend/scene.h"
 #include "render/whitted.h"
+#include "render/world.h"
 
 namespace tracer {
 
@@ -34,7 +35,9 @@ struct RenderStats {
     RayCounts rays;
 };
 
-// Renders the scene into `image`; false if cancelled (the image is then incomplete).
-bool render(const SceneDescription& scene, const RenderOptions& options, Image& image, RenderStats& stats);
+// Renders the world as the scene's camera and render settings say into `image`; false if
+// cancelled (the image is then incomplete).
+bool render(const World& world, const SceneDescription& scene, const RenderOptions& options, Image& image,
+            RenderStats& stats);
 
 }  // namespace tracer

@@ -11,6 +11,7 @@ RayCounts& RayCounts::operator+=(const RayCounts& other) {
     primary += other.primary;
     shadow += other.shadow;
     reflection += other.reflection;
+    traversal += other.traversal;
     return *this;
 }
 
@@ -33,7 +34,7 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         if (term == Color(0.0)) continue;
         if (settings.shadows) {
             ++counts.shadow;
-            if (world.occluded({point, to_light}, {kSelfHitEpsilon, distance})) continue;
+            if (world.occluded({point, to_light}, {kSelfHitEpsilon, distance}, counts.traversal)) continue;
         }
         sum += term;
     }
@@ -49,7 +50,7 @@ Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCoun
     Color weight(1.0);
     for (int depth = 0;; ++depth) {
         // Step 1: the nearest surface, or the background.
-        const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity});
+        const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts.traversal);
         if (!hit) return color + weight * settings.background;
 
         // Step 2: local Phong shading with the normal facing the incoming ray.

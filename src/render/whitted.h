@@ -19,6 +19,7 @@ struct RayCounts {
     uint64_t primary = 0;
     uint64_t shadow = 0;
     uint64_t reflection = 0;
+    TraversalCounts traversal;  // box and triangle tests of all those rays
 
     uint64_t total() const { return primary + shadow + reflection; }
     RayCounts& operator+=(const RayCounts& other);

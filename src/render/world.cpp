@@ -4,15 +4,22 @@
 
 namespace tracer {
 
-World::World(const SceneDescription& scene) : materials_(scene.materials), lights_(scene.lights) {
+World::World(const SceneDescription& scene, std::vector<TriangleMesh> meshes)
+    : materials_(scene.materials), lights_(scene.lights) {
     for (const Sphere& s : scene.spheres) spheres_.push_back({Vec3(s.center), Real(s.radius), s.material});
     for (const Plane& p : scene.planes) planes_.push_back({Vec3(p.point), Vec3(p.normal), p.material});
+    for (TriangleMesh& mesh : meshes) meshes_.emplace_back(std::move(mesh), scene.render.accel, scene.render.leaf_size);
 }
 
-std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range) const {
+// 1 / direction, per component; a zero component gives an infinity of the right sign.
+static Vec3 reciprocal(const Vec3& d) { return Vec3(1) / d; }
+
+std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range, TraversalCounts& counts) const {
     // Each hit shrinks range.max, so later primitives only count when they are nearer.
     const SphereShape* nearest_sphere = nullptr;
     const PlaneShape* nearest_plane = nullptr;
+    const MeshAccel* nearest_mesh = nullptr;
+    MeshHit mesh_hit;
     for (const SphereShape& s : spheres_) {
         if (auto t = intersect_sphere(ray, s.center, s.radius, range)) {
             range.max = *t;
@@ -26,12 +33,25 @@ std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range) const
             nearest_sphere = nullptr;
         }
     }
-    if (!nearest_sphere && !nearest_plane) return std::nullopt;
+    if (!meshes_.empty()) {
+        const Vec3 inv_dir = reciprocal(ray.direction);
+        for (const MeshAccel& mesh : meshes_) {
+            if (mesh.intersect(ray, inv_dir, range, mesh_hit, counts)) {
+                nearest_mesh = &mesh;
+                nearest_plane = nullptr;
+                nearest_sphere = nullptr;
+            }
+        }
+    }
+    if (!nearest_sphere && !nearest_plane && !nearest_mesh) return std::nullopt;
 
     SurfaceHit hit;
     hit.t = range.max;
     hit.point = ray.at(hit.t);
-    if (nearest_plane) {
+    if (nearest_mesh) {
+        hit.normal = nearest_mesh->shading_normal(mesh_hit);
+        hit.material = nearest_mesh->mesh().material;
+    } else if (nearest_plane) {
         hit.normal = nearest_plane->normal;
         hit.material = nearest_plane->material;
     } else {
@@ -41,11 +61,15 @@ std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range) const
     return hit;
 }
 
-bool World::occluded(const Ray& ray, Interval range) const {
+bool World::occluded(const Ray& ray, Interval range, TraversalCounts& counts) const {
     for (const SphereShape& s : spheres_)
         if (intersect_sphere(ray, s.center, s.radius, range)) return true;
     for (const PlaneShape& p : planes_)
         if (intersect_plane(ray, p.point, p.normal, range)) return true;
+    if (meshes_.empty()) return false;
+    const Vec3 inv_dir = reciprocal(ray.direction);
+    for (const MeshAccel& mesh : meshes_)
+        if (mesh.occluded(ray, inv_dir, range, counts)) return true;
     return false;
 }
 

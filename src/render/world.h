@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "frontend/scene.h"
+#include "render/mesh_accel.h"
 #include "render/types.h"
 
 namespace tracer {
@@ -13,22 +14,24 @@ namespace tracer {
 struct SurfaceHit {
     Real t = 0;
     Vec3 point{0};
-    Vec3 normal{0};    // geometric normal, unit length, not yet turned towards the ray
+    Vec3 normal{0};    // shading normal, unit length, not yet turned towards the ray
     int material = 0;  // index into World::materials()
 };
 
 class World {
 public:
-    // Copies the shapes of a validated scene (meshes are not rendered yet).
-    explicit World(const SceneDescription& scene);
+    // The shapes of a validated scene, with its meshes as loaded by load_meshes (in the
+    // scene's order), each behind the scene's accelerator.
+    World(const SceneDescription& scene, std::vector<TriangleMesh> meshes = {});
 
     // The nearest surface along `ray` with t inside `range`.
-    std::optional<SurfaceHit> intersect(const Ray& ray, Interval range) const;
+    std::optional<SurfaceHit> intersect(const Ray& ray, Interval range, TraversalCounts& counts) const;
     // True if any surface lies along `ray` with t inside `range` (for shadow rays).
-    bool occluded(const Ray& ray, Interval range) const;
+    bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const;
 
     const std::vector<Material>& materials() const { return materials_; }
     const std::vector<Light>& lights() const { return lights_; }
+    const std::vector<MeshAccel>& meshes() const { return meshes_; }
 
 private:
     struct SphereShape {
@@ -43,6 +46,7 @@ private:
     };
     std::vector<SphereShape> spheres_;
     std::vector<PlaneShape> planes_;
+    std::vector<MeshAccel> meshes_;
     std::vector<Material> materials_;
     std::vector<Light> lights_;
 };

@@ -61,7 +61,7 @@ protected:
         ASSERT_TRUE(loaded.scene);
         Image image;
         RenderStats stats;
-        ASSERT_TRUE(render(*loaded.scene, {}, image, stats));
+        ASSERT_TRUE(render(World(*loaded.scene), *loaded.scene, {}, image, stats));
         rendered_ = std::make_unique<Bytes>(to_bytes(image));
         // TRACER_UPDATE_GOLDEN=1 rewrites the golden image (review the diff before committing).
         if (std::getenv("TRACER_UPDATE_GOLDEN"))

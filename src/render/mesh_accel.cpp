@@ -1,0 +1,84 @@
+#include "render/mesh_accel.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace tracer {
+
+MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size) : mesh_(std::move(mesh)), accel_(accel) {
+    const auto start = std::chrono::steady_clock::now();
+    const size_t n = mesh_.vertices.size();
+    if (accel_ != Accelerator::None) {
+        std::vector<Bounds> bounds(n);
+        for (size_t i = 0; i < n; ++i)
+            for (uint32_t v : mesh_.vertices[i]) bounds[i].extend(mesh_.positions[v]);
+        bvh_ = Bvh(bounds, accel_, leaf_size);
+        ids_ = bvh_.order();
+    } else {
+        ids_.resize(n);
+        for (size_t i = 0; i < n; ++i) ids_[i] = uint32_t(i);
+    }
+    edges_.reserve(n);
+    for (uint32_t id : ids_) {
+        const auto& v = mesh_.vertices[id];
+        const Vec3& p0 = mesh_.positions[v[0]];
+        edges_.push_back({p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0});
+    }
+    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool MeshAccel::intersect(const Ray& ray, const Vec3& inv_dir, Interval& range, MeshHit& out,
+                          TraversalCounts& counts) const {
+    uint32_t best = 0;
+    TriangleHit best_hit;
+    auto test = [&](uint32_t i, Interval& r) {
+        TriangleHit hit;
+        if (!intersect_triangle(ray, edges_[i], r, hit)) return false;
+        r.max = hit.t;
+        best = i;
+        best_hit = hit;
+        return true;
+    };
+    bool found = false;
+    if (accel_ == Accelerator::None) {
+        counts.primitive_tests += edges_.size();
+        for (uint32_t i = 0; i < edges_.size(); ++i) found = test(i, range) || found;
+    } else {
+        found = bvh_.closest(ray, inv_dir, range, counts, test);
+    }
+    if (found) out = {ids_[best], best_hit};
+    return found;
+}
+
+bool MeshAccel::occluded(const Ray& ray, const Vec3& inv_dir, Interval range, TraversalCounts& counts) const {
+    auto test = [&](uint32_t i, Interval& r) {
+        TriangleHit hit;
+        return intersect_triangle(ray, edges_[i], r, hit);
+    };
+    if (accel_ == Accelerator::None) {
+        for (uint32_t i = 0; i < edges_.size(); ++i) {
+            ++counts.primitive_tests;
+            if (test(i, range)) return true;
+        }
+        return false;
+    }
+    return bvh_.any(ray, inv_dir, range, counts, test);
+}
+
+Vec3 MeshAccel::geometric_normal(uint32_t triangle) const {
+    const auto& v = mesh_.vertices[triangle];
+    const Vec3& p0 = mesh_.positions[v[0]];
+    return glm::normalize(glm::cross(mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0));
+}
+
+Vec3 MeshAccel::shading_normal(const MeshHit& hit) const {
+    const auto& n = mesh_.normal_ids[hit.triangle];
+    const Real u = hit.hit.u, v = hit.hit.v;
+    const Vec3 interpolated = (1 - u - v) * mesh_.normals[n[0]] + u * mesh_.normals[n[1]] + v * mesh_.normals[n[2]];
+    const Real length = glm::length(interpolated);
+    return length > 0 && std::isfinite(length) ? interpolated / length : geometric_normal(hit.triangle);
+}
+
+}  // namespace tracer

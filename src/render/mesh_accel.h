@@ -1,0 +1,48 @@
+// A triangle mesh ready for rays: its triangles stored for intersection in BVH leaf order,
+// behind the accelerator the scene chose (none, box, median or sah).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/bvh.h"
+#include "render/mesh_loader.h"
+#include "render/triangle.h"
+
+namespace tracer {
+
+struct MeshHit {
+    uint32_t triangle = 0;  // index into TriangleMesh::vertices
+    TriangleHit hit;
+};
+
+class MeshAccel {
+public:
+    MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size);
+
+    // The nearest triangle with t inside `range`; shrinks range.max to it.
+    bool intersect(const Ray& ray, const Vec3& inv_dir, Interval& range, MeshHit& out, TraversalCounts& counts) const;
+    // True if any triangle lies along the ray inside `range`.
+    bool occluded(const Ray& ray, const Vec3& inv_dir, Interval range, TraversalCounts& counts) const;
+
+    // Unit face normal (v1 - v0) x (v2 - v0) of a triangle.
+    Vec3 geometric_normal(uint32_t triangle) const;
+    // Vertex normals interpolated at the hit and renormalised; the face normal where they
+    // cancel out.
+    Vec3 shading_normal(const MeshHit& hit) const;
+
+    const TriangleMesh& mesh() const { return mesh_; }
+    const Bvh& bvh() const { return bvh_; }
+    Accelerator accel() const { return accel_; }
+    double build_seconds() const { return build_seconds_; }
+
+private:
+    TriangleMesh mesh_;
+    Accelerator accel_;
+    Bvh bvh_;
+    std::vector<TriangleEdges> edges_;  // entry i is triangle ids_[i]
+    std::vector<uint32_t> ids_;
+    double build_seconds_ = 0;
+};
+
+}  // namespace tracer

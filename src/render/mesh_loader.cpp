@@ -1,0 +1,243 @@
+#include "render/mesh_loader.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <tiny_obj_loader.h>  // TINYOBJLOADER_USE_DOUBLE comes with the CMake target
+static_assert(sizeof(tinyobj::real_t) == sizeof(double), "link the double-precision tinyobjloader");
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/mat3x3.hpp>
+
+namespace tracer {
+namespace {
+
+// tinyobjloader reads "nan" and "inf" as 0 and keeps out-of-range indices, so `v` and `f`
+// statements are checked here first, where the line and column are still known.
+class ObjChecker {
+public:
+    ObjChecker(const SourceFile& file, Diagnostics& diagnostics) : file_(file), diagnostics_(diagnostics) {}
+
+    // True if every vertex is finite and every face index names an existing vertex.
+    bool check() {
+        const std::string_view text = file_.text();
+        size_t vertex_total = 0, normal_total = 0;
+        for_each_statement(text, [&](std::string_view keyword, std::vector<Token>&) {
+            vertex_total += keyword == "v";
+            normal_total += keyword == "vn";
+        });
+        size_t vertices_so_far = 0, normals_so_far = 0;
+        for_each_statement(text, [&](std::string_view keyword, std::vector<Token>& tokens) {
+            if (keyword == "v" || keyword == "vn") {
+                (keyword == "v" ? vertices_so_far : normals_so_far) += 1;
+                for (size_t i = 0; i < 3; ++i) {
+                    if (i >= tokens.size()) {
+                        error(tokens.empty() ? keyword_span_ : tokens.back().span,
+                              "'" + std::string(keyword) + "' needs three coordinates");
+                        return;
+                    }
+                    double value = 0;
+                    auto [end, status] = std::from_chars(tokens[i].text.data(),
+                                                         tokens[i].text.data() + tokens[i].text.size(), value);
+                    bool parsed = status == std::errc() && end == tokens[i].text.data() + tokens[i].text.size();
+                    if (!parsed || !std::isfinite(value))
+                        error(tokens[i].span, "coordinate '" + std::string(tokens[i].text) + "' is not a finite number");
+                }
+            } else if (keyword == "f") {
+                if (tokens.size() < 3) error(keyword_span_, "a face needs at least three vertices");
+                for (const Token& token : tokens) {
+                    // v, v/vt, v/vt/vn or v//vn: check the position and normal indices.
+                    std::string_view corner = token.text;
+                    size_t slash = corner.find('/');
+                    check_index(token, corner.substr(0, slash), vertices_so_far, vertex_total, "vertex");
+                    size_t second = slash == std::string_view::npos ? slash : corner.find('/', slash + 1);
+                    if (second != std::string_view::npos)
+                        check_index(token, corner.substr(second + 1), normals_so_far, normal_total, "normal");
+                }
+            }
+        });
+        return ok_;
+    }
+
+private:
+    struct Token {
+        std::string_view text;
+        Span span;
+    };
+
+    template <typename Visit>
+    void for_each_statement(std::string_view text, Visit visit) {
+        size_t pos = 0;
+        while (pos < text.size() && !diagnostics_.saturated()) {
+            size_t end = text.find('\n', pos);
+            if (end == std::string_view::npos) end = text.size();
+            std::vector<Token> tokens;
+            size_t i = pos;
+            while (i < end && text[i] != '#') {
+                while (i < end && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) ++i;
+                size_t start = i;
+                while (i < end && text[i] != ' ' && text[i] != '\t' && text[i] != '\r' && text[i] != '#') ++i;
+                if (i > start) tokens.push_back({text.substr(start, i - start), {uint32_t(start), uint32_t(i)}});
+            }
+            if (!tokens.empty()) {
+                std::string_view keyword = tokens.front().text;
+                keyword_span_ = tokens.front().span;
+                tokens.erase(tokens.begin());
+                visit(keyword, tokens);
+            }
+            pos = end + 1;
+        }
+    }
+
+    void check_index(const Token& token, std::string_view digits, size_t so_far, size_t total, const char* what) {
+        if (digits.empty()) return;  // "v//vn" has no texture index; absent normal index
+        long index = 0;
+        auto [end, status] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+        if (status != std::errc() || end != digits.data() + digits.size()) {
+            error(token.span, "'" + std::string(token.text) + "' is not a valid face corner");
+            return;
+        }
+        long resolved = index < 0 ? long(so_far) + index + 1 : index;  // negative: relative to here
+        if (index == 0 || resolved < 1 || resolved > long(total))
+            error(token.span, std::string(what) + " index " + std::to_string(index) + " is out of range (the file has " +
+                                  std::to_string(total) + " " + what + (total == 1 ? "" : "s") + ")");
+    }
+
+    void error(Span span, std::string message) {
+        diagnostics_.error(file_, span, std::move(message));
+        ok_ = false;
+    }
+
+    const SourceFile& file_;
+    Diagnostics& diagnostics_;
+    Span keyword_span_;
+    bool ok_ = true;
+};
+
+// Scale, then rotate about the axis, as one matrix; normals use its inverse transpose.
+struct Placement {
+    glm::dmat3 linear;
+    glm::dmat3 normal;
+    Vec3 translate;
+
+    explicit Placement(const Mesh& mesh) {
+        glm::dmat3 rotation = glm::dmat3(glm::rotate(glm::dmat4(1.0), glm::radians(mesh.rotate_degrees), mesh.rotate_axis));
+        glm::dmat3 scale(1.0);
+        for (int i = 0; i < 3; ++i) scale[i][i] = mesh.scale[i];
+        linear = rotation * scale;
+        normal = glm::transpose(glm::inverse(linear));
+        translate = mesh.translate;
+    }
+};
+
+}  // namespace
+
+std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& positions,
+                                        const std::vector<std::array<uint32_t, 3>>& triangles) {
+    std::vector<Vec3> sums(positions.size(), Vec3(0));
+    for (const auto& t : triangles) {
+        // The unnormalised cross product is the face normal times twice the area.
+        const Vec3 weighted = glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+        for (uint32_t v : t) sums[v] += weighted;
+    }
+    for (Vec3& n : sums) {
+        const Real length = glm::length(n);
+        n = length > 0 && std::isfinite(length) ? n / length : Vec3(0);
+    }
+    return sums;
+}
+
+std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics) {
+    // Step 1: read the text and check what tinyobjloader would let through.
+    std::ifstream in(mesh.path, std::ios::binary);
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    if (!in) {
+        diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path), "cannot read the mesh file");
+        return std::nullopt;
+    }
+    const SourceFile file(mesh.path, buffer.str());
+    if (!ObjChecker(file, diagnostics).check()) return std::nullopt;
+
+    // Step 2: parse and triangulate.
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromString(std::string(file.text()), "", config)) {
+        std::string message = reader.Error();
+        while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+        diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path), message);
+        return std::nullopt;
+    }
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+
+    // Step 3: place the vertices and collect the triangles, dropping zero-area ones.
+    const Placement placement(mesh);
+    TriangleMesh out;
+    out.material = mesh.material;
+    for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
+        out.positions.push_back(placement.linear * Vec3(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]) +
+                                placement.translate);
+    bool file_normals = !attrib.normals.empty();
+    size_t degenerate = 0;
+    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+        const auto& indices = shape.mesh.indices;
+        for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+            std::array<uint32_t, 3> v{uint32_t(indices[i].vertex_index), uint32_t(indices[i + 1].vertex_index),
+                                      uint32_t(indices[i + 2].vertex_index)};
+            const Vec3 cross = glm::cross(out.positions[v[1]] - out.positions[v[0]], out.positions[v[2]] - out.positions[v[0]]);
+            if (!(glm::dot(cross, cross) > 0)) {
+                ++degenerate;
+                continue;
+            }
+            out.vertices.push_back(v);
+            bool has_normals = indices[i].normal_index >= 0 && indices[i + 1].normal_index >= 0 &&
+                               indices[i + 2].normal_index >= 0;
+            file_normals = file_normals && has_normals;
+            out.normal_ids.push_back({uint32_t(std::max(indices[i].normal_index, 0)),
+                                      uint32_t(std::max(indices[i + 1].normal_index, 0)),
+                                      uint32_t(std::max(indices[i + 2].normal_index, 0))});
+        }
+    }
+    if (degenerate > 0)
+        diagnostics.report(Severity::Warning, Diagnostics::whole_file(mesh.path),
+                           std::to_string(degenerate) + " degenerate (zero-area) triangle" +
+                               (degenerate == 1 ? "" : "s") + " dropped");
+    if (out.vertices.empty()) {
+        diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path),
+                           "the mesh has no triangles (with non-zero area)");
+        return std::nullopt;
+    }
+
+    // Step 4: normals from the file (when every face has them), else area-weighted.
+    if (file_normals) {
+        for (size_t i = 0; i + 2 < attrib.normals.size(); i += 3) {
+            const Vec3 n = placement.normal * Vec3(attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2]);
+            const Real length = glm::length(n);
+            out.normals.push_back(length > 0 && std::isfinite(length) ? n / length : Vec3(0));
+        }
+    } else {
+        out.normals = area_weighted_normals(out.positions, out.vertices);
+        out.normal_ids = out.vertices;
+    }
+    return out;
+}
+
+std::optional<std::vector<TriangleMesh>> load_meshes(const SceneDescription& scene, Diagnostics& diagnostics) {
+    std::vector<TriangleMesh> meshes;
+    bool ok = true;
+    for (const Mesh& mesh : scene.meshes) {
+        if (auto loaded = load_mesh(mesh, diagnostics))
+            meshes.push_back(std::move(*loaded));
+        else
+            ok = false;
+    }
+    if (!ok) return std::nullopt;
+    return meshes;
+}
+
+}  // namespace tracer
