@@ -1,22 +1,49 @@
 #include "render/bvh.h"
 
+#include <bit>
 #include <cmath>
 #include <numeric>
 
 namespace tracer {
 namespace {
 
-// Floats that never shrink the box they bound.
+// The next float towards +infinity (or -infinity), by stepping the bit pattern; no libm call.
+float next_up(float f) {
+    if (!(f < std::numeric_limits<float>::infinity())) return f;  // +inf and NaN stay
+    if (f == 0) return std::numeric_limits<float>::denorm_min();
+    const uint32_t bits = std::bit_cast<uint32_t>(f);
+    return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
+}
+float next_down(float f) { return -next_up(-f); }
+
+// Floats that never shrink the box (or interval) they bound.
 float round_down(Real x) {
-    float f = float(x);
-    return Real(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+    const float f = float(x);
+    return Real(f) > x ? next_down(f) : f;
 }
 float round_up(Real x) {
-    float f = float(x);
-    return Real(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+    const float f = float(x);
+    return Real(f) < x ? next_up(f) : f;
 }
 
 }  // namespace
+
+TraversalRay::TraversalRay(const Ray& ray, Interval range) {
+    for (int axis = 0; axis < 3; ++axis) {
+        const float origin = float(ray.origin[axis]);
+        // |origin| 2^-21 is at least 4 ulps of it: rounding the origin moved it by half an ulp.
+        const float pad = std::fabs(origin) * 0x1p-21f;
+        const bool negative = ray.direction[axis] < 0;
+        near_side[axis] = negative ? 1 : 0;
+        origin_near[axis] = negative ? origin + pad : origin - pad;
+        origin_far[axis] = negative ? origin - pad : origin + pad;
+        inv_dir[axis] = float(Real(1) / ray.direction[axis]);
+    }
+    t_min = round_down(range.min);
+    t_max = round_up(range.max);
+}
+
+void TraversalRay::clip(Real t) { t_max = std::min(t_max, round_up(t)); }
 
 Real Bounds::half_area() const {
     const Vec3 d = upper - lower;
@@ -43,8 +70,8 @@ uint32_t Bvh::build(const std::vector<Bounds>& primitives, std::vector<Vec3>& ce
     Bounds bounds;
     for (uint32_t i = begin; i < end; ++i) bounds.extend(primitives[order_[i]]);
     for (int axis = 0; axis < 3; ++axis) {
-        nodes_[index].lower[axis] = round_down(bounds.lower[axis]);
-        nodes_[index].upper[axis] = round_up(bounds.upper[axis]);
+        nodes_[index].box[0][axis] = round_down(bounds.lower[axis]);
+        nodes_[index].box[1][axis] = round_up(bounds.upper[axis]);
     }
 
     // Step 2: where to split, if at all (`end` means: make a leaf).

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -35,12 +36,27 @@ struct Bounds {
 };
 
 struct BvhNode {
-    float lower[3];
-    uint32_t index;  // leaf: first entry of order(); inner: the right child's node index
-    float upper[3];
-    uint32_t count;  // leaf: number of primitives; inner: 0
+    float box[2][3];  // [0]: lower corner, [1]: upper corner (rounded outwards from the primitives)
+    uint32_t index;   // leaf: first entry of order(); inner: the right child's node index
+    uint32_t count;   // leaf: number of primitives; inner: 0
 };
 static_assert(sizeof(BvhNode) == 32, "BVH nodes are 32 bytes");
+
+// A ray prepared for float box tests. The origin is rounded to float and moved 2 ulps away
+// from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013) and the node boxes are rounded
+// outwards: together no rounding can make a box test miss a primitive the exact ray meets.
+struct TraversalRay {
+    float origin_near[3];  // origin for the entering planes
+    float origin_far[3];   // origin for the leaving planes
+    float inv_dir[3];      // 1 / direction; +-infinity for a zero component
+    int near_side[3];      // which corner holds the entering plane per axis: 1 when the direction is negative
+    float t_min = 0;
+    float t_max = 0;
+
+    TraversalRay(const Ray& ray, Interval range);
+    // Shrinks the float t_max after a hit (never below the double one).
+    void clip(Real t);
+};
 
 // Per-ray work, for --stats.
 struct TraversalCounts {
@@ -85,10 +101,10 @@ public:
     // Nearest hit: `test(i, range)` tests entry i of order() against the ray, shrinking
     // range.max on a hit and returning true. Children are visited nearest first.
     template <typename Test>
-    bool closest(const Ray& ray, const Vec3& inv_dir, Interval& range, TraversalCounts& counts, Test test) const;
+    bool closest(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const;
     // Any hit: stops at the first entry for which `test(i, range)` returns true.
     template <typename Test>
-    bool any(const Ray& ray, const Vec3& inv_dir, Interval range, TraversalCounts& counts, Test test) const;
+    bool any(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const;
 
 private:
     uint32_t build(const std::vector<Bounds>& primitives, std::vector<Vec3>& centroids, uint32_t begin,
@@ -101,29 +117,32 @@ private:
     std::vector<uint32_t> order_;
 };
 
-// Entry distance of the ray into the node's box, or +infinity if it misses within `range`.
-// Slabs are compared so that a NaN (0 * infinity, a ray in a box face) never shrinks the
-// interval, and touching counts as entering: zero-thickness boxes are hit.
-inline Real enter_box(const BvhNode& node, const Ray& ray, const Vec3& inv_dir, Interval range) {
-    Real near = range.min, far = range.max;
+// Entry distance of the ray into the node's box, or +infinity if it misses within
+// [t_min, t_max]. Comparisons are written so that a NaN (0 * infinity: an origin exactly on a
+// slab of an axis-parallel ray) never shrinks the interval, and touching counts as entering:
+// zero-thickness boxes are hit.
+inline float enter_box(const BvhNode& node, const TraversalRay& ray) {
+    constexpr float kGrow = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);  // 1 + 2 gamma_3
+    float near = ray.t_min, far = ray.t_max;
     for (int axis = 0; axis < 3; ++axis) {
-        Real t0 = (Real(node.lower[axis]) - ray.origin[axis]) * inv_dir[axis];
-        Real t1 = (Real(node.upper[axis]) - ray.origin[axis]) * inv_dir[axis];
-        if (inv_dir[axis] < 0) std::swap(t0, t1);
-        if (t0 > near) near = t0;
-        if (t1 < far) far = t1;
+        const float t0 = (node.box[ray.near_side[axis]][axis] - ray.origin_near[axis]) * ray.inv_dir[axis];
+        const float t1 = (node.box[1 - ray.near_side[axis]][axis] - ray.origin_far[axis]) * ray.inv_dir[axis];
+        near = t0 > near ? t0 : near;
+        far = t1 * kGrow < far ? t1 * kGrow : far;
     }
-    return near <= far ? near : kInfinity;
+    return near <= far ? near : std::numeric_limits<float>::infinity();
 }
 
 template <typename Test>
-bool Bvh::closest(const Ray& ray, const Vec3& inv_dir, Interval& range, TraversalCounts& counts, Test test) const {
+bool Bvh::closest(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const {
     if (nodes_.empty()) return false;
+    constexpr float kMiss = std::numeric_limits<float>::infinity();
+    TraversalRay fast(ray, range);
     ++counts.box_tests;
-    if (enter_box(nodes_[0], ray, inv_dir, range) == kInfinity) return false;
+    if (enter_box(nodes_[0], fast) == kMiss) return false;
     struct Pending {
         uint32_t node;
-        Real t;  // where the ray enters its box
+        float t;  // where the ray enters its box
     };
     Pending stack[kMaxBvhDepth + 1];
     int top = 0;
@@ -134,22 +153,25 @@ bool Bvh::closest(const Ray& ray, const Vec3& inv_dir, Interval& range, Traversa
         if (node.count > 0) {
             for (uint32_t i = node.index; i < node.index + node.count; ++i) {
                 ++counts.primitive_tests;
-                found = test(i, range) || found;
+                if (test(i, range)) {
+                    found = true;
+                    fast.clip(range.max);
+                }
             }
         } else {
             // Visit the nearer child first; the farther one waits on the stack.
             const uint32_t left = current + 1, right = node.index;
             counts.box_tests += 2;
-            const Real t_left = enter_box(nodes_[left], ray, inv_dir, range);
-            const Real t_right = enter_box(nodes_[right], ray, inv_dir, range);
-            if (t_left != kInfinity && t_right != kInfinity) {
+            const float t_left = enter_box(nodes_[left], fast);
+            const float t_right = enter_box(nodes_[right], fast);
+            if (t_left != kMiss && t_right != kMiss) {
                 const bool left_first = t_left <= t_right;
                 stack[top++] = left_first ? Pending{right, t_right} : Pending{left, t_left};
                 current = left_first ? left : right;
                 continue;
             }
-            if (t_left != kInfinity || t_right != kInfinity) {
-                current = t_left != kInfinity ? left : right;
+            if (t_left != kMiss || t_right != kMiss) {
+                current = t_left != kMiss ? left : right;
                 continue;
             }
         }
@@ -157,21 +179,23 @@ bool Bvh::closest(const Ray& ray, const Vec3& inv_dir, Interval& range, Traversa
         do {
             if (top == 0) return found;
             --top;
-        } while (stack[top].t > range.max);
+        } while (stack[top].t > fast.t_max);
         current = stack[top].node;
     }
 }
 
 template <typename Test>
-bool Bvh::any(const Ray& ray, const Vec3& inv_dir, Interval range, TraversalCounts& counts, Test test) const {
+bool Bvh::any(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const {
     if (nodes_.empty()) return false;
+    constexpr float kMiss = std::numeric_limits<float>::infinity();
+    const TraversalRay fast(ray, range);
     uint32_t stack[2 * kMaxBvhDepth + 2];
     int top = 0;
     stack[top++] = 0;
     while (top > 0) {
         const BvhNode& node = nodes_[stack[--top]];
         ++counts.box_tests;
-        if (enter_box(node, ray, inv_dir, range) == kInfinity) continue;
+        if (enter_box(node, fast) == kMiss) continue;
         if (node.count > 0) {
             for (uint32_t i = node.index; i < node.index + node.count; ++i) {
                 ++counts.primitive_tests;

@@ -14,10 +14,22 @@ public:
     // The primary ray through image position (x, y) in pixels: (0, 0) is the top-left corner
     // of the image, (width, height) the bottom-right; a pixel's centre is (i + 0.5, j + 0.5).
     Ray ray_through(Real x, Real y) const;
+    const Vec3& eye() const { return eye_; }
+
+    // The directions of ray_through(x_start + i, y) for i = 0 .. count - 1, bit for bit, computed
+    // a row at a time so the square roots and divisions run several to a vector instruction.
+    void row_directions(Real x_start, Real y, int count, Vec3* out) const;
+
+    // Where `point` appears in the image, in the pixel coordinates of ray_through; false if it
+    // lies behind the eye.
+    bool project(const Vec3& point, Real& x, Real& y) const;
 
 private:
     Vec3 eye_, u_, v_, w_;
     Real focal_, plane_width_, plane_height_;
+    // The unnormalised direction to image position (x, y) is corner_ + x step_x_ + y step_y_:
+    // no division per ray.
+    Vec3 corner_, step_x_, step_y_;
     int width_, height_;
 };
 

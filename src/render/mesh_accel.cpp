@@ -29,8 +29,7 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size) : mesh
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool MeshAccel::intersect(const Ray& ray, const Vec3& inv_dir, Interval& range, MeshHit& out,
-                          TraversalCounts& counts) const {
+bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const {
     uint32_t best = 0;
     TriangleHit best_hit;
     auto test = [&](uint32_t i, Interval& r) {
@@ -46,13 +45,13 @@ bool MeshAccel::intersect(const Ray& ray, const Vec3& inv_dir, Interval& range, 
         counts.primitive_tests += edges_.size();
         for (uint32_t i = 0; i < edges_.size(); ++i) found = test(i, range) || found;
     } else {
-        found = bvh_.closest(ray, inv_dir, range, counts, test);
+        found = bvh_.closest(ray, range, counts, test);
     }
     if (found) out = {ids_[best], best_hit};
     return found;
 }
 
-bool MeshAccel::occluded(const Ray& ray, const Vec3& inv_dir, Interval range, TraversalCounts& counts) const {
+bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts) const {
     auto test = [&](uint32_t i, Interval& r) {
         TriangleHit hit;
         return intersect_triangle(ray, edges_[i], r, hit);
@@ -64,7 +63,7 @@ bool MeshAccel::occluded(const Ray& ray, const Vec3& inv_dir, Interval range, Tr
         }
         return false;
     }
-    return bvh_.any(ray, inv_dir, range, counts, test);
+    return bvh_.any(ray, range, counts, test);
 }
 
 Vec3 MeshAccel::geometric_normal(uint32_t triangle) const {

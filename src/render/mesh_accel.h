@@ -21,9 +21,9 @@ public:
     MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size);
 
     // The nearest triangle with t inside `range`; shrinks range.max to it.
-    bool intersect(const Ray& ray, const Vec3& inv_dir, Interval& range, MeshHit& out, TraversalCounts& counts) const;
+    bool intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const;
     // True if any triangle lies along the ray inside `range`.
-    bool occluded(const Ray& ray, const Vec3& inv_dir, Interval range, TraversalCounts& counts) const;
+    bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const;
 
     // Unit face normal (v1 - v0) x (v2 - v0) of a triangle.
     Vec3 geometric_normal(uint32_t triangle) const;

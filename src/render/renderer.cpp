@@ -20,13 +20,14 @@ Color Image::pixel(int x, int y) const {
 static Color shade_pixel(const World& world, const PinholeCamera& camera, const RenderSettings& settings,
                          int x, int y, int grid, RayCounts& counts) {
     Color sum(0.0);
+    const Real cell = Real(1) / grid;  // exact for grid 1 (offset 0.5: the pixel centre)
     for (int sy = 0; sy < grid; ++sy)
         for (int sx = 0; sx < grid; ++sx) {
-            const Real px = x + (sx + Real(0.5)) / grid;
-            const Real py = y + (sy + Real(0.5)) / grid;
+            const Real px = x + (sx + Real(0.5)) * cell;
+            const Real py = y + (sy + Real(0.5)) * cell;
             sum += trace(world, settings, camera.ray_through(px, py), counts);
         }
-    return sum / double(grid * grid);
+    return grid == 1 ? sum : sum * (1.0 / double(grid * grid));
 }
 
 bool render(const World& world, const SceneDescription& scene, const RenderOptions& options, Image& image,
@@ -36,12 +37,20 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     const PinholeCamera camera(scene.camera, settings.width, settings.height);
     const int grid = int(std::lround(std::sqrt(double(settings.samples))));
 
+    PixelRect area = options.crop.width > 0 ? options.crop : PixelRect{0, 0, settings.width, settings.height};
+    area.x0 = std::clamp(area.x0, 0, settings.width);
+    area.y0 = std::clamp(area.y0, 0, settings.height);
+    area.width = std::clamp(area.width, 0, settings.width - area.x0);
+    area.height = std::clamp(area.height, 0, settings.height - area.y0);
+    const size_t values = size_t(settings.width) * size_t(settings.height) * 3;
+    const bool whole_image = area.width == settings.width && area.height == settings.height;
+    // Every pixel is written when the whole image is rendered; only a crop needs black around it.
+    if (image.rgb.size() != values || !whole_image) image.rgb.assign(values, 0.0);
     image.width = settings.width;
     image.height = settings.height;
-    image.rgb.assign(size_t(settings.width) * size_t(settings.height) * 3, 0.0);
 
     int threads = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
-    threads = std::max(1, std::min(threads, settings.height));
+    threads = std::max(1, std::min(threads, std::max(area.height, 1)));
     std::atomic<int> next_row{0};
     std::atomic<int> rows_done{0};
     std::mutex merge;
@@ -50,15 +59,19 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
 
     auto worker = [&](int index) {
         RayCounts counts;
-        for (int y; (y = next_row.fetch_add(1)) < settings.height;) {
+        std::vector<Vec3> directions(size_t(area.width));
+        for (int row; (row = next_row.fetch_add(1)) < area.height;) {
             if (options.cancel && options.cancel->load()) break;
-            for (int x = 0; x < settings.width; ++x) {
-                const Color c = shade_pixel(world, camera, settings, x, y, grid, counts);
+            const int y = area.y0 + row;
+            if (grid == 1) camera.row_directions(area.x0 + Real(0.5), y + Real(0.5), area.width, directions.data());
+            for (int x = area.x0; x < area.x0 + area.width; ++x) {
+                const Color c = grid == 1 ? trace(world, settings, {camera.eye(), directions[size_t(x - area.x0)]}, counts)
+                                          : shade_pixel(world, camera, settings, x, y, grid, counts);
                 double* out = &image.rgb[(size_t(y) * size_t(settings.width) + size_t(x)) * 3];
                 out[0] = c.r, out[1] = c.g, out[2] = c.b;
             }
             const int done = rows_done.fetch_add(1) + 1;
-            if (index == 0 && options.progress) options.progress(double(done) / settings.height);
+            if (index == 0 && options.progress) options.progress(double(done) / area.height);
         }
         std::lock_guard lock(merge);
         stats.rays += counts;
@@ -69,7 +82,7 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     for (std::thread& t : pool) t.join();
 
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return !(options.cancel && options.cancel->load()) && rows_done.load() == settings.height;
+    return !(options.cancel && options.cancel->load()) && rows_done.load() == area.height;
 }
 
 }  // namespace tracer

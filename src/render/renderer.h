@@ -21,8 +21,15 @@ struct Image {
     Color pixel(int x, int y) const;
 };
 
+// A rectangle of pixels: columns x0 .. x0 + width - 1, rows y0 .. y0 + height - 1.
+struct PixelRect {
+    int x0 = 0, y0 = 0, width = 0, height = 0;
+};
+
 struct RenderOptions {
     int threads = 0;  // 0: one per hardware thread
+    // Only these pixels are traced (the rest stay black); width 0 means the whole image.
+    PixelRect crop;
     // Called now and then from a worker with the finished fraction in [0, 1].
     std::function<void(double)> progress;
     // When set to true, workers stop after their current row and render() returns false.

@@ -11,9 +11,6 @@ World::World(const SceneDescription& scene, std::vector<TriangleMesh> meshes)
     for (TriangleMesh& mesh : meshes) meshes_.emplace_back(std::move(mesh), scene.render.accel, scene.render.leaf_size);
 }
 
-// 1 / direction, per component; a zero component gives an infinity of the right sign.
-static Vec3 reciprocal(const Vec3& d) { return Vec3(1) / d; }
-
 std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range, TraversalCounts& counts) const {
     // Each hit shrinks range.max, so later primitives only count when they are nearer.
     const SphereShape* nearest_sphere = nullptr;
@@ -33,14 +30,11 @@ std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range, Trave
             nearest_sphere = nullptr;
         }
     }
-    if (!meshes_.empty()) {
-        const Vec3 inv_dir = reciprocal(ray.direction);
-        for (const MeshAccel& mesh : meshes_) {
-            if (mesh.intersect(ray, inv_dir, range, mesh_hit, counts)) {
-                nearest_mesh = &mesh;
-                nearest_plane = nullptr;
-                nearest_sphere = nullptr;
-            }
+    for (const MeshAccel& mesh : meshes_) {
+        if (mesh.intersect(ray, range, mesh_hit, counts)) {
+            nearest_mesh = &mesh;
+            nearest_plane = nullptr;
+            nearest_sphere = nullptr;
         }
     }
     if (!nearest_sphere && !nearest_plane && !nearest_mesh) return std::nullopt;
@@ -66,10 +60,8 @@ bool World::occluded(const Ray& ray, Interval range, TraversalCounts& counts) co
         if (intersect_sphere(ray, s.center, s.radius, range)) return true;
     for (const PlaneShape& p : planes_)
         if (intersect_plane(ray, p.point, p.normal, range)) return true;
-    if (meshes_.empty()) return false;
-    const Vec3 inv_dir = reciprocal(ray.direction);
     for (const MeshAccel& mesh : meshes_)
-        if (mesh.occluded(ray, inv_dir, range, counts)) return true;
+        if (mesh.occluded(ray, range, counts)) return true;
     return false;
 }
 

@@ -1,0 +1,139 @@
+// tracer_bench: times tracer's BVH build and render loop in-process, the way
+// ../shared/bench/embree-whitted times Embree, so the two compare side by side (abab.py).
+// Process start, parsing, OBJ loading and image writing are not timed. Prints a report on
+// stderr and, with --json, one JSON object on stdout.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "frontend/load_scene.h"
+#include "render/camera.h"
+#include "render/image_output.h"
+#include "render/mesh_loader.h"
+#include "render/renderer.h"
+
+namespace {
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+}
+
+// The meshes' projected bounding rectangle, padded by 4 pixels (as embree_bench --crop auto).
+tracer::PixelRect auto_crop(const tracer::SceneDescription& scene, const std::vector<tracer::TriangleMesh>& meshes) {
+    const tracer::PinholeCamera camera(scene.camera, scene.render.width, scene.render.height);
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const auto& mesh : meshes)
+        for (const tracer::Vec3& p : mesh.positions) {
+            tracer::Real x, y;
+            if (!camera.project(p, x, y)) continue;
+            x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+        }
+    tracer::PixelRect crop;
+    crop.x0 = std::max(0, int(std::floor(x0)) - 4);
+    crop.y0 = std::max(0, int(std::floor(y0)) - 4);
+    crop.width = std::min(scene.render.width, int(std::ceil(x1)) + 4) - crop.x0;
+    crop.height = std::min(scene.render.height, int(std::ceil(y1)) + 4) - crop.y0;
+    return crop;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string scene_path = "scenes/bunny.scn", accel, obj, png, crop_text;
+    int leaf_size = 0, threads = 0, runs = 11;
+    bool json = false;
+    CLI::App app{"tracer_bench: in-process build and render timings of a scene"};
+    app.add_option("scene", scene_path, "The scene (default scenes/bunny.scn)");
+    app.add_option("--accel", accel, "none, box, median or sah (default: the scene's)");
+    app.add_option("--leaf-size", leaf_size, "BVH leaf size (default: the scene's)");
+    app.add_option("--threads", threads, "Render threads (default: every core)");
+    app.add_option("--runs", runs, "Timed renders (median reported) and builds")->check(CLI::Range(1, 1000));
+    app.add_option("--obj", obj, "Use this OBJ file for the scene's first mesh");
+    app.add_option("--crop", crop_text, "auto (the meshes' projected bounds + 4 px) or 'X0 Y0 W H'");
+    app.add_option("--png", png, "Also write the image of the last render");
+    app.add_flag("--json", json, "Print one JSON object on stdout");
+    CLI11_PARSE(app, argc, argv);
+
+    // Step 1: the scene and its meshes (not timed).
+    tracer::LoadResult loaded = tracer::load_scene(scene_path);
+    if (loaded.scene && !obj.empty() && !loaded.scene->meshes.empty()) loaded.scene->meshes[0].path = obj;
+    if (loaded.scene && !accel.empty() && !tracer::accelerator_from_name(accel, loaded.scene->render.accel)) {
+        std::cerr << "tracer_bench: unknown accelerator '" << accel << "'\n";
+        return 2;
+    }
+    if (loaded.scene && leaf_size > 0) loaded.scene->render.leaf_size = leaf_size;
+    std::optional<std::vector<tracer::TriangleMesh>> meshes;
+    if (loaded.scene) meshes = tracer::load_meshes(*loaded.scene, loaded.diagnostics);
+    loaded.diagnostics.print(std::cerr);
+    if (!loaded.scene || !meshes) return 1;
+    const tracer::SceneDescription& scene = *loaded.scene;
+
+    tracer::RenderOptions options;
+    options.threads = threads;
+    if (crop_text == "auto") {
+        options.crop = auto_crop(scene, *meshes);
+    } else if (!crop_text.empty()) {
+        std::istringstream in(crop_text);
+        in >> options.crop.x0 >> options.crop.y0 >> options.crop.width >> options.crop.height;
+    }
+
+    // Step 2: builds. The first is a warm-up; the world of the last one is rendered.
+    std::vector<double> build_ms;
+    std::optional<tracer::World> world;
+    for (int i = 0; i <= runs; ++i) {
+        world.emplace(scene, *meshes);
+        double ms = 0;
+        for (const auto& mesh : world->meshes()) ms += mesh.build_seconds() * 1e3;
+        if (i > 0) build_ms.push_back(ms);
+    }
+
+    // Step 3: renders, one untimed warm-up first.
+    tracer::Image image;
+    tracer::RenderStats stats;
+    tracer::render(*world, scene, options, image, stats);
+    std::vector<double> render_ms;
+    for (int i = 0; i < runs; ++i) {
+        tracer::render(*world, scene, options, image, stats);
+        render_ms.push_back(stats.seconds * 1e3);
+    }
+    if (!png.empty()) tracer::write_image(png, image);
+
+    // Step 4: report.
+    size_t triangles = 0;
+    for (const auto& mesh : world->meshes()) triangles += mesh.mesh().vertices.size();
+    const tracer::RayCounts& rays = stats.rays;
+    nlohmann::ordered_json out;
+    out["scene"] = scene_path;
+    out["accel"] = tracer::accelerator_name(scene.render.accel);
+    out["leaf_size"] = scene.render.leaf_size;
+    out["triangles"] = triangles;
+    out["threads"] = stats.threads;
+    out["runs"] = runs;
+    out["crop"] = options.crop.width > 0 ? nlohmann::ordered_json::array({options.crop.x0, options.crop.y0,
+                                                                            options.crop.width, options.crop.height})
+                                         : nlohmann::ordered_json("full_frame");
+    out["build_ms"] = median(build_ms);
+    out["render_ms_median"] = median(render_ms);
+    out["render_ms_min"] = *std::min_element(render_ms.begin(), render_ms.end());
+    out["render_ms"] = render_ms;
+    out["rays"] = rays.total();
+    out["primary"] = rays.primary;
+    out["shadow"] = rays.shadow;
+    out["mrays_per_s"] = double(rays.total()) / median(render_ms) / 1e3;
+    out["box_tests_per_ray"] = double(rays.traversal.box_tests) / double(std::max<uint64_t>(rays.total(), 1));
+    out["triangle_tests_per_ray"] = double(rays.traversal.primitive_tests) / double(std::max<uint64_t>(rays.total(), 1));
+    std::cerr << "tracer_bench: " << out["accel"].get<std::string>() << ", " << triangles << " triangles, "
+              << stats.threads << " threads, crop " << out["crop"].dump() << ": build " << out["build_ms"].get<double>()
+              << " ms, render " << out["render_ms_median"].get<double>() << " ms (median of " << runs << "), "
+              << out["mrays_per_s"].get<double>() << " Mrays/s\n";
+    if (json) std::cout << out.dump() << '\n';
+    return 0;
+}
