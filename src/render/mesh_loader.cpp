@@ -52,10 +52,10 @@ public:
                     // v, v/vt, v/vt/vn or v//vn: check the position and normal indices.
                     std::string_view corner = token.text;
                     size_t slash = corner.find('/');
-                    check_index(token, corner.substr(0, slash), vertices_so_far, vertex_total, "vertex");
+                    check_index(token, corner.substr(0, slash), vertices_so_far, vertex_total, "vertex", "vertices");
                     size_t second = slash == std::string_view::npos ? slash : corner.find('/', slash + 1);
                     if (second != std::string_view::npos)
-                        check_index(token, corner.substr(second + 1), normals_so_far, normal_total, "normal");
+                        check_index(token, corner.substr(second + 1), normals_so_far, normal_total, "normal", "normals");
                 }
             }
         });
@@ -92,7 +92,8 @@ private:
         }
     }
 
-    void check_index(const Token& token, std::string_view digits, size_t so_far, size_t total, const char* what) {
+    void check_index(const Token& token, std::string_view digits, size_t so_far, size_t total, const char* what,
+                     const char* plural) {
         if (digits.empty()) return;  // "v//vn" has no texture index; absent normal index
         long index = 0;
         auto [end, status] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
@@ -103,7 +104,7 @@ private:
         long resolved = index < 0 ? long(so_far) + index + 1 : index;  // negative: relative to here
         if (index == 0 || resolved < 1 || resolved > long(total))
             error(token.span, std::string(what) + " index " + std::to_string(index) + " is out of range (the file has " +
-                                  std::to_string(total) + " " + what + (total == 1 ? "" : "s") + ")");
+                                  std::to_string(total) + " " + (total == 1 ? what : plural) + ")");
     }
 
     void error(Span span, std::string message) {

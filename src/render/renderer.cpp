@@ -30,6 +30,18 @@ static Color shade_pixel(const World& world, const PinholeCamera& camera, const 
     return grid == 1 ? sum : sum * (1.0 / double(grid * grid));
 }
 
+// Black for every pixel outside `area` (the pixels inside are all written by the render).
+static void clear_outside(Image& image, const PixelRect& area) {
+    const size_t row = size_t(image.width) * 3;
+    auto clear = [&](size_t begin, size_t end) { std::fill(image.rgb.begin() + begin, image.rgb.begin() + end, 0.0); };
+    clear(0, size_t(area.y0) * row);
+    for (int y = area.y0; y < area.y0 + area.height; ++y) {
+        clear(size_t(y) * row, size_t(y) * row + size_t(area.x0) * 3);
+        clear(size_t(y) * row + size_t(area.x0 + area.width) * 3, size_t(y + 1) * row);
+    }
+    clear(size_t(area.y0 + area.height) * row, image.rgb.size());
+}
+
 bool render(const World& world, const SceneDescription& scene, const RenderOptions& options, Image& image,
             RenderStats& stats) {
     const auto start = std::chrono::steady_clock::now();
@@ -42,12 +54,10 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     area.y0 = std::clamp(area.y0, 0, settings.height);
     area.width = std::clamp(area.width, 0, settings.width - area.x0);
     area.height = std::clamp(area.height, 0, settings.height - area.y0);
-    const size_t values = size_t(settings.width) * size_t(settings.height) * 3;
-    const bool whole_image = area.width == settings.width && area.height == settings.height;
-    // Every pixel is written when the whole image is rendered; only a crop needs black around it.
-    if (image.rgb.size() != values || !whole_image) image.rgb.assign(values, 0.0);
     image.width = settings.width;
     image.height = settings.height;
+    image.rgb.resize(size_t(settings.width) * size_t(settings.height) * 3);
+    clear_outside(image, area);
 
     int threads = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
     threads = std::max(1, std::min(threads, std::max(area.height, 1)));

@@ -1,5 +1,7 @@
-// scenes/task2.scn against the anchor pixels of conventions.md, the project's own golden
-// image, and (when ../shared is present) Figure 1 of the assignment.
+// Image regressions. scenes/task2.scn against the anchor pixels of conventions.md, the
+// project's own golden image and (when ../shared is present) Figure 1 of the assignment;
+// the bunny scenes against their golden images. TRACER_UPDATE_GOLDEN=1 rewrites the golden
+// images (review the difference before committing).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -7,9 +9,11 @@
 #include <memory>
 
 #include <OpenImageIO/imageio.h>
+#include <glm/geometric.hpp>
 
 #include "frontend/load_scene.h"
 #include "render/image_output.h"
+#include "render/mesh_loader.h"
 #include "render/renderer.h"
 
 namespace tracer {
@@ -54,19 +58,38 @@ int pixels_differing(const Bytes& a, const Bytes& b, int levels) {
     return count;
 }
 
+const fs::path kScenes = fs::path(TRACER_SOURCE_DIR) / "scenes";
+const fs::path kGolden = fs::path(TRACER_SOURCE_DIR) / "tests" / "golden";
+
+// Renders a scene file with its meshes, as `tracer` does; writes the golden image on request.
+Bytes render_scene(const std::string& name, const RenderOptions& options = {}) {
+    LoadResult loaded = load_scene((kScenes / (name + ".scn")).string());
+    EXPECT_TRUE(loaded.scene) << name;
+    if (!loaded.scene) return {};
+    auto meshes = load_meshes(*loaded.scene, loaded.diagnostics);
+    EXPECT_TRUE(meshes) << name;
+    if (!meshes) return {};
+    const World world(*loaded.scene, std::move(*meshes));
+    Image image;
+    RenderStats stats;
+    EXPECT_TRUE(render(world, *loaded.scene, options, image, stats));
+    if (std::getenv("TRACER_UPDATE_GOLDEN") && options.crop.width == 0)
+        write_image((kGolden / (name + ".png")).string(), image);
+    return to_bytes(image);
+}
+
+// Other compilers or CPUs (FMA) may move a few silhouette or shadow-edge pixels; nothing else
+// may change: at most 0.01% of the pixels by more than one level.
+void expect_matches_golden(const Bytes& rendered, const std::string& name) {
+    Bytes golden = read_png(kGolden / (name + ".png"));
+    ASSERT_EQ(golden.width, rendered.width) << "tests/golden/" << name << ".png missing or unreadable";
+    ASSERT_EQ(golden.height, rendered.height);
+    EXPECT_LE(pixels_differing(rendered, golden, 1), rendered.width * rendered.height / 10000);
+}
+
 class Task2 : public ::testing::Test {
 protected:
-    static void SetUpTestSuite() {
-        LoadResult loaded = load_scene((fs::path(TRACER_SOURCE_DIR) / "scenes" / "task2.scn").string());
-        ASSERT_TRUE(loaded.scene);
-        Image image;
-        RenderStats stats;
-        ASSERT_TRUE(render(World(*loaded.scene), *loaded.scene, {}, image, stats));
-        rendered_ = std::make_unique<Bytes>(to_bytes(image));
-        // TRACER_UPDATE_GOLDEN=1 rewrites the golden image (review the diff before committing).
-        if (std::getenv("TRACER_UPDATE_GOLDEN"))
-            write_image((fs::path(TRACER_SOURCE_DIR) / "tests" / "golden" / "task2.png").string(), image);
-    }
+    static void SetUpTestSuite() { rendered_ = std::make_unique<Bytes>(render_scene("task2")); }
     static std::unique_ptr<Bytes> rendered_;
 };
 std::unique_ptr<Bytes> Task2::rendered_;
@@ -90,12 +113,7 @@ TEST_F(Task2, AnchorPixelsOfConventionsWithinTwoLevels) {
     }
 }
 
-TEST_F(Task2, MatchesTheCommittedGoldenImage) {
-    Bytes golden = read_png(fs::path(TRACER_SOURCE_DIR) / "tests" / "golden" / "task2.png");
-    ASSERT_EQ(golden.width, 1200) << "tests/golden/task2.png missing or unreadable";
-    // Other compilers or CPUs (FMA) may move a few shadow-edge pixels; nothing else may change.
-    EXPECT_LE(pixels_differing(*rendered_, golden, 1), 96) << "more than 0.01% of pixels changed";
-}
+TEST_F(Task2, MatchesTheCommittedGoldenImage) { expect_matches_golden(*rendered_, "task2"); }
 
 TEST_F(Task2, MatchesFigure1OfTheAssignment) {
     fs::path figure = fs::path(SHARED_DIR) / "reference" / "figure1.png";
@@ -106,6 +124,43 @@ TEST_F(Task2, MatchesFigure1OfTheAssignment) {
     RecordProperty("pixels_over_2_levels", over_two_levels);
     std::cout << "[ figure 1 ] pixels differing by more than 2 levels: " << over_two_levels << " of 960000\n";
     EXPECT_LE(over_two_levels, 480);  // 0.05% of the image
+}
+
+TEST(Bunny, MatchesTheCommittedGoldenImage) { expect_matches_golden(render_scene("bunny"), "bunny"); }
+
+TEST(BunnyRoom, MatchesTheCommittedGoldenImage) { expect_matches_golden(render_scene("bunny_room"), "bunny_room"); }
+
+TEST(BunnyRoom, BunnyStandsOnTheFloorClearOfEverySphere) {
+    LoadResult loaded = load_scene((kScenes / "bunny_room.scn").string());
+    ASSERT_TRUE(loaded.scene);
+    auto meshes = load_meshes(*loaded.scene, loaded.diagnostics);
+    ASSERT_TRUE(meshes && meshes->size() == 1);
+    double lowest = kInfinity;
+    for (const Vec3& p : meshes->front().positions) {
+        lowest = std::min(lowest, p.y);
+        for (const Sphere& s : loaded.scene->spheres)
+            ASSERT_GT(glm::length(p - s.center), s.radius + 0.05) << "a bunny vertex is inside or touching a sphere";
+    }
+    EXPECT_GT(lowest, -1.0);  // above the floor plane y = -1 ...
+    EXPECT_LT(lowest, -0.999);  // ... and standing on it
+}
+
+TEST(Crop, RendersOnlyTheRectangleAndLeavesTheRestBlack) {
+    RenderOptions options;
+    options.crop = {500, 300, 120, 90};
+    Bytes cropped = render_scene("task2", options);
+    Bytes full = render_scene("task2");
+    int inside_differences = 0, outside_lit = 0;
+    for (int y = 0; y < full.height; ++y)
+        for (int x = 0; x < full.width; ++x) {
+            bool inside = x >= 500 && x < 620 && y >= 300 && y < 390;
+            for (int c = 0; c < 3; ++c) {
+                if (inside && cropped.at(x, y, c) != full.at(x, y, c)) ++inside_differences;
+                if (!inside && cropped.at(x, y, c) != 0) ++outside_lit;
+            }
+        }
+    EXPECT_EQ(inside_differences, 0);
+    EXPECT_EQ(outside_lit, 0);
 }
 
 }  // namespace

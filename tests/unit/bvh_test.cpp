@@ -1,0 +1,133 @@
+// Every accelerator must find exactly what testing every triangle finds: the same nearest
+// triangle at the same t, and the same answer to "is anything in the way".
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "render/mesh_accel.h"
+#include "render/mesh_loader.h"
+
+namespace tracer {
+namespace {
+
+TriangleMesh bunny() {
+    Mesh placement;
+    placement.path = (std::filesystem::path(TRACER_SOURCE_DIR) / "scenes" / "meshes" / "bunny.obj").string();
+    Diagnostics diagnostics;
+    auto mesh = load_mesh(placement, diagnostics);
+    EXPECT_TRUE(mesh) << "cannot load bunny.obj";
+    return mesh ? *mesh : TriangleMesh{};
+}
+
+// Random triangles of very different sizes, overlapping and intersecting each other.
+TriangleMesh triangle_soup(int count, uint32_t seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    TriangleMesh soup;
+    for (int i = 0; i < count; ++i) {
+        const Vec3 centre(unit(random), unit(random), unit(random));
+        const double size = 0.002 + 0.2 * unit(random) * unit(random);
+        const uint32_t first = uint32_t(soup.positions.size());
+        for (int k = 0; k < 3; ++k)
+            soup.positions.push_back(centre + size * Vec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+        soup.vertices.push_back({first, first + 1, first + 2});
+    }
+    soup.normals = area_weighted_normals(soup.positions, soup.vertices);
+    soup.normal_ids = soup.vertices;
+    return soup;
+}
+
+struct Agreement {
+    int rays = 0, hits = 0, ties = 0;
+};
+
+// 10^5 rays from a sphere around the mesh towards random points of its bounding box, each
+// traced by brute force and by box, median and sah.
+void compare_with_brute_force(const TriangleMesh& mesh, uint32_t seed, Agreement& result) {
+    const MeshAccel brute(mesh, Accelerator::None, 1);
+    const MeshAccel trees[] = {{mesh, Accelerator::Box, 3}, {mesh, Accelerator::Median, 3}, {mesh, Accelerator::Sah, 3}};
+    Bounds box;
+    for (const Vec3& p : mesh.positions) box.extend(p);
+    const Vec3 centre = box.centre();
+    const double radius = glm::length(box.upper - box.lower);
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::normal_distribution<double> gauss;
+    for (int i = 0; i < 100000 && !::testing::Test::HasFailure(); ++i) {
+        const Vec3 on_sphere = glm::normalize(Vec3(gauss(random), gauss(random), gauss(random)));
+        const Vec3 origin = centre + radius * on_sphere;
+        const Vec3 target = box.lower + Vec3(unit(random), unit(random), unit(random)) * (box.upper - box.lower);
+        const Ray ray{origin, glm::normalize(target - origin)};
+        TraversalCounts counts;
+        Interval brute_range{0, kInfinity};
+        MeshHit brute_hit;
+        const bool brute_found = brute.intersect(ray, brute_range, brute_hit, counts);
+        const double fraction = 2 * unit(random);
+        ++result.rays;
+        result.hits += brute_found;
+        for (const MeshAccel& tree : trees) {
+            const char* name = accelerator_name(tree.accel());
+            Interval tree_range{0, kInfinity};
+            MeshHit tree_hit;
+            const bool tree_found = tree.intersect(ray, tree_range, tree_hit, counts);
+            ASSERT_EQ(tree_found, brute_found) << name << ", ray " << i;
+            if (!brute_found) continue;
+            ASSERT_EQ(tree_hit.hit.t, brute_hit.hit.t) << name << ", ray " << i;
+            if (tree_hit.triangle != brute_hit.triangle) ++result.ties;  // two triangles at the very same t
+            // Any-hit over a random part of the ray agrees with "the nearest hit lies inside it".
+            const Interval part{0, brute_hit.hit.t * fraction};
+            ASSERT_EQ(tree.occluded(ray, part, counts), part.contains(brute_hit.hit.t)) << name << ", ray " << i;
+        }
+    }
+}
+
+TEST(Bvh, EveryAcceleratorAgreesWithBruteForceOnTheBunny) {
+    Agreement a;
+    compare_with_brute_force(bunny(), 1, a);
+    EXPECT_GT(a.hits, 30000);  // the rays really do hit the mesh
+    EXPECT_LT(a.ties, 10);
+}
+
+TEST(Bvh, EveryAcceleratorAgreesWithBruteForceOnATriangleSoup) {
+    Agreement a;
+    compare_with_brute_force(triangle_soup(3000, 7), 2, a);
+    EXPECT_GT(a.hits, 30000);
+    EXPECT_LT(a.ties, 10);
+}
+
+TEST(Bvh, MedianFollowsTheAssignment) {
+    // Leaves hold at most leaf_size triangles; the tree splits x, y, z by depth.
+    const MeshAccel median(bunny(), Accelerator::Median, 3);
+    const BvhStats stats = median.bvh().stats();
+    EXPECT_LE(stats.max_leaf, 3u);
+    EXPECT_EQ(stats.nodes, 2 * stats.leaves - 1);
+    EXPECT_LE(stats.depth, 13);  // a balanced tree: ceil(log2(3674 / 2)) + 1
+}
+
+TEST(Bvh, SahLeavesNeverExceedTheLeafSize) {
+    for (int leaf : {1, 3, 8}) {
+        const MeshAccel sah(bunny(), Accelerator::Sah, leaf);
+        EXPECT_LE(sah.bvh().stats().max_leaf, size_t(leaf));
+    }
+}
+
+TEST(Bvh, NodesContainTheirTriangles) {
+    const MeshAccel sah(triangle_soup(500, 3), Accelerator::Sah, 3);
+    const auto& nodes = sah.bvh().nodes();
+    const auto& order = sah.bvh().order();
+    for (const BvhNode& node : nodes) {
+        if (node.count == 0) continue;
+        for (uint32_t i = node.index; i < node.index + node.count; ++i)
+            for (uint32_t v : sah.mesh().vertices[order[i]])
+                for (int axis = 0; axis < 3; ++axis) {
+                    EXPECT_LE(double(node.box[0][axis]), sah.mesh().positions[v][axis]);
+                    EXPECT_GE(double(node.box[1][axis]), sah.mesh().positions[v][axis]);
+                }
+    }
+}
+
+}  // namespace
+}  // namespace tracer
