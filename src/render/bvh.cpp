@@ -2,7 +2,10 @@
 
 #include <bit>
 #include <cmath>
-#include <numeric>
+#include <thread>
+
+#include <glm/common.hpp>
+#include <glm/vec3.hpp>
 
 namespace tracer {
 namespace {
@@ -51,122 +54,236 @@ Real Bounds::half_area() const {
     return d.x * d.y + d.y * d.z + d.z * d.x;
 }
 
-Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size) {
-    const uint32_t n = uint32_t(primitives.size());
-    order_.resize(n);
-    std::iota(order_.begin(), order_.end(), 0u);
-    if (n == 0) return;
-    std::vector<Vec3> centroids(n);
-    for (uint32_t i = 0; i < n; ++i) centroids[i] = primitives[i].centre();
-    nodes_.reserve(2 * size_t(n));
-    build(primitives, centroids, 0, n, 0, method, std::max(leaf_size, 1));
+namespace {
+
+// A primitive as the builder sees it: its float bounds (rounded outwards) and its id. The
+// builder partitions an array of these in place, so every pass reads memory in order.
+struct PrimRef {
+    glm::vec3 lower;
+    uint32_t id;
+    glm::vec3 upper;
+    uint32_t unused;
+    glm::vec3 centre() const { return (lower + upper) * 0.5f; }
+};
+static_assert(sizeof(PrimRef) == 32);
+
+struct FloatBounds {
+    glm::vec3 lower{std::numeric_limits<float>::infinity()};
+    glm::vec3 upper{-std::numeric_limits<float>::infinity()};
+    void extend(const glm::vec3& p) { lower = glm::min(lower, p), upper = glm::max(upper, p); }
+    void extend(const glm::vec3& lo, const glm::vec3& hi) { lower = glm::min(lower, lo), upper = glm::max(upper, hi); }
+    void extend(const FloatBounds& b) { extend(b.lower, b.upper); }
+    double half_area() const {
+        const glm::dvec3 d = glm::dvec3(upper) - glm::dvec3(lower);
+        return d.x >= 0 && d.y >= 0 && d.z >= 0 ? d.x * d.y + d.y * d.z + d.z * d.x : 0;
+    }
+};
+
+// A node's range of references with the bounds of their boxes and of their centres.
+struct Range {
+    uint32_t begin, end;
+    FloatBounds bounds, centres;
+    uint32_t count() const { return end - begin; }
+};
+
+Range measure(const PrimRef* refs, uint32_t begin, uint32_t end) {
+    Range range{begin, end, {}, {}};
+    for (uint32_t i = begin; i < end; ++i) {
+        range.bounds.extend(refs[i].lower, refs[i].upper);
+        range.centres.extend(refs[i].centre());
+    }
+    return range;
 }
 
-uint32_t Bvh::build(const std::vector<Bounds>& primitives, std::vector<Vec3>& centroids, uint32_t begin,
-                    uint32_t end, int depth, Accelerator method, int leaf_size) {
-    // Step 1: the node's box.
-    const uint32_t index = uint32_t(nodes_.size());
-    nodes_.emplace_back();
-    Bounds bounds;
-    for (uint32_t i = begin; i < end; ++i) bounds.extend(primitives[order_[i]]);
-    for (int axis = 0; axis < 3; ++axis) {
-        nodes_[index].box[0][axis] = round_down(bounds.lower[axis]);
-        nodes_[index].box[1][axis] = round_up(bounds.upper[axis]);
-    }
+}  // namespace
 
-    // Step 2: where to split, if at all (`end` means: make a leaf).
-    const uint32_t count = end - begin;
-    uint32_t middle = end;
-    if (method != Accelerator::Box && count > 1) {
-        if (depth >= kMaxBvhDepth - 1)
-            middle = count > uint32_t(leaf_size) ? begin + count / 2 : end;
-        else if (method == Accelerator::Median)
-            middle = count > uint32_t(leaf_size) ? split_median(centroids, begin, end, depth % 3) : end;
-        else
-            middle = split_sah(primitives, centroids, bounds, begin, end, leaf_size);
+// Builds one subtree into its own node array; two builders can run on disjoint ranges.
+class BvhBuilder {
+public:
+    BvhBuilder(PrimRef* refs, Accelerator method, int leaf_size) : refs_(refs), method_(method), leaf_size_(leaf_size) {}
+
+    uint32_t build(const Range& range, int depth);
+    std::vector<BvhNode> nodes;
+
+    // Splits `range` into two (false: make a leaf). Public for the two-thread root split.
+    bool split(const Range& range, int depth, Range& left, Range& right);
+
+private:
+    bool split_median(const Range& range, int axis, Range& left, Range& right);
+    bool split_sah(const Range& range, Range& left, Range& right);
+
+    PrimRef* refs_;
+    Accelerator method_;
+    int leaf_size_;
+};
+
+uint32_t BvhBuilder::build(const Range& range, int depth) {
+    const uint32_t index = uint32_t(nodes.size());
+    nodes.emplace_back();
+    for (int axis = 0; axis < 3; ++axis) {
+        nodes[index].box[0][axis] = range.bounds.lower[axis];
+        nodes[index].box[1][axis] = range.bounds.upper[axis];
     }
-    if (middle == end) {
-        nodes_[index].index = begin;
-        nodes_[index].count = count;
+    Range left, right;
+    if (!split(range, depth, left, right)) {
+        nodes[index].index = range.begin;
+        nodes[index].count = range.count();
         return index;
     }
-
-    // Step 3: children, left one right after this node.
-    build(primitives, centroids, begin, middle, depth + 1, method, leaf_size);
-    const uint32_t right = build(primitives, centroids, middle, end, depth + 1, method, leaf_size);
-    nodes_[index].index = right;
-    nodes_[index].count = 0;
+    build(left, depth + 1);  // the left child follows its parent
+    const uint32_t right_index = build(right, depth + 1);
+    nodes[index].index = right_index;
+    nodes[index].count = 0;
     return index;
 }
 
-// The assignment's split: sort by centroid along the axis, first half left.
-uint32_t Bvh::split_median(std::vector<Vec3>& centroids, uint32_t begin, uint32_t end, int axis) {
-    std::sort(order_.begin() + begin, order_.begin() + end,
-              [&](uint32_t a, uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
-    return begin + (end - begin) / 2;
+bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right) {
+    const uint32_t count = range.count();
+    if (method_ == Accelerator::Box || count <= 1) return false;
+    const bool too_deep = depth >= kMaxBvhDepth - 1;
+    if (method_ == Accelerator::Median || too_deep) {
+        if (count <= uint32_t(leaf_size_)) return false;
+        if (too_deep) {  // no more levels to spend: any halves will do
+            left = measure(refs_, range.begin, range.begin + count / 2);
+            right = measure(refs_, range.begin + count / 2, range.end);
+            return true;
+        }
+        return split_median(range, depth % 3, left, right);
+    }
+    return split_sah(range, left, right);
 }
 
-// Binned SAH: kSahBins bins of centroids per axis, the cheapest boundary between bins.
-uint32_t Bvh::split_sah(const std::vector<Bounds>& primitives, const std::vector<Vec3>& centroids,
-                        const Bounds& node_bounds, uint32_t begin, uint32_t end, int leaf_size) {
-    const uint32_t count = end - begin;
-    Bounds centre_bounds;
-    for (uint32_t i = begin; i < end; ++i) centre_bounds.extend(centroids[order_[i]]);
-    const Real node_area = node_bounds.half_area() > 0 ? node_bounds.half_area() : Real(1);
+// The assignment's split: sort by centroid along the axis, first half left.
+bool BvhBuilder::split_median(const Range& range, int axis, Range& left, Range& right) {
+    std::sort(refs_ + range.begin, refs_ + range.end,
+              [axis](const PrimRef& a, const PrimRef& b) { return a.centre()[axis] < b.centre()[axis]; });
+    const uint32_t middle = range.begin + range.count() / 2;
+    left = measure(refs_, range.begin, middle);
+    right = measure(refs_, middle, range.end);
+    return true;
+}
 
+// Binned SAH: kSahBins bins of centroids per axis, all three axes binned in one pass; the
+// cheapest boundary between bins wins.
+bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
+    const uint32_t count = range.count();
+    const glm::vec3 extent = range.centres.upper - range.centres.lower;
+    glm::vec3 scale;
+    for (int axis = 0; axis < 3; ++axis) scale[axis] = extent[axis] > 0 ? kSahBins / extent[axis] : 0.0f;
+    auto bin_of = [&](const PrimRef& ref, int axis) {
+        return std::min(kSahBins - 1, int((ref.centre()[axis] - range.centres.lower[axis]) * scale[axis]));
+    };
+
+    // Step 1: bins (boxes, centres and counts) for every axis.
+    FloatBounds boxes[3][kSahBins], centres[3][kSahBins];
+    uint32_t counts[3][kSahBins] = {};
+    for (uint32_t i = range.begin; i < range.end; ++i) {
+        const PrimRef& ref = refs_[i];
+        for (int axis = 0; axis < 3; ++axis) {
+            const int bin = bin_of(ref, axis);
+            ++counts[axis][bin];
+            boxes[axis][bin].extend(ref.lower, ref.upper);
+            centres[axis][bin].extend(ref.centre());
+        }
+    }
+
+    // Step 2: the cheapest boundary, sweeping right-hand sides from the end.
+    const double node_area = range.bounds.half_area() > 0 ? range.bounds.half_area() : 1.0;
     double best_cost = std::numeric_limits<double>::infinity();
     int best_axis = -1, best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
-        const Real extent = centre_bounds.upper[axis] - centre_bounds.lower[axis];
-        if (!(extent > 0)) continue;
-        const Real scale = kSahBins / extent;
-        Bounds bin_bounds[kSahBins];
-        uint32_t bin_count[kSahBins] = {};
-        for (uint32_t i = begin; i < end; ++i) {
-            const uint32_t id = order_[i];
-            const int bin = std::min(kSahBins - 1, int((centroids[id][axis] - centre_bounds.lower[axis]) * scale));
-            ++bin_count[bin];
-            bin_bounds[bin].extend(primitives[id]);
-        }
-        // Right-hand sides swept from the end, left-hand sides from the start.
-        Real right_area[kSahBins];
+        if (!(extent[axis] > 0)) continue;
+        double right_area[kSahBins];
         uint32_t right_count[kSahBins];
-        Bounds accumulated;
+        FloatBounds accumulated;
         uint32_t accumulated_count = 0;
         for (int b = kSahBins - 1; b > 0; --b) {
-            accumulated.extend(bin_bounds[b]);
-            accumulated_count += bin_count[b];
+            accumulated.extend(boxes[axis][b]);
+            accumulated_count += counts[axis][b];
             right_area[b] = accumulated.half_area();
             right_count[b] = accumulated_count;
         }
-        accumulated = Bounds();
+        accumulated = FloatBounds();
         accumulated_count = 0;
         for (int b = 0; b < kSahBins - 1; ++b) {
-            accumulated.extend(bin_bounds[b]);
-            accumulated_count += bin_count[b];
+            accumulated.extend(boxes[axis][b]);
+            accumulated_count += counts[axis][b];
             if (accumulated_count == 0 || right_count[b + 1] == 0) continue;
             const double cost = kTraversalCost + kIntersectionCost *
                                                      (accumulated.half_area() * accumulated_count +
                                                       right_area[b + 1] * right_count[b + 1]) / node_area;
-            if (cost < best_cost) {
-                best_cost = cost;
-                best_axis = axis;
-                best_bin = b;
-            }
+            if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
         }
     }
-
     const double leaf_cost = kIntersectionCost * count;
-    if (count <= uint32_t(leaf_size) && (best_axis < 0 || leaf_cost <= best_cost)) return end;
-    if (best_axis < 0) return begin + count / 2;  // all centroids coincide: any halves will do
+    if (count <= uint32_t(leaf_size_) && (best_axis < 0 || leaf_cost <= best_cost)) return false;
+    if (best_axis < 0) {  // all centres coincide: any halves will do
+        left = measure(refs_, range.begin, range.begin + count / 2);
+        right = measure(refs_, range.begin + count / 2, range.end);
+        return true;
+    }
 
-    const Real scale = kSahBins / (centre_bounds.upper[best_axis] - centre_bounds.lower[best_axis]);
-    auto left_of_split = [&](uint32_t id) {
-        return std::min(kSahBins - 1, int((centroids[id][best_axis] - centre_bounds.lower[best_axis]) * scale)) <=
-               best_bin;
-    };
-    auto middle = std::partition(order_.begin() + begin, order_.begin() + end, left_of_split);
-    return uint32_t(middle - order_.begin());
+    // Step 3: partition, and the children's bounds from the bins.
+    const PrimRef* middle = std::partition(refs_ + range.begin, refs_ + range.end,
+                                           [&](const PrimRef& ref) { return bin_of(ref, best_axis) <= best_bin; });
+    left = {range.begin, uint32_t(middle - refs_), {}, {}};
+    right = {left.end, range.end, {}, {}};
+    for (int b = 0; b < kSahBins; ++b) {
+        Range& side = b <= best_bin ? left : right;
+        side.bounds.extend(boxes[best_axis][b]);
+        side.centres.extend(centres[best_axis][b]);
+    }
+    return true;
+}
+
+Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size) {
+    const uint32_t n = uint32_t(primitives.size());
+    order_.resize(n);
+    if (n == 0) return;
+    std::vector<PrimRef> refs(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        for (int axis = 0; axis < 3; ++axis) {
+            refs[i].lower[axis] = round_down(primitives[i].lower[axis]);
+            refs[i].upper[axis] = round_up(primitives[i].upper[axis]);
+        }
+        refs[i].id = i;
+    }
+    leaf_size = std::max(leaf_size, 1);
+    const Range root = measure(refs.data(), 0, n);
+
+    // Large inputs: split the root here, then build its two subtrees on two threads and
+    // append them in depth-first order (left subtree right after the root).
+    constexpr uint32_t kParallelFrom = 50000;
+    BvhBuilder main(refs.data(), method, leaf_size);
+    Range left, right;
+    if (n >= kParallelFrom && std::thread::hardware_concurrency() > 1 && main.split(root, 0, left, right)) {
+        BvhBuilder other(refs.data(), method, leaf_size);
+        std::thread worker([&] { other.build(left, 1); });
+        main.build(right, 1);
+        worker.join();
+        nodes_.reserve(1 + other.nodes.size() + main.nodes.size());
+        nodes_.emplace_back();
+        for (int axis = 0; axis < 3; ++axis) {
+            nodes_[0].box[0][axis] = root.bounds.lower[axis];
+            nodes_[0].box[1][axis] = root.bounds.upper[axis];
+        }
+        nodes_[0].count = 0;
+        nodes_[0].index = uint32_t(1 + other.nodes.size());
+        auto append = [&](const std::vector<BvhNode>& subtree) {
+            const uint32_t offset = uint32_t(nodes_.size());
+            for (BvhNode node : subtree) {
+                if (node.count == 0) node.index += offset;  // inner nodes point at node indices
+                nodes_.push_back(node);
+            }
+        };
+        append(other.nodes);
+        append(main.nodes);
+    } else {
+        main.nodes.reserve(2 * size_t(n));
+        main.build(root, 0);
+        nodes_ = std::move(main.nodes);
+    }
+    for (uint32_t i = 0; i < n; ++i) order_[i] = refs[i].id;
 }
 
 BvhStats Bvh::stats() const {

@@ -92,6 +92,7 @@ public:
     Bvh() = default;
     // Builds over the primitives' bounds. `leaf_size`: Median splits nodes with more primitives
     // than this; Sah never makes larger leaves (and makes smaller ones where the SAH says so).
+    // Large inputs are built on two threads (the root's two subtrees).
     Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size);
 
     const std::vector<BvhNode>& nodes() const { return nodes_; }
@@ -107,11 +108,7 @@ public:
     bool any(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const;
 
 private:
-    uint32_t build(const std::vector<Bounds>& primitives, std::vector<Vec3>& centroids, uint32_t begin,
-                   uint32_t end, int depth, Accelerator method, int leaf_size);
-    uint32_t split_median(std::vector<Vec3>& centroids, uint32_t begin, uint32_t end, int axis);
-    uint32_t split_sah(const std::vector<Bounds>& primitives, const std::vector<Vec3>& centroids,
-                       const Bounds& node_bounds, uint32_t begin, uint32_t end, int leaf_size);
+    friend class BvhBuilder;
 
     std::vector<BvhNode> nodes_;
     std::vector<uint32_t> order_;
