@@ -2,9 +2,12 @@
 
 #include <bit>
 #include <cmath>
-#include <thread>
+#include <cstring>
+#include <future>
 
 #include <glm/common.hpp>
+
+#include "render/parallel.h"
 #include <glm/vec3.hpp>
 
 namespace tracer {
@@ -62,7 +65,7 @@ struct PrimRef {
     glm::vec3 lower;
     uint32_t id;
     glm::vec3 upper;
-    uint32_t unused;
+    uint32_t bins;  // scratch: the SAH bin per axis, 8 bits each, from binning to partitioning
     glm::vec3 centre() const { return (lower + upper) * 0.5f; }
 };
 static_assert(sizeof(PrimRef) == 32);
@@ -76,6 +79,50 @@ struct FloatBounds {
     double half_area() const {
         const glm::dvec3 d = glm::dvec3(upper) - glm::dvec3(lower);
         return d.x >= 0 && d.y >= 0 && d.z >= 0 ? d.x * d.y + d.y * d.z + d.z * d.x : 0;
+    }
+};
+
+// Four floats in one vector register (GCC/Clang vector extensions: portable, no intrinsics).
+typedef float v4f __attribute__((vector_size(16)));
+inline v4f lane_min(v4f a, v4f b) { return a < b ? a : b; }
+inline v4f lane_max(v4f a, v4f b) { return a > b ? a : b; }
+
+// One SAH bin: the boxes and centres that fell into it, lane by lane (lane 3 unused).
+struct VectorBin {
+    static constexpr float kInf = std::numeric_limits<float>::infinity();
+    v4f lower, upper, centre_lower, centre_upper;
+    uint32_t count;
+
+    VectorBin() = default;  // uninitialised: arrays of bins are cleared only where used
+    static VectorBin empty() {
+        VectorBin bin;
+        bin.clear();
+        return bin;
+    }
+    void clear() {
+        lower = centre_lower = v4f{kInf, kInf, kInf, kInf};
+        upper = centre_upper = v4f{-kInf, -kInf, -kInf, -kInf};
+        count = 0;
+    }
+
+    void add(v4f box_lower, v4f box_upper, v4f centre) {
+        ++count;
+        lower = lane_min(lower, box_lower), upper = lane_max(upper, box_upper);
+        centre_lower = lane_min(centre_lower, centre), centre_upper = lane_max(centre_upper, centre);
+    }
+    void add(const VectorBin& other) {
+        count += other.count;
+        lower = lane_min(lower, other.lower), upper = lane_max(upper, other.upper);
+        centre_lower = lane_min(centre_lower, other.centre_lower);
+        centre_upper = lane_max(centre_upper, other.centre_upper);
+    }
+    float half_area() const {
+        const v4f d = upper - lower;
+        return count == 0 ? 0.0f : d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+    }
+    FloatBounds bounds() const { return {{lower[0], lower[1], lower[2]}, {upper[0], upper[1], upper[2]}}; }
+    FloatBounds centres() const {
+        return {{centre_lower[0], centre_lower[1], centre_lower[2]}, {centre_upper[0], centre_upper[1], centre_upper[2]}};
     }
 };
 
@@ -102,13 +149,20 @@ class BvhBuilder {
 public:
     BvhBuilder(PrimRef* refs, Accelerator method, int leaf_size) : refs_(refs), method_(method), leaf_size_(leaf_size) {}
 
+    // Builds the subtree over `range` into `nodes`; returns its root's index there.
     uint32_t build(const Range& range, int depth);
     std::vector<BvhNode> nodes;
 
-    // Splits `range` into two (false: make a leaf). Public for the two-thread root split.
+    // Splits `range` into two (false: make a leaf).
     bool split(const Range& range, int depth, Range& left, Range& right);
 
 private:
+    // Subtrees of at least kParallelFrom primitives, down to depth kParallelDepth, are built in
+    // parallel: 4 tasks, enough to keep two or three cores busy despite uneven SAH splits.
+    static constexpr uint32_t kParallelFrom = 50000;
+    static constexpr int kParallelDepth = 2;
+
+    void append(const std::vector<BvhNode>& subtree);
     bool split_median(const Range& range, int axis, Range& left, Range& right);
     bool split_sah(const Range& range, Range& left, Range& right);
 
@@ -130,11 +184,31 @@ uint32_t BvhBuilder::build(const Range& range, int depth) {
         nodes[index].count = range.count();
         return index;
     }
-    build(left, depth + 1);  // the left child follows its parent
-    const uint32_t right_index = build(right, depth + 1);
-    nodes[index].index = right_index;
     nodes[index].count = 0;
+    if (depth < kParallelDepth && range.count() >= kParallelFrom) {
+        // Large subtrees: both children at once (each into its own array, on disjoint ranges
+        // of the references), then appended in depth-first order.
+        BvhBuilder left_builder(refs_, method_, leaf_size_), right_builder(refs_, method_, leaf_size_);
+        auto left_done = std::async(std::launch::async, [&] { left_builder.build(left, depth + 1); });
+        right_builder.build(right, depth + 1);
+        left_done.get();
+        append(left_builder.nodes);
+        nodes[index].index = uint32_t(nodes.size());
+        append(right_builder.nodes);
+        return index;
+    }
+    build(left, depth + 1);  // the left child follows its parent
+    nodes[index].index = build(right, depth + 1);
     return index;
+}
+
+// Appends a subtree built on its own, moving its node indices to where it now starts.
+void BvhBuilder::append(const std::vector<BvhNode>& subtree) {
+    const uint32_t offset = uint32_t(nodes.size());
+    for (BvhNode node : subtree) {
+        if (node.count == 0) node.index += offset;  // inner nodes point at node indices
+        nodes.push_back(node);
+    }
 }
 
 bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right) {
@@ -163,28 +237,37 @@ bool BvhBuilder::split_median(const Range& range, int axis, Range& left, Range& 
     return true;
 }
 
-// Binned SAH: kSahBins bins of centroids per axis, all three axes binned in one pass; the
-// cheapest boundary between bins wins.
+// Binned SAH: up to kSahBins bins of centroids per axis (no more bins than primitives, so small
+// nodes stay cheap), all three axes binned in one pass; the cheapest boundary between bins wins.
 bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
     const uint32_t count = range.count();
+    const int bin_count = int(std::min<uint32_t>(count, kSahBins));
     const glm::vec3 extent = range.centres.upper - range.centres.lower;
-    glm::vec3 scale;
-    for (int axis = 0; axis < 3; ++axis) scale[axis] = extent[axis] > 0 ? kSahBins / extent[axis] : 0.0f;
-    auto bin_of = [&](const PrimRef& ref, int axis) {
-        return std::min(kSahBins - 1, int((ref.centre()[axis] - range.centres.lower[axis]) * scale[axis]));
+    v4f factor = {0, 0, 0, 0};
+    for (int axis = 0; axis < 3; ++axis) factor[axis] = extent[axis] > 0 ? float(bin_count) / extent[axis] : 0.0f;
+    const v4f origin = {range.centres.lower.x, range.centres.lower.y, range.centres.lower.z, 0};
+    auto position = [&](const PrimRef& ref, v4f& lower, v4f& upper, v4f& centre) {
+        std::memcpy(&lower, &ref.lower, sizeof lower);  // lane 3: the id or the bins, never read back
+        std::memcpy(&upper, &ref.upper, sizeof upper);
+        centre = (lower + upper) * 0.5f;
+        return (centre - origin) * factor;
     };
 
-    // Step 1: bins (boxes, centres and counts) for every axis.
-    FloatBounds boxes[3][kSahBins], centres[3][kSahBins];
-    uint32_t counts[3][kSahBins] = {};
+    // Step 1: bins (boxes, centres and counts) for every axis, four lanes at a time. Only the
+    // bins in use are cleared: small nodes are most of the nodes.
+    VectorBin bins[3][kSahBins];
+    for (auto& axis_bins : bins)
+        for (int b = 0; b < bin_count; ++b) axis_bins[b].clear();
     for (uint32_t i = range.begin; i < range.end; ++i) {
-        const PrimRef& ref = refs_[i];
+        v4f lower, upper, centre;
+        const v4f at = position(refs_[i], lower, upper, centre);
+        uint32_t saved = 0;
         for (int axis = 0; axis < 3; ++axis) {
-            const int bin = bin_of(ref, axis);
-            ++counts[axis][bin];
-            boxes[axis][bin].extend(ref.lower, ref.upper);
-            centres[axis][bin].extend(ref.centre());
+            const int bin = std::min(bin_count - 1, int(at[axis]));
+            bins[axis][bin].add(lower, upper, centre);
+            saved |= uint32_t(bin) << (8 * axis);
         }
+        refs_[i].bins = saved;
     }
 
     // Step 2: the cheapest boundary, sweeping right-hand sides from the end.
@@ -193,25 +276,21 @@ bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
     int best_axis = -1, best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
         if (!(extent[axis] > 0)) continue;
-        double right_area[kSahBins];
-        uint32_t right_count[kSahBins];
-        FloatBounds accumulated;
-        uint32_t accumulated_count = 0;
-        for (int b = kSahBins - 1; b > 0; --b) {
-            accumulated.extend(boxes[axis][b]);
-            accumulated_count += counts[axis][b];
+        float right_area[kSahBins];
+        VectorBin accumulated = VectorBin::empty();
+        for (int b = bin_count - 1; b > 0; --b) {
+            accumulated.add(bins[axis][b]);
             right_area[b] = accumulated.half_area();
-            right_count[b] = accumulated_count;
         }
-        accumulated = FloatBounds();
-        accumulated_count = 0;
-        for (int b = 0; b < kSahBins - 1; ++b) {
-            accumulated.extend(boxes[axis][b]);
-            accumulated_count += counts[axis][b];
-            if (accumulated_count == 0 || right_count[b + 1] == 0) continue;
+        const uint32_t total = accumulated.count + bins[axis][0].count;
+        accumulated = VectorBin::empty();
+        for (int b = 0; b < bin_count - 1; ++b) {
+            accumulated.add(bins[axis][b]);
+            const uint32_t right_count = total - accumulated.count;
+            if (accumulated.count == 0 || right_count == 0) continue;
             const double cost = kTraversalCost + kIntersectionCost *
-                                                     (accumulated.half_area() * accumulated_count +
-                                                      right_area[b + 1] * right_count[b + 1]) / node_area;
+                                                     (double(accumulated.half_area()) * accumulated.count +
+                                                      double(right_area[b + 1]) * right_count) / node_area;
             if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
         }
     }
@@ -224,15 +303,14 @@ bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
     }
 
     // Step 3: partition, and the children's bounds from the bins.
-    const PrimRef* middle = std::partition(refs_ + range.begin, refs_ + range.end,
-                                           [&](const PrimRef& ref) { return bin_of(ref, best_axis) <= best_bin; });
-    left = {range.begin, uint32_t(middle - refs_), {}, {}};
-    right = {left.end, range.end, {}, {}};
-    for (int b = 0; b < kSahBins; ++b) {
-        Range& side = b <= best_bin ? left : right;
-        side.bounds.extend(boxes[best_axis][b]);
-        side.centres.extend(centres[best_axis][b]);
-    }
+    const uint32_t shift = 8 * uint32_t(best_axis);
+    const PrimRef* middle = std::partition(refs_ + range.begin, refs_ + range.end, [&](const PrimRef& ref) {
+        return int((ref.bins >> shift) & 0xFF) <= best_bin;
+    });
+    VectorBin left_bins = VectorBin::empty(), right_bins = VectorBin::empty();
+    for (int b = 0; b < bin_count; ++b) (b <= best_bin ? left_bins : right_bins).add(bins[best_axis][b]);
+    left = {range.begin, uint32_t(middle - refs_), left_bins.bounds(), left_bins.centres()};
+    right = {left.end, range.end, right_bins.bounds(), right_bins.centres()};
     return true;
 }
 
@@ -241,49 +319,21 @@ Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_siz
     order_.resize(n);
     if (n == 0) return;
     std::vector<PrimRef> refs(n);
-    for (uint32_t i = 0; i < n; ++i) {
+    parallel_for(n, [&](size_t i) {
         for (int axis = 0; axis < 3; ++axis) {
             refs[i].lower[axis] = round_down(primitives[i].lower[axis]);
             refs[i].upper[axis] = round_up(primitives[i].upper[axis]);
         }
-        refs[i].id = i;
-    }
+        refs[i].id = uint32_t(i);
+    });
     leaf_size = std::max(leaf_size, 1);
     const Range root = measure(refs.data(), 0, n);
 
-    // Large inputs: split the root here, then build its two subtrees on two threads and
-    // append them in depth-first order (left subtree right after the root).
-    constexpr uint32_t kParallelFrom = 50000;
-    BvhBuilder main(refs.data(), method, leaf_size);
-    Range left, right;
-    if (n >= kParallelFrom && std::thread::hardware_concurrency() > 1 && main.split(root, 0, left, right)) {
-        BvhBuilder other(refs.data(), method, leaf_size);
-        std::thread worker([&] { other.build(left, 1); });
-        main.build(right, 1);
-        worker.join();
-        nodes_.reserve(1 + other.nodes.size() + main.nodes.size());
-        nodes_.emplace_back();
-        for (int axis = 0; axis < 3; ++axis) {
-            nodes_[0].box[0][axis] = root.bounds.lower[axis];
-            nodes_[0].box[1][axis] = root.bounds.upper[axis];
-        }
-        nodes_[0].count = 0;
-        nodes_[0].index = uint32_t(1 + other.nodes.size());
-        auto append = [&](const std::vector<BvhNode>& subtree) {
-            const uint32_t offset = uint32_t(nodes_.size());
-            for (BvhNode node : subtree) {
-                if (node.count == 0) node.index += offset;  // inner nodes point at node indices
-                nodes_.push_back(node);
-            }
-        };
-        append(other.nodes);
-        append(main.nodes);
-    } else {
-        main.nodes.reserve(2 * size_t(n));
-        main.build(root, 0);
-        nodes_ = std::move(main.nodes);
-    }
-    for (uint32_t i = 0; i < n; ++i) order_[i] = refs[i].id;
+    BvhBuilder builder(refs.data(), method, leaf_size);
+    builder.nodes.reserve(2 * size_t(n));
+    builder.build(root, 0);
+    nodes_ = std::move(builder.nodes);
+    parallel_for(n, [&](size_t i) { order_[i] = refs[i].id; });
 }
 
 BvhStats Bvh::stats() const {

@@ -92,7 +92,7 @@ public:
     Bvh() = default;
     // Builds over the primitives' bounds. `leaf_size`: Median splits nodes with more primitives
     // than this; Sah never makes larger leaves (and makes smaller ones where the SAH says so).
-    // Large inputs are built on two threads (the root's two subtrees).
+    // Large inputs are built on several threads (the subtrees near the root).
     Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size);
 
     const std::vector<BvhNode>& nodes() const { return nodes_; }

@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/parallel.h"
+
 namespace tracer {
 
 MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size) : mesh_(std::move(mesh)), accel_(accel) {
@@ -12,20 +14,21 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size) : mesh
     const size_t n = mesh_.vertices.size();
     if (accel_ != Accelerator::None) {
         std::vector<Bounds> bounds(n);
-        for (size_t i = 0; i < n; ++i)
+        parallel_for(n, [&](size_t i) {
             for (uint32_t v : mesh_.vertices[i]) bounds[i].extend(mesh_.positions[v]);
+        });
         bvh_ = Bvh(bounds, accel_, leaf_size);
         ids_ = bvh_.order();
     } else {
         ids_.resize(n);
         for (size_t i = 0; i < n; ++i) ids_[i] = uint32_t(i);
     }
-    edges_.reserve(n);
-    for (uint32_t id : ids_) {
-        const auto& v = mesh_.vertices[id];
+    edges_.resize(n);
+    parallel_for(n, [&](size_t i) {
+        const auto& v = mesh_.vertices[ids_[i]];
         const Vec3& p0 = mesh_.positions[v[0]];
-        edges_.push_back({p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0});
-    }
+        edges_[i] = {p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0};
+    });
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
