@@ -51,12 +51,6 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
 
 void TraversalRay::clip(Real t) { t_max = std::min(t_max, round_up(t)); }
 
-Real Bounds::half_area() const {
-    const Vec3 d = upper - lower;
-    if (!(d.x >= 0 && d.y >= 0 && d.z >= 0)) return 0;
-    return d.x * d.y + d.y * d.z + d.z * d.x;
-}
-
 namespace {
 
 // A primitive as the builder sees it: its float bounds (rounded outwards) and its id. The

@@ -32,7 +32,6 @@ struct Bounds {
         upper = glm::max(upper, b.upper);
     }
     Vec3 centre() const { return (lower + upper) * Real(0.5); }
-    Real half_area() const;  // surface area / 2; 0 for an empty box
 };
 
 struct BvhNode {
@@ -42,9 +41,10 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32, "BVH nodes are 32 bytes");
 
-// A ray prepared for float box tests. The origin is rounded to float and moved 2 ulps away
-// from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013) and the node boxes are rounded
-// outwards: together no rounding can make a box test miss a primitive the exact ray meets.
+// A ray prepared for float box tests. The origin is rounded to float and moved |origin| 2^-21
+// (at least 4 ulps) away from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013) and the
+// node boxes are rounded outwards: the margins are meant to keep rounding from making a box
+// test miss a primitive the exact ray meets (hard-cases.md A1 and A3 will test it).
 struct TraversalRay {
     float origin_near[3];  // origin for the entering planes
     float origin_far[3];   // origin for the leaving planes
