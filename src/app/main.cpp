@@ -84,7 +84,7 @@ int render_to_file(const Options& options) {
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
     const tracer::SceneDescription* scene = &loaded->scene;
-    const tracer::World world(loaded->scene, std::move(loaded->meshes));
+    const tracer::World world(loaded->scene, std::move(loaded->meshes), options.threads);
 
     // Step 2: render, stoppable with Ctrl-C.
     std::signal(SIGINT, on_interrupt);

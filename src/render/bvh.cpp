@@ -141,7 +141,8 @@ Range measure(const PrimRef* refs, uint32_t begin, uint32_t end) {
 // Builds one subtree into its own node array; two builders can run on disjoint ranges.
 class BvhBuilder {
 public:
-    BvhBuilder(PrimRef* refs, Accelerator method, int leaf_size) : refs_(refs), method_(method), leaf_size_(leaf_size) {}
+    BvhBuilder(PrimRef* refs, Accelerator method, int leaf_size, bool parallel)
+        : refs_(refs), method_(method), leaf_size_(leaf_size), parallel_(parallel) {}
 
     // Builds the subtree over `range` into `nodes`; returns its root's index there.
     uint32_t build(const Range& range, int depth);
@@ -163,6 +164,7 @@ private:
     PrimRef* refs_;
     Accelerator method_;
     int leaf_size_;
+    bool parallel_;
 };
 
 uint32_t BvhBuilder::build(const Range& range, int depth) {
@@ -179,10 +181,10 @@ uint32_t BvhBuilder::build(const Range& range, int depth) {
         return index;
     }
     nodes[index].count = 0;
-    if (depth < kParallelDepth && range.count() >= kParallelFrom) {
+    if (parallel_ && depth < kParallelDepth && range.count() >= kParallelFrom) {
         // Large subtrees: both children at once (each into its own array, on disjoint ranges
         // of the references), then appended in depth-first order.
-        BvhBuilder left_builder(refs_, method_, leaf_size_), right_builder(refs_, method_, leaf_size_);
+        BvhBuilder left_builder(refs_, method_, leaf_size_, true), right_builder(refs_, method_, leaf_size_, true);
         auto left_done = std::async(std::launch::async, [&] { left_builder.build(left, depth + 1); });
         right_builder.build(right, depth + 1);
         left_done.get();
@@ -308,7 +310,7 @@ bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
     return true;
 }
 
-Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size) {
+Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size, int threads) {
     const uint32_t n = uint32_t(primitives.size());
     order_.resize(n);
     if (n == 0) return;
@@ -319,15 +321,15 @@ Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_siz
             refs[i].upper[axis] = round_up(primitives[i].upper[axis]);
         }
         refs[i].id = uint32_t(i);
-    });
+    }, threads);
     leaf_size = std::max(leaf_size, 1);
     const Range root = measure(refs.data(), 0, n);
 
-    BvhBuilder builder(refs.data(), method, leaf_size);
+    BvhBuilder builder(refs.data(), method, leaf_size, thread_count(threads) > 1);
     builder.nodes.reserve(2 * size_t(n));
     builder.build(root, 0);
     nodes_ = std::move(builder.nodes);
-    parallel_for(n, [&](size_t i) { order_[i] = refs[i].id; });
+    parallel_for(n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
 }
 
 BvhStats Bvh::stats() const {

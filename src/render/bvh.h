@@ -92,8 +92,9 @@ public:
     Bvh() = default;
     // Builds over the primitives' bounds. `leaf_size`: Median splits nodes with more primitives
     // than this; Sah never makes larger leaves (and makes smaller ones where the SAH says so).
-    // Large inputs are built on several threads (the subtrees near the root).
-    Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size);
+    // Large inputs are built on `threads` threads (0: one per core), the subtrees near the
+    // root in parallel.
+    Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size, int threads = 0);
 
     const std::vector<BvhNode>& nodes() const { return nodes_; }
     const std::vector<uint32_t>& order() const { return order_; }

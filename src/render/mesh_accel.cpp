@@ -9,15 +9,16 @@
 
 namespace tracer {
 
-MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size) : mesh_(std::move(mesh)), accel_(accel) {
+MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int threads)
+    : mesh_(std::move(mesh)), accel_(accel) {
     const auto start = std::chrono::steady_clock::now();
     const size_t n = mesh_.vertices.size();
     if (accel_ != Accelerator::None) {
         std::vector<Bounds> bounds(n);
         parallel_for(n, [&](size_t i) {
             for (uint32_t v : mesh_.vertices[i]) bounds[i].extend(mesh_.positions[v]);
-        });
-        bvh_ = Bvh(bounds, accel_, leaf_size);
+        }, threads);
+        bvh_ = Bvh(bounds, accel_, leaf_size, threads);
         ids_ = bvh_.order();
     } else {
         ids_.resize(n);
@@ -28,7 +29,7 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size) : mesh
         const auto& v = mesh_.vertices[ids_[i]];
         const Vec3& p0 = mesh_.positions[v[0]];
         edges_[i] = {p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0};
-    });
+    }, threads);
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

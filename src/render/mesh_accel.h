@@ -18,7 +18,8 @@ struct MeshHit {
 
 class MeshAccel {
 public:
-    MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size);
+    // Builds the accelerator on `threads` threads (0: one per core).
+    MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int threads = 0);
 
     // The nearest triangle with t inside `range`; shrinks range.max to it.
     bool intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const;

@@ -8,12 +8,17 @@
 
 namespace tracer {
 
-// Calls body(i) for every i in [0, n), in contiguous chunks on up to one thread per core.
-// Small loops run on the calling thread alone.
+// The number of threads to use when the caller asked for `requested` (0: one per core).
+inline int thread_count(int requested) {
+    return requested > 0 ? requested : int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// Calls body(i) for every i in [0, n), in contiguous chunks on `threads` threads (0: one per
+// core). Small loops run on the calling thread alone.
 template <typename Body>
-void parallel_for(size_t n, Body body) {
+void parallel_for(size_t n, Body body, int threads_wanted = 0) {
     constexpr size_t kSerialBelow = 20000;
-    const size_t threads = std::min<size_t>(std::max(1u, std::thread::hardware_concurrency()), 8);
+    const size_t threads = size_t(std::min(thread_count(threads_wanted), 8));
     if (n < kSerialBelow || threads == 1) {
         for (size_t i = 0; i < n; ++i) body(i);
         return;

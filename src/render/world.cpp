@@ -4,11 +4,11 @@
 
 namespace tracer {
 
-World::World(const SceneDescription& scene, std::vector<TriangleMesh> meshes)
+World::World(const SceneDescription& scene, std::vector<TriangleMesh> meshes, int threads)
     : materials_(scene.materials), lights_(scene.lights) {
     for (const Sphere& s : scene.spheres) spheres_.push_back({Vec3(s.center), Real(s.radius), s.material});
     for (const Plane& p : scene.planes) planes_.push_back({Vec3(p.point), Vec3(p.normal), p.material});
-    for (TriangleMesh& mesh : meshes) meshes_.emplace_back(std::move(mesh), scene.render.accel, scene.render.leaf_size);
+    for (TriangleMesh& mesh : meshes) meshes_.emplace_back(std::move(mesh), scene.render.accel, scene.render.leaf_size, threads);
 }
 
 std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range, TraversalCounts& counts) const {

@@ -21,8 +21,8 @@ struct SurfaceHit {
 class World {
 public:
     // The shapes of a validated scene, with its meshes as loaded by load_meshes (in the
-    // scene's order), each behind the scene's accelerator.
-    World(const SceneDescription& scene, std::vector<TriangleMesh> meshes = {});
+    // scene's order), each behind the scene's accelerator, built on `threads` threads (0: all).
+    World(const SceneDescription& scene, std::vector<TriangleMesh> meshes = {}, int threads = 0);
 
     // The nearest surface along `ray` with t inside `range`.
     std::optional<SurfaceHit> intersect(const Ray& ray, Interval range, TraversalCounts& counts) const;

@@ -140,6 +140,26 @@ class CommandLine(unittest.TestCase):
         result = run("--dump-json", bad)
         self.assertEqual((result.returncode, result.stdout), (1, ""))
 
+    def test_stats_and_accelerator_options(self):
+        mesh_scene = self.tmp / "mesh.scn"
+        obj = ROOT / "scenes" / "meshes" / "tetrahedron.obj"
+        mesh_scene.write_text(SMALL_SCENE.replace("sphere {", f'mesh {{ file "{obj}" material {{ kd 1 }} }}\nsphere {{'))
+        stats_path = self.tmp / "stats.json"
+        images = {}
+        for accel in ("none", "box", "median", "sah"):
+            out = self.tmp / f"{accel}.png"
+            result = run(mesh_scene, "-o", out, "--accel", accel, "--stats", "--stats-json", stats_path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertRegex(result.stderr, r"mesh: 4 triangles, " + accel)
+            self.assertRegex(result.stderr, r"per ray [0-9.]+ box tests, [0-9.]+ triangle tests")
+            stats = json.loads(stats_path.read_text())
+            self.assertEqual(stats["accel"], accel)
+            self.assertEqual(stats["meshes"][0]["triangles"], 4)
+            self.assertEqual(stats["rays"]["primary"], 64 * 48)
+            images[accel] = out.read_bytes()
+        self.assertEqual(len(set(images.values())), 1)  # every accelerator, the same image
+        self.assertEqual(run(mesh_scene, "-o", self.tmp / "x.png", "--accel", "kd-tree").returncode, 2)
+
     def test_reference_matches_committed_file(self):
         self.assertEqual(run("--reference").stdout, (ROOT / "grammar" / "reference.md").read_text())
 

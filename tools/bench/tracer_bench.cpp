@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
     std::vector<double> build_ms;
     std::optional<tracer::World> world;
     for (int i = 0; i <= runs; ++i) {
-        world.emplace(scene, *meshes);
+        world.emplace(scene, *meshes, threads);  // build threads follow --threads, as in embree_bench
         double ms = 0;
         for (const auto& mesh : world->meshes()) ms += mesh.build_seconds() * 1e3;
         if (i > 0) build_ms.push_back(ms);
