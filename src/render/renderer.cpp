@@ -6,14 +6,10 @@
 #include <thread>
 
 #include "render/camera.h"
+#include "render/parallel.h"
 #include "render/world.h"
 
 namespace tracer {
-
-Color Image::pixel(int x, int y) const {
-    const double* p = &rgb[(size_t(y) * size_t(width) + size_t(x)) * 3];
-    return {p[0], p[1], p[2]};
-}
 
 // The mean of N x N rays through the centres of a regular grid of sub-pixel cells (N = 1:
 // the pixel centre).
@@ -49,6 +45,7 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     const PinholeCamera camera(scene.camera, settings.width, settings.height);
     const int grid = int(std::lround(std::sqrt(double(settings.samples))));
 
+    // Step 1: the pixels to render, and black around them.
     PixelRect area = options.crop.width > 0 ? options.crop : PixelRect{0, 0, settings.width, settings.height};
     area.x0 = std::clamp(area.x0, 0, settings.width);
     area.y0 = std::clamp(area.y0, 0, settings.height);
@@ -59,8 +56,8 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     image.rgb.resize(size_t(settings.width) * size_t(settings.height) * 3);
     clear_outside(image, area);
 
-    int threads = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
-    threads = std::max(1, std::min(threads, std::max(area.height, 1)));
+    // Step 2: rows handed to the threads one at a time.
+    const int threads = std::max(1, std::min(thread_count(options.threads), std::max(area.height, 1)));
     std::atomic<int> next_row{0};
     std::atomic<int> rows_done{0};
     std::mutex merge;
@@ -91,6 +88,7 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     worker(0);
     for (std::thread& t : pool) t.join();
 
+    // Step 3: how long it took.
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return !(options.cancel && options.cancel->load()) && rows_done.load() == area.height;
 }

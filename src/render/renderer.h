@@ -17,8 +17,6 @@ struct Image {
     int width = 0;
     int height = 0;
     std::vector<double> rgb;  // width * height * 3, kept in double so 8-bit rounding is exact
-
-    Color pixel(int x, int y) const;
 };
 
 // A rectangle of pixels: columns x0 .. x0 + width - 1, rows y0 .. y0 + height - 1.
