@@ -13,7 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/progress.h"
-#include "app/stats.h"
+#include "render/render_stats.h"
 #include "frontend/load_scene.h"
 #include "frontend/reference_doc.h"
 #include "frontend/scene_json.h"

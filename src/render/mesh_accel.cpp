@@ -79,9 +79,9 @@ Vec3 MeshAccel::geometric_normal(uint32_t triangle) const {
 Vec3 MeshAccel::shading_normal(const MeshHit& hit) const {
     const auto& n = mesh_.normal_ids[hit.triangle];
     const Real u = hit.hit.u, v = hit.hit.v;
-    const Vec3 interpolated = (1 - u - v) * mesh_.normals[n[0]] + u * mesh_.normals[n[1]] + v * mesh_.normals[n[2]];
-    const Real length = glm::length(interpolated);
-    return length > 0 && std::isfinite(length) ? interpolated / length : geometric_normal(hit.triangle);
+    const Vec3 shading =
+        normalize_or_zero((1 - u - v) * mesh_.normals[n[0]] + u * mesh_.normals[n[1]] + v * mesh_.normals[n[2]]);
+    return shading != Vec3(0) ? shading : geometric_normal(hit.triangle);
 }
 
 }  // namespace tracer

@@ -144,10 +144,7 @@ std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& positions,
         const Vec3 weighted = glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
         for (uint32_t v : t) sums[v] += weighted;
     }
-    for (Vec3& n : sums) {
-        const Real length = glm::length(n);
-        n = length > 0 && std::isfinite(length) ? n / length : Vec3(0);
-    }
+    for (Vec3& n : sums) n = normalize_or_zero(n);
     return sums;
 }
 
@@ -217,9 +214,8 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
     // Step 4: normals from the file (when every face has them), else area-weighted.
     if (file_normals) {
         for (size_t i = 0; i + 2 < attrib.normals.size(); i += 3) {
-            const Vec3 n = placement.normal * Vec3(attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2]);
-            const Real length = glm::length(n);
-            out.normals.push_back(length > 0 && std::isfinite(length) ? n / length : Vec3(0));
+            out.normals.push_back(normalize_or_zero(
+                placement.normal * Vec3(attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2])));
         }
     } else {
         out.normals = area_weighted_normals(out.positions, out.vertices);

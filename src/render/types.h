@@ -2,8 +2,11 @@
 // float build can be measured against this double build later.
 #pragma once
 
-#include <glm/vec3.hpp>
+#include <cmath>
 #include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
 
 namespace tracer {
 
@@ -19,6 +22,13 @@ struct Ray {
 
     Vec3 at(Real t) const { return origin + t * direction; }
 };
+
+// `v` scaled to unit length, or the zero vector when it has no direction (zero, or so large or
+// small that its length is not a finite positive number).
+inline Vec3 normalize_or_zero(const Vec3& v) {
+    const Real length = glm::length(v);
+    return length > 0 && std::isfinite(length) ? v / length : Vec3(0);
+}
 
 // An open interval of ray parameters (min, max): hits must lie strictly inside.
 struct Interval {

@@ -16,6 +16,7 @@
 #include "render/camera.h"
 #include "render/image_output.h"
 #include "render/mesh_loader.h"
+#include "render/render_stats.h"
 #include "render/renderer.h"
 
 namespace {
@@ -110,10 +111,11 @@ int main(int argc, char** argv) {
     size_t triangles = 0;
     for (const auto& mesh : world->meshes()) triangles += mesh.mesh().vertices.size();
     const tracer::RayCounts& rays = stats.rays;
+    const auto figures = tracer::render_stats_json(*world, scene, stats);  // of the last render
     nlohmann::ordered_json out;
     out["scene"] = scene_path;
-    out["accel"] = tracer::accelerator_name(scene.render.accel);
-    out["leaf_size"] = scene.render.leaf_size;
+    out["accel"] = figures["accel"];
+    out["leaf_size"] = figures["leaf_size"];
     out["triangles"] = triangles;
     out["threads"] = stats.threads;
     out["runs"] = runs;
@@ -128,8 +130,8 @@ int main(int argc, char** argv) {
     out["primary"] = rays.primary;
     out["shadow"] = rays.shadow;
     out["mrays_per_s"] = double(rays.total()) / median(render_ms) / 1e3;
-    out["box_tests_per_ray"] = double(rays.traversal.box_tests) / double(std::max<uint64_t>(rays.total(), 1));
-    out["triangle_tests_per_ray"] = double(rays.traversal.primitive_tests) / double(std::max<uint64_t>(rays.total(), 1));
+    out["box_tests_per_ray"] = figures["box_tests_per_ray"];
+    out["triangle_tests_per_ray"] = figures["triangle_tests_per_ray"];
     std::cerr << "tracer_bench: " << out["accel"].get<std::string>() << ", " << triangles << " triangles, "
               << stats.threads << " threads, crop " << out["crop"].dump() << ": build " << out["build_ms"].get<double>()
               << " ms, render " << out["render_ms_median"].get<double>() << " ms (median of " << runs << "), "

@@ -1,4 +1,4 @@
-#include "app/stats.h"
+#include "render/render_stats.h"
 
 #include <cstdio>
 

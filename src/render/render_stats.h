@@ -1,4 +1,5 @@
-// --stats and --stats-json: what the accelerators built and how much work the rays did.
+// What the accelerators built and how much work the rays did: `tracer --stats`,
+// `--stats-json` and tools/bench report these figures.
 #pragma once
 
 #include <nlohmann/json.hpp>
