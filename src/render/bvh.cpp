@@ -41,8 +41,11 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
         const float pad = std::fabs(origin) * 0x1p-21f;
         const bool negative = ray.direction[axis] < 0;
         near_side[axis] = negative ? 1 : 0;
-        origin_near[axis] = negative ? origin + pad : origin - pad;
-        origin_far[axis] = negative ? origin - pad : origin + pad;
+        // Widen the box by `pad` on both sides: the entering plane moves towards the origin's
+        // side (lower - pad - o = lower - (o + pad) for a positive direction), the leaving plane
+        // away from it.
+        origin_near[axis] = negative ? origin - pad : origin + pad;
+        origin_far[axis] = negative ? origin + pad : origin - pad;
         inv_dir[axis] = float(Real(1) / ray.direction[axis]);
     }
     t_min = round_down(range.min);
