@@ -4,6 +4,7 @@
 #include <climits>
 #include <ostream>
 #include <sstream>
+#include <tuple>
 
 namespace tracer {
 
@@ -80,13 +81,20 @@ std::string format_diagnostic(const Diagnostic& diagnostic) {
 }
 
 void Diagnostics::print(std::ostream& out) const {
-    // In file order, whatever stage found them; whole-file messages last.
+    // File by file (in the order they first come up), each in line order whatever stage found
+    // them; whole-file messages last within their file.
+    std::vector<std::string> files;
+    for (const Diagnostic& d : list_)
+        if (std::find(files.begin(), files.end(), d.location.path) == files.end()) files.push_back(d.location.path);
+    auto key = [&](const Diagnostic* d) {
+        const Location& at = d->location;
+        const auto file = std::find(files.begin(), files.end(), at.path) - files.begin();
+        return std::tuple(file, at.line == 0 ? INT_MAX : at.line, at.column);
+    };
     std::vector<const Diagnostic*> ordered;
     for (const Diagnostic& d : list_) ordered.push_back(&d);
-    std::stable_sort(ordered.begin(), ordered.end(), [](const Diagnostic* a, const Diagnostic* b) {
-        auto key = [](const Location& at) { return std::pair(at.line == 0 ? INT_MAX : at.line, at.column); };
-        return key(a->location) < key(b->location);
-    });
+    std::stable_sort(ordered.begin(), ordered.end(),
+                     [&](const Diagnostic* a, const Diagnostic* b) { return key(a) < key(b); });
     for (const Diagnostic* d : ordered) out << format_diagnostic(*d);
     if (saturated())
         out << "error: stopped after " << kMaxErrors << " errors; fix these and run again to see any others\n";

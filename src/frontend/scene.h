@@ -4,6 +4,8 @@
 #pragma once
 
 #include <glm/vec3.hpp>
+
+#include "frontend/diagnostics.h"
 #include <string>
 #include <string_view>
 #include <vector>
@@ -68,6 +70,7 @@ struct Light {
 // A triangle mesh from an OBJ file, placed by scale, then rotation, then translation.
 struct Mesh {
     std::string path;  // absolute
+    Location named_at; // the `file` value in the scene, for messages about the OBJ file
     dvec3 scale{1.0};
     dvec3 rotate_axis{0.0, 1.0, 0.0};  // unit length
     double rotate_degrees = 0.0;

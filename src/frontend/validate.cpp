@@ -469,6 +469,7 @@ void Validator::build_mesh(const Fields& fields) {
     fs::path path = fields.text("file");
     if (path.is_relative()) path = scene_dir_ / path;
     mesh.path = path.lexically_normal().string();
+    mesh.named_at = Diagnostics::locate(file_, fields.value_span("file"));
     std::error_code error;
     std::string problem;
     if (!fs::exists(path, error))

@@ -148,6 +148,12 @@ std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& positions,
     return sums;
 }
 
+// After errors in an OBJ file: where the scene names it.
+static void note_where_used(const Mesh& mesh, Diagnostics& diagnostics) {
+    if (mesh.named_at.line > 0)
+        diagnostics.report(Severity::Note, mesh.named_at, "the mesh file is used here");
+}
+
 std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics) {
     // Step 1: read the text and check what tinyobjloader would let through.
     std::ifstream in(mesh.path, std::ios::binary);
@@ -158,7 +164,10 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
         return std::nullopt;
     }
     const SourceFile file(mesh.path, buffer.str());
-    if (!ObjChecker(file, diagnostics).check()) return std::nullopt;
+    if (!ObjChecker(file, diagnostics).check()) {
+        note_where_used(mesh, diagnostics);
+        return std::nullopt;
+    }
 
     // Step 2: parse and triangulate.
     tinyobj::ObjReaderConfig config;
@@ -169,6 +178,7 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
         std::string message = reader.Error();
         while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
         diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path), message);
+        note_where_used(mesh, diagnostics);
         return std::nullopt;
     }
     const tinyobj::attrib_t& attrib = reader.GetAttrib();
@@ -208,6 +218,7 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
     if (out.vertices.empty()) {
         diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path),
                            "the mesh has no triangles (with non-zero area)");
+        note_where_used(mesh, diagnostics);
         return std::nullopt;
     }
 
