@@ -17,6 +17,7 @@
 #include "frontend/load_scene.h"
 #include "frontend/reference_doc.h"
 #include "frontend/scene_json.h"
+#include "frontend/schema.h"
 #include "render/image_output.h"
 #include "render/mesh_loader.h"
 #include "render/renderer.h"
@@ -83,7 +84,7 @@ int render_to_file(const Options& options) {
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
-    const tracer::SceneDescription* scene = &loaded->scene;
+    const tracer::SceneDescription& scene = loaded->scene;
     const tracer::World world(loaded->scene, std::move(loaded->meshes), options.threads);
 
     // Step 2: render, stoppable with Ctrl-C.
@@ -96,7 +97,7 @@ int render_to_file(const Options& options) {
     render_options.progress = [&](double fraction) { progress.update(fraction); };
     tracer::Image image;
     tracer::RenderStats stats;
-    bool complete = tracer::render(world, *scene, render_options, image, stats);
+    bool complete = tracer::render(world, scene, render_options, image, stats);
     progress.finish();
     if (!complete) {
         std::cerr << "tracer: interrupted; nothing written\n";
@@ -108,7 +109,7 @@ int render_to_file(const Options& options) {
         std::cerr << "tracer: error: " << *problem << '\n';
         return kIoError;
     }
-    const auto figures = tracer::render_stats_json(world, *scene, stats);
+    const auto figures = tracer::render_stats_json(world, scene, stats);
     if (options.stats) std::cerr << tracer::render_stats_text(figures);
     if (!options.stats_json.empty()) {
         std::ofstream out(options.stats_json);
@@ -123,7 +124,7 @@ int render_to_file(const Options& options) {
         std::fprintf(stderr,
                      "%s: %dx%d, %d spp, %d threads, %.3f s, %srays (%s primary, %s shadow, %s reflection), "
                      "%.1f Mrays/s\n",
-                     options.output.c_str(), image.width, image.height, scene->render.samples, stats.threads,
+                     options.output.c_str(), image.width, image.height, scene.render.samples, stats.threads,
                      stats.seconds, millions(rays.total()).c_str(), millions(rays.primary).c_str(),
                      millions(rays.shadow).c_str(), millions(rays.reflection).c_str(),
                      double(rays.total()) / stats.seconds / 1e6);
@@ -135,10 +136,10 @@ int check_only(const Options& options) {
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
-    const tracer::SceneDescription* scene = &loaded->scene;
-    std::cout << options.scene << ": ok (" << scene->spheres.size() << " spheres, " << scene->planes.size()
-              << " planes, " << scene->meshes.size() << " meshes, " << scene->lights.size() << " lights, "
-              << scene->materials.size() << " materials)\n";
+    const tracer::SceneDescription& scene = loaded->scene;
+    std::cout << options.scene << ": ok (" << scene.spheres.size() << " spheres, " << scene.planes.size()
+              << " planes, " << scene.meshes.size() << " meshes, " << scene.lights.size() << " lights, "
+              << scene.materials.size() << " materials)\n";
     return kOk;
 }
 
@@ -160,8 +161,9 @@ int main(int argc, char** argv) {
     app.add_option("-o,--output", options.output, "The image to write; the format follows the extension (.png, .exr, ...)");
     app.add_option("--threads", options.threads, "Render threads (default: every core)")->check(CLI::Range(1, 1024));
     app.add_flag("-q,--quiet", options.quiet, "No progress indicator and no summary line");
+    const auto& accel_names = tracer::find_block_spec("render")->find_key("accel")->choices;  // the table's
     app.add_option("--accel", options.accel, "Override the scene's mesh accelerator")
-        ->check(CLI::IsMember({"none", "box", "median", "sah"}));
+        ->check(CLI::IsMember(std::vector<std::string>(accel_names.begin(), accel_names.end())));
     app.add_option("--leaf-size", options.leaf_size, "Override the scene's BVH leaf size")->check(CLI::Range(1, 255));
     app.add_flag("--stats", options.stats, "Print BVH and ray statistics on stderr");
     app.add_option("--stats-json", options.stats_json, "Write the statistics as JSON to this file");

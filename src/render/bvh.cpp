@@ -6,9 +6,9 @@
 #include <future>
 
 #include <glm/common.hpp>
+#include <glm/vec3.hpp>
 
 #include "render/parallel.h"
-#include <glm/vec3.hpp>
 
 namespace tracer {
 namespace {
@@ -161,6 +161,7 @@ private:
     static constexpr int kParallelDepth = 2;
 
     void append(const std::vector<BvhNode>& subtree);
+    void split_at(const Range& range, uint32_t middle, Range& left, Range& right);
     bool split_median(const Range& range, int axis, Range& left, Range& right);
     bool split_sah(const Range& range, Range& left, Range& right);
 
@@ -217,8 +218,7 @@ bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right)
     if (method_ == Accelerator::Median || too_deep) {
         if (count <= uint32_t(leaf_size_)) return false;
         if (too_deep) {  // no more levels to spend: any halves will do
-            left = measure(refs_, range.begin, range.begin + count / 2);
-            right = measure(refs_, range.begin + count / 2, range.end);
+            split_at(range, range.begin + count / 2, left, right);
             return true;
         }
         return split_median(range, depth % 3, left, right);
@@ -230,10 +230,14 @@ bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right)
 bool BvhBuilder::split_median(const Range& range, int axis, Range& left, Range& right) {
     std::sort(refs_ + range.begin, refs_ + range.end,
               [axis](const PrimRef& a, const PrimRef& b) { return a.centre()[axis] < b.centre()[axis]; });
-    const uint32_t middle = range.begin + range.count() / 2;
+    split_at(range, range.begin + range.count() / 2, left, right);
+    return true;
+}
+
+// The references before `middle` go left, the rest right, each with its bounds measured.
+void BvhBuilder::split_at(const Range& range, uint32_t middle, Range& left, Range& right) {
     left = measure(refs_, range.begin, middle);
     right = measure(refs_, middle, range.end);
-    return true;
 }
 
 // Binned SAH: up to kSahBins bins of centroids per axis (no more bins than primitives, so small
@@ -296,8 +300,7 @@ bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
     const double leaf_cost = kIntersectionCost * count;
     if (count <= uint32_t(leaf_size_) && (best_axis < 0 || leaf_cost <= best_cost)) return false;
     if (best_axis < 0) {  // all centres coincide: any halves will do
-        left = measure(refs_, range.begin, range.begin + count / 2);
-        right = measure(refs_, range.begin + count / 2, range.end);
+        split_at(range, range.begin + count / 2, left, right);
         return true;
     }
 

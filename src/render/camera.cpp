@@ -21,13 +21,15 @@ PinholeCamera::PinholeCamera(const Camera& camera, int width, int height)
 }
 
 Ray PinholeCamera::ray_through(Real x, Real y) const {
-    return {eye_, glm::normalize(corner_ + x * step_x_ + y * step_y_)};
+    Ray ray{eye_, {}};
+    row_directions(x, y, 1, &ray.direction);
+    return ray;
 }
 
 void PinholeCamera::row_directions(Real x_start, Real y, int count, Vec3* out) const {
     constexpr int kChunk = 64;
     Real dx[kChunk], dy[kChunk], dz[kChunk];
-    // The same operations, in the same order, as glm::normalize(corner_ + x step_x_ + y step_y_).
+    // normalize(corner_ + x step_x_ + y step_y_), written out per component so it vectorises.
     const Vec3 row = y * step_y_;
     for (int start = 0; start < count; start += kChunk) {
         const int n = std::min(kChunk, count - start);

@@ -16,8 +16,9 @@ public:
     Ray ray_through(Real x, Real y) const;
     const Vec3& eye() const { return eye_; }
 
-    // The directions of ray_through(x_start + i, y) for i = 0 .. count - 1, bit for bit, computed
-    // a row at a time so the square roots and divisions run several to a vector instruction.
+    // The directions of ray_through(x_start + i, y) for i = 0 .. count - 1 (ray_through is this
+    // with count 1), a row at a time so the square roots and divisions run several to a vector
+    // instruction.
     void row_directions(Real x_start, Real y, int count, Vec3* out) const;
 
     // Where `point` appears in the image, in the pixel coordinates of ray_through; false if it
