@@ -59,7 +59,8 @@ const BlockSpec kRender{
                    "How rays find a mesh's triangles: `none` tests every triangle, `box` one bounding "
                    "box around the mesh, `median` a BVH split at the median centroid (x, y, z by "
                    "depth), `sah` a BVH built with the surface-area heuristic."),
-               {"none", "box", "median", "sah"}),
+               {accelerator_name(Accelerator::None), accelerator_name(Accelerator::Box),
+                accelerator_name(Accelerator::Median), accelerator_name(Accelerator::Sah)}),
         ranged(key("leaf_size", ValueType::Integer, "3",
                    "Most triangles in a BVH leaf (`median` splits every larger node; `sah` may stop "
                    "earlier where splitting does not pay)."), 1, 255),
