@@ -4,6 +4,8 @@
 // output path unless the render completed.
 
 #include <atomic>
+#include <cmath>
+#include <cstdlib>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -40,6 +42,9 @@ struct Options {
     bool reference = false;
     std::string accel;  // empty: the scene's
     int leaf_size = 0;  // 0: the scene's
+    int width = 0;      // 0: the scene's (likewise height and samples)
+    int height = 0;
+    int samples = 0;
     bool stats = false;
     std::string stats_json;
 };
@@ -59,6 +64,9 @@ std::optional<LoadedScene> load(const Options& options, int& exit_code) {
         tracer::RenderSettings& render = result.scene->render;
         if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
         if (options.leaf_size > 0) render.leaf_size = options.leaf_size;
+        if (options.width > 0) render.width = options.width;
+        if (options.height > 0) render.height = options.height;
+        if (options.samples > 0) render.samples = options.samples;
         meshes = tracer::load_meshes(*result.scene, result.diagnostics);
     }
     result.diagnostics.print(std::cerr);
@@ -151,6 +159,15 @@ int dump_json(const Options& options) {
     return kOk;
 }
 
+// CLI11 check that a count is N*N for a whole N, the render block's rule for `samples`.
+const CLI::Validator perfect_square(
+    [](const std::string& text) -> std::string {
+        const int count = std::atoi(text.c_str());
+        const int root = int(std::lround(std::sqrt(double(count))));
+        return root * root == count ? "" : "not a perfect square N*N (1, 4, 9, 16, 25, ...)";
+    },
+    "N*N");
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -165,6 +182,10 @@ int main(int argc, char** argv) {
     app.add_option("--accel", options.accel, "Override the scene's mesh accelerator")
         ->check(CLI::IsMember(std::vector<std::string>(accel_names.begin(), accel_names.end())));
     app.add_option("--leaf-size", options.leaf_size, "Override the scene's BVH leaf size")->check(CLI::Range(1, 255));
+    app.add_option("--width", options.width, "Override the scene's image width")->check(CLI::Range(1, 16384));
+    app.add_option("--height", options.height, "Override the scene's image height")->check(CLI::Range(1, 16384));
+    app.add_option("--samples", options.samples, "Override the scene's samples per pixel (N*N: 1, 4, 9, 16, ...)")
+        ->check(CLI::Range(1, 4096) & perfect_square);
     app.add_flag("--stats", options.stats, "Print BVH and ray statistics on stderr");
     app.add_option("--stats-json", options.stats_json, "Write the statistics as JSON to this file");
     app.add_flag("--check", options.check, "Only check the scene; report every problem found");

@@ -1,0 +1,199 @@
+"""Scene description (the JSON of `tracer --dump-json`) -> Mitsuba 3 XML.
+
+The XML names the plugins of xcheck.plugins; a plain `mitsuba scene.xml` stops with Mitsuba's
+error for an unknown plugin type. Planes become rectangles of half-size `plane_extent(...)`.
+"""
+
+import math
+from xml.sax.saxutils import quoteattr
+
+from . import PHONG_PLUGIN, WHITTED_PLUGIN
+
+# Primary and secondary rays count hits with t > EPSILON only (conventions.md; tracer's
+# kSelfHitEpsilon).
+EPSILON = 1e-4
+
+# The strip of an infinite plane that its rectangle leaves out is seen under less than
+# 1/PLANE_MARGIN of a pixel (see plane_extent).
+PLANE_MARGIN = 1000.0
+
+
+def _numbers(values):
+    return ", ".join(repr(float(v)) for v in values)
+
+
+def _sub(a, b):
+    return [x - y for x, y in zip(a, b)]
+
+
+def _dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def _cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def _normalize(a):
+    length = math.sqrt(_dot(a, a))
+    return [x / length for x in a]
+
+
+def pixel_angle(scene):
+    """Angle (radians) one pixel spans vertically at the image centre."""
+    camera, render = scene["camera"], scene["render"]
+    return 2 * math.tan(math.radians(camera["fovy"]) / 2) / render["height"]
+
+
+def plane_extent(scene, plane):
+    """Half-size of the rectangle that stands in for an infinite plane.
+
+    A ray from a point at height h over the plane that misses a rectangle of half-size R
+    centred under the eye meets the plane beyond R, i.e. less than about h/R radians above or
+    below the horizon. With h the largest height of the eye or any sphere over the plane, and
+    R = PLANE_MARGIN * h / (angle of one pixel), that strip is under 1/PLANE_MARGIN of a pixel
+    for primary rays, and narrower still after convex (sphere) mirrors.
+    """
+    normal = _normalize(plane["normal"])
+    height = abs(_dot(_sub(scene["camera"]["eye"], plane["point"]), normal))
+    for sphere in scene["spheres"]:
+        height = max(height, abs(_dot(_sub(sphere["center"], plane["point"]), normal)) + sphere["radius"])
+    return PLANE_MARGIN * max(height, 1.0) / pixel_angle(scene)
+
+
+def plane_to_world(scene, plane):
+    """4x4 row-major matrix taking Mitsuba's rectangle ([-1, 1]^2 at z = 0, normal +z) onto
+    the plane: centred at the foot of the eye, scaled to plane_extent."""
+    normal = _normalize(plane["normal"])
+    eye = scene["camera"]["eye"]
+    centre = _sub(eye, [x * _dot(_sub(eye, plane["point"]), normal) for x in normal])
+    helper = [1.0, 0.0, 0.0] if abs(normal[0]) < 0.9 else [0.0, 1.0, 0.0]
+    tangent = _normalize(_cross(helper, normal))
+    bitangent = _cross(normal, tangent)
+    size = plane_extent(scene, plane)
+    columns = [[x * size for x in tangent], [x * size for x in bitangent], normal, centre]
+    return [[columns[c][r] for c in range(4)] for r in range(3)] + [[0.0, 0.0, 0.0, 1.0]]
+
+
+class _Writer:
+    def __init__(self):
+        self.lines = []
+        self.indent = 0
+
+    def open(self, tag, **attributes):
+        self.line(f"<{tag}{self._attributes(attributes)}>")
+        self.indent += 1
+
+    def close(self, tag):
+        self.indent -= 1
+        self.line(f"</{tag}>")
+
+    def leaf(self, tag, **attributes):
+        self.line(f"<{tag}{self._attributes(attributes)}/>")
+
+    def line(self, text):
+        self.lines.append("    " * self.indent + text)
+
+    @staticmethod
+    def _attributes(attributes):
+        return "".join(f" {name.rstrip('_')}={quoteattr(str(value))}" for name, value in attributes.items())
+
+
+def _material_key(material):
+    return (material["name"], repr(sorted(material.items())))
+
+
+def to_mitsuba_xml(scene):
+    """The Mitsuba 3 XML text for a scene description (a dict from `tracer --dump-json`)."""
+    render, camera = scene["render"], scene["camera"]
+    out = _Writer()
+    out.line("<?xml version='1.0' encoding='utf-8'?>")
+    out.line(f"<!-- From `tracer --dump-json {scene['source']}` by tools/xcheck. It names the "
+             f"plugins {WHITTED_PLUGIN} and {PHONG_PLUGIN}: render it with tools/crosscheck "
+             "(or xcheck.mitsuba_render), which registers them. -->")
+    out.open("scene", version="3.0.0")
+
+    # Step 1: the Whitted integrator with the render settings.
+    out.open("integrator", type=WHITTED_PLUGIN)
+    out.leaf("integer", name="max_depth", value=render["max_depth"])
+    out.leaf("boolean", name="shadows", value="true" if render["shadows"] else "false")
+    out.leaf("float", name="epsilon", value=repr(EPSILON))
+    out.leaf("rgb", name="background", value=_numbers(render["background"]))
+    out.close("integrator")
+
+    # Step 2: the camera: vertical field of view; pixel centres (or the centres of an N x N
+    # grid of cells) through an unjittered stratified sampler; box filter; float RGB film.
+    out.open("sensor", type="perspective")
+    out.leaf("string", name="fov_axis", value="y")
+    out.leaf("float", name="fov", value=repr(float(camera["fovy"])))
+    out.leaf("float", name="near_clip", value=repr(EPSILON))
+    out.leaf("float", name="far_clip", value="1e30")
+    out.open("transform", name="to_world")
+    out.leaf("lookat", origin=_numbers(camera["eye"]), target=_numbers(camera["lookat"]), up=_numbers(camera["up"]))
+    out.close("transform")
+    out.open("sampler", type="stratified")
+    out.leaf("integer", name="sample_count", value=render["samples"])
+    out.leaf("boolean", name="jitter", value="false")
+    out.close("sampler")
+    out.open("film", type="hdrfilm")
+    out.leaf("integer", name="width", value=render["width"])
+    out.leaf("integer", name="height", value=render["height"])
+    out.leaf("string", name="pixel_format", value="rgb")
+    out.leaf("string", name="component_format", value="float32")
+    out.leaf("rfilter", type="box")
+    out.close("film")
+    out.close("sensor")
+
+    # Step 3: materials, each once.
+    ids = {}
+    for kind in ("spheres", "planes", "meshes"):
+        for shape in scene[kind]:
+            material = shape["material"]
+            key = _material_key(material)
+            if key in ids:
+                continue
+            ids[key] = f"material{len(ids)}-{material['name']}"
+            out.open("bsdf", type=PHONG_PLUGIN, id=ids[key])
+            for name in ("ka", "kd", "ks", "km"):
+                out.leaf("rgb", name=name, value=_numbers(material[name]))
+            out.leaf("float", name="n", value=repr(float(material["n"])))
+            out.close("bsdf")
+
+    # Step 4: shapes.
+    for index, sphere in enumerate(scene["spheres"]):
+        out.open("shape", type="sphere", id=f"sphere{index}")
+        out.leaf("point", name="center", value=_numbers(sphere["center"]))
+        out.leaf("float", name="radius", value=repr(float(sphere["radius"])))
+        out.leaf("ref", id=ids[_material_key(sphere["material"])])
+        out.close("shape")
+    for index, plane in enumerate(scene["planes"]):
+        out.line(f"<!-- plane {index}: a rectangle of half-size {plane_extent(scene, plane):.6g} "
+                 "(xcheck.convert.plane_extent) -->")
+        out.open("shape", type="rectangle", id=f"plane{index}")
+        out.open("transform", name="to_world")
+        out.leaf("matrix", value=" ".join(repr(v) for row in plane_to_world(scene, plane) for v in row))
+        out.close("transform")
+        out.leaf("ref", id=ids[_material_key(plane["material"])])
+        out.close("shape")
+    for index, mesh in enumerate(scene["meshes"]):
+        # tracer's order: scale, then rotate about the axis, then translate.
+        out.open("shape", type="obj", id=f"mesh{index}")
+        out.leaf("string", name="filename", value=mesh["file"])
+        out.open("transform", name="to_world")
+        out.leaf("scale", value=_numbers(mesh["scale"]))
+        if mesh["rotate"]["angle"] != 0:
+            out.leaf("rotate", value=_numbers(mesh["rotate"]["axis"]), angle=repr(float(mesh["rotate"]["angle"])))
+        out.leaf("translate", value=_numbers(mesh["translate"]))
+        out.close("transform")
+        out.leaf("ref", id=ids[_material_key(mesh["material"])])
+        out.close("shape")
+
+    # Step 5: point lights; the integrator undoes Mitsuba's 1/r^2 fall-off.
+    for light in scene["lights"]:
+        out.open("emitter", type="point")
+        out.leaf("point", name="position", value=_numbers(light["position"]))
+        out.leaf("rgb", name="intensity", value=_numbers(light["color"]))
+        out.close("emitter")
+
+    out.close("scene")
+    return "\n".join(out.lines) + "\n"

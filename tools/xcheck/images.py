@@ -1,0 +1,25 @@
+"""Image files: tracer's float output (EXR) in, 8-bit PNGs out."""
+
+import numpy as np
+from PIL import Image
+
+
+def read_exr(path):
+    """A float image file (tracer writes EXR unclamped) as a float32 H x W x 3 array, top row
+    first; read with Mitsuba's Bitmap (OpenEXR inside)."""
+    import mitsuba as mi  # a variant is set by whoever imported xcheck.mitsuba_render
+
+    bitmap = mi.Bitmap(str(path)).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
+    return np.array(bitmap, dtype=np.float32)
+
+
+def to_8bit(image):
+    """tracer's 8-bit rule: clamp to [0, 1], round(255 v), no gamma."""
+    return np.round(np.clip(image, 0.0, 1.0) * 255.0).astype(np.uint8)
+
+
+def write_png(path, image):
+    """Writes an 8-bit (or float, converted by to_8bit) H x W x 3 image."""
+    if image.dtype != np.uint8:
+        image = to_8bit(image)
+    Image.fromarray(image, "RGB").save(path)

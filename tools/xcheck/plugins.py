@@ -1,0 +1,139 @@
+"""Mitsuba 3 plugins that implement ../shared/spec/conventions.md on Mitsuba's own ray casting.
+
+`tracer_phong` is the Phong material (ambient, diffuse, specular, mirror) and `tracer_whitted`
+the Whitted integrator. Neither is a Mitsuba built-in: `register()` must run before a scene
+that names them is loaded (xcheck.mitsuba_render does it).
+"""
+
+import drjit as dr
+import mitsuba as mi
+
+from . import PHONG_PLUGIN, WHITTED_PLUGIN
+
+
+def _color(props, name):
+    """A colour property written as <rgb name=.../> (the converter writes every colour so)."""
+    value = props.get(name)
+    return mi.Color3f(value[0], value[1], value[2])
+
+
+class PhongBSDF(mi.BSDF):
+    """Phong, not Blinn-Phong: eval = kd max(0, N.L) + ks max(0, R.V)^n with the normal turned
+    to face the viewer; sample = the mirror direction with weight km; attribute "ka"."""
+
+    def __init__(self, props):
+        mi.BSDF.__init__(self, props)
+        self.ka = _color(props, "ka")
+        self.kd = _color(props, "kd")
+        self.ks = _color(props, "ks")
+        self.km = _color(props, "km")
+        self.n = mi.Float(props.get("n"))
+        two_sided = mi.BSDFFlags.FrontSide | mi.BSDFFlags.BackSide
+        self.m_components = [mi.BSDFFlags.DiffuseReflection | two_sided,
+                             mi.BSDFFlags.GlossyReflection | two_sided,
+                             mi.BSDFFlags.DeltaReflection | two_sided]
+        self.m_flags = self.m_components[0] | self.m_components[1] | self.m_components[2]
+
+    def eval(self, ctx, si, wo, active=True):
+        # In the local shading frame N = (0, 0, 1); flipping z turns N towards the viewer (wi).
+        side = dr.select(si.wi.z < 0, -1.0, 1.0)
+        n_dot_l = wo.z * side
+        r_dot_v = -wo.x * si.wi.x - wo.y * si.wi.y + n_dot_l * si.wi.z * side  # R = 2(N.L)N - L
+        diffuse = self.kd * dr.maximum(n_dot_l, 0.0)
+        specular = self.ks * dr.power(dr.maximum(r_dot_v, 0.0), self.n)
+        return dr.select(active, diffuse + specular, 0.0)
+
+    def sample(self, ctx, si, sample1, sample2, active=True):
+        bs = dr.zeros(mi.BSDFSample3f)
+        bs.wo = mi.Vector3f(-si.wi.x, -si.wi.y, si.wi.z)  # mirror about N (either side)
+        bs.pdf = mi.Float(1.0)
+        bs.eta = mi.Float(1.0)
+        bs.sampled_type = mi.UInt32(+mi.BSDFFlags.DeltaReflection)
+        bs.sampled_component = mi.UInt32(2)
+        return bs, dr.select(active, mi.Color3f(self.km), 0.0)
+
+    def pdf(self, ctx, si, wo, active=True):
+        return mi.Float(0.0)
+
+    def eval_pdf(self, ctx, si, wo, active=True):
+        return self.eval(ctx, si, wo, active), mi.Float(0.0)
+
+    def has_attribute(self, name, active=True):
+        return name == "ka"
+
+    def eval_attribute_3(self, name, si, active=True):
+        if name != "ka":
+            raise ValueError(f"{PHONG_PLUGIN} has no attribute '{name}'")
+        return dr.select(active, mi.Color3f(self.ka), 0.0)
+
+    def traverse(self, callback):
+        pass
+
+    def to_string(self):
+        return f"PhongBSDF[ka={self.ka}, kd={self.kd}, ks={self.ks}, km={self.km}, n={self.n}]"
+
+
+class WhittedIntegrator(mi.SamplingIntegrator):
+    """Whitted recursion of conventions.md: colour = ka + sum over unblocked point lights of
+    light colour * Phong (no fall-off) + km * trace(mirror ray), for levels 0..max_depth;
+    misses return the background; the level after max_depth returns black."""
+
+    def __init__(self, props):
+        mi.SamplingIntegrator.__init__(self, props)
+        self.max_depth = props.get("max_depth", 4)
+        self.shadows = props.get("shadows", True)
+        self.epsilon = props.get("epsilon", 1e-4)
+        self.background = _color(props, "background") if props.has_property("background") \
+            else mi.Color3f(0.0)
+
+    def sample(self, scene, sampler, ray, medium=None, active=True):
+        ray = mi.Ray3f(ray)
+        active = mi.Bool(active)
+        color = mi.Color3f(0.0)
+        weight = mi.Color3f(1.0)
+        ctx = mi.BSDFContext()
+        for depth in range(self.max_depth + 1):  # unrolled: one kernel for the whole recursion
+            # Step 1: the nearest surface, or the background.
+            si = scene.ray_intersect(ray, active)
+            missed = active & ~si.is_valid()
+            color += dr.select(missed, weight * self.background, 0.0)
+            active &= si.is_valid()
+            bsdf = si.bsdf(ray)
+            # The point as o + t d, as tracer has it: Mitsuba interpolates it in a shape's
+            # local frame, which is off by about 6e-8 of the shape's size, far over epsilon on
+            # the rectangles that stand in for planes.
+            si.p = ray(si.t)
+
+            # Step 2: ambient, then each light that the point sees (shadow ray over (eps, dist)).
+            color += dr.select(active, weight * bsdf.eval_attribute_3("ka", si, active), 0.0)
+            for emitter in scene.emitters():
+                ds, spectrum = emitter.sample_direction(si, mi.Point2f(0.0), active)
+                light_color = spectrum * dr.square(ds.dist)  # undo Mitsuba's 1/r^2 fall-off
+                term = light_color * bsdf.eval(ctx, si, si.to_local(ds.d), active)
+                lit = active & dr.any(term != 0.0)
+                if self.shadows:
+                    shadow = mi.Ray3f(mi.Ray3f(si.p + self.epsilon * ds.d, ds.d), ds.dist - self.epsilon)
+                    lit &= ~scene.ray_test(shadow, lit)
+                color += dr.select(lit, weight * term, 0.0)
+
+            # Step 3: continue along the mirror direction, weighted by km.
+            if depth == self.max_depth:
+                break
+            bs, km = bsdf.sample(ctx, si, 0.0, mi.Point2f(0.0), active)
+            weight *= dr.select(active, km, 0.0)
+            active &= dr.any(weight != 0.0)
+            direction = si.to_world(bs.wo)
+            ray = mi.Ray3f(si.p + self.epsilon * direction, direction)
+        return color, mi.Bool(True), []
+
+    def aov_names(self):
+        return []
+
+    def to_string(self):
+        return f"WhittedIntegrator[max_depth={self.max_depth}, shadows={self.shadows}]"
+
+
+def register():
+    """Registers both plugins with the current Mitsuba variant (call after mi.set_variant)."""
+    mi.register_bsdf(PHONG_PLUGIN, lambda props: PhongBSDF(props))
+    mi.register_integrator(WHITTED_PLUGIN, lambda props: WhittedIntegrator(props))
