@@ -1,18 +1,21 @@
 """Renders a converted scene with Mitsuba 3 and the plugins of xcheck.plugins."""
 
+import sys
+
 import numpy as np
 
 from . import MitsubaMissing
 
+VARIANT = "llvm_ad_rgb"  # vectorised on the CPU through LLVM; scalar_rgb would call Python per ray
+
 try:
     import drjit as dr
     import mitsuba as mi
-except ImportError as error:  # reported by the command-line tools as a clear error
-    raise MitsubaMissing(str(error)) from error
 
-VARIANT = "llvm_ad_rgb"  # vectorised on the CPU through LLVM; scalar_rgb would call Python per ray
-
-mi.set_variant(VARIANT)
+    mi.set_variant(VARIANT)
+except (ImportError, AttributeError) as error:  # reported by the command-line tools
+    raise MitsubaMissing(f"Mitsuba 3 is not usable in {sys.executable} ({error}); tools/bootstrap "
+                         "--python makes .venv from tools/requirements.txt") from error
 from . import plugins  # noqa: E402  (needs the variant)
 
 plugins.register()

@@ -1,0 +1,115 @@
+"""tools/crosscheck SCENE: render a scene with tracer and with Mitsuba 3 (the plugins of
+xcheck.plugins), report how far apart the images are, and fail above a threshold.
+
+Exit codes: 0 the images agree within the thresholds; 1 they do not; 2 bad command line;
+3 tracer rejected the scene (its diagnostics are printed); 4 Mitsuba 3 is missing; 5 another
+failure (a file that cannot be written, ...).
+"""
+
+import argparse
+import json
+import pathlib
+import sys
+
+from . import ToolError, convert, tracer_cli
+
+DEFAULT_MAX_OVER_2 = 0.1  # percent of pixels more than 2 levels apart: the project's target
+
+
+def parse_args(argv):
+    parser = argparse.ArgumentParser(
+        prog="tools/crosscheck",
+        description="Render SCENE with tracer and with Mitsuba 3 at the same resolution and samples "
+                    "per pixel; print RMSE, PSNR, FLIP and the share of pixels more than 1, 2 and 8 "
+                    "levels apart; write the images, a heat map and a side-by-side PNG.",
+        epilog="Exit codes: 0 agree, 1 over a threshold, 2 bad command line, 3 scene errors, "
+               "4 Mitsuba missing, 5 other failures.")
+    parser.add_argument("scene", type=pathlib.Path, help="the scene file (.scn)")
+    parser.add_argument("--width", type=int, help="image width (default: the scene's); alone, "
+                        "the height follows the scene's aspect ratio")
+    parser.add_argument("--height", type=int, help="image height (default: the scene's)")
+    parser.add_argument("--samples", type=int, help="samples per pixel, N*N (default: the scene's)")
+    parser.add_argument("--out", type=pathlib.Path, help="folder for the images and report "
+                        "(default: out/crosscheck/<scene name>)")
+    parser.add_argument("--max-over-2", type=float, default=DEFAULT_MAX_OVER_2, metavar="PERCENT",
+                        help=f"fail when more than PERCENT %% of the pixels differ by more than 2 "
+                             f"levels (default {DEFAULT_MAX_OVER_2})")
+    parser.add_argument("--max-over-8", type=float, metavar="PERCENT",
+                        help="fail when more than PERCENT %% differ by more than 8 levels")
+    parser.add_argument("--max-rmse", type=float, help="fail when the RMSE is above this")
+    parser.add_argument("--max-flip", type=float, help="fail when the FLIP mean is above this")
+    parser.add_argument("--json", action="store_true", help="print the report as JSON")
+    return parser.parse_args(argv)
+
+
+def resolution_args(scene, args):
+    """tracer overrides for the requested size and samples (width alone keeps the aspect)."""
+    width, height = args.width, args.height
+    if width is not None and height is None:
+        height = max(1, round(width * scene["render"]["height"] / scene["render"]["width"]))
+    return tracer_cli.overrides(width=width, height=height, samples=args.samples)
+
+
+def failures(comparison, args):
+    """The thresholds the comparison exceeds, as sentences."""
+    checks = [("pixels over 2 levels", comparison.over_2 * 100, args.max_over_2, "%"),
+              ("pixels over 8 levels", comparison.over_8 * 100, args.max_over_8, "%"),
+              ("RMSE", comparison.rmse, args.max_rmse, ""),
+              ("FLIP mean", comparison.flip_mean, args.max_flip, "")]
+    return [f"{name} {value:.6g}{unit} > {limit:g}{unit}" for name, value, limit, unit in checks
+            if limit is not None and value > limit]
+
+
+def crosscheck(args):
+    """Runs the whole check; returns the exit code."""
+    # Step 1: the scene as tracer resolves it, with the requested size and samples.
+    extra = resolution_args(tracer_cli.dump_json(args.scene), args)
+    scene = tracer_cli.dump_json(args.scene, extra)
+    out = args.out or tracer_cli.ROOT / "out" / "crosscheck" / args.scene.stem
+    out.mkdir(parents=True, exist_ok=True)
+
+    # Step 2: both renders, as floats.
+    from . import images, metrics, mitsuba_render  # Mitsuba only once the scene is known good
+
+    tracer_cli.render(args.scene, out / "tracer.exr", extra)
+    tracer_image = images.read_exr(out / "tracer.exr")
+    xml_path = out / "scene.xml"
+    xml_path.write_text(convert.to_mitsuba_xml(scene))
+    mitsuba_image = mitsuba_render.render(mitsuba_render.load(xml_path, scene))
+
+    # Step 3: compare, write the pictures, report.
+    comparison = metrics.compare(mitsuba_image, tracer_image)
+    images.write_png(out / "tracer.png", tracer_image)
+    images.write_png(out / "mitsuba.png", mitsuba_image)
+    images.write_png(out / "heatmap.png", metrics.heat_map(mitsuba_image, tracer_image))
+    images.write_png(out / "side_by_side.png",
+                     metrics.side_by_side(mitsuba_image, tracer_image, "Mitsuba 3", "tracer"))
+    failed = failures(comparison, args)
+    report = {"scene": str(args.scene), "width": scene["render"]["width"], "height": scene["render"]["height"],
+              "samples": scene["render"]["samples"], **comparison.as_dict(), "failed": failed,
+              "output": str(out)}
+    (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
+    if args.json:
+        print(json.dumps(report, indent=2))
+    else:
+        render = scene["render"]
+        print(f"{args.scene}: tracer vs Mitsuba 3 at {render['width']}x{render['height']}, "
+              f"{render['samples']} spp\n{comparison.summary()}\nimages: {out}")
+        print("FAIL: " + "; ".join(failed) if failed else "ok: within the thresholds")
+    return 1 if failed else 0
+
+
+def main(argv=None):
+    args = parse_args(sys.argv[1:] if argv is None else argv)
+    try:
+        return crosscheck(args)
+    except ToolError as error:
+        print(f"crosscheck: error: {error}", file=sys.stderr)
+        return error.exit_code
+    except OSError as error:
+        print(f"crosscheck: error: {error}", file=sys.stderr)
+        return 5
+
+
+if __name__ == "__main__":
+    sys.exit(main())
