@@ -1,10 +1,12 @@
 """Scene description (the JSON of `tracer --dump-json`) -> Mitsuba 3 XML.
 
 The XML names the plugins of xcheck.plugins; a plain `mitsuba scene.xml` stops with Mitsuba's
-error for an unknown plugin type. Planes become rectangles of half-size `plane_extent(...)`.
+error for an unknown plugin type. Planes become squares of half-size `plane_extent(...)`,
+written as OBJ files beside the XML (write_mitsuba_scene).
 """
 
 import math
+import pathlib
 from xml.sax.saxutils import quoteattr
 
 from . import PHONG_PLUGIN, WHITTED_PLUGIN
@@ -61,18 +63,42 @@ def plane_extent(scene, plane):
     return PLANE_MARGIN * max(height, 1.0) / pixel_angle(scene)
 
 
-def plane_to_world(scene, plane):
-    """4x4 row-major matrix taking Mitsuba's rectangle ([-1, 1]^2 at z = 0, normal +z) onto
-    the plane: centred at the foot of the eye, scaled to plane_extent."""
+def plane_mesh_obj(scene, plane):
+    """OBJ text of a square of half-size plane_extent(...) in the plane, centred at the foot of
+    the eye: a centre square of half-size h (as in plane_extent) and around it rings, each
+    twice as wide as the one inside, so that every triangle is about as large as its distance
+    from the centre. Mitsuba intersects triangles in float32 (Embree): one pair of triangles
+    10^6 units wide loses hits near the eye."""
     normal = _normalize(plane["normal"])
     eye = scene["camera"]["eye"]
-    centre = _sub(eye, [x * _dot(_sub(eye, plane["point"]), normal) for x in normal])
+    height = _dot(_sub(eye, plane["point"]), normal)
+    centre = _sub(eye, [x * height for x in normal])
     helper = [1.0, 0.0, 0.0] if abs(normal[0]) < 0.9 else [0.0, 1.0, 0.0]
     tangent = _normalize(_cross(helper, normal))
-    bitangent = _cross(normal, tangent)
-    size = plane_extent(scene, plane)
-    columns = [[x * size for x in tangent], [x * size for x in bitangent], normal, centre]
-    return [[columns[c][r] for c in range(4)] for r in range(3)] + [[0.0, 0.0, 0.0, 1.0]]
+    bitangent = _cross(normal, tangent)  # (tangent, bitangent, normal) is right-handed
+    size, extent = max(abs(height), 1.0), plane_extent(scene, plane)
+    lines = [f"# plane through {plane['point']} with normal {plane['normal']}: half-size {extent:.6g}",
+             f"vn {normal[0]!r} {normal[1]!r} {normal[2]!r}"]
+    squares = 0
+    while True:
+        for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):  # counter-clockwise seen from the normal
+            point = [c + size * (a * t + b * u) for c, t, u in zip(centre, tangent, bitangent)]
+            lines.append(f"v {point[0]!r} {point[1]!r} {point[2]!r}")
+        squares += 1
+        if size >= extent:
+            break
+        size = min(2 * size, extent)
+
+    def face(*corners):
+        return "f " + " ".join(f"{corner}//1" for corner in corners)
+
+    lines += [face(1, 2, 3), face(1, 3, 4)]
+    for ring in range(1, squares):
+        inner, outer = 4 * (ring - 1) + 1, 4 * ring + 1
+        for side in range(4):
+            nxt = (side + 1) % 4
+            lines += [face(inner + side, outer + side, outer + nxt), face(inner + side, outer + nxt, inner + nxt)]
+    return "\n".join(lines) + "\n"
 
 
 class _Writer:
@@ -167,12 +193,10 @@ def to_mitsuba_xml(scene):
         out.leaf("ref", id=ids[_material_key(sphere["material"])])
         out.close("shape")
     for index, plane in enumerate(scene["planes"]):
-        out.line(f"<!-- plane {index}: a rectangle of half-size {plane_extent(scene, plane):.6g} "
-                 "(xcheck.convert.plane_extent) -->")
-        out.open("shape", type="rectangle", id=f"plane{index}")
-        out.open("transform", name="to_world")
-        out.leaf("matrix", value=" ".join(repr(v) for row in plane_to_world(scene, plane) for v in row))
-        out.close("transform")
+        out.line(f"<!-- plane {index}: a square of half-size {plane_extent(scene, plane):.6g} "
+                 "(xcheck.convert.plane_extent, plane_mesh_obj) -->")
+        out.open("shape", type="obj", id=f"plane{index}")
+        out.leaf("string", name="filename", value=f"plane{index}.obj")
         out.leaf("ref", id=ids[_material_key(plane["material"])])
         out.close("shape")
     for index, mesh in enumerate(scene["meshes"]):
@@ -197,3 +221,13 @@ def to_mitsuba_xml(scene):
 
     out.close("scene")
     return "\n".join(out.lines) + "\n"
+
+
+def write_mitsuba_scene(scene, folder):
+    """Writes folder/scene.xml and the planes' OBJ files; returns the XML's path."""
+    folder = pathlib.Path(folder)
+    for index, plane in enumerate(scene["planes"]):
+        (folder / f"plane{index}.obj").write_text(plane_mesh_obj(scene, plane))
+    xml_path = folder / "scene.xml"
+    xml_path.write_text(to_mitsuba_xml(scene))
+    return xml_path

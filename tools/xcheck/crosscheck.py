@@ -11,7 +11,7 @@ import json
 import pathlib
 import sys
 
-from . import ToolError, convert, tracer_cli
+from . import ToolError, tracer_cli
 
 DEFAULT_MAX_OVER_2 = 0.1  # percent of pixels more than 2 levels apart: the project's target
 
@@ -69,13 +69,12 @@ def crosscheck(args):
     out.mkdir(parents=True, exist_ok=True)
 
     # Step 2: both renders, as floats.
-    from . import images, metrics, mitsuba_render  # Mitsuba only once the scene is known good
+    from . import mitsuba_render  # first: it says clearly when Mitsuba is missing
+    from . import images, metrics
 
     tracer_cli.render(args.scene, out / "tracer.exr", extra)
     tracer_image = images.read_exr(out / "tracer.exr")
-    xml_path = out / "scene.xml"
-    xml_path.write_text(convert.to_mitsuba_xml(scene))
-    mitsuba_image = mitsuba_render.render(mitsuba_render.load(xml_path, scene))
+    mitsuba_image = mitsuba_render.render_scene(scene, out)
 
     # Step 3: compare, write the pictures, report.
     comparison = metrics.compare(mitsuba_image, tracer_image)

@@ -13,6 +13,13 @@ def read_exr(path):
     return np.array(bitmap, dtype=np.float32)
 
 
+def write_exr(path, image):
+    """Writes a float H x W x 3 image as EXR (Mitsuba's Bitmap)."""
+    import mitsuba as mi
+
+    mi.Bitmap(np.ascontiguousarray(image, dtype=np.float32), mi.Bitmap.PixelFormat.RGB).write(str(path))
+
+
 def to_8bit(image):
     """tracer's 8-bit rule: clamp to [0, 1], round(255 v), no gamma."""
     return np.round(np.clip(image, 0.0, 1.0) * 255.0).astype(np.uint8)

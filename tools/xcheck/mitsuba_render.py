@@ -2,15 +2,14 @@
 
 import sys
 
-import numpy as np
-
-from . import MitsubaMissing
+from . import MitsubaMissing, convert
 
 VARIANT = "llvm_ad_rgb"  # vectorised on the CPU through LLVM; scalar_rgb would call Python per ray
 
 try:
     import drjit as dr
     import mitsuba as mi
+    import numpy as np
 
     mi.set_variant(VARIANT)
 except (ImportError, AttributeError) as error:  # reported by the command-line tools
@@ -60,3 +59,9 @@ def render(mitsuba_scene, seed=0):
     image = mi.render(mitsuba_scene, seed=seed)
     dr.eval(image)
     return np.array(image, dtype=np.float32)[:, :, :3]
+
+
+def render_scene(scene, out_dir):
+    """Converts the scene description to out_dir/scene.xml (and the planes' OBJ files) and
+    renders it (float image)."""
+    return render(load(convert.write_mitsuba_scene(scene, out_dir), scene))
