@@ -55,7 +55,19 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(run("--no-such-option", self.small).returncode, 2)
         self.assertEqual(run(self.small, "-o", self.tmp / "a.png", "--threads", "0").returncode, 2)
         self.assertEqual(run("--check", "--dump-json", self.small).returncode, 2)
+        self.assertEqual(run(self.small, "-o", self.tmp / "a.png", "--samples", "5").returncode, 2)  # not N*N
+        self.assertEqual(run(self.small, "-o", self.tmp / "a.png", "--width", "0").returncode, 2)
         self.assertEqual(self.leftovers(), [])
+
+    def test_size_and_samples_override_the_render_block(self):
+        result = run("--dump-json", self.small, "--width", "30", "--height", "20", "--samples", "9")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        render = json.loads(result.stdout)["render"]
+        self.assertEqual((render["width"], render["height"], render["samples"]), (30, 20, 9))
+        out = self.tmp / "out.png"
+        result = run(self.small, "-o", out, "--width", "30", "--height", "20", "--samples", "4")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("30x20, 4 spp", result.stderr)
 
     def test_render_writes_png_and_summary(self):
         out = self.tmp / "out.png"

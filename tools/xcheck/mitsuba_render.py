@@ -41,7 +41,7 @@ def area_weighted_normals(positions, faces):
 def load(xml_path, scene):
     """Loads the XML written for `scene` (the --dump-json dict) and gives every mesh without
     normals in its file area-weighted vertex normals."""
-    mitsuba_scene = mi.load_file(str(xml_path))
+    mitsuba_scene = mi.load_file(str(xml_path), optimize=False)  # no merging: shape ids stay
     params = mi.traverse(mitsuba_scene)
     for index, mesh in enumerate(scene["meshes"]):
         if obj_has_normals(mesh["file"]):

@@ -83,7 +83,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
         self.max_depth = props.get("max_depth", 4)
         self.shadows = props.get("shadows", True)
         self.epsilon = props.get("epsilon", 1e-4)
-        self.background = _color(props, "background") if props.has_property("background") \
+        self.background = _color(props, "background") if "background" in props \
             else mi.Color3f(0.0)
 
     def sample(self, scene, sampler, ray, medium=None, active=True):

@@ -1,0 +1,38 @@
+"""Shared set-up of the cross-check tests: the tools on sys.path, the tracer executable."""
+
+import json
+import os
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+HERE = pathlib.Path(__file__).resolve().parent
+sys.path.insert(0, str(ROOT / "tools"))
+
+
+@pytest.fixture(scope="session")
+def tracer_bin():
+    path = pathlib.Path(os.environ.get("TRACER_BIN", ROOT / "build" / "release" / "tracer"))
+    if not path.is_file():
+        pytest.fail(f"no tracer executable at {path} (build it, or set TRACER_BIN)")
+    os.environ["TRACER_BIN"] = str(path)
+    return path
+
+
+@pytest.fixture(scope="session")
+def dump(tracer_bin):
+    """dump(scene, *extra_args) -> the scene description dict from `tracer --dump-json`."""
+    def run(scene, *extra):
+        return json.loads(subprocess.check_output([tracer_bin, str(scene), "--dump-json", *extra]))
+    return run
+
+
+def run_tool(module, *args, env=None):
+    """Runs `python -m xcheck.<module> args` as the launcher does; returns CompletedProcess."""
+    paths = [env["PYTHONPATH"]] if env and "PYTHONPATH" in env else []
+    environment = {**os.environ, **(env or {}), "PYTHONPATH": os.pathsep.join(paths + [str(ROOT / "tools")])}
+    return subprocess.run([sys.executable, "-m", f"xcheck.{module}", *map(str, args)],
+                          capture_output=True, text=True, env=environment, cwd=ROOT)

@@ -1,0 +1,145 @@
+"""The converter's XML loads in Mitsuba and carries camera, shapes and lights over exactly."""
+
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from conftest import HERE, ROOT
+
+from xcheck import convert, mitsuba_render
+
+mi = mitsuba_render.mi
+ASYMMETRIC = HERE / "asymmetric.scn"
+SCENES = sorted((ROOT / "scenes").rglob("*.scn")) + [ASYMMETRIC]
+
+
+def load(dump, scene_path, tmp_path, *extra):
+    scene = dump(scene_path, *extra)
+    return scene, mitsuba_render.load(convert.write_mitsuba_scene(scene, tmp_path), scene)
+
+
+@pytest.mark.parametrize("scene_path", SCENES, ids=lambda p: p.name)
+def test_every_scene_loads(dump, tmp_path, scene_path):
+    scene, loaded = load(dump, scene_path, tmp_path)
+    shapes = len(scene["spheres"]) + len(scene["planes"]) + len(scene["meshes"])
+    assert len(loaded.shapes()) == shapes
+    assert len(loaded.emitters()) == len(scene["lights"])
+    film = loaded.sensors()[0].film()
+    assert list(film.size()) == [scene["render"]["width"], scene["render"]["height"]]
+
+
+def conventions_direction(camera, width, height, x, y):
+    """The camera ray through image position (x, y) (pixels, from the top left) by
+    conventions.md, in float64."""
+    eye, lookat, up = (np.array(camera[k], dtype=float) for k in ("eye", "lookat", "up"))
+    w = (eye - lookat) / np.linalg.norm(eye - lookat)
+    u = np.cross(up, w) / np.linalg.norm(np.cross(up, w))
+    v = np.cross(w, u)
+    plane_height = 2 * camera["focal"] * math.tan(math.radians(camera["fovy"]) / 2)
+    plane_width = plane_height * width / height
+    point = -camera["focal"] * w + (x / width - 0.5) * plane_width * u + (0.5 - y / height) * plane_height * v
+    return point / np.linalg.norm(point)
+
+
+def test_camera_rays_match_the_conventions(dump, tmp_path):
+    # Off-axis eye, tilted up vector, 16:9: a mirrored x axis or a horizontal field of view
+    # moves these directions by far more than the tolerance.
+    scene, loaded = load(dump, ASYMMETRIC, tmp_path)
+    sensor, camera = loaded.sensors()[0], scene["camera"]
+    width, height = scene["render"]["width"], scene["render"]["height"]
+    for x, y in [(0.5, 0.5), (width - 0.5, 0.5), (0.5, height - 0.5), (width / 2, height / 2), (100.5, 20.5)]:
+        ray, _ = sensor.sample_ray(0.0, 0.5, mi.Point2f(x / width, y / height), mi.Point2f(0.5))
+        got = np.array(ray.d, dtype=float).ravel()
+        np.testing.assert_allclose(got, conventions_direction(camera, width, height, x, y), atol=2e-6)
+        origin = np.array(ray.o, dtype=float).ravel()  # moved forward by near_clip = epsilon
+        assert np.linalg.norm(origin - camera["eye"]) < 2 * convert.EPSILON
+
+
+def rotation(axis, angle):
+    axis = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    radians = math.radians(angle)
+    return np.eye(3) + math.sin(radians) * k + (1 - math.cos(radians)) * k @ k
+
+
+def obj_vertices(path):
+    rows = [line.split()[1:4] for line in open(path) if line.startswith("v ")]
+    return np.array(rows, dtype=float)
+
+
+@pytest.mark.parametrize("scene_path", [ASYMMETRIC, ROOT / "scenes" / "bunny_room.scn"], ids=lambda p: p.name)
+def test_mesh_vertices_are_placed_scale_rotate_translate(dump, tmp_path, scene_path):
+    scene, loaded = load(dump, scene_path, tmp_path)
+    mesh = scene["meshes"][0]
+    expected = (obj_vertices(mesh["file"]) * mesh["scale"]) @ rotation(**mesh["rotate"]).T + mesh["translate"]
+    params = mi.traverse(loaded)
+    got = np.array(params["mesh0.vertex_positions"], dtype=float).reshape(-1, 3)
+    # Mitsuba renumbers the vertices: match each to its nearest expected one, one to one.
+    distances = np.linalg.norm(got[:, None, :] - expected[None, :, :], axis=2)
+    nearest = distances.argmin(axis=1)
+    assert len(got) == len(expected) and len(set(nearest)) == len(expected)
+    assert distances[np.arange(len(got)), nearest].max() < 1e-6
+
+
+def test_spheres_planes_and_lights_round_trip(dump, tmp_path):
+    scene, loaded = load(dump, ASYMMETRIC, tmp_path)
+    shapes = {shape.id(): shape for shape in loaded.shapes()}
+    for index, sphere in enumerate(scene["spheres"]):
+        box = shapes[f"sphere{index}"].bbox()
+        np.testing.assert_allclose(np.array(box.center(), dtype=float).ravel(), sphere["center"], atol=1e-6)
+        np.testing.assert_allclose(np.array(box.extents(), dtype=float).ravel(), [2 * sphere["radius"]] * 3, atol=1e-6)
+    for index, plane in enumerate(scene["planes"]):
+        params = mi.traverse(shapes[f"plane{index}"])
+        vertices = np.array(params["vertex_positions"], dtype=float).reshape(-1, 3)
+        normal = np.array(plane["normal"]) / np.linalg.norm(plane["normal"])
+        heights = (vertices - plane["point"]) @ normal
+        assert np.abs(heights).max() <= 1e-6 * np.abs(vertices).max()  # every vertex in the plane
+        assert np.abs(vertices - vertices[0]).max() >= convert.plane_extent(scene, plane)
+    for emitter, light in zip(loaded.emitters(), scene["lights"]):
+        interaction = dr_zero_interaction()
+        sample, spectrum = emitter.sample_direction(interaction, mi.Point2f(0.0))
+        np.testing.assert_allclose(np.array(sample.p, dtype=float).ravel(), light["position"], atol=1e-6)
+        colour = np.array(spectrum * sample.dist ** 2, dtype=float).ravel()
+        np.testing.assert_allclose(colour, light["color"], rtol=1e-5)
+
+
+def dr_zero_interaction():
+    interaction = mi.Interaction3f()
+    interaction.p = mi.Point3f(0.0, 0.0, 0.0)
+    interaction.t = mi.Float(0.0)
+    return interaction
+
+
+def test_plain_mitsuba_without_the_plugins_fails_clearly(dump, tmp_path):
+    scene = dump(ASYMMETRIC)
+    xml_path = convert.write_mitsuba_scene(scene, tmp_path)
+    text = xml_path.read_text()
+    assert "tools/crosscheck" in text.splitlines()[1]  # the comment says how to render it
+    result = subprocess.run([sys.executable, "-c", "import mitsuba as mi; mi.set_variant('scalar_rgb'); "
+                             f"mi.load_file({str(xml_path)!r})"], capture_output=True, text=True)
+    assert result.returncode != 0
+    assert 'Plugin "tracer_whitted" not found' in result.stderr
+
+
+def test_area_weighted_normals_weigh_faces_by_area():
+    # Vertex 0 is shared by a big triangle in z = 0 and a small one in x = 0.
+    positions = np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, -1], [0, 1, 0]], dtype=float)
+    faces = np.array([[0, 1, 2], [0, 3, 4]])
+    normals = mitsuba_render.area_weighted_normals(positions, faces)
+    big, small = np.array([0, 0, 16.0]), np.array([1.0, 0, 0])  # cross products: 2 x area x normal
+    np.testing.assert_allclose(normals[0], (big + small) / np.linalg.norm(big + small))
+    np.testing.assert_allclose(normals[1], [0, 0, 1])
+    np.testing.assert_allclose(normals[3], [1, 0, 0])
+
+
+def test_meshes_without_normals_get_area_weighted_ones(dump, tmp_path):
+    scene, loaded = load(dump, ROOT / "scenes" / "bunny.scn", tmp_path)
+    assert not mitsuba_render.obj_has_normals(scene["meshes"][0]["file"])
+    params = mi.traverse(loaded)
+    positions = np.array(params["mesh0.vertex_positions"], dtype=float).reshape(-1, 3)
+    faces = np.array(params["mesh0.faces"]).reshape(-1, 3)
+    got = np.array(params["mesh0.vertex_normals"], dtype=float).reshape(-1, 3)
+    np.testing.assert_allclose(got, mitsuba_render.area_weighted_normals(positions, faces), atol=1e-6)

@@ -1,0 +1,100 @@
+"""tools/crosscheck end to end, at reduced resolution, and the error figures it reports."""
+
+import json
+
+import numpy as np
+import pytest
+
+from conftest import HERE, ROOT, run_tool
+
+from xcheck import metrics
+
+SMALL = ["--width", "300"]  # 300 x 200 for the 1200 x 800 scenes
+
+
+@pytest.mark.parametrize("scene", ["task2", "bunny"])
+def test_tracer_and_mitsuba_agree_at_reduced_resolution(tracer_bin, tmp_path, scene):
+    result = run_tool("crosscheck", ROOT / "scenes" / f"{scene}.scn", *SMALL, "--out", tmp_path,
+                      "--max-over-2", "0.1", "--max-over-8", "0.05", "--json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    report = json.loads(result.stdout)
+    assert (report["width"], report["height"], report["samples"]) == (300, 200, 1)
+    assert report["over_2"] <= 0.001 and report["psnr"] > 60
+    for name in ("tracer.png", "mitsuba.png", "heatmap.png", "side_by_side.png", "scene.xml", "report.json"):
+        assert (tmp_path / name).is_file(), name
+
+
+def test_supersampled_images_agree_too(tracer_bin, tmp_path):
+    result = run_tool("crosscheck", HERE / "asymmetric.scn", "--samples", "16", "--out", tmp_path, "--json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert json.loads(result.stdout)["samples"] == 16
+
+
+def test_a_threshold_exceeded_exits_1(tracer_bin, tmp_path):
+    # FLIP is never negative, so a negative limit must fail, through the real exit path.
+    result = run_tool("crosscheck", HERE / "asymmetric.scn", "--out", tmp_path, "--max-flip", "-1")
+    assert result.returncode == 1
+    assert "FAIL: FLIP mean" in result.stdout
+
+
+def test_an_invalid_scene_exits_3_with_tracers_diagnostic(tracer_bin, tmp_path):
+    bad = tmp_path / "bad.scn"
+    bad.write_text("sphere { center (0, 0, 0)  radius -1 }\n")
+    result = run_tool("crosscheck", bad, "--out", tmp_path / "out")
+    assert result.returncode == 3
+    assert "bad.scn:1:" in result.stderr and "error:" in result.stderr
+    assert "crosscheck: error: tracer could not load" in result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_missing_mitsuba_exits_4_with_a_clear_message(tracer_bin, tmp_path):
+    hidden = tmp_path / "hide"
+    (hidden / "mitsuba").mkdir(parents=True)
+    (hidden / "mitsuba" / "__init__.py").write_text("raise ImportError(\"No module named 'mitsuba'\")\n")
+    result = run_tool("crosscheck", HERE / "asymmetric.scn", "--out", tmp_path / "out",
+                      env={"PYTHONPATH": str(hidden)})
+    assert result.returncode == 4
+    assert "Mitsuba 3 is not usable" in result.stderr and "tools/bootstrap --python" in result.stderr
+
+
+def test_mitsuba_render_writes_the_image_and_its_xml(tracer_bin, tmp_path):
+    result = run_tool("render", HERE / "asymmetric.scn", "-o", tmp_path / "m.png")
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "m.png").is_file() and (tmp_path / "m.png.xml").is_file()
+
+
+def test_metrics_of_identical_images():
+    image = np.random.default_rng(1).random((20, 30, 3)).astype(np.float32)
+    result = metrics.compare(image, image)
+    assert result.rmse == 0 and result.psnr == float("inf") and result.flip_mean == 0
+    assert result.over_1 == result.over_2 == result.over_8 == 0 and result.max_levels == 0
+
+
+def test_metrics_count_levels_per_pixel():
+    reference = np.full((10, 10, 3), 100 / 255, dtype=np.float32)
+    test = reference.copy()
+    test[0, 0, 1] += 3 / 255   # one pixel 3 levels off (in green only)
+    test[5, 5] += 9 / 255      # one pixel 9 levels off
+    test[9, 9, 2] += 2 / 255   # one pixel 2 levels off: not over 2
+    result = metrics.compare(reference, test)
+    assert (result.over_1, result.over_2, result.over_8) == (0.03, 0.02, 0.01)
+    assert result.max_levels == 9
+    assert result.rmse == pytest.approx(np.sqrt((9 + 3 * 81 + 4) / 300) / 255, rel=1e-4)
+    assert result.flip_mean > 0
+    heat = metrics.heat_map(reference, test)
+    assert tuple(heat[5, 5]) == metrics.HEAT_BINS[2][1] and tuple(heat[0, 0]) == metrics.HEAT_BINS[1][1]
+    assert tuple(heat[9, 9]) == metrics.HEAT_BINS[0][1] and tuple(heat[3, 3]) == (25, 25, 25)
+
+
+def test_a_real_difference_is_caught(dump, tmp_path):
+    # The same scene with the light moved a little: the check must see it.
+    from xcheck import mitsuba_render
+
+    scene = dump(HERE / "asymmetric.scn")
+    moved = json.loads(json.dumps(scene))
+    moved["lights"][0]["position"][0] += 0.2
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    a = mitsuba_render.render_scene(scene, tmp_path / "a")
+    b = mitsuba_render.render_scene(moved, tmp_path / "b")
+    assert metrics.compare(a, b).over_2 > 0.01
