@@ -149,6 +149,10 @@ def to_mitsuba_xml(scene):
 
     # Step 2: the camera: vertical field of view; pixel centres (or the centres of an N x N
     # grid of cells) through an unjittered stratified sampler; box filter; float RGB film.
+    # The film renders rows crop_y .. crop_y + crop_height - 1 (all by default; big
+    # supersampled images are rendered in strips: mitsuba_render.render_in_strips).
+    out.leaf("default", name="crop_y", value=0)
+    out.leaf("default", name="crop_height", value=render["height"])
     out.open("sensor", type="perspective")
     out.leaf("string", name="fov_axis", value="y")
     out.leaf("float", name="fov", value=repr(float(camera["fovy"])))
@@ -164,6 +168,8 @@ def to_mitsuba_xml(scene):
     out.open("film", type="hdrfilm")
     out.leaf("integer", name="width", value=render["width"])
     out.leaf("integer", name="height", value=render["height"])
+    out.leaf("integer", name="crop_offset_y", value="$crop_y")
+    out.leaf("integer", name="crop_height", value="$crop_height")
     out.leaf("string", name="pixel_format", value="rgb")
     out.leaf("string", name="component_format", value="float32")
     out.leaf("rfilter", type="box")

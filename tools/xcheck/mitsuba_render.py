@@ -38,10 +38,11 @@ def area_weighted_normals(positions, faces):
     return np.divide(sums, lengths, out=np.zeros_like(sums), where=lengths > 0)
 
 
-def load(xml_path, scene):
+def load(xml_path, scene, **parameters):
     """Loads the XML written for `scene` (the --dump-json dict) and gives every mesh without
-    normals in its file area-weighted vertex normals."""
-    mitsuba_scene = mi.load_file(str(xml_path), optimize=False)  # no merging: shape ids stay
+    normals in its file area-weighted vertex normals. `parameters` set the XML's defaults
+    (crop_y, crop_height)."""
+    mitsuba_scene = mi.load_file(str(xml_path), optimize=False, **parameters)  # optimize would merge shapes
     params = mi.traverse(mitsuba_scene)
     for index, mesh in enumerate(scene["meshes"]):
         if obj_has_normals(mesh["file"]):
@@ -61,7 +62,18 @@ def render(mitsuba_scene, seed=0):
     return np.array(image, dtype=np.float32)[:, :, :3]
 
 
+# Samples per strip: about 1 GB of Dr.Jit arrays per strip for this scene size.
+SAMPLES_PER_STRIP = 1 << 24
+
+
 def render_scene(scene, out_dir):
     """Converts the scene description to out_dir/scene.xml (and the planes' OBJ files) and
-    renders it (float image)."""
-    return render(load(convert.write_mitsuba_scene(scene, out_dir), scene))
+    renders it (float image), in strips of rows when there are many samples."""
+    xml_path = convert.write_mitsuba_scene(scene, out_dir)
+    width, height, samples = (scene["render"][k] for k in ("width", "height", "samples"))
+    rows = max(1, SAMPLES_PER_STRIP // (width * samples))
+    if rows >= height:
+        return render(load(xml_path, scene))
+    strips = [render(load(xml_path, scene, crop_y=str(top), crop_height=str(min(rows, height - top))))
+              for top in range(0, height, rows)]
+    return np.concatenate(strips, axis=0)
