@@ -1,5 +1,8 @@
 """xcheck: cross-checks tracer's images against Mitsuba 3 (see docs/crosscheck.md)."""
 
+import subprocess
+import sys
+
 # The plugin names the converted XML uses and xcheck.plugins registers.
 PHONG_PLUGIN = "tracer_phong"
 WHITTED_PLUGIN = "tracer_whitted"
@@ -15,3 +18,19 @@ class MitsubaMissing(ToolError):
     """Mitsuba 3 (or Dr.Jit) cannot be imported."""
 
     exit_code = 4
+
+
+OTHER_FAILURE = 5  # the exit code of a failure that is not a ToolError (a file that cannot be written, ...)
+
+
+def run_reporting_errors(tool, work):
+    """Runs work() and returns its exit code; a ToolError, OSError or failed subprocess becomes
+    one line `tool: error: ...` on stderr and its exit code."""
+    try:
+        return work()
+    except ToolError as error:
+        print(f"{tool}: error: {error}", file=sys.stderr)
+        return error.exit_code
+    except (OSError, subprocess.CalledProcessError) as error:
+        print(f"{tool}: error: {error}", file=sys.stderr)
+        return OTHER_FAILURE

@@ -11,7 +11,7 @@ import json
 import pathlib
 import sys
 
-from . import ToolError, tracer_cli
+from . import run_reporting_errors, tracer_cli
 
 DEFAULT_MAX_OVER_2 = 0.1  # percent of pixels more than 2 levels apart: the project's target
 
@@ -100,14 +100,7 @@ def crosscheck(args):
 
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
-    try:
-        return crosscheck(args)
-    except ToolError as error:
-        print(f"crosscheck: error: {error}", file=sys.stderr)
-        return error.exit_code
-    except OSError as error:
-        print(f"crosscheck: error: {error}", file=sys.stderr)
-        return 5
+    return run_reporting_errors("crosscheck", lambda: crosscheck(args))
 
 
 if __name__ == "__main__":

@@ -7,7 +7,24 @@ import pathlib
 import sys
 import tempfile
 
-from . import ToolError, tracer_cli
+from . import run_reporting_errors, tracer_cli
+
+
+def render(args):
+    """Renders and writes the image and its XML; returns the exit code."""
+    scene = tracer_cli.dump_json(args.scene, tracer_cli.overrides(args.width, args.height, args.samples))
+    from . import mitsuba_render  # first: it says clearly when Mitsuba is missing
+    from . import images
+
+    with tempfile.TemporaryDirectory() as folder:
+        image = mitsuba_render.render_scene(scene, folder)
+        xml = (pathlib.Path(folder) / "scene.xml").read_text()
+    args.output.with_name(args.output.name + ".xml").write_text(xml)
+    if args.output.suffix.lower() == ".exr":
+        images.write_exr(args.output, image)
+    else:
+        images.write_png(args.output, image)
+    return 0
 
 
 def main(argv=None):
@@ -18,26 +35,7 @@ def main(argv=None):
     parser.add_argument("--height", type=int, help="image height (default: the scene's)")
     parser.add_argument("--samples", type=int, help="samples per pixel, N*N (default: the scene's)")
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
-    try:
-        scene = tracer_cli.dump_json(args.scene, tracer_cli.overrides(args.width, args.height, args.samples))
-        from . import mitsuba_render  # first: it says clearly when Mitsuba is missing
-        from . import images
-
-        with tempfile.TemporaryDirectory() as folder:
-            image = mitsuba_render.render_scene(scene, folder)
-            xml = (pathlib.Path(folder) / "scene.xml").read_text()
-        args.output.with_name(args.output.name + ".xml").write_text(xml)
-        if args.output.suffix.lower() == ".exr":
-            images.write_exr(args.output, image)
-        else:
-            images.write_png(args.output, image)
-        return 0
-    except ToolError as error:
-        print(f"mitsuba-render: error: {error}", file=sys.stderr)
-        return error.exit_code
-    except OSError as error:
-        print(f"mitsuba-render: error: {error}", file=sys.stderr)
-        return 5
+    return run_reporting_errors("mitsuba-render", lambda: render(args))
 
 
 if __name__ == "__main__":

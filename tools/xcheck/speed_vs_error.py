@@ -17,11 +17,10 @@ import os
 import pathlib
 import platform
 import statistics
-import subprocess
 import sys
 import tempfile
 
-from . import ToolError, tracer_cli
+from . import ToolError, run_reporting_errors, tracer_cli
 
 SCENES = ["task2", "bunny", "bunny_room"]
 REFERENCE_SAMPLES = 256  # 16 x 16
@@ -163,6 +162,18 @@ def write_report(data, docs):
     page.write_text(head + markdown(data) + rest.split(END, 1)[1])
 
 
+def report(args):
+    """Measures (or reloads) and writes the report; returns the exit code."""
+    if args.report_only:
+        data = json.loads((args.docs / "speed-vs-error.json").read_text())
+    else:
+        with tempfile.TemporaryDirectory() as folder:
+            results = [measure_scene(name, args.repeats, pathlib.Path(folder)) for name in args.scenes]
+        data = {"machine": machine(), "threads": os.cpu_count(), "repeats": args.repeats, "scenes": results}
+    write_report(data, args.docs)
+    return 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="tools/speed-vs-error", description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", nargs="+", default=SCENES, help=f"scenes/<name>.scn to measure (default: {SCENES})")
@@ -170,18 +181,7 @@ def main(argv=None):
     parser.add_argument("--docs", type=pathlib.Path, default=tracer_cli.ROOT / "docs", help="where the report goes")
     parser.add_argument("--report-only", action="store_true", help="redraw from the committed JSON")
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
-    try:
-        if args.report_only:
-            data = json.loads((args.docs / "speed-vs-error.json").read_text())
-        else:
-            with tempfile.TemporaryDirectory() as folder:
-                results = [measure_scene(name, args.repeats, pathlib.Path(folder)) for name in args.scenes]
-            data = {"machine": machine(), "threads": os.cpu_count(), "repeats": args.repeats, "scenes": results}
-        write_report(data, args.docs)
-        return 0
-    except (ToolError, subprocess.CalledProcessError, OSError) as error:
-        print(f"speed-vs-error: error: {error}", file=sys.stderr)
-        return getattr(error, "exit_code", 5)
+    return run_reporting_errors("speed-vs-error", lambda: report(args))
 
 
 if __name__ == "__main__":
