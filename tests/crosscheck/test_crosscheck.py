@@ -98,3 +98,13 @@ def test_a_real_difference_is_caught(dump, tmp_path):
     a = mitsuba_render.render_scene(scene, tmp_path / "a")
     b = mitsuba_render.render_scene(moved, tmp_path / "b")
     assert metrics.compare(a, b).over_2 > 0.01
+
+
+def test_a_scene_mitsuba_cannot_take_exits_5_before_rendering(tracer_bin, tmp_path):
+    deep = tmp_path / "deep.scn"
+    deep.write_text("render { max_depth 65 }\ncamera { eye (0, 0, 5)  lookat (0, 0, 0) }\n"
+                    "sphere { center (0, 0, 0)  radius 1  material { kd 1 } }\nlight { position (1, 1, 3) }\n")
+    result = run_tool("crosscheck", deep, "--out", tmp_path / "out")
+    assert result.returncode == 5
+    assert "max_depth 65" in result.stderr and "at most 64" in result.stderr
+    assert not (tmp_path / "out" / "tracer.exr").exists()

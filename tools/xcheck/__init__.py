@@ -8,19 +8,19 @@ PHONG_PLUGIN = "tracer_phong"
 WHITTED_PLUGIN = "tracer_whitted"
 
 
+OTHER_FAILURE = 5  # the exit code of failures without a code of their own (see crosscheck.py)
+
+
 class ToolError(Exception):
     """A problem the command-line tools report in one line and exit with `exit_code`."""
 
-    exit_code = 1
+    exit_code = OTHER_FAILURE
 
 
 class MitsubaMissing(ToolError):
     """Mitsuba 3 (or Dr.Jit) cannot be imported."""
 
     exit_code = 4
-
-
-OTHER_FAILURE = 5  # the exit code of a failure that is not a ToolError (a file that cannot be written, ...)
 
 
 def run_reporting_errors(tool, work):

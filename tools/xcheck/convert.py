@@ -9,11 +9,14 @@ import math
 import pathlib
 from xml.sax.saxutils import quoteattr
 
-from . import PHONG_PLUGIN, WHITTED_PLUGIN
+from . import PHONG_PLUGIN, WHITTED_PLUGIN, ToolError
 
 # Primary and secondary rays count hits with t > EPSILON only (conventions.md; tracer's
 # kSelfHitEpsilon).
 EPSILON = 1e-4
+
+# The Whitted integrator unrolls its levels into one kernel: this many bounces at the most.
+MAX_DEPTH = 64
 
 # The strip of an infinite plane that its rectangle leaves out is seen under less than
 # 1/PLANE_MARGIN of a pixel (see plane_extent).
@@ -132,6 +135,9 @@ def _material_key(material):
 def to_mitsuba_xml(scene):
     """The Mitsuba 3 XML text for a scene description (a dict from `tracer --dump-json`)."""
     render, camera = scene["render"], scene["camera"]
+    if render["max_depth"] > MAX_DEPTH:
+        raise ToolError(f"max_depth {render['max_depth']}: the Mitsuba integrator unrolls one level per "
+                        f"bounce and takes at most {MAX_DEPTH}")
     out = _Writer()
     out.line("<?xml version='1.0' encoding='utf-8'?>")
     out.line(f"<!-- From `tracer --dump-json {scene['source']}` by tools/xcheck. It names the "

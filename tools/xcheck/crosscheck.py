@@ -3,7 +3,7 @@ xcheck.plugins), report how far apart the images are, and fail above a threshold
 
 Exit codes: 0 the images agree within the thresholds; 1 they do not; 2 bad command line;
 3 tracer rejected the scene (its diagnostics are printed); 4 Mitsuba 3 is missing; 5 another
-failure (a file that cannot be written, ...).
+failure (a scene the cross-check cannot convert, a file that cannot be written, ...).
 """
 
 import argparse
@@ -72,9 +72,9 @@ def crosscheck(args):
     from . import mitsuba_render  # first: it says clearly when Mitsuba is missing
     from . import images, metrics
 
+    mitsuba_image = mitsuba_render.render_scene(scene, out)  # first: it may refuse the scene
     tracer_cli.render(args.scene, out / "tracer.exr", extra)
     tracer_image = images.read_exr(out / "tracer.exr")
-    mitsuba_image = mitsuba_render.render_scene(scene, out)
 
     # Step 3: compare, write the pictures, report.
     comparison = metrics.compare(mitsuba_image, tracer_image)

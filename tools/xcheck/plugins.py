@@ -99,9 +99,9 @@ class WhittedIntegrator(mi.SamplingIntegrator):
             color += dr.select(missed, weight * self.background, 0.0)
             active &= si.is_valid()
             bsdf = si.bsdf(ray)
-            # The point as o + t d, as tracer has it: Mitsuba interpolates it in a shape's
-            # local frame, which is off by about 6e-8 of the shape's size, far over epsilon on
-            # the rectangles that stand in for planes.
+            # The point as o + t d, as tracer has it: Mitsuba interpolates it from a triangle's
+            # float32 corners, off by about 6e-8 of their distance from the origin: far over
+            # epsilon on the big outer triangles of the plane squares.
             si.p = ray(si.t)
 
             # Step 2: ambient, then each light that the point sees (shadow ray over (eps, dist)).
