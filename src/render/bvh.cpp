@@ -50,6 +50,13 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
     }
     t_min = round_down(range.min);
     t_max = round_up(range.max);
+    for (int lane = 0; lane < 8; ++lane) {
+        const int axis = lane % 4 == 3 ? 0 : lane % 4;
+        origin_near8[lane] = origin_near[axis];
+        origin_far8[lane] = origin_far[axis];
+        inv_dir8[lane] = inv_dir[axis];
+        negative8[lane] = -near_side[axis];
+    }
 }
 
 void TraversalRay::clip(Real t) { t_max = std::min(t_max, round_up(t)); }
@@ -316,6 +323,33 @@ bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
     return true;
 }
 
+// The depth-first tree in Sah's layout: the root at 0, an unused node at 1, then the
+// children of every inner node side by side at an even index (so in one cache line), pairs
+// in depth-first order.
+static NodeArray pair_siblings(const std::vector<BvhNode>& depth_first) {
+    NodeArray paired(2);
+    paired.reserve(depth_first.size() + 1);
+    paired[0] = depth_first[0];
+    paired[1] = BvhNode{};
+    struct Move {
+        uint32_t from, to;
+    };
+    std::vector<Move> pending{{0, 0}};
+    while (!pending.empty()) {
+        const Move move = pending.back();
+        pending.pop_back();
+        if (depth_first[move.from].count > 0) continue;
+        const uint32_t pair = uint32_t(paired.size());
+        const uint32_t left = move.from + 1, right = depth_first[move.from].index;
+        paired.push_back(depth_first[left]);
+        paired.push_back(depth_first[right]);
+        paired[move.to].index = pair;
+        pending.push_back({right, pair + 1});
+        pending.push_back({left, pair});
+    }
+    return paired;
+}
+
 Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size, int threads) {
     const uint32_t n = uint32_t(primitives.size());
     order_.resize(n);
@@ -334,7 +368,11 @@ Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_siz
     BvhBuilder builder(refs.data(), method, leaf_size, thread_count(threads) > 1);
     builder.nodes.reserve(2 * size_t(n));
     builder.build(root, 0);
-    nodes_ = std::move(builder.nodes);
+    paired_ = method == Accelerator::Sah;
+    if (paired_)
+        nodes_ = pair_siblings(builder.nodes);
+    else
+        nodes_.assign(builder.nodes.begin(), builder.nodes.end());
     parallel_for(n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
 }
 
@@ -356,8 +394,9 @@ BvhStats Bvh::stats() const {
             s.min_leaf = std::min<size_t>(s.min_leaf, node.count);
             s.max_leaf = std::max<size_t>(s.max_leaf, node.count);
         } else {
-            stack.push_back({index + 1, depth + 1});
-            stack.push_back({node.index, depth + 1});
+            const auto [left, right] = children(index);
+            stack.push_back({left, depth + 1});
+            stack.push_back({right, depth + 1});
         }
     }
     s.mean_leaf = double(in_leaves) / double(s.leaves);
