@@ -378,7 +378,7 @@ Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_siz
 
 BvhStats Bvh::stats() const {
     BvhStats s;
-    s.nodes = nodes_.size();
+    s.nodes = nodes_.size() - (paired_ ? 1 : 0);  // not the unused node 1 of Sah's layout
     if (nodes_.empty()) return s;
     s.min_leaf = std::numeric_limits<size_t>::max();
     size_t in_leaves = 0;
