@@ -18,7 +18,7 @@ EPSILON = 1e-4
 # The Whitted integrator unrolls its levels into one kernel: this many bounces at the most.
 MAX_DEPTH = 64
 
-# The strip of an infinite plane that its rectangle leaves out is seen under less than
+# The strip of an infinite plane that its square leaves out is seen under less than
 # 1/PLANE_MARGIN of a pixel (see plane_extent).
 PLANE_MARGIN = 1000.0
 
@@ -51,9 +51,9 @@ def pixel_angle(scene):
 
 
 def plane_extent(scene, plane):
-    """Half-size of the rectangle that stands in for an infinite plane.
+    """Half-size of the square that stands in for an infinite plane.
 
-    A ray from a point at height h over the plane that misses a rectangle of half-size R
+    A ray from a point at height h over the plane that misses a square of half-size R
     centred under the eye meets the plane beyond R, i.e. less than about h/R radians above or
     below the horizon. With h the largest height of the eye or any sphere over the plane, and
     R = PLANE_MARGIN * h / (angle of one pixel), that strip is under 1/PLANE_MARGIN of a pixel
