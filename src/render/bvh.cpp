@@ -88,8 +88,6 @@ struct FloatBounds {
 
 // Four floats in one vector register (GCC/Clang vector extensions: portable, no intrinsics).
 typedef float v4f __attribute__((vector_size(16)));
-inline v4f lane_min(v4f a, v4f b) { return a < b ? a : b; }
-inline v4f lane_max(v4f a, v4f b) { return a > b ? a : b; }
 
 // One SAH bin: the boxes and centres that fell into it, lane by lane (lane 3 unused).
 struct VectorBin {

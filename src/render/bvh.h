@@ -67,6 +67,16 @@ using NodeArray = std::vector<BvhNode, CacheLineAllocator<BvhNode>>;
 using FloatLanes8 = float __attribute__((vector_size(32)));
 using IntLanes8 = int32_t __attribute__((vector_size(32)));
 
+// Lane by lane minimum and maximum of GCC vectors; where `a` is NaN the lane takes `b`.
+template <typename Lanes>
+inline Lanes lane_min(Lanes a, Lanes b) { return a < b ? a : b; }
+template <typename Lanes>
+inline Lanes lane_max(Lanes a, Lanes b) { return a > b ? a : b; }
+
+// Box tests scale the leaving distance by 1 + 2 gamma_3 (Ize 2013), so that float rounding
+// cannot make the ray leave a box before the exact ray does.
+constexpr float kFarGrow = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+
 struct TraversalRay {
     float origin_near[3];  // origin for the entering planes
     float origin_far[3];   // origin for the leaving planes
@@ -122,9 +132,8 @@ public:
     Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size, int threads = 0);
 
     const NodeArray& nodes() const { return nodes_; }
-    // Sah's layout: the children of an inner node are at index and index + 1 (an even index).
-    bool paired() const { return paired_; }
-    // The children of inner node `parent`, left then right, in either layout.
+    // The children of inner node `parent`, left then right, in either layout (Sah's: at index
+    // and index + 1, an even index).
     std::pair<uint32_t, uint32_t> children(uint32_t parent) const {
         const uint32_t index = nodes_[parent].index;
         return paired_ ? std::pair{index, index + 1} : std::pair{parent + 1, index};
@@ -153,13 +162,12 @@ private:
 // slab of an axis-parallel ray) never shrinks the interval, and touching counts as entering:
 // zero-thickness boxes are hit.
 inline float enter_box(const BvhNode& node, const TraversalRay& ray) {
-    constexpr float kGrow = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);  // 1 + 2 gamma_3
     float near = ray.t_min, far = ray.t_max;
     for (int axis = 0; axis < 3; ++axis) {
         const float t0 = (node.box[ray.near_side[axis]][axis] - ray.origin_near[axis]) * ray.inv_dir[axis];
         const float t1 = (node.box[1 - ray.near_side[axis]][axis] - ray.origin_far[axis]) * ray.inv_dir[axis];
         near = t0 > near ? t0 : near;
-        far = t1 * kGrow < far ? t1 * kGrow : far;
+        far = t1 * kFarGrow < far ? t1 * kFarGrow : far;
     }
     return near <= far ? near : std::numeric_limits<float>::infinity();
 }
@@ -173,7 +181,6 @@ struct PairEntry {
 inline PairEntry enter_pair(const BvhNode* pair, const TraversalRay& ray) {
     using Lanes = FloatLanes8;
     using Indices = IntLanes8;
-    constexpr float kGrow = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);  // 1 + 2 gamma_3
     Lanes left, right;
     std::memcpy(&left, &pair[0], sizeof left);
     std::memcpy(&right, &pair[1], sizeof right);
@@ -181,14 +188,16 @@ inline PairEntry enter_pair(const BvhNode* pair, const TraversalRay& ray) {
     const Lanes upper = __builtin_shuffle(left, right, Indices{3, 4, 5, 3, 11, 12, 13, 11});
     const Lanes near_planes = ray.negative8 ? upper : lower;
     const Lanes far_planes = ray.negative8 ? lower : upper;
-    Lanes near = (near_planes - ray.origin_near8) * ray.inv_dir8;
-    Lanes far = (far_planes - ray.origin_far8) * ray.inv_dir8 * kGrow;
-    near = near > ray.t_min ? near : ray.t_min;  // also NaN -> t_min
-    far = far < ray.t_max ? far : ray.t_max;     // also NaN -> t_max
-    near = near > __builtin_shuffle(near, Indices{1, 0, 3, 2, 5, 4, 7, 6}) ? near : __builtin_shuffle(near, Indices{1, 0, 3, 2, 5, 4, 7, 6});
-    near = near > __builtin_shuffle(near, Indices{2, 3, 0, 1, 6, 7, 4, 5}) ? near : __builtin_shuffle(near, Indices{2, 3, 0, 1, 6, 7, 4, 5});
-    far = far < __builtin_shuffle(far, Indices{1, 0, 3, 2, 5, 4, 7, 6}) ? far : __builtin_shuffle(far, Indices{1, 0, 3, 2, 5, 4, 7, 6});
-    far = far < __builtin_shuffle(far, Indices{2, 3, 0, 1, 6, 7, 4, 5}) ? far : __builtin_shuffle(far, Indices{2, 3, 0, 1, 6, 7, 4, 5});
+    // NaN lanes take t_min and t_max here, so the reductions below see none.
+    Lanes near = lane_max((near_planes - ray.origin_near8) * ray.inv_dir8, Lanes{} + ray.t_min);
+    Lanes far = lane_min((far_planes - ray.origin_far8) * ray.inv_dir8 * kFarGrow, Lanes{} + ray.t_max);
+    // Largest entry and smallest exit within each half (box): swap neighbours, then pairs.
+    auto swap_neighbours = [](Lanes v) { return __builtin_shuffle(v, Indices{1, 0, 3, 2, 5, 4, 7, 6}); };
+    auto swap_pairs = [](Lanes v) { return __builtin_shuffle(v, Indices{2, 3, 0, 1, 6, 7, 4, 5}); };
+    near = lane_max(near, swap_neighbours(near));
+    near = lane_max(near, swap_pairs(near));
+    far = lane_min(far, swap_neighbours(far));
+    far = lane_min(far, swap_pairs(far));
     constexpr float kMiss = std::numeric_limits<float>::infinity();
     return {near[0] <= far[0] ? near[0] : kMiss, near[4] <= far[4] ? near[4] : kMiss};
 }
