@@ -99,14 +99,14 @@ def test_spheres_planes_and_lights_round_trip(dump, tmp_path):
         assert np.abs(heights).max() <= 1e-6 * np.abs(vertices).max()  # every vertex in the plane
         assert np.abs(vertices - vertices[0]).max() >= convert.plane_extent(scene, plane)
     for emitter, light in zip(loaded.emitters(), scene["lights"]):
-        interaction = dr_zero_interaction()
+        interaction = interaction_at_origin()
         sample, spectrum = emitter.sample_direction(interaction, mi.Point2f(0.0))
         np.testing.assert_allclose(np.array(sample.p, dtype=float).ravel(), light["position"], atol=1e-6)
         colour = np.array(spectrum * sample.dist ** 2, dtype=float).ravel()
         np.testing.assert_allclose(colour, light["color"], rtol=1e-5)
 
 
-def dr_zero_interaction():
+def interaction_at_origin():
     interaction = mi.Interaction3f()
     interaction.p = mi.Point3f(0.0, 0.0, 0.0)
     interaction.t = mi.Float(0.0)
@@ -137,9 +137,22 @@ def test_area_weighted_normals_weigh_faces_by_area():
 
 def test_meshes_without_normals_get_area_weighted_ones(dump, tmp_path):
     scene, loaded = load(dump, ROOT / "scenes" / "bunny.scn", tmp_path)
-    assert not mitsuba_render.obj_has_normals(scene["meshes"][0]["file"])
+    assert not mitsuba_render.obj_normals_used(scene["meshes"][0]["file"])
     params = mi.traverse(loaded)
     positions = np.array(params["mesh0.vertex_positions"], dtype=float).reshape(-1, 3)
     faces = np.array(params["mesh0.faces"]).reshape(-1, 3)
     got = np.array(params["mesh0.vertex_normals"], dtype=float).reshape(-1, 3)
     np.testing.assert_allclose(got, mitsuba_render.area_weighted_normals(positions, faces), atol=1e-6)
+
+
+def test_file_normals_count_only_when_every_face_names_them(tmp_path):
+    # tracer's rule (mesh_loader.cpp): vn lines alone are not enough.
+    cases = {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n": True,
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1\n": True,
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1 2 3\n": False,
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3//1\n": False,
+             "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n": False}
+    for index, (text, expected) in enumerate(cases.items()):
+        path = tmp_path / f"case{index}.obj"
+        path.write_text(text)
+        assert mitsuba_render.obj_normals_used(path) == expected, text

@@ -42,11 +42,13 @@ def parse_args(argv):
     return parser.parse_args(argv)
 
 
-def resolution_args(scene, args):
-    """tracer overrides for the requested size and samples (width alone keeps the aspect)."""
+def resolution_args(args):
+    """tracer overrides for the requested size and samples (width alone keeps the aspect,
+    which costs one more --dump-json)."""
     width, height = args.width, args.height
     if width is not None and height is None:
-        height = max(1, round(width * scene["render"]["height"] / scene["render"]["width"]))
+        render = tracer_cli.dump_json(args.scene)["render"]
+        height = max(1, round(width * render["height"] / render["width"]))
     return tracer_cli.overrides(width=width, height=height, samples=args.samples)
 
 
@@ -63,7 +65,7 @@ def failures(comparison, args):
 def crosscheck(args):
     """Runs the whole check; returns the exit code."""
     # Step 1: the scene as tracer resolves it, with the requested size and samples.
-    extra = resolution_args(tracer_cli.dump_json(args.scene), args)
+    extra = resolution_args(args)
     scene = tracer_cli.dump_json(args.scene, extra)
     out = args.out or tracer_cli.ROOT / "out" / "crosscheck" / args.scene.stem
     out.mkdir(parents=True, exist_ok=True)

@@ -20,10 +20,20 @@ from . import plugins  # noqa: E402  (needs the variant)
 plugins.register()
 
 
-def obj_has_normals(path):
-    """True when an OBJ file has `vn` lines (then its normals are used, as in tracer)."""
+def obj_normals_used(path):
+    """True when tracer takes an OBJ file's own vertex normals (render/mesh_loader.cpp): the
+    file has `vn` lines and every face corner names one (v//vn or v/vt/vn). Otherwise tracer
+    computes area-weighted normals. (tracer decides after dropping zero-area faces; a zero-area
+    face without normals is the one case where the two could disagree.)"""
+    has_normals, every_corner_names_one = False, True
     with open(path, "rb") as file:
-        return any(line.startswith(b"vn ") for line in file)
+        for line in file:
+            fields = line.split(b"#", 1)[0].split()
+            if fields and fields[0] == b"vn":
+                has_normals = True
+            elif fields and fields[0] == b"f":
+                every_corner_names_one &= all(c.count(b"/") == 2 and not c.endswith(b"/") for c in fields[1:])
+    return has_normals and every_corner_names_one
 
 
 def area_weighted_normals(positions, faces):
@@ -39,13 +49,13 @@ def area_weighted_normals(positions, faces):
 
 
 def load(xml_path, scene, **parameters):
-    """Loads the XML written for `scene` (the --dump-json dict) and gives every mesh without
-    normals in its file area-weighted vertex normals. `parameters` set the XML's defaults
+    """Loads the XML written for `scene` (the --dump-json dict) and gives every mesh whose
+    file normals tracer does not use area-weighted vertex normals. `parameters` set the XML's defaults
     (crop_y, crop_height)."""
     mitsuba_scene = mi.load_file(str(xml_path), optimize=False, **parameters)  # optimize would merge shapes
     params = mi.traverse(mitsuba_scene)
     for index, mesh in enumerate(scene["meshes"]):
-        if obj_has_normals(mesh["file"]):
+        if obj_normals_used(mesh["file"]):
             continue
         positions = np.array(params[f"mesh{index}.vertex_positions"], dtype=np.float64).reshape(-1, 3)
         faces = np.array(params[f"mesh{index}.faces"]).reshape(-1, 3)
