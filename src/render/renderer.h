@@ -35,7 +35,7 @@ struct RenderOptions {
 };
 
 struct RenderStats {
-    double seconds = 0;
+    double seconds = 0;  // the render loop: threads started to last row done (no image set-up)
     int threads = 0;
     RayCounts rays;
 };
