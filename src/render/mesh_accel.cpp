@@ -30,10 +30,28 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int th
         const Vec3& p0 = mesh_.positions[v[0]];
         edges_[i] = {p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0};
     }, threads);
+    // Step 3: the bounding sphere of may_hit: around the vertices' box, 10^-6 wider.
+    Bounds box;
+    for (const Vec3& p : mesh_.positions) box.extend(p);
+    if (n > 0 && std::isfinite(glm::length(box.upper - box.lower))) {
+        sphere_centre_ = box.centre();
+        const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
+        sphere_radius2_ = radius * radius * (1 + 1e-6);
+    }
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+bool MeshAccel::may_hit(const Ray& ray) const {
+    // Squared distance of the centre from the ray's line, times |d|^2 (no division); the
+    // margin covers its rounding, which grows with the centre's distance squared.
+    const Vec3 to_centre = sphere_centre_ - ray.origin;
+    const Real along = glm::dot(to_centre, ray.direction);
+    const Real dd = glm::dot(ray.direction, ray.direction), cc = glm::dot(to_centre, to_centre);
+    return cc * dd - along * along <= (sphere_radius2_ + cc * 1e-12) * dd;
+}
+
 bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const {
+    if (accel_ != Accelerator::None && !may_hit(ray)) return false;
     uint32_t best = 0;
     TriangleHit best_hit;
     auto test = [&](uint32_t i, Interval& r) {
@@ -56,6 +74,7 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
 }
 
 bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts) const {
+    if (accel_ != Accelerator::None && !may_hit(ray)) return false;
     auto test = [&](uint32_t i, Interval& r) {
         TriangleHit hit;
         return intersect_triangle(ray, edges_[i], r, hit);

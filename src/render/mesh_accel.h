@@ -38,12 +38,19 @@ public:
     double build_seconds() const { return build_seconds_; }
 
 private:
+    // False only if the ray's line passes outside a sphere around the whole mesh: a few
+    // multiplications that spare most rays of a frame the box test's set-up (divisions).
+    // Every accelerator but None (every triangle for every ray) asks it first.
+    bool may_hit(const Ray& ray) const;
+
     TriangleMesh mesh_;
     Accelerator accel_;
     Bvh bvh_;
     std::vector<TriangleEdges> edges_;  // entry i is triangle ids_[i]
     std::vector<uint32_t> ids_;
     double build_seconds_ = 0;
+    Vec3 sphere_centre_{0};
+    Real sphere_radius2_ = kInfinity;  // squared, with a margin (no sphere: every ray passes)
 };
 
 }  // namespace tracer

@@ -155,6 +155,43 @@ TEST(Bvh, FlatGridTraversalLosesNoHitOfTheTriangleTest) {
     }
 }
 
+// The bounding-sphere pre-test (MeshAccel::may_hit) must not reject rays that only just hit:
+// a square's corners lie on the sphere around its box, so rays aimed just inside the corners,
+// from near and from very far, at several scales and offsets, graze that sphere.
+TEST(Bvh, SpherePreTestKeepsRaysThatGrazeTheMeshCorners) {
+    std::mt19937 random(5);
+    std::normal_distribution<double> gauss;
+    int hits = 0;
+    for (double scale : {1e-3, 1.0, 1e3})
+        for (double offset : {0.0, 1e4}) {
+            TriangleMesh square;
+            for (Vec3 corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)})
+                square.positions.push_back(offset + scale * corner);
+            square.vertices = {{0, 1, 2}, {0, 2, 3}};
+            square.normals = area_weighted_normals(square.positions, square.vertices);
+            square.normal_ids = square.vertices;
+            const MeshAccel brute(square, Accelerator::None, 1), sah(square, Accelerator::Sah, 3);
+            for (int corner = 0; corner < 4; ++corner) {
+                const Vec3 inward = glm::normalize(Vec3(0.5, 0.5, 0) * scale + offset - square.positions[corner]);
+                const Vec3 target = square.positions[corner] + inward * (1e-7 * scale);
+                for (double distance : {10.0, 1e6})
+                    for (int i = 0; i < 50; ++i) {
+                        Vec3 from = glm::normalize(Vec3(gauss(random), gauss(random), gauss(random)));
+                        from.z = std::abs(from.z) + 0.05;  // not in the plane of the square
+                        const Ray ray{target + distance * scale * glm::normalize(from), -glm::normalize(from)};
+                        TraversalCounts counts;
+                        Interval brute_range, sah_range;
+                        MeshHit brute_hit, sah_hit;
+                        const bool found = brute.intersect(ray, brute_range, brute_hit, counts);
+                        hits += found;
+                        ASSERT_EQ(sah.intersect(ray, sah_range, sah_hit, counts), found);
+                        ASSERT_EQ(sah.occluded(ray, {0, kInfinity}, counts), found);
+                    }
+            }
+        }
+    EXPECT_GT(hits, 2000);  // of 2,400: the rays do hit, at the very edge of the sphere
+}
+
 TEST(Bvh, MedianFollowsTheAssignment) {
     // Leaves hold at most leaf_size triangles; the tree splits x, y, z by depth.
     const MeshAccel median(bunny(), Accelerator::Median, 3);
