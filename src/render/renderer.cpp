@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
-#include <thread>
 
 #include "render/camera.h"
 #include "render/parallel.h"
@@ -58,7 +57,8 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     // Step 2: rows handed to the threads one at a time. The time is the render loop's (as
     // embree_bench's): it leaves out the image's allocation and the clearing around a crop.
     const auto start = std::chrono::steady_clock::now();
-    const int threads = std::max(1, std::min(thread_count(options.threads), std::max(area.height, 1)));
+    const int threads = options.pool ? options.pool->size()
+                                     : std::max(1, std::min(thread_count(options.threads), std::max(area.height, 1)));
     std::atomic<int> next_row{0};
     std::atomic<int> rows_done{0};
     std::mutex merge;
@@ -84,10 +84,12 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
         std::lock_guard lock(merge);
         stats.rays += counts;
     };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(worker, i);
-    worker(0);
-    for (std::thread& t : pool) t.join();
+    if (options.pool) {
+        options.pool->run(worker);
+    } else {
+        WorkerPool pool(threads);
+        pool.run(worker);
+    }
 
     // Step 3: how long it took.
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -8,6 +8,7 @@
 
 #include "frontend/scene.h"
 #include "render/whitted.h"
+#include "render/worker_pool.h"
 #include "render/world.h"
 
 namespace tracer {
@@ -26,6 +27,8 @@ struct PixelRect {
 
 struct RenderOptions {
     int threads = 0;  // 0: one per hardware thread
+    // Threads kept between renders (then `threads` is ignored); null: started for this render.
+    WorkerPool* pool = nullptr;
     // Only these pixels are traced (the rest stay black); width 0 means the whole image.
     PixelRect crop;
     // Called now and then from a worker with the finished fraction in [0, 1].

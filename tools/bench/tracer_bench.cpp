@@ -16,6 +16,7 @@
 #include "render/camera.h"
 #include "render/image_output.h"
 #include "render/mesh_loader.h"
+#include "render/parallel.h"
 #include "render/render_stats.h"
 #include "render/renderer.h"
 
@@ -96,7 +97,9 @@ int main(int argc, char** argv) {
         if (i > 0) build_ms.push_back(ms);
     }
 
-    // Step 3: renders, one untimed warm-up first.
+    // Step 3: renders, one untimed warm-up first, on threads started once (as embree_bench's).
+    tracer::WorkerPool pool(tracer::thread_count(threads));
+    options.pool = &pool;
     tracer::Image image;
     tracer::RenderStats stats;
     tracer::render(*world, scene, options, image, stats);
