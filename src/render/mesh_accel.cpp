@@ -13,6 +13,7 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int th
     : mesh_(std::move(mesh)), accel_(accel) {
     const auto start = std::chrono::steady_clock::now();
     const size_t n = mesh_.vertices.size();
+    // Step 1: the accelerator over the triangles' bounds, and the leaf order.
     if (accel_ != Accelerator::None) {
         std::vector<Bounds> bounds(n);
         parallel_for(n, [&](size_t i) {
@@ -24,19 +25,22 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int th
         ids_.resize(n);
         for (size_t i = 0; i < n; ++i) ids_[i] = uint32_t(i);
     }
+    // Step 2: the triangles in that order, as a vertex and two edges.
     edges_.resize(n);
     parallel_for(n, [&](size_t i) {
         const auto& v = mesh_.vertices[ids_[i]];
         const Vec3& p0 = mesh_.positions[v[0]];
         edges_[i] = {p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0};
     }, threads);
-    // Step 3: the bounding sphere of may_hit: around the vertices' box, 10^-6 wider.
-    Bounds box;
-    for (const Vec3& p : mesh_.positions) box.extend(p);
-    if (n > 0 && std::isfinite(glm::length(box.upper - box.lower))) {
-        sphere_centre_ = box.centre();
-        const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
-        sphere_radius2_ = radius * radius * (1 + 1e-6);
+    // Step 3: may_hit's sphere, around the root box (which holds every triangle), 10^-6 wider.
+    if (!bvh_.nodes().empty()) {
+        const float(&box)[2][3] = bvh_.nodes()[0].box;
+        const Vec3 lower(box[0][0], box[0][1], box[0][2]), upper(box[1][0], box[1][1], box[1][2]);
+        const Real radius = glm::length(upper - lower) * Real(0.5);
+        if (std::isfinite(radius)) {
+            sphere_centre_ = (lower + upper) * Real(0.5);
+            sphere_radius2_ = radius * radius * (1 + 1e-6);
+        }
     }
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -47,7 +51,7 @@ bool MeshAccel::may_hit(const Ray& ray) const {
     const Vec3 to_centre = sphere_centre_ - ray.origin;
     const Real along = glm::dot(to_centre, ray.direction);
     const Real dd = glm::dot(ray.direction, ray.direction), cc = glm::dot(to_centre, to_centre);
-    return cc * dd - along * along <= (sphere_radius2_ + cc * 1e-12) * dd;
+    return !(cc * dd - along * along > (sphere_radius2_ + cc * 1e-12) * dd);  // NaN: may hit
 }
 
 bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const {
