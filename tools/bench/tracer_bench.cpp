@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "auto_crop.h"
 #include "frontend/load_scene.h"
 #include "render/camera.h"
 #include "render/image_output.h"
@@ -26,24 +27,6 @@ double median(std::vector<double> values) {
     std::sort(values.begin(), values.end());
     const size_t n = values.size();
     return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
-}
-
-// The meshes' projected bounding rectangle, padded by 4 pixels (as embree_bench --crop auto).
-tracer::PixelRect auto_crop(const tracer::SceneDescription& scene, const std::vector<tracer::TriangleMesh>& meshes) {
-    const tracer::PinholeCamera camera(scene.camera, scene.render.width, scene.render.height);
-    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const auto& mesh : meshes)
-        for (const tracer::Vec3& p : mesh.positions) {
-            tracer::Real x, y;
-            if (!camera.project(p, x, y)) continue;
-            x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
-        }
-    tracer::PixelRect crop;
-    crop.x0 = std::max(0, int(std::floor(x0)) - 4);
-    crop.y0 = std::max(0, int(std::floor(y0)) - 4);
-    crop.width = std::min(scene.render.width, int(std::ceil(x1)) + 4) - crop.x0;
-    crop.height = std::min(scene.render.height, int(std::ceil(y1)) + 4) - crop.y0;
-    return crop;
 }
 
 }  // namespace
@@ -81,7 +64,7 @@ int main(int argc, char** argv) {
     tracer::RenderOptions options;
     options.threads = threads;
     if (crop_text == "auto") {
-        options.crop = auto_crop(scene, *meshes);
+        options.crop = tracer::auto_crop(scene, *meshes);
     } else if (!crop_text.empty()) {
         std::istringstream in(crop_text);
         in >> options.crop.x0 >> options.crop.y0 >> options.crop.width >> options.crop.height;

@@ -1,0 +1,34 @@
+// The benchmarks' hit-dominated crop: the meshes' projected bounding rectangle, padded by 4
+// pixels (as embree_bench --crop auto).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "frontend/scene.h"
+#include "render/camera.h"
+#include "render/mesh_loader.h"
+#include "render/renderer.h"
+
+namespace tracer {
+
+// The pixels that show the meshes, plus 4 on every side, clipped to the image.
+inline PixelRect auto_crop(const SceneDescription& scene, const std::vector<TriangleMesh>& meshes) {
+    const PinholeCamera camera(scene.camera, scene.render.width, scene.render.height);
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const auto& mesh : meshes)
+        for (const Vec3& p : mesh.positions) {
+            Real x, y;
+            if (!camera.project(p, x, y)) continue;
+            x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+        }
+    PixelRect crop;
+    crop.x0 = std::max(0, int(std::floor(x0)) - 4);
+    crop.y0 = std::max(0, int(std::floor(y0)) - 4);
+    crop.width = std::min(scene.render.width, int(std::ceil(x1)) + 4) - crop.x0;
+    crop.height = std::min(scene.render.height, int(std::ceil(y1)) + 4) - crop.y0;
+    return crop;
+}
+
+}  // namespace tracer

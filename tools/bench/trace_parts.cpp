@@ -1,0 +1,129 @@
+// trace_parts: where a frame's time goes, part by part, on one thread: the rays of the
+// hit-dominated crop (or the full frame) are made once, then each query is timed on its own
+// (fastest of 15 passes): the box test's set-up (TraversalRay), the nearest-hit query of the
+// mesh and of the whole world, the shadow rays' any-hit query, trace() and render().
+// Used to compare two builds of the renderer run by run (tools/bench/compare_builds.py).
+//
+//   build/release/trace_parts [scene] [--full] [--repeat K]
+//
+// --repeat K traces every primary ray K times in a row: the branch predictor then learns each
+// ray's path, so the time saved is roughly what mispredicted branches cost.
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <glm/geometric.hpp>
+
+#include "auto_crop.h"
+#include "frontend/load_scene.h"
+#include "render/camera.h"
+#include "render/mesh_loader.h"
+#include "render/renderer.h"
+#include "render/whitted.h"
+#include "render/world.h"
+
+namespace {
+
+using namespace tracer;
+
+// The fastest of 15 runs of f, in milliseconds.
+template <typename F>
+double fastest_ms(F f) {
+    double best = 1e300;
+    for (int run = 0; run < 15; ++run) {
+        const auto start = std::chrono::steady_clock::now();
+        f();
+        best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    return best;
+}
+
+volatile double sink;  // keeps the timed loops' results alive
+
+void report(const char* part, double ms, size_t rays) {
+    std::cout << part << ' ' << ms << " ms (" << ms * 1e6 / double(rays) << " ns per ray, " << rays << " rays)\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string scene_path = "scenes/bunny.scn";
+    bool full = false;
+    int repeat = 1;
+    CLI::App app{"trace_parts: one thread's time per query, crop or full frame"};
+    app.add_option("scene", scene_path, "The scene (default scenes/bunny.scn)");
+    app.add_flag("--full", full, "The whole frame instead of the meshes' crop");
+    app.add_option("--repeat", repeat, "Trace each primary ray this many times in a row")->check(CLI::Range(1, 64));
+    CLI11_PARSE(app, argc, argv);
+
+    // Step 1: the scene, its world on one thread, and the rays.
+    LoadResult loaded = load_scene(scene_path);
+    std::optional<std::vector<TriangleMesh>> meshes;
+    if (loaded.scene) meshes = load_meshes(*loaded.scene, loaded.diagnostics);
+    loaded.diagnostics.print(std::cerr);
+    if (!loaded.scene || !meshes || meshes->empty()) return 1;
+    const SceneDescription& scene = *loaded.scene;
+    const PixelRect crop = full ? PixelRect{0, 0, scene.render.width, scene.render.height} : auto_crop(scene, *meshes);
+    const World world(scene, *meshes, 1);
+    const MeshAccel& mesh = world.meshes()[0];
+    const PinholeCamera camera(scene.camera, scene.render.width, scene.render.height);
+    std::vector<Ray> primary;
+    for (int y = crop.y0; y < crop.y0 + crop.height; ++y)
+        for (int x = crop.x0; x < crop.x0 + crop.width; ++x)
+            for (int k = 0; k < repeat; ++k) primary.push_back(camera.ray_through(x + 0.5, y + 0.5));
+    std::vector<std::pair<Ray, Interval>> shadow;  // from every hit to every light
+    TraversalCounts counts;
+    for (const Ray& ray : primary) {
+        const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts);
+        if (!hit) continue;
+        for (const Light& light : world.lights()) {
+            const Vec3 to_light = Vec3(light.position) - hit->point;
+            const Real distance = glm::length(to_light);
+            shadow.push_back({{hit->point, to_light / distance}, {kSelfHitEpsilon, distance}});
+        }
+    }
+
+    // Step 2: each part on its own.
+    report("TraversalRay   ", fastest_ms([&] {
+        float sum = 0;
+        for (const Ray& ray : primary) sum += TraversalRay(ray, {kSelfHitEpsilon, kInfinity}).inv_dir[1];
+        sink = sum;
+    }), primary.size());
+    report("mesh.intersect ", fastest_ms([&] {
+        double sum = 0;
+        for (const Ray& ray : primary) {
+            Interval range{kSelfHitEpsilon, kInfinity};
+            MeshHit hit;
+            if (mesh.intersect(ray, range, hit, counts)) sum += range.max;
+        }
+        sink = sum;
+    }), primary.size());
+    if (repeat > 1) return 0;
+    report("world.intersect", fastest_ms([&] {
+        double sum = 0;
+        for (const Ray& ray : primary)
+            if (const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts)) sum += hit->t;
+        sink = sum;
+    }), primary.size());
+    report("mesh.occluded  ", fastest_ms([&] {
+        int blocked = 0;
+        for (const auto& [ray, range] : shadow) blocked += mesh.occluded(ray, range, counts);
+        sink = blocked;
+    }), shadow.size());
+    report("trace          ", fastest_ms([&] {
+        RayCounts ray_counts;
+        double sum = 0;
+        for (const Ray& ray : primary) sum += trace(world, scene.render, ray, ray_counts).b;
+        sink = sum;
+    }), primary.size());
+    Image image;
+    RenderStats stats;
+    RenderOptions options;
+    options.threads = 1;
+    options.crop = crop;
+    report("render         ", fastest_ms([&] { render(world, scene, options, image, stats); }), primary.size());
+    return 0;
+}
