@@ -154,7 +154,7 @@ public:
 
     // Builds the subtree over `range` into `nodes`; returns its root's index there.
     uint32_t build(const Range& range, int depth);
-    std::vector<BvhNode> nodes;
+    NodeArray nodes;
 
     // Splits `range` into two (false: make a leaf).
     bool split(const Range& range, int depth, Range& left, Range& right);
@@ -165,7 +165,7 @@ private:
     static constexpr uint32_t kParallelFrom = 50000;
     static constexpr int kParallelDepth = 2;
 
-    void append(const std::vector<BvhNode>& subtree);
+    void append(const NodeArray& subtree);
     void split_at(const Range& range, uint32_t middle, Range& left, Range& right);
     bool split_median(const Range& range, int axis, Range& left, Range& right);
     bool split_sah(const Range& range, Range& left, Range& right);
@@ -208,7 +208,7 @@ uint32_t BvhBuilder::build(const Range& range, int depth) {
 }
 
 // Appends a subtree built on its own, moving its node indices to where it now starts.
-void BvhBuilder::append(const std::vector<BvhNode>& subtree) {
+void BvhBuilder::append(const NodeArray& subtree) {
     const uint32_t offset = uint32_t(nodes.size());
     for (BvhNode node : subtree) {
         if (node.count == 0) node.index += offset;  // inner nodes point at node indices
@@ -324,7 +324,7 @@ bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
 // The depth-first tree in Sah's layout: the root at 0, an unused node at 1, then the
 // children of every inner node side by side at an even index (so in one cache line), pairs
 // in depth-first order.
-static NodeArray pair_siblings(const std::vector<BvhNode>& depth_first) {
+static NodeArray pair_siblings(const NodeArray& depth_first) {
     NodeArray paired(2);
     paired.reserve(depth_first.size() + 1);
     paired[0] = depth_first[0];
@@ -348,11 +348,11 @@ static NodeArray pair_siblings(const std::vector<BvhNode>& depth_first) {
     return paired;
 }
 
-Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size, int threads) {
+Bvh::Bvh(const LargeArray<Bounds>& primitives, Accelerator method, int leaf_size, int threads) {
     const uint32_t n = uint32_t(primitives.size());
     order_.resize(n);
     if (n == 0) return;
-    std::vector<PrimRef> refs(n);
+    LargeArray<PrimRef> refs(n);
     parallel_for(n, [&](size_t i) {
         for (int axis = 0; axis < 3; ++axis) {
             refs[i].lower[axis] = round_down(primitives[i].lower[axis]);
@@ -370,7 +370,7 @@ Bvh::Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_siz
     if (paired_)
         nodes_ = pair_siblings(builder.nodes);
     else
-        nodes_.assign(builder.nodes.begin(), builder.nodes.end());
+        nodes_ = std::move(builder.nodes);
     parallel_for(n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
 }
 

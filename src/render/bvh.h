@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <new>
 #include <utility>
 #include <limits>
 #include <vector>
@@ -20,6 +19,7 @@
 #include <glm/common.hpp>
 
 #include "frontend/scene.h"
+#include "render/large_array.h"
 #include "render/types.h"
 
 namespace tracer {
@@ -46,19 +46,7 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32, "BVH nodes are 32 bytes");
 
-// Allocates on 64-byte boundaries, so that an even node index starts a cache line.
-template <typename T>
-struct CacheLineAllocator {
-    using value_type = T;
-    static constexpr std::align_val_t kAlignment{64};
-    CacheLineAllocator() = default;
-    template <typename U>
-    CacheLineAllocator(const CacheLineAllocator<U>&) {}
-    T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
-    void deallocate(T* p, size_t) { ::operator delete(p, kAlignment); }
-    bool operator==(const CacheLineAllocator&) const { return true; }
-};
-using NodeArray = std::vector<BvhNode, CacheLineAllocator<BvhNode>>;
+using NodeArray = LargeArray<BvhNode>;  // 64-byte aligned: an even node index starts a cache line
 
 // A ray prepared for float box tests. The origin is rounded to float and moved |origin| 2^-21
 // (at least 4 ulps) away from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013) and the
@@ -129,7 +117,7 @@ public:
     // than this; Sah never makes larger leaves (and makes smaller ones where the SAH says so).
     // Large inputs are built on `threads` threads (0: one per core), the subtrees near the
     // root in parallel.
-    Bvh(const std::vector<Bounds>& primitives, Accelerator method, int leaf_size, int threads = 0);
+    Bvh(const LargeArray<Bounds>& primitives, Accelerator method, int leaf_size, int threads = 0);
 
     const NodeArray& nodes() const { return nodes_; }
     // The children of inner node `parent`, left then right, in either layout (Sah's: at index

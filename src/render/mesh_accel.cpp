@@ -15,7 +15,7 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int th
     const size_t n = mesh_.vertices.size();
     // Step 1: the accelerator over the triangles' bounds, and the leaf order.
     if (accel_ != Accelerator::None) {
-        std::vector<Bounds> bounds(n);
+        LargeArray<Bounds> bounds(n);
         parallel_for(n, [&](size_t i) {
             for (uint32_t v : mesh_.vertices[i]) bounds[i].extend(mesh_.positions[v]);
         }, threads);

@@ -46,7 +46,7 @@ private:
     TriangleMesh mesh_;
     Accelerator accel_;
     Bvh bvh_;
-    std::vector<TriangleEdges> edges_;  // entry i is triangle ids_[i]
+    LargeArray<TriangleEdges> edges_;  // entry i is triangle ids_[i]
     std::vector<uint32_t> ids_;
     double build_seconds_ = 0;
     Vec3 sphere_centre_{0};
