@@ -22,6 +22,12 @@ TriangleMesh bunny() {
     return mesh ? *mesh : TriangleMesh{};
 }
 
+// Gives a mesh built in code the normals load_mesh gives an OBJ file without normals.
+void add_area_weighted_normals(TriangleMesh& mesh) {
+    mesh.normals = area_weighted_normals(mesh.positions, mesh.vertices);
+    mesh.normal_ids = mesh.vertices;
+}
+
 // Random triangles of very different sizes, overlapping and intersecting each other.
 TriangleMesh triangle_soup(int count, uint32_t seed) {
     std::mt19937 random(seed);
@@ -35,8 +41,7 @@ TriangleMesh triangle_soup(int count, uint32_t seed) {
             soup.positions.push_back(centre + size * Vec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
         soup.vertices.push_back({first, first + 1, first + 2});
     }
-    soup.normals = area_weighted_normals(soup.positions, soup.vertices);
-    soup.normal_ids = soup.vertices;
+    add_area_weighted_normals(soup);
     return soup;
 }
 
@@ -113,8 +118,7 @@ TEST(Bvh, FlatGridTraversalLosesNoHitOfTheTriangleTest) {
             grid.vertices.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
             grid.vertices.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
         }
-    grid.normals = area_weighted_normals(grid.positions, grid.vertices);
-    grid.normal_ids = grid.vertices;
+    add_area_weighted_normals(grid);
     const MeshAccel brute(grid, Accelerator::None, 1);
     for (Accelerator accel : {Accelerator::Median, Accelerator::Sah}) {
         const MeshAccel tree(grid, accel, 3);
@@ -168,8 +172,7 @@ TEST(Bvh, SpherePreTestKeepsRaysThatGrazeTheMeshCorners) {
             for (Vec3 corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)})
                 square.positions.push_back(offset + scale * corner);
             square.vertices = {{0, 1, 2}, {0, 2, 3}};
-            square.normals = area_weighted_normals(square.positions, square.vertices);
-            square.normal_ids = square.vertices;
+            add_area_weighted_normals(square);
             const MeshAccel brute(square, Accelerator::None, 1), sah(square, Accelerator::Sah, 3);
             for (int corner = 0; corner < 4; ++corner) {
                 const Vec3 inward = glm::normalize(Vec3(0.5, 0.5, 0) * scale + offset - square.positions[corner]);
