@@ -4,7 +4,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <thread>
-#include <vector>
+
+#include "render/worker_pool.h"
 
 namespace tracer {
 
@@ -24,13 +25,10 @@ void parallel_for(size_t n, Body body, int threads_wanted = 0) {
         return;
     }
     const size_t chunk = (n + threads - 1) / threads;
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads; ++t)
-        pool.emplace_back([&, t] {
-            for (size_t i = t * chunk; i < std::min(n, (t + 1) * chunk); ++i) body(i);
-        });
-    for (size_t i = 0; i < std::min(n, chunk); ++i) body(i);
-    for (std::thread& thread : pool) thread.join();
+    WorkerPool pool{int(threads)};
+    pool.run([&](int t) {
+        for (size_t i = size_t(t) * chunk; i < std::min(n, size_t(t + 1) * chunk); ++i) body(i);
+    });
 }
 
 }  // namespace tracer
