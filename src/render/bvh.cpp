@@ -146,18 +146,17 @@ Range measure(const PrimRef* refs, uint32_t begin, uint32_t end) {
 
 }  // namespace
 
-// Builds one subtree into its own node array; two builders can run on disjoint ranges.
+// Builds the tree into slots of one node array. A subtree over n references gets 2n - 1 slots
+// (the most its nodes can need), its root first, then the left child's slots, then the right
+// child's: subtrees never share a slot, so the large ones near the root are built in parallel
+// with no copying, and the used slots in increasing order are the tree depth first.
 class BvhBuilder {
 public:
-    BvhBuilder(PrimRef* refs, Accelerator method, int leaf_size, bool parallel)
-        : refs_(refs), method_(method), leaf_size_(leaf_size), parallel_(parallel) {}
+    BvhBuilder(PrimRef* refs, BvhNode* slots, Accelerator method, int leaf_size, bool parallel)
+        : refs_(refs), slots_(slots), method_(method), leaf_size_(leaf_size), parallel_(parallel) {}
 
-    // Builds the subtree over `range` into `nodes`; returns its root's index there.
-    uint32_t build(const Range& range, int depth);
-    NodeArray nodes;
-
-    // Splits `range` into two (false: make a leaf).
-    bool split(const Range& range, int depth, Range& left, Range& right);
+    // Builds the subtree over `range` with its root in slot `first`.
+    void build(const Range& range, int depth, uint32_t first);
 
 private:
     // Subtrees of at least kParallelFrom primitives, down to depth kParallelDepth, are built in
@@ -165,55 +164,42 @@ private:
     static constexpr uint32_t kParallelFrom = 50000;
     static constexpr int kParallelDepth = 2;
 
-    void append(const NodeArray& subtree);
+    // Splits `range` into two (false: make a leaf).
+    bool split(const Range& range, int depth, Range& left, Range& right);
     void split_at(const Range& range, uint32_t middle, Range& left, Range& right);
     bool split_median(const Range& range, int axis, Range& left, Range& right);
     bool split_sah(const Range& range, Range& left, Range& right);
 
     PrimRef* refs_;
+    BvhNode* slots_;
     Accelerator method_;
     int leaf_size_;
     bool parallel_;
 };
 
-uint32_t BvhBuilder::build(const Range& range, int depth) {
-    const uint32_t index = uint32_t(nodes.size());
-    nodes.emplace_back();
+void BvhBuilder::build(const Range& range, int depth, uint32_t first) {
+    BvhNode& node = slots_[first];
     for (int axis = 0; axis < 3; ++axis) {
-        nodes[index].box[0][axis] = range.bounds.lower[axis];
-        nodes[index].box[1][axis] = range.bounds.upper[axis];
+        node.box[0][axis] = range.bounds.lower[axis];
+        node.box[1][axis] = range.bounds.upper[axis];
     }
     Range left, right;
     if (!split(range, depth, left, right)) {
-        nodes[index].index = range.begin;
-        nodes[index].count = range.count();
-        return index;
+        node.index = range.begin;
+        node.count = range.count();
+        return;
     }
-    nodes[index].count = 0;
+    // The left child follows its parent; the right child's slots follow the left child's.
+    node.count = 0;
+    node.index = first + 2 * left.count();
     if (parallel_ && depth < kParallelDepth && range.count() >= kParallelFrom) {
-        // Large subtrees: both children at once (each into its own array, on disjoint ranges
-        // of the references), then appended in depth-first order.
-        BvhBuilder left_builder(refs_, method_, leaf_size_, true), right_builder(refs_, method_, leaf_size_, true);
-        auto left_done = std::async(std::launch::async, [&] { left_builder.build(left, depth + 1); });
-        right_builder.build(right, depth + 1);
+        auto left_done = std::async(std::launch::async, [&] { build(left, depth + 1, first + 1); });
+        build(right, depth + 1, node.index);
         left_done.get();
-        append(left_builder.nodes);
-        nodes[index].index = uint32_t(nodes.size());
-        append(right_builder.nodes);
-        return index;
+        return;
     }
-    build(left, depth + 1);  // the left child follows its parent
-    nodes[index].index = build(right, depth + 1);
-    return index;
-}
-
-// Appends a subtree built on its own, moving its node indices to where it now starts.
-void BvhBuilder::append(const NodeArray& subtree) {
-    const uint32_t offset = uint32_t(nodes.size());
-    for (BvhNode node : subtree) {
-        if (node.count == 0) node.index += offset;  // inner nodes point at node indices
-        nodes.push_back(node);
-    }
+    build(left, depth + 1, first + 1);
+    build(right, depth + 1, node.index);
 }
 
 bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right) {
@@ -321,13 +307,36 @@ bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
     return true;
 }
 
-// The depth-first tree in Sah's layout: the root at 0, an unused node at 1, then the
-// children of every inner node side by side at an even index (so in one cache line), pairs
-// in depth-first order.
-static NodeArray pair_siblings(const NodeArray& depth_first) {
+// The builder's tree without its unused slots, depth first: an inner node's left child
+// follows it, its right child is at `index` (Box and Median).
+static NodeArray compact_depth_first(const NodeArray& slots) {
+    NodeArray compact;
+    compact.reserve(slots.size());
+    constexpr uint32_t kNoParent = ~uint32_t(0);
+    struct Move {
+        uint32_t from, parent;  // parent: the node whose `index` is to point here (right children)
+    };
+    std::vector<Move> pending{{0, kNoParent}};
+    while (!pending.empty()) {
+        const Move move = pending.back();
+        pending.pop_back();
+        const uint32_t to = uint32_t(compact.size());
+        compact.push_back(slots[move.from]);
+        if (move.parent != kNoParent) compact[move.parent].index = to;
+        if (slots[move.from].count > 0) continue;
+        pending.push_back({slots[move.from].index, to});
+        pending.push_back({move.from + 1, kNoParent});
+    }
+    return compact;
+}
+
+// The builder's tree in Sah's layout: the root at 0, an unused node at 1, then the children
+// of every inner node side by side at an even index (so in one cache line), pairs in
+// depth-first order.
+static NodeArray pair_siblings(const NodeArray& slots) {
     NodeArray paired(2);
-    paired.reserve(depth_first.size() + 1);
-    paired[0] = depth_first[0];
+    paired.reserve(slots.size() + 1);
+    paired[0] = slots[0];
     paired[1] = BvhNode{};
     struct Move {
         uint32_t from, to;
@@ -336,11 +345,11 @@ static NodeArray pair_siblings(const NodeArray& depth_first) {
     while (!pending.empty()) {
         const Move move = pending.back();
         pending.pop_back();
-        if (depth_first[move.from].count > 0) continue;
+        if (slots[move.from].count > 0) continue;
         const uint32_t pair = uint32_t(paired.size());
-        const uint32_t left = move.from + 1, right = depth_first[move.from].index;
-        paired.push_back(depth_first[left]);
-        paired.push_back(depth_first[right]);
+        const uint32_t left = move.from + 1, right = slots[move.from].index;
+        paired.push_back(slots[left]);
+        paired.push_back(slots[right]);
         paired[move.to].index = pair;
         pending.push_back({right, pair + 1});
         pending.push_back({left, pair});
@@ -363,14 +372,11 @@ Bvh::Bvh(const LargeArray<Bounds>& primitives, Accelerator method, int leaf_size
     leaf_size = std::max(leaf_size, 1);
     const Range root = measure(refs.data(), 0, n);
 
-    BvhBuilder builder(refs.data(), method, leaf_size, thread_count(threads) > 1);
-    builder.nodes.reserve(2 * size_t(n));
-    builder.build(root, 0);
+    NodeArray slots(2 * size_t(n) - 1);  // uninitialised; only the tree's nodes are written
+    BvhBuilder builder(refs.data(), slots.data(), method, leaf_size, thread_count(threads) > 1);
+    builder.build(root, 0, 0);
     paired_ = method == Accelerator::Sah;
-    if (paired_)
-        nodes_ = pair_siblings(builder.nodes);
-    else
-        nodes_ = std::move(builder.nodes);
+    nodes_ = paired_ ? pair_siblings(slots) : compact_depth_first(slots);
     parallel_for(n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
 }
 

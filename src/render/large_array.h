@@ -1,11 +1,13 @@
 // Arrays for the big per-primitive data of a build (hundreds of MB for a million triangles):
 // 64-byte aligned, and from 4 MiB on placed on 2 MiB boundaries with Linux asked for
 // transparent huge pages, so first touching them faults once per 2 MiB instead of per 4 KiB.
+// Resizing leaves new elements of trivial types uninitialised, as `new T[n]` would.
 #pragma once
 
 #include <cstddef>
 #include <cstdlib>
 #include <new>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -42,6 +44,12 @@ struct LargeArrayAllocator {
         else
             std::free(p);
     }
+    // Elements made without arguments are default-initialised, not zeroed: a large array is
+    // filled by its user, often in parallel, and zeroing it first would touch it all twice.
+    template <typename U>
+    void construct(U* p) { ::new (static_cast<void*>(p)) U; }
+    template <typename U, typename... Args>
+    void construct(U* p, Args&&... args) { ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...); }
     bool operator==(const LargeArrayAllocator&) const { return true; }
 };
 

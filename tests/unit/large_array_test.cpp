@@ -1,5 +1,6 @@
 // The build's big arrays: cache-line aligned when small, on 2 MiB boundaries (huge pages)
-// from 4 MiB on, and ordinary vectors either way.
+// from 4 MiB on, and ordinary vectors either way (but elements made without arguments are
+// left uninitialised).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -31,6 +32,21 @@ TEST(LargeArray, BigArraysStartOnAHugePageAndHoldTheirValues) {
     big.shrink_to_fit();  // back to the small kind of allocation
     EXPECT_TRUE(aligned(big.data(), 64));
     EXPECT_EQ(big[9], 9u);
+}
+
+TEST(LargeArray, ElementsMadeFromValuesHoldThem) {
+    // Only elements made without arguments are left uninitialised; these are all given values.
+    struct Pair {
+        uint32_t a, b;
+    };
+    LargeArray<Pair> pairs(1000, Pair{1, 2});
+    pairs.emplace_back(Pair{3, 4});
+    pairs.push_back({5, 6});
+    pairs.resize(2000, Pair{7, 8});
+    EXPECT_EQ(pairs[999].b, 2u);
+    EXPECT_EQ(pairs[1000].a, 3u);
+    EXPECT_EQ(pairs[1001].b, 6u);
+    EXPECT_EQ(pairs.back().a, 7u);
 }
 
 }  // namespace

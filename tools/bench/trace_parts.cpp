@@ -4,7 +4,7 @@
 // mesh and of the whole world, the shadow rays' any-hit query, trace() and render().
 // Used to compare two builds of the renderer run by run (tools/bench/compare_builds.py).
 //
-//   build/release/trace_parts [scene] [--full] [--repeat K]
+//   build/release/trace_parts [scene] [--full] [--repeat K] [--leaf-size N]
 //
 // --repeat K traces every primary ray K times in a row: the branch predictor then learns each
 // ray's path, so the time saved is roughly what mispredicted branches cost.
@@ -57,6 +57,8 @@ int main(int argc, char** argv) {
     app.add_option("scene", scene_path, "The scene (default scenes/bunny.scn)");
     app.add_flag("--full", full, "The whole frame instead of the meshes' crop");
     app.add_option("--repeat", repeat, "Trace each primary ray this many times in a row")->check(CLI::Range(1, 64));
+    int leaf_size = 0;
+    app.add_option("--leaf-size", leaf_size, "Override the scene's BVH leaf size")->check(CLI::Range(1, 255));
     CLI11_PARSE(app, argc, argv);
 
     // Step 1: the scene, its world on one thread, and the rays.
@@ -65,6 +67,7 @@ int main(int argc, char** argv) {
     if (loaded.scene) meshes = load_meshes(*loaded.scene, loaded.diagnostics);
     loaded.diagnostics.print(std::cerr);
     if (!loaded.scene || !meshes || meshes->empty()) return 1;
+    if (leaf_size > 0) loaded.scene->render.leaf_size = leaf_size;
     const SceneDescription& scene = *loaded.scene;
     const PixelRect crop = full ? PixelRect{0, 0, scene.render.width, scene.render.height} : auto_crop(scene, *meshes);
     const World world(scene, *meshes, 1);
@@ -92,15 +95,19 @@ int main(int argc, char** argv) {
         for (const Ray& ray : primary) sum += TraversalRay(ray, {kSelfHitEpsilon, kInfinity}).inv_dir[1];
         sink = sum;
     }), primary.size());
+    TraversalCounts mesh_counts;
     report("mesh.intersect ", fastest_ms([&] {
         double sum = 0;
+        mesh_counts = {};
         for (const Ray& ray : primary) {
             Interval range{kSelfHitEpsilon, kInfinity};
             MeshHit hit;
-            if (mesh.intersect(ray, range, hit, counts)) sum += range.max;
+            if (mesh.intersect(ray, range, hit, mesh_counts)) sum += range.max;
         }
         sink = sum;
     }), primary.size());
+    std::cout << "  per ray: " << double(mesh_counts.box_tests) / double(primary.size()) << " box tests, "
+              << double(mesh_counts.primitive_tests) / double(primary.size()) << " triangle tests\n";
     if (repeat > 1) return 0;
     report("world.intersect", fastest_ms([&] {
         double sum = 0;
@@ -108,11 +115,17 @@ int main(int argc, char** argv) {
             if (const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts)) sum += hit->t;
         sink = sum;
     }), primary.size());
+    TraversalCounts shadow_counts;
+    int blocked = 0;
     report("mesh.occluded  ", fastest_ms([&] {
-        int blocked = 0;
-        for (const auto& [ray, range] : shadow) blocked += mesh.occluded(ray, range, counts);
+        blocked = 0;
+        shadow_counts = {};
+        for (const auto& [ray, range] : shadow) blocked += mesh.occluded(ray, range, shadow_counts);
         sink = blocked;
     }), shadow.size());
+    std::cout << "  per ray: " << double(shadow_counts.box_tests) / double(shadow.size()) << " box tests, "
+              << double(shadow_counts.primitive_tests) / double(shadow.size()) << " triangle tests; "
+              << blocked << " blocked\n";
     report("trace          ", fastest_ms([&] {
         RayCounts ray_counts;
         double sum = 0;
