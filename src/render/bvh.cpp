@@ -168,7 +168,7 @@ private:
     bool split(const Range& range, int depth, Range& left, Range& right);
     void split_at(const Range& range, uint32_t middle, Range& left, Range& right);
     bool split_median(const Range& range, int axis, Range& left, Range& right);
-    bool split_sah(const Range& range, Range& left, Range& right);
+    bool split_sah(const Range& range, int depth, Range& left, Range& right);
 
     PrimRef* refs_;
     BvhNode* slots_;
@@ -214,7 +214,7 @@ bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right)
         }
         return split_median(range, depth % 3, left, right);
     }
-    return split_sah(range, left, right);
+    return split_sah(range, depth, left, right);
 }
 
 // The assignment's split: sort by centroid along the axis, first half left.
@@ -233,35 +233,48 @@ void BvhBuilder::split_at(const Range& range, uint32_t middle, Range& left, Rang
 
 // Binned SAH: up to kSahBins bins of centroids per axis (no more bins than primitives, so small
 // nodes stay cheap), all three axes binned in one pass; the cheapest boundary between bins wins.
-bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
+bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& right) {
     const uint32_t count = range.count();
     const int bin_count = int(std::min<uint32_t>(count, kSahBins));
     const glm::vec3 extent = range.centres.upper - range.centres.lower;
     v4f factor = {0, 0, 0, 0};
     for (int axis = 0; axis < 3; ++axis) factor[axis] = extent[axis] > 0 ? float(bin_count) / extent[axis] : 0.0f;
     const v4f origin = {range.centres.lower.x, range.centres.lower.y, range.centres.lower.z, 0};
-    auto position = [&](const PrimRef& ref, v4f& lower, v4f& upper, v4f& centre) {
-        std::memcpy(&lower, &ref.lower, sizeof lower);  // lane 3: the id or the bins, never read back
-        std::memcpy(&upper, &ref.upper, sizeof upper);
-        centre = (lower + upper) * 0.5f;
-        return (centre - origin) * factor;
-    };
 
     // Step 1: bins (boxes, centres and counts) for every axis, four lanes at a time. Only the
-    // bins in use are cleared: small nodes are most of the nodes.
-    VectorBin bins[3][kSahBins];
-    for (auto& axis_bins : bins)
-        for (int b = 0; b < bin_count; ++b) axis_bins[b].clear();
-    for (uint32_t i = range.begin; i < range.end; ++i) {
-        v4f lower, upper, centre;
-        const v4f at = position(refs_[i], lower, upper, centre);
-        uint32_t saved = 0;
-        for (int axis = 0; axis < 3; ++axis) {
-            const int bin = std::min(bin_count - 1, int(at[axis]));
-            bins[axis][bin].add(lower, upper, centre);
-            saved |= uint32_t(bin) << (8 * axis);
+    // bins in use are cleared: small nodes are most of the nodes. The large ranges near the
+    // root (where build() runs subtrees in parallel) are binned in two halves at once.
+    using AxisBins = VectorBin[3][kSahBins];
+    auto bin_refs = [&](uint32_t begin, uint32_t end, AxisBins& bins) {
+        for (auto& axis_bins : bins)
+            for (int b = 0; b < bin_count; ++b) axis_bins[b].clear();
+        for (uint32_t i = begin; i < end; ++i) {
+            v4f lower, upper;
+            std::memcpy(&lower, &refs_[i].lower, sizeof lower);  // lane 3: the id or the bins, never read back
+            std::memcpy(&upper, &refs_[i].upper, sizeof upper);
+            const v4f centre = (lower + upper) * 0.5f;
+            const v4f at = (centre - origin) * factor;
+            uint32_t saved = 0;
+            for (int axis = 0; axis < 3; ++axis) {
+                const int bin = std::min(bin_count - 1, int(at[axis]));
+                bins[axis][bin].add(lower, upper, centre);
+                saved |= uint32_t(bin) << (8 * axis);
+            }
+            refs_[i].bins = saved;
         }
-        refs_[i].bins = saved;
+    };
+    const bool in_parallel = parallel_ && depth < kParallelDepth && count >= kParallelFrom;
+    const uint32_t half = range.begin + count / 2;
+    AxisBins bins;
+    if (in_parallel) {
+        AxisBins first_half;
+        auto first_done = std::async(std::launch::async, [&] { bin_refs(range.begin, half, first_half); });
+        bin_refs(half, range.end, bins);
+        first_done.get();
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < bin_count; ++b) bins[axis][b].add(first_half[axis][b]);
+    } else {
+        bin_refs(range.begin, range.end, bins);
     }
 
     // Step 2: the cheapest boundary, sweeping right-hand sides from the end.
@@ -297,9 +310,21 @@ bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
 
     // Step 3: partition, and the children's bounds from the bins.
     const uint32_t shift = 8 * uint32_t(best_axis);
-    const PrimRef* middle = std::partition(refs_ + range.begin, refs_ + range.end, [&](const PrimRef& ref) {
-        return int((ref.bins >> shift) & 0xFF) <= best_bin;
-    });
+    auto goes_left = [&](const PrimRef& ref) { return int((ref.bins >> shift) & 0xFF) <= best_bin; };
+    PrimRef* middle;
+    if (in_parallel) {
+        // Both halves at once, then the first half's right part and the second half's left
+        // part trade places (as many references as the smaller of the two holds).
+        auto first_done = std::async(std::launch::async,
+                                     [&] { return std::partition(refs_ + range.begin, refs_ + half, goes_left); });
+        PrimRef* second_middle = std::partition(refs_ + half, refs_ + range.end, goes_left);
+        PrimRef* first_middle = first_done.get();
+        const size_t trade = std::min(refs_ + half - first_middle, second_middle - (refs_ + half));
+        std::swap_ranges(first_middle, first_middle + trade, second_middle - trade);
+        middle = first_middle + (second_middle - (refs_ + half));
+    } else {
+        middle = std::partition(refs_ + range.begin, refs_ + range.end, goes_left);
+    }
     VectorBin left_bins = VectorBin::empty(), right_bins = VectorBin::empty();
     for (int b = 0; b < bin_count; ++b) (b <= best_bin ? left_bins : right_bins).add(bins[best_axis][b]);
     left = {range.begin, uint32_t(middle - refs_), left_bins.bounds(), left_bins.centres()};

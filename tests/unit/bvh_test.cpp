@@ -2,6 +2,8 @@
 // triangle at the same t, and the same answer to "is anything in the way".
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <random>
 
@@ -223,6 +225,48 @@ TEST(Bvh, NodesContainTheirTriangles) {
                     EXPECT_LE(double(node.box[0][axis]), sah.mesh().positions[v][axis]);
                     EXPECT_GE(double(node.box[1][axis]), sah.mesh().positions[v][axis]);
                 }
+    }
+}
+
+// Large inputs are built on several threads (subtrees, and the root's binning and
+// partitioning, in parallel): the tree must be the one a single thread builds, holding every
+// primitive once, each inside its leaf's box.
+TEST(Bvh, ParallelBuildsMakeTheSingleThreadedTree) {
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(0, 1);
+    LargeArray<Bounds> boxes(150000);  // three times the size from which builds go parallel
+    for (Bounds& box : boxes) {
+        const Vec3 corner(unit(random), unit(random), unit(random));
+        box.extend(corner);
+        box.extend(corner + 0.01 * Vec3(unit(random), unit(random), unit(random)));
+    }
+    for (Accelerator method : {Accelerator::Median, Accelerator::Sah}) {
+        const char* name = accelerator_name(method);
+        const Bvh serial(boxes, method, 3, 1), parallel(boxes, method, 3, 2);
+        ASSERT_EQ(serial.nodes().size(), parallel.nodes().size()) << name;
+        std::vector<int> seen(boxes.size(), 0);
+        for (size_t k = 0; k < serial.nodes().size(); ++k) {
+            const BvhNode &a = serial.nodes()[k], &b = parallel.nodes()[k];
+            ASSERT_EQ(std::memcmp(a.box, b.box, sizeof a.box), 0) << name << ", node " << k;
+            ASSERT_EQ(a.count, b.count) << name << ", node " << k;
+            ASSERT_EQ(a.index, b.index) << name << ", node " << k;
+            if (b.count == 0) continue;
+            // The same primitives in the leaf (partitioning in halves may order them otherwise).
+            auto leaf = [&](const Bvh& bvh) {
+                std::vector<uint32_t> ids(bvh.order().begin() + b.index, bvh.order().begin() + b.index + b.count);
+                std::sort(ids.begin(), ids.end());
+                return ids;
+            };
+            ASSERT_EQ(leaf(serial), leaf(parallel)) << name << ", node " << k;
+            for (uint32_t id : leaf(parallel)) {
+                ++seen[id];
+                for (int axis = 0; axis < 3; ++axis) {
+                    ASSERT_LE(double(b.box[0][axis]), boxes[id].lower[axis]);
+                    ASSERT_GE(double(b.box[1][axis]), boxes[id].upper[axis]);
+                }
+            }
+        }
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(boxes.size())) << name;
     }
 }
 
