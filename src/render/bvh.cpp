@@ -47,16 +47,23 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
         origin_near[axis] = negative ? origin - pad : origin + pad;
         origin_far[axis] = negative ? origin + pad : origin - pad;
         inv_dir[axis] = float(Real(1) / ray.direction[axis]);
+        // Scaling 1 / d rather than each leaving distance: one rounding more before the scale,
+        // one less after it; 2 gamma_3 still covers the four (Ize 2013's argument).
+        inv_dir_far[axis] = inv_dir[axis] * kFarGrow;
     }
     t_min = round_down(range.min);
     t_max = round_up(range.max);
-    // Two boxes' lanes: x, y, z, x, then the same again.
-    auto lanes = [](const auto& v) { return decltype(origin_near8){v[0], v[1], v[2], v[0], v[0], v[1], v[2], v[0]}; };
-    origin_near8 = lanes(origin_near);
-    origin_far8 = lanes(origin_far);
-    inv_dir8 = lanes(inv_dir);
+    // enter_pair's lanes: x, y, z, two lanes that never decide (a NaN 1 / d), x, y, z.
+    auto lanes = [](const float (&v)[3], float filler) {
+        return FloatLanes8{v[0], v[1], v[2], filler, filler, v[0], v[1], v[2]};
+    };
+    constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+    origin_near8 = lanes(origin_near, 0);
+    origin_far8 = lanes(origin_far, 0);
+    inv_dir8 = lanes(inv_dir, kNaN);
+    inv_dir_far8 = lanes(inv_dir_far, kNaN);
     const int negative[3] = {-near_side[0], -near_side[1], -near_side[2]};
-    negative8 = IntLanes8{negative[0], negative[1], negative[2], negative[0], negative[0], negative[1], negative[2], negative[0]};
+    negative8 = IntLanes8{negative[0], negative[1], negative[2], 0, 0, negative[0], negative[1], negative[2]};
 }
 
 void TraversalRay::clip(Real t) { t_max = std::min(t_max, round_up(t)); }

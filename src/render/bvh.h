@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <utility>
@@ -69,11 +70,13 @@ struct TraversalRay {
     float origin_near[3];  // origin for the entering planes
     float origin_far[3];   // origin for the leaving planes
     float inv_dir[3];      // 1 / direction; +-infinity for a zero component
+    float inv_dir_far[3];  // inv_dir * kFarGrow, for the leaving planes
     int near_side[3];      // which corner holds the entering plane per axis: 1 when the direction is negative
     float t_min = 0;
     float t_max = 0;
-    // The same per axis for enter_pair, as x, y, z, x twice: the lanes of two boxes.
-    FloatLanes8 origin_near8, origin_far8, inv_dir8;
+    // The same per axis in enter_pair's lanes: x, y, z of the left box in lanes 0-2 and of
+    // the right box in lanes 5-7; lanes 3 and 4 (origin 0, inv_dir NaN) never decide.
+    FloatLanes8 origin_near8, origin_far8, inv_dir8, inv_dir_far8;
     IntLanes8 negative8;  // -1 where the direction is negative
 
     TraversalRay(const Ray& ray, Interval range);
@@ -153,32 +156,39 @@ inline float enter_box(const BvhNode& node, const TraversalRay& ray) {
     float near = ray.t_min, far = ray.t_max;
     for (int axis = 0; axis < 3; ++axis) {
         const float t0 = (node.box[ray.near_side[axis]][axis] - ray.origin_near[axis]) * ray.inv_dir[axis];
-        const float t1 = (node.box[1 - ray.near_side[axis]][axis] - ray.origin_far[axis]) * ray.inv_dir[axis];
+        const float t1 = (node.box[1 - ray.near_side[axis]][axis] - ray.origin_far[axis]) * ray.inv_dir_far[axis];
         near = t0 > near ? t0 : near;
-        far = t1 * kFarGrow < far ? t1 * kFarGrow : far;
+        far = t1 < far ? t1 : far;
     }
     return near <= far ? near : std::numeric_limits<float>::infinity();
 }
 
 // enter_box for two sibling nodes at once (Sah's layout; `pair` is 64-byte aligned): one
-// 8-wide vector holds both boxes, x, y, z and x again in each half (the repeated x changes no
-// minimum or maximum). Same arithmetic, same NaN rules, same results as enter_box.
+// 8-wide vector holds both boxes' planes, the left box's x, y, z in lanes 0-2 and the right
+// box's in lanes 5-7, gathered by three loads from the pair's cache line and one blend (no
+// shuffle across the vector's halves). Same arithmetic, same NaN rules, same results as
+// enter_box.
 struct PairEntry {
     float left, right;  // +infinity: missed
 };
 inline PairEntry enter_pair(const BvhNode* pair, const TraversalRay& ray) {
     using Lanes = FloatLanes8;
     using Indices = IntLanes8;
-    Lanes left, right;
-    std::memcpy(&left, &pair[0], sizeof left);
-    std::memcpy(&right, &pair[1], sizeof right);
-    const Lanes lower = __builtin_shuffle(left, right, Indices{0, 1, 2, 0, 8, 9, 10, 8});
-    const Lanes upper = __builtin_shuffle(left, right, Indices{3, 4, 5, 3, 11, 12, 13, 11});
+    // The pair's 16 words: left lower x y z, upper x y z, index, count, then the right node's.
+    const float* words = &pair[0].box[0][0];
+    static_assert(offsetof(BvhNode, box) == 0 && sizeof(BvhNode) == 8 * sizeof(float));
+    Lanes from0, from3, from6;  // words 0-7, 3-10 and 6-13
+    std::memcpy(&from0, words, sizeof from0);
+    std::memcpy(&from3, words + 3, sizeof from3);
+    std::memcpy(&from6, words + 6, sizeof from6);
+    // Lanes 3-4 hold other coordinates of the boxes (never an index or count bit pattern).
+    const Lanes lower = __builtin_shuffle(from0, from3, Indices{0, 1, 2, 3, 4, 13, 14, 15});
+    const Lanes upper = __builtin_shuffle(from3, from6, Indices{0, 1, 2, 11, 12, 13, 14, 15});
     const Lanes near_planes = ray.negative8 ? upper : lower;
     const Lanes far_planes = ray.negative8 ? lower : upper;
-    // NaN lanes take t_min and t_max here, so the reductions below see none.
+    // NaN lanes (lanes 3-4 always) take t_min and t_max here, so the reductions below see none.
     Lanes near = lane_max((near_planes - ray.origin_near8) * ray.inv_dir8, Lanes{} + ray.t_min);
-    Lanes far = lane_min((far_planes - ray.origin_far8) * ray.inv_dir8 * kFarGrow, Lanes{} + ray.t_max);
+    Lanes far = lane_min((far_planes - ray.origin_far8) * ray.inv_dir_far8, Lanes{} + ray.t_max);
     // Largest entry and smallest exit within each half (box): swap neighbours, then pairs.
     auto swap_neighbours = [](Lanes v) { return __builtin_shuffle(v, Indices{1, 0, 3, 2, 5, 4, 7, 6}); };
     auto swap_pairs = [](Lanes v) { return __builtin_shuffle(v, Indices{2, 3, 0, 1, 6, 7, 4, 5}); };
