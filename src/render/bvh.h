@@ -261,33 +261,36 @@ bool Bvh::any(const Ray& ray, Interval range, TraversalCounts& counts, Test test
     if (enter_box(nodes_[0], fast) == kMiss) return false;
     uint32_t stack[kMaxBvhDepth + 1];
     int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const uint32_t current = stack[--top];
+    uint32_t current = 0;
+    for (;;) {
         const BvhNode& node = nodes_[current];
         if (node.count > 0) {
             for (uint32_t i = node.index; i < node.index + node.count; ++i) {
                 ++counts.primitive_tests;
                 if (test(i, range)) return true;
             }
-            continue;
+        } else {
+            const auto [left, right] = children(current);
+            counts.box_tests += 2;
+            const PairEntry t = paired_ ? enter_pair(&nodes_[left], fast)
+                                        : PairEntry{enter_box(nodes_[left], fast), enter_box(nodes_[right], fast)};
+            // Farther child first: a shadow ray starts on a surface, whose own neighbourhood (the
+            // nearer box) seldom blocks it; the blocker lies farther on (measured: 54 -> 33 box
+            // tests per blocked shadow ray on the bunny).
+            if (t.left != kMiss && t.right != kMiss) {
+                const bool left_first = t.left > t.right;
+                stack[top++] = left_first ? right : left;
+                current = left_first ? left : right;
+                continue;
+            }
+            if (t.left != kMiss || t.right != kMiss) {
+                current = t.left != kMiss ? left : right;
+                continue;
+            }
         }
-        const auto [left, right] = children(current);
-        counts.box_tests += 2;
-        const PairEntry t = paired_ ? enter_pair(&nodes_[left], fast)
-                                    : PairEntry{enter_box(nodes_[left], fast), enter_box(nodes_[right], fast)};
-        // Farther child first: a shadow ray starts on a surface, whose own neighbourhood (the
-        // nearer box) seldom blocks it; the blocker lies farther on (measured: 54 -> 33 box
-        // tests per blocked shadow ray on the bunny).
-        const bool left_first = t.left > t.right;
-        if (t.left != kMiss && t.right != kMiss) {
-            stack[top++] = left_first ? right : left;
-            stack[top++] = left_first ? left : right;
-        } else if (t.left != kMiss || t.right != kMiss) {
-            stack[top++] = t.left != kMiss ? left : right;
-        }
+        if (top == 0) return false;
+        current = stack[--top];
     }
-    return false;
 }
 
 }  // namespace tracer
