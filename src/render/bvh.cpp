@@ -47,9 +47,7 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
         origin_near[axis] = negative ? origin - pad : origin + pad;
         origin_far[axis] = negative ? origin + pad : origin - pad;
         inv_dir[axis] = float(Real(1) / ray.direction[axis]);
-        // Scaling 1 / d rather than each leaving distance: one rounding more before the scale,
-        // one less after it; 2 gamma_3 still covers the four (Ize 2013's argument).
-        inv_dir_far[axis] = inv_dir[axis] * kFarGrow;
+        inv_dir_far[axis] = inv_dir[axis] * kFarGrow;  // see kFarGrow
     }
     t_min = round_down(range.min);
     t_max = round_up(range.max);

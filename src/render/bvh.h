@@ -50,9 +50,10 @@ static_assert(sizeof(BvhNode) == 32, "BVH nodes are 32 bytes");
 using NodeArray = LargeArray<BvhNode>;  // 64-byte aligned: an even node index starts a cache line
 
 // A ray prepared for float box tests. The origin is rounded to float and moved |origin| 2^-21
-// (at least 4 ulps) away from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013) and the
-// node boxes are rounded outwards: the margins are meant to keep rounding from making a box
-// test miss a primitive the exact ray meets (hard-cases.md A1 and A3 will test it).
+// (at least 4 ulps) away from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013; see
+// kFarGrow) and the node boxes are rounded outwards: the margins are meant to keep rounding
+// from making a box test miss a primitive the exact ray meets (hard-cases.md A1 and A3 will
+// test it).
 using FloatLanes8 = float __attribute__((vector_size(32)));
 using IntLanes8 = int32_t __attribute__((vector_size(32)));
 
@@ -63,7 +64,8 @@ template <typename Lanes>
 inline Lanes lane_max(Lanes a, Lanes b) { return a > b ? a : b; }
 
 // Box tests scale the leaving distance by 1 + 2 gamma_3 (Ize 2013), so that float rounding
-// cannot make the ray leave a box before the exact ray does.
+// cannot make the ray leave a box before the exact ray does. They scale 1 / d, once per ray:
+// the same four roundings and factor as scaling each distance, in another order.
 constexpr float kFarGrow = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 
 struct TraversalRay {
@@ -165,9 +167,9 @@ inline float enter_box(const BvhNode& node, const TraversalRay& ray) {
 
 // enter_box for two sibling nodes at once (Sah's layout; `pair` is 64-byte aligned): one
 // 8-wide vector holds both boxes' planes, the left box's x, y, z in lanes 0-2 and the right
-// box's in lanes 5-7, gathered by three loads from the pair's cache line and one blend (no
-// shuffle across the vector's halves). Same arithmetic, same NaN rules, same results as
-// enter_box.
+// box's in lanes 5-7, gathered by three overlapping loads from the pair's cache line and a
+// blend each for the lower and the upper planes (no shuffle across the vector's halves).
+// Same arithmetic, same NaN rules, same results as enter_box.
 struct PairEntry {
     float left, right;  // +infinity: missed
 };
