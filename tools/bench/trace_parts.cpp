@@ -1,8 +1,8 @@
 // trace_parts: where a frame's time goes, part by part, on one thread: the rays of the
 // hit-dominated crop (or the full frame) are made once, then each query is timed on its own
 // (fastest of 15 passes): the box test's set-up (TraversalRay), the nearest-hit query of the
-// mesh and of the whole world, the shadow rays' any-hit query, trace() and render().
-// Used to compare two builds of the renderer run by run (tools/bench/compare_builds.py).
+// mesh and of the whole world, the shadow rays' any-hit query, trace() and render(); for the
+// mesh queries also the box and triangle tests per ray. Used to compare two builds of the renderer run by run (tools/bench/compare_builds.py).
 //
 //   build/release/trace_parts [scene] [--full] [--repeat K] [--leaf-size N]
 //
@@ -45,6 +45,12 @@ volatile double sink;  // keeps the timed loops' results alive
 
 void report(const char* part, double ms, size_t rays) {
     std::cout << part << ' ' << ms << " ms (" << ms * 1e6 / double(rays) << " ns per ray, " << rays << " rays)\n";
+}
+
+// The work of one pass of a query, per ray, on a line the caller ends.
+void report_work(const tracer::TraversalCounts& counts, size_t rays) {
+    std::cout << "  per ray: " << double(counts.box_tests) / double(rays) << " box tests, "
+              << double(counts.primitive_tests) / double(rays) << " triangle tests";
 }
 
 }  // namespace
@@ -106,8 +112,8 @@ int main(int argc, char** argv) {
         }
         sink = sum;
     }), primary.size());
-    std::cout << "  per ray: " << double(mesh_counts.box_tests) / double(primary.size()) << " box tests, "
-              << double(mesh_counts.primitive_tests) / double(primary.size()) << " triangle tests\n";
+    report_work(mesh_counts, primary.size());
+    std::cout << '\n';
     if (repeat > 1) return 0;
     report("world.intersect", fastest_ms([&] {
         double sum = 0;
@@ -123,9 +129,8 @@ int main(int argc, char** argv) {
         for (const auto& [ray, range] : shadow) blocked += mesh.occluded(ray, range, shadow_counts);
         sink = blocked;
     }), shadow.size());
-    std::cout << "  per ray: " << double(shadow_counts.box_tests) / double(shadow.size()) << " box tests, "
-              << double(shadow_counts.primitive_tests) / double(shadow.size()) << " triangle tests; "
-              << blocked << " blocked\n";
+    report_work(shadow_counts, shadow.size());
+    std::cout << "; " << blocked << " blocked\n";
     report("trace          ", fastest_ms([&] {
         RayCounts ray_counts;
         double sum = 0;
