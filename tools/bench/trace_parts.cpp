@@ -2,7 +2,8 @@
 // hit-dominated crop (or the full frame) are made once, then each query is timed on its own
 // (fastest of 15 passes): the box test's set-up (TraversalRay), the nearest-hit query of the
 // mesh and of the whole world, the shadow rays' any-hit query, trace() and render(); for the
-// mesh queries also the box and triangle tests per ray. Used to compare two builds of the renderer run by run (tools/bench/compare_builds.py).
+// mesh queries also the box and triangle tests per ray. Used to compare two builds of the
+// renderer run by run (tools/bench/compare_builds.py).
 //
 //   build/release/trace_parts [scene] [--full] [--repeat K] [--leaf-size N]
 //
