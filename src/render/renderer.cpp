@@ -70,8 +70,8 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
         std::vector<Vec3> directions(size_t(area.width));
         // The row's rays are made before any is traced: a Ray built just before the call that
         // takes it by value is copied out of half-written memory, and the processor stalls on
-        // every pixel (store-to-load forwarding fails; measured: 40% of the render loop's own
-        // time in the full frame).
+        // every pixel (store-to-load forwarding fails: 40% of the samples in the render loop's
+        // own code, full frame).
         std::vector<Ray> rays(size_t(area.width));
         for (int row; (row = next_row.fetch_add(1)) < area.height;) {
             if (options.cancel && options.cancel->load()) break;
