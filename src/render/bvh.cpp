@@ -68,6 +68,14 @@ void TraversalRay::clip(Real t) { t_max = std::min(t_max, round_up(t)); }
 
 namespace {
 
+// Runs `first` on a thread of its own and `second` on this one; returns when both are done.
+template <typename First, typename Second>
+void run_both(First first, Second second) {
+    auto first_done = std::async(std::launch::async, first);
+    second();
+    first_done.get();
+}
+
 // A primitive as the builder sees it: its float bounds (rounded outwards) and its id. The
 // builder partitions an array of these in place, so every pass reads memory in order.
 struct PrimRef {
@@ -198,9 +206,7 @@ void BvhBuilder::build(const Range& range, int depth, uint32_t first) {
     node.count = 0;
     node.index = first + 2 * left.count();
     if (parallel_ && depth < kParallelDepth && range.count() >= kParallelFrom) {
-        auto left_done = std::async(std::launch::async, [&] { build(left, depth + 1, first + 1); });
-        build(right, depth + 1, node.index);
-        left_done.get();
+        run_both([&] { build(left, depth + 1, first + 1); }, [&] { build(right, depth + 1, node.index); });
         return;
     }
     build(left, depth + 1, first + 1);
@@ -273,9 +279,7 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
     AxisBins bins;
     if (in_parallel) {
         AxisBins first_half;
-        auto first_done = std::async(std::launch::async, [&] { bin_refs(range.begin, half, first_half); });
-        bin_refs(half, range.end, bins);
-        first_done.get();
+        run_both([&] { bin_refs(range.begin, half, first_half); }, [&] { bin_refs(half, range.end, bins); });
         for (int axis = 0; axis < 3; ++axis)
             for (int b = 0; b < bin_count; ++b) bins[axis][b].add(first_half[axis][b]);
     } else {
@@ -320,10 +324,9 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
     if (in_parallel) {
         // Both halves at once, then the first half's right part and the second half's left
         // part trade places (as many references as the smaller of the two holds).
-        auto first_done = std::async(std::launch::async,
-                                     [&] { return std::partition(refs_ + range.begin, refs_ + half, goes_left); });
-        PrimRef* second_middle = std::partition(refs_ + half, refs_ + range.end, goes_left);
-        PrimRef* first_middle = first_done.get();
+        PrimRef *first_middle, *second_middle;
+        run_both([&] { first_middle = std::partition(refs_ + range.begin, refs_ + half, goes_left); },
+                 [&] { second_middle = std::partition(refs_ + half, refs_ + range.end, goes_left); });
         const size_t trade = std::min(refs_ + half - first_middle, second_middle - (refs_ + half));
         std::swap_ranges(first_middle, first_middle + trade, second_middle - trade);
         middle = first_middle + (second_middle - (refs_ + half));
