@@ -41,6 +41,8 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
         const float pad = std::fabs(origin) * 0x1p-21f;
         const bool negative = ray.direction[axis] < 0;
         near_side[axis] = negative ? 1 : 0;
+        near_row[axis] = (near_side[axis] * 3 + axis) * kWide;
+        far_row[axis] = ((1 - near_side[axis]) * 3 + axis) * kWide;
         // Widen the box by `pad` on both sides: the entering plane moves towards the origin's
         // side (lower - pad - o = lower - (o + pad) for a positive direction), the leaving plane
         // away from it.
@@ -51,17 +53,6 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
     }
     t_min = round_down(range.min);
     t_max = round_up(range.max);
-    // enter_pair's lanes: x, y, z, two lanes that never decide (a NaN 1 / d), x, y, z.
-    auto lanes = [](const float (&v)[3], float filler) {
-        return FloatLanes8{v[0], v[1], v[2], filler, filler, v[0], v[1], v[2]};
-    };
-    constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-    origin_near8 = lanes(origin_near, 0);
-    origin_far8 = lanes(origin_far, 0);
-    inv_dir8 = lanes(inv_dir, kNaN);
-    inv_dir_far8 = lanes(inv_dir_far, kNaN);
-    const int negative[3] = {-near_side[0], -near_side[1], -near_side[2]};
-    negative8 = IntLanes8{negative[0], negative[1], negative[2], 0, 0, negative[0], negative[1], negative[2]};
 }
 
 void TraversalRay::clip(Real t) { t_max = std::min(t_max, round_up(t)); }
@@ -341,7 +332,7 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
 }
 
 // The builder's tree without its unused slots, depth first: an inner node's left child
-// follows it, its right child is at `index` (Box and Median).
+// follows it, its right child is at `index`.
 static NodeArray compact_depth_first(const NodeArray& slots) {
     NodeArray compact;
     compact.reserve(slots.size());
@@ -363,31 +354,63 @@ static NodeArray compact_depth_first(const NodeArray& slots) {
     return compact;
 }
 
-// The builder's tree in Sah's layout: the root at 0, an unused node at 1, then the children
-// of every inner node side by side at an even index (so in one cache line), pairs in
-// depth-first order.
-static NodeArray pair_siblings(const NodeArray& slots) {
-    NodeArray paired(2);
-    paired.reserve(slots.size() + 1);
-    paired[0] = slots[0];
-    paired[1] = BvhNode{};
+// Sah's wide tree from the builder's binary one (whose inner nodes have their left child next
+// and their right child at `index`). A wide node starts from a binary node's two children and,
+// while it has fewer than kWide, replaces its inner child of largest surface area by that
+// child's two children. A binary tree that is one leaf becomes a wide root with one child.
+static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
+    auto half_area = [&](uint32_t i) {
+        const float(&box)[2][3] = nodes[i].box;
+        const double dx = double(box[1][0]) - box[0][0], dy = double(box[1][1]) - box[0][1],
+                     dz = double(box[1][2]) - box[0][2];
+        return dx * dy + dy * dz + dz * dx;
+    };
+    LargeArray<WideNode> wide(1);
     struct Move {
-        uint32_t from, to;
+        uint32_t from, to;  // the binary node whose children make wide node `to`
     };
     std::vector<Move> pending{{0, 0}};
     while (!pending.empty()) {
         const Move move = pending.back();
         pending.pop_back();
-        if (slots[move.from].count > 0) continue;
-        const uint32_t pair = uint32_t(paired.size());
-        const uint32_t left = move.from + 1, right = slots[move.from].index;
-        paired.push_back(slots[left]);
-        paired.push_back(slots[right]);
-        paired[move.to].index = pair;
-        pending.push_back({right, pair + 1});
-        pending.push_back({left, pair});
+        // Step 1: the children, opening the largest inner one while there is room.
+        uint32_t children[kWide] = {move.from};
+        int count = 1;
+        if (nodes[move.from].count == 0) {
+            children[0] = move.from + 1, children[1] = nodes[move.from].index;
+            count = 2;
+        }
+        while (count < kWide) {
+            int largest = -1;
+            for (int k = 0; k < count; ++k)
+                if (nodes[children[k]].count == 0 && (largest < 0 || half_area(children[k]) > half_area(children[largest])))
+                    largest = k;
+            if (largest < 0) break;
+            const uint32_t opened = children[largest];
+            children[largest] = opened + 1;
+            children[count++] = nodes[opened].index;
+        }
+        // Step 2: their boxes lane by lane, leaves as ranges, inner children as new wide nodes.
+        WideNode node;
+        for (int lane = 0; lane < kWide; ++lane) {
+            for (int axis = 0; axis < 3; ++axis) {
+                node.planes[0][axis][lane] = lane < count ? nodes[children[lane]].box[0][axis] : kInfinity;
+                node.planes[1][axis][lane] = lane < count ? nodes[children[lane]].box[1][axis] : -kInfinity;
+            }
+            node.index[lane] = 0, node.count[lane] = 0;  // no child
+            if (lane >= count) continue;
+            const BvhNode& child = nodes[children[lane]];
+            if (child.count > 0) {
+                node.index[lane] = child.index, node.count[lane] = child.count;
+                continue;
+            }
+            node.index[lane] = uint32_t(wide.size()), node.count[lane] = WideNode::kInner;
+            pending.push_back({children[lane], uint32_t(wide.size())});
+            wide.emplace_back();
+        }
+        wide[move.to] = node;
     }
-    return paired;
+    return wide;
 }
 
 Bvh::Bvh(const LargeArray<Bounds>& primitives, Accelerator method, int leaf_size, int threads) {
@@ -408,34 +431,30 @@ Bvh::Bvh(const LargeArray<Bounds>& primitives, Accelerator method, int leaf_size
     NodeArray slots(2 * size_t(n) - 1);  // uninitialised; only the tree's nodes are written
     BvhBuilder builder(refs.data(), slots.data(), method, leaf_size, thread_count(threads) > 1);
     builder.build(root, 0, 0);
-    paired_ = method == Accelerator::Sah;
-    nodes_ = paired_ ? pair_siblings(slots) : compact_depth_first(slots);
+    if (method == Accelerator::Sah)
+        wide_ = collapse_to_wide(slots);
+    else
+        nodes_ = compact_depth_first(slots);
+    for (int axis = 0; axis < 3; ++axis) {
+        root_box_.lower[axis] = root.bounds.lower[axis];
+        root_box_.upper[axis] = root.bounds.upper[axis];
+    }
     parallel_for(n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
 }
 
 BvhStats Bvh::stats() const {
     BvhStats s;
-    s.nodes = nodes_.size() - (paired_ ? 1 : 0);  // not the unused node 1 of Sah's layout
-    if (nodes_.empty()) return s;
+    s.nodes = wide_.empty() ? nodes_.size() : wide_.size();
     s.min_leaf = std::numeric_limits<size_t>::max();
     size_t in_leaves = 0;
-    std::vector<std::pair<uint32_t, int>> stack{{0, 1}};
-    while (!stack.empty()) {
-        auto [index, depth] = stack.back();
-        stack.pop_back();
+    for_each_leaf([&](const Bounds&, uint32_t, uint32_t count, int depth) {
         s.depth = std::max(s.depth, depth);
-        const BvhNode& node = nodes_[index];
-        if (node.count > 0) {
-            ++s.leaves;
-            in_leaves += node.count;
-            s.min_leaf = std::min<size_t>(s.min_leaf, node.count);
-            s.max_leaf = std::max<size_t>(s.max_leaf, node.count);
-        } else {
-            const auto [left, right] = children(index);
-            stack.push_back({left, depth + 1});
-            stack.push_back({right, depth + 1});
-        }
-    }
+        ++s.leaves;
+        in_leaves += count;
+        s.min_leaf = std::min<size_t>(s.min_leaf, count);
+        s.max_leaf = std::max<size_t>(s.max_leaf, count);
+    });
+    if (s.leaves == 0) return BvhStats{};
     s.mean_leaf = double(in_leaves) / double(s.leaves);
     return s;
 }

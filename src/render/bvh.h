@@ -19,6 +19,10 @@
 
 #include <glm/common.hpp>
 
+#if defined(__SSE__)
+#include <immintrin.h>
+#endif
+
 #include "frontend/scene.h"
 #include "render/large_array.h"
 #include "render/types.h"
@@ -47,16 +51,42 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32, "BVH nodes are 32 bytes");
 
-using NodeArray = LargeArray<BvhNode>;  // 64-byte aligned: an even node index starts a cache line
+using NodeArray = LargeArray<BvhNode>;  // 64-byte aligned
+
+// Sah's node: up to kWide children side by side, each child's planes in one lane of six
+// kWide-wide rows, so that one vector operation per plane tests all the boxes (the layout of
+// Embree's BVH4 and BVH8). 32 bytes per child, as a binary node: 256 bytes (four cache lines)
+// for eight children.
+#if defined(TRACER_WIDE)  // to compare widths: -DTRACER_WIDE=4
+constexpr int kWide = TRACER_WIDE;
+#elif defined(__AVX__)
+constexpr int kWide = 8;  // one 8-wide vector operation per plane
+#else
+constexpr int kWide = 4;
+#endif
+
+struct WideNode {
+    static constexpr uint32_t kInner = ~uint32_t(0);  // count of an inner child
+    float planes[2][3][kWide];  // [0]: lower, [1]: upper corner; [axis]; [child]
+    uint32_t index[kWide];      // leaf: first entry of order(); inner: the child's node index
+    uint32_t count[kWide];      // leaf: number of primitives (0: no child in this lane); inner: kInner
+};
+static_assert(sizeof(WideNode) == 32 * kWide, "wide nodes are 32 bytes per child");
+
+using FloatLanesW = float __attribute__((vector_size(4 * kWide)));  // one lane per child
+
+// What a ray does at a wide node (enter_wide): entry distances and which children it enters.
+struct WideEntry {
+    FloatLanesW t;
+    unsigned mask;
+};
+
 
 // A ray prepared for float box tests. The origin is rounded to float and moved |origin| 2^-21
 // (at least 4 ulps) away from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013; see
 // kFarGrow) and the node boxes are rounded outwards: the margins are meant to keep rounding
 // from making a box test miss a primitive the exact ray meets (hard-cases.md A1 and A3 will
 // test it).
-using FloatLanes8 = float __attribute__((vector_size(32)));
-using IntLanes8 = int32_t __attribute__((vector_size(32)));
-
 // Lane by lane minimum and maximum of GCC vectors; where `a` is NaN the lane takes `b`.
 template <typename Lanes>
 inline Lanes lane_min(Lanes a, Lanes b) { return a < b ? a : b; }
@@ -74,12 +104,10 @@ struct TraversalRay {
     float inv_dir[3];      // 1 / direction; +-infinity for a zero component
     float inv_dir_far[3];  // inv_dir * kFarGrow, for the leaving planes
     int near_side[3];      // which corner holds the entering plane per axis: 1 when the direction is negative
+    int near_row[3];       // where enter_wide finds the entering planes per axis, in floats from planes
+    int far_row[3];        // and the leaving planes
     float t_min = 0;
     float t_max = 0;
-    // The same per axis in enter_pair's lanes: x, y, z of the left box in lanes 0-2 and of
-    // the right box in lanes 5-7; lanes 3 and 4 (origin 0, inv_dir NaN) never decide.
-    FloatLanes8 origin_near8, origin_far8, inv_dir8, inv_dir_far8;
-    IntLanes8 negative8;  // -1 where the direction is negative
 
     TraversalRay(const Ray& ray, Interval range);
     // Shrinks the float t_max after a hit (never below the double one).
@@ -124,30 +152,57 @@ public:
     // root in parallel.
     Bvh(const LargeArray<Bounds>& primitives, Accelerator method, int leaf_size, int threads = 0);
 
+    // Box's and Median's binary tree, depth first: an inner node's left child follows it, its
+    // right child is at `index` (empty for Sah).
     const NodeArray& nodes() const { return nodes_; }
-    // The children of inner node `parent`, left then right, in either layout (Sah's: at index
-    // and index + 1, an even index).
-    std::pair<uint32_t, uint32_t> children(uint32_t parent) const {
-        const uint32_t index = nodes_[parent].index;
-        return paired_ ? std::pair{index, index + 1} : std::pair{parent + 1, index};
-    }
+    // Sah's wide tree, root at 0 (empty for Box and Median).
+    const LargeArray<WideNode>& wide_nodes() const { return wide_; }
     const std::vector<uint32_t>& order() const { return order_; }
+    // The box around every primitive (empty if there are none).
+    const Bounds& bounds() const { return root_box_; }
     BvhStats stats() const;
+    // Calls f(box, first, count, depth) for every leaf, depth first, children in order: its box,
+    // its range of order() and its depth (the root node's is 1; a wide root's children are at 2).
+    template <typename F>
+    void for_each_leaf(F f) const;
 
     // Nearest hit: `test(i, range)` tests entry i of order() against the ray, shrinking
     // range.max on a hit and returning true. Children are visited nearest first.
     template <typename Test>
-    bool closest(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const;
+    bool closest(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const {
+        return wide_.empty() ? closest_binary(ray, range, counts, test) : closest_wide(ray, range, counts, test);
+    }
     // Any hit: stops at the first entry for which `test(i, range)` returns true.
     template <typename Test>
-    bool any(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const;
+    bool any(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const {
+        return wide_.empty() ? any_binary(ray, range, counts, test) : any_wide(ray, range, counts, test);
+    }
 
 private:
-    friend class BvhBuilder;
+    // A child waiting on a wide traversal's stack: a node (count kInner) or a leaf's range.
+    struct WideRef {
+        uint32_t index, count;
+        float t;  // where the ray enters its box
+    };
+    // Each wide node visited pushes at most three children more than it pops.
+    using WideStack = WideRef[(kWide - 1) * kMaxBvhDepth + 1];
+
+    template <typename Test>
+    bool closest_binary(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const;
+    template <typename Test>
+    bool any_binary(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const;
+    template <typename Test>
+    bool closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const;
+    template <typename Test>
+    bool any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const;
+    template <typename ComesOffFirst>
+    static WideRef next_child(const WideNode& node, const WideEntry& entry, WideStack& stack, int& top,
+                              ComesOffFirst comes_off_first);
 
     NodeArray nodes_;
+    LargeArray<WideNode> wide_;
     std::vector<uint32_t> order_;
-    bool paired_ = false;
+    Bounds root_box_;
 };
 
 // Entry distance of the ray into the node's box, or +infinity if it misses within
@@ -165,45 +220,41 @@ inline float enter_box(const BvhNode& node, const TraversalRay& ray) {
     return near <= far ? near : std::numeric_limits<float>::infinity();
 }
 
-// enter_box for two sibling nodes at once (Sah's layout; `pair` is 64-byte aligned): one
-// 8-wide vector holds both boxes' planes, the left box's x, y, z in lanes 0-2 and the right
-// box's in lanes 5-7, gathered by three overlapping loads from the pair's cache line and a
-// blend each for the lower and the upper planes (no shuffle across the vector's halves).
-// Same arithmetic, same NaN rules, same results as enter_box.
-struct PairEntry {
-    float left, right;  // +infinity: missed
-};
-inline PairEntry enter_pair(const BvhNode* pair, const TraversalRay& ray) {
-    using Lanes = FloatLanes8;
-    using Indices = IntLanes8;
-    // The pair's 16 words: left lower x y z, upper x y z, index, count, then the right node's.
-    const float* words = &pair[0].box[0][0];
-    static_assert(offsetof(BvhNode, box) == 0 && sizeof(BvhNode) == 8 * sizeof(float));
-    Lanes from0, from3, from6;  // words 0-7, 3-10 and 6-13
-    std::memcpy(&from0, words, sizeof from0);
-    std::memcpy(&from3, words + 3, sizeof from3);
-    std::memcpy(&from6, words + 6, sizeof from6);
-    // Lanes 3-4 hold other coordinates of the boxes (never an index or count bit pattern).
-    const Lanes lower = __builtin_shuffle(from0, from3, Indices{0, 1, 2, 3, 4, 13, 14, 15});
-    const Lanes upper = __builtin_shuffle(from3, from6, Indices{0, 1, 2, 11, 12, 13, 14, 15});
-    const Lanes near_planes = ray.negative8 ? upper : lower;
-    const Lanes far_planes = ray.negative8 ? lower : upper;
-    // NaN lanes (lanes 3-4 always) take t_min and t_max here, so the reductions below see none.
-    Lanes near = lane_max((near_planes - ray.origin_near8) * ray.inv_dir8, Lanes{} + ray.t_min);
-    Lanes far = lane_min((far_planes - ray.origin_far8) * ray.inv_dir_far8, Lanes{} + ray.t_max);
-    // Largest entry and smallest exit within each half (box): swap neighbours, then pairs.
-    auto swap_neighbours = [](Lanes v) { return __builtin_shuffle(v, Indices{1, 0, 3, 2, 5, 4, 7, 6}); };
-    auto swap_pairs = [](Lanes v) { return __builtin_shuffle(v, Indices{2, 3, 0, 1, 6, 7, 4, 5}); };
-    near = lane_max(near, swap_neighbours(near));
-    near = lane_max(near, swap_pairs(near));
-    far = lane_min(far, swap_neighbours(far));
-    far = lane_min(far, swap_pairs(far));
-    constexpr float kMiss = std::numeric_limits<float>::infinity();
-    return {near[0] <= far[0] ? near[0] : kMiss, near[4] <= far[4] ? near[4] : kMiss};
+// Bit i set where lane i of a comparison's result is true.
+template <typename Lanes>
+inline unsigned lane_mask(Lanes hit) {
+#if defined(__AVX__)
+    if constexpr (sizeof(Lanes) == 32) return unsigned(_mm256_movemask_ps(__m256(hit)));
+#endif
+#if defined(__SSE__)
+    if constexpr (sizeof(Lanes) == 16) return unsigned(_mm_movemask_ps(__m128(hit)));
+#endif
+    unsigned mask = 0;
+    for (int i = 0; i < int(sizeof(Lanes) / 4); ++i) mask |= unsigned(hit[i] & 1) << i;
+    return mask;
+}
+
+// enter_box for the children of a wide node at once: `t` lane i is child i's entry
+// distance, bit i of `mask` is set where the ray enters child i. Same arithmetic, same NaN
+// rules, same results as enter_box. Lanes without a child hold an empty box (lower +infinity,
+// upper -infinity).
+inline WideEntry enter_wide(const WideNode& node, const TraversalRay& ray) {
+    using Lanes = FloatLanesW;
+    const float* planes = &node.planes[0][0][0];
+    Lanes near = Lanes{} + ray.t_min, far = Lanes{} + ray.t_max;
+    for (int axis = 0; axis < 3; ++axis) {
+        Lanes near_plane, far_plane;
+        std::memcpy(&near_plane, planes + ray.near_row[axis], sizeof near_plane);
+        std::memcpy(&far_plane, planes + ray.far_row[axis], sizeof far_plane);
+        near = lane_max((near_plane - ray.origin_near[axis]) * ray.inv_dir[axis], near);
+        far = lane_min((far_plane - ray.origin_far[axis]) * ray.inv_dir_far[axis], far);
+    }
+    const auto hit = near <= far;
+    return {near, lane_mask(hit)};
 }
 
 template <typename Test>
-bool Bvh::closest(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const {
+bool Bvh::closest_binary(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const {
     if (nodes_.empty()) return false;
     constexpr float kMiss = std::numeric_limits<float>::infinity();
     TraversalRay fast(ray, range);
@@ -229,11 +280,9 @@ bool Bvh::closest(const Ray& ray, Interval& range, TraversalCounts& counts, Test
             }
         } else {
             // Visit the nearer child first; the farther one waits on the stack.
-            const auto [left, right] = children(current);
+            const uint32_t left = current + 1, right = node.index;
             counts.box_tests += 2;
-            const PairEntry t = paired_ ? enter_pair(&nodes_[left], fast)
-                                        : PairEntry{enter_box(nodes_[left], fast), enter_box(nodes_[right], fast)};
-            const float t_left = t.left, t_right = t.right;
+            const float t_left = enter_box(nodes_[left], fast), t_right = enter_box(nodes_[right], fast);
             if (t_left != kMiss && t_right != kMiss) {
                 const bool left_first = t_left <= t_right;
                 stack[top++] = left_first ? Pending{right, t_right} : Pending{left, t_left};
@@ -255,7 +304,7 @@ bool Bvh::closest(const Ray& ray, Interval& range, TraversalCounts& counts, Test
 }
 
 template <typename Test>
-bool Bvh::any(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const {
+bool Bvh::any_binary(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const {
     if (nodes_.empty()) return false;
     constexpr float kMiss = std::numeric_limits<float>::infinity();
     const TraversalRay fast(ray, range);
@@ -272,27 +321,163 @@ bool Bvh::any(const Ray& ray, Interval range, TraversalCounts& counts, Test test
                 if (test(i, range)) return true;
             }
         } else {
-            const auto [left, right] = children(current);
+            const uint32_t left = current + 1, right = node.index;
             counts.box_tests += 2;
-            const PairEntry t = paired_ ? enter_pair(&nodes_[left], fast)
-                                        : PairEntry{enter_box(nodes_[left], fast), enter_box(nodes_[right], fast)};
+            const float t_left = enter_box(nodes_[left], fast), t_right = enter_box(nodes_[right], fast);
             // Farther child first: a shadow ray starts on a surface, whose own neighbourhood (the
             // nearer box) seldom blocks it; the blocker lies farther on (measured: 54 -> 33 box
             // tests per blocked shadow ray on the bunny).
-            if (t.left != kMiss && t.right != kMiss) {
-                const bool left_first = t.left > t.right;
+            if (t_left != kMiss && t_right != kMiss) {
+                const bool left_first = t_left > t_right;
                 stack[top++] = left_first ? right : left;
                 current = left_first ? left : right;
                 continue;
             }
-            if (t.left != kMiss || t.right != kMiss) {
-                current = t.left != kMiss ? left : right;
+            if (t_left != kMiss || t_right != kMiss) {
+                current = t_left != kMiss ? left : right;
                 continue;
             }
         }
         if (top == 0) return false;
         current = stack[--top];
     }
+}
+
+template <typename Test>
+bool Bvh::closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const {
+    TraversalRay fast(ray, range);
+    WideStack stack;
+    int top = 0;
+    WideRef current{0, WideNode::kInner, 0};
+    bool found = false;
+    for (;;) {
+        if (current.count != WideNode::kInner) {
+            for (uint32_t i = current.index; i < current.index + current.count; ++i) {
+                ++counts.primitive_tests;
+                if (test(i, range)) {
+                    found = true;
+                    fast.clip(range.max);
+                }
+            }
+        } else {
+            const WideNode& node = wide_[current.index];
+            counts.box_tests += kWide;
+            const WideEntry entry = enter_wide(node, fast);
+            if (entry.mask != 0) {
+                // The nearest child next, the others on the stack, nearer ones above farther.
+                current = next_child(node, entry, stack, top, [](float a, float b) { return a < b; });
+                continue;
+            }
+        }
+        // Next waiting node, unless a hit found meanwhile lies before its box.
+        do {
+            if (top == 0) return found;
+            --top;
+        } while (stack[top].t > fast.t_max);
+        current = stack[top];
+    }
+}
+
+template <typename Test>
+bool Bvh::any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const {
+    const TraversalRay fast(ray, range);
+    WideStack stack;
+    int top = 0;
+    WideRef current{0, WideNode::kInner, 0};
+    for (;;) {
+        if (current.count != WideNode::kInner) {
+            for (uint32_t i = current.index; i < current.index + current.count; ++i) {
+                ++counts.primitive_tests;
+                if (test(i, range)) return true;
+            }
+        } else {
+            const WideNode& node = wide_[current.index];
+            counts.box_tests += kWide;
+            const WideEntry entry = enter_wide(node, fast);
+            if (entry.mask != 0) {
+                // Farthest child first (see any_binary).
+                current = next_child(node, entry, stack, top, [](float a, float b) { return a > b; });
+                continue;
+            }
+        }
+        if (top == 0) return false;
+        current = stack[--top];
+    }
+}
+
+template <typename F>
+void Bvh::for_each_leaf(F f) const {
+    struct Visit {
+        uint32_t node;
+        int lane;  // wide trees: the lane of a leaf of `node`, or -1 for the node itself
+        int depth;
+    };
+    std::vector<Visit> pending;
+    if (!nodes_.empty() || !wide_.empty()) pending.push_back({0, -1, 1});
+    while (!pending.empty()) {
+        const Visit visit = pending.back();
+        pending.pop_back();
+        if (!wide_.empty()) {
+            const WideNode& node = wide_[visit.node];
+            if (visit.lane >= 0) {
+                const int lane = visit.lane;
+                Bounds box;
+                for (int axis = 0; axis < 3; ++axis)
+                    box.lower[axis] = node.planes[0][axis][lane], box.upper[axis] = node.planes[1][axis][lane];
+                f(box, node.index[lane], node.count[lane], visit.depth);
+                continue;
+            }
+            for (int lane = kWide - 1; lane >= 0; --lane) {
+                if (node.count[lane] == WideNode::kInner)
+                    pending.push_back({node.index[lane], -1, visit.depth + 1});
+                else if (node.count[lane] > 0)
+                    pending.push_back({visit.node, lane, visit.depth + 1});
+            }
+            continue;
+        }
+        const BvhNode& node = nodes_[visit.node];
+        if (node.count > 0) {
+            const float(&b)[2][3] = node.box;
+            f(Bounds{{b[0][0], b[0][1], b[0][2]}, {b[1][0], b[1][1], b[1][2]}}, node.index, node.count, visit.depth);
+            continue;
+        }
+        pending.push_back({node.index, -1, visit.depth + 1});
+        pending.push_back({visit.node + 1, -1, visit.depth + 1});
+    }
+}
+
+// The child to visit next among those the ray enters: the one that `comes_off_first(its t,
+// every other's)`; the others go on the stack, each below those that come off before it.
+template <typename ComesOffFirst>
+Bvh::WideRef Bvh::next_child(const WideNode& node, const WideEntry& entry, WideStack& stack, int& top,
+                             ComesOffFirst comes_off_first) {
+    unsigned mask = entry.mask;
+    auto take_lane = [&mask] {
+        const int lane = __builtin_ctz(mask);
+        mask &= mask - 1;
+        return lane;
+    };
+    auto child = [&](int lane) { return WideRef{node.index[lane], node.count[lane], entry.t[lane]}; };
+    // One or two children (most visits): no stack or one push.
+    const int first = take_lane();
+    if (mask == 0) return child(first);
+    const int second = take_lane();
+    if (mask == 0) {
+        const bool second_first = comes_off_first(entry.t[second], entry.t[first]);
+        stack[top++] = child(second_first ? first : second);
+        return child(second_first ? second : first);
+    }
+    // Three or four: insertion into the stack's top entries.
+    const int bottom = top;
+    auto insert = [&](const WideRef& ref) {
+        int at = top++;
+        for (; at > bottom && comes_off_first(stack[at - 1].t, ref.t); --at) stack[at] = stack[at - 1];
+        stack[at] = ref;
+    };
+    insert(child(first));
+    insert(child(second));
+    while (mask != 0) insert(child(take_lane()));
+    return stack[--top];
 }
 
 }  // namespace tracer

@@ -33,12 +33,11 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int th
         edges_[i] = {p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0};
     }, threads);
     // Step 3: may_hit's sphere, around the root box (which holds every triangle), 10^-6 wider.
-    if (!bvh_.nodes().empty()) {
-        const float(&box)[2][3] = bvh_.nodes()[0].box;
-        const Vec3 lower(box[0][0], box[0][1], box[0][2]), upper(box[1][0], box[1][1], box[1][2]);
-        const Real radius = glm::length(upper - lower) * Real(0.5);
+    if (accel_ != Accelerator::None) {
+        const Bounds& box = bvh_.bounds();
+        const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
         if (std::isfinite(radius)) {
-            sphere_centre_ = (lower + upper) * Real(0.5);
+            sphere_centre_ = box.centre();
             sphere_radius2_ = radius * radius * (1 + 1e-6);
         }
     }

@@ -105,6 +105,15 @@ TEST(Bvh, EveryAcceleratorAgreesWithBruteForceOnATriangleSoup) {
     EXPECT_LT(a.ties, 10);
 }
 
+// Meshes so small that the tree is one leaf, or a root whose children are all leaves.
+TEST(Bvh, EveryAcceleratorAgreesWithBruteForceOnTinyMeshes) {
+    for (int count : {1, 2, 5, 9}) {
+        Agreement a;
+        compare_with_brute_force(triangle_soup(count, 20 + count), 3, a);
+        EXPECT_GT(a.hits, 50) << count << " triangles";  // small triangles far apart: ~0.1% of the rays hit
+    }
+}
+
 // hard-cases.md A3: 64 x 64 unit squares in z = 0 (8,192 triangles), so every BVH box has zero
 // thickness, and rays along the grid lines, where slab tests meet 0 * infinity. The trees must
 // lose no hit that testing every triangle finds. (That every ray hits at all is a property of
@@ -213,19 +222,45 @@ TEST(Bvh, SahLeavesNeverExceedTheLeafSize) {
     }
 }
 
-TEST(Bvh, NodesContainTheirTriangles) {
-    const MeshAccel sah(triangle_soup(500, 3), Accelerator::Sah, 3);
-    const auto& nodes = sah.bvh().nodes();
-    const auto& order = sah.bvh().order();
-    for (const BvhNode& node : nodes) {
-        if (node.count == 0) continue;
-        for (uint32_t i = node.index; i < node.index + node.count; ++i)
-            for (uint32_t v : sah.mesh().vertices[order[i]])
-                for (int axis = 0; axis < 3; ++axis) {
-                    EXPECT_LE(double(node.box[0][axis]), sah.mesh().positions[v][axis]);
-                    EXPECT_GE(double(node.box[1][axis]), sah.mesh().positions[v][axis]);
-                }
+TEST(Bvh, LeavesContainTheirTriangles) {
+    for (Accelerator method : {Accelerator::Median, Accelerator::Sah}) {
+        const MeshAccel tree(triangle_soup(500, 3), method, 3);
+        const auto& order = tree.bvh().order();
+        std::vector<int> seen(order.size(), 0);
+        tree.bvh().for_each_leaf([&](const Bounds& box, uint32_t first, uint32_t count, int) {
+            for (uint32_t i = first; i < first + count; ++i) {
+                ++seen[i];
+                for (uint32_t v : tree.mesh().vertices[order[i]])
+                    for (int axis = 0; axis < 3; ++axis) {
+                        EXPECT_LE(box.lower[axis], tree.mesh().positions[v][axis]);
+                        EXPECT_GE(box.upper[axis], tree.mesh().positions[v][axis]);
+                    }
+            }
+        });
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(order.size())) << accelerator_name(method);
     }
+}
+
+// Sah's wide nodes: every inner child's box holds its node's children's boxes.
+TEST(Bvh, WideNodesContainTheirChildren) {
+    const MeshAccel sah(triangle_soup(2000, 5), Accelerator::Sah, 1);
+    const auto& wide = sah.bvh().wide_nodes();
+    ASSERT_GT(wide.size(), 1u);
+    size_t inner = 0;
+    for (const WideNode& node : wide)
+        for (int lane = 0; lane < kWide; ++lane) {
+            if (node.count[lane] != WideNode::kInner) continue;
+            ++inner;
+            const WideNode& child = wide[node.index[lane]];
+            for (int k = 0; k < kWide; ++k) {
+                if (child.count[k] == 0) continue;  // no child in this lane
+                for (int axis = 0; axis < 3; ++axis) {
+                    EXPECT_LE(node.planes[0][axis][lane], child.planes[0][axis][k]);
+                    EXPECT_GE(node.planes[1][axis][lane], child.planes[1][axis][k]);
+                }
+            }
+        }
+    EXPECT_EQ(inner, wide.size() - 1);  // every node but the root is some node's child, once
 }
 
 // Large inputs are built on several threads (subtrees, and the root's binning and
@@ -243,26 +278,38 @@ TEST(Bvh, ParallelBuildsMakeTheSingleThreadedTree) {
     for (Accelerator method : {Accelerator::Median, Accelerator::Sah}) {
         const char* name = accelerator_name(method);
         const Bvh serial(boxes, method, 3, 1), parallel(boxes, method, 3, 2);
-        ASSERT_EQ(serial.nodes().size(), parallel.nodes().size()) << name;
+        // The same nodes, byte for byte (the nodes hold no padding).
+        auto same_bytes = [](const auto& a, const auto& b) {
+            return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof a[0]) == 0;
+        };
+        ASSERT_TRUE(same_bytes(serial.nodes(), parallel.nodes())) << name;
+        ASSERT_TRUE(same_bytes(serial.wide_nodes(), parallel.wide_nodes())) << name;
+        ASSERT_GT(serial.nodes().size() + serial.wide_nodes().size(), 1000u) << name;
+        // The same primitives in each leaf (partitioning in halves may order them otherwise),
+        // every one inside its leaf's box.
+        struct Leaf {
+            Bounds box;
+            std::vector<uint32_t> ids;
+        };
+        auto leaves = [](const Bvh& bvh) {
+            std::vector<Leaf> all;
+            bvh.for_each_leaf([&](const Bounds& box, uint32_t first, uint32_t count, int) {
+                all.push_back({box, {bvh.order().begin() + first, bvh.order().begin() + first + count}});
+                std::sort(all.back().ids.begin(), all.back().ids.end());
+            });
+            return all;
+        };
+        const std::vector<Leaf> serial_leaves = leaves(serial), parallel_leaves = leaves(parallel);
+        ASSERT_EQ(serial_leaves.size(), parallel_leaves.size()) << name;
         std::vector<int> seen(boxes.size(), 0);
-        for (size_t k = 0; k < serial.nodes().size(); ++k) {
-            const BvhNode &a = serial.nodes()[k], &b = parallel.nodes()[k];
-            ASSERT_EQ(std::memcmp(a.box, b.box, sizeof a.box), 0) << name << ", node " << k;
-            ASSERT_EQ(a.count, b.count) << name << ", node " << k;
-            ASSERT_EQ(a.index, b.index) << name << ", node " << k;
-            if (b.count == 0) continue;
-            // The same primitives in the leaf (partitioning in halves may order them otherwise).
-            auto leaf = [&](const Bvh& bvh) {
-                std::vector<uint32_t> ids(bvh.order().begin() + b.index, bvh.order().begin() + b.index + b.count);
-                std::sort(ids.begin(), ids.end());
-                return ids;
-            };
-            ASSERT_EQ(leaf(serial), leaf(parallel)) << name << ", node " << k;
-            for (uint32_t id : leaf(parallel)) {
+        for (size_t k = 0; k < parallel_leaves.size(); ++k) {
+            const Leaf& leaf = parallel_leaves[k];
+            ASSERT_EQ(leaf.ids, serial_leaves[k].ids) << name << ", leaf " << k;
+            for (uint32_t id : leaf.ids) {
                 ++seen[id];
                 for (int axis = 0; axis < 3; ++axis) {
-                    ASSERT_LE(double(b.box[0][axis]), boxes[id].lower[axis]);
-                    ASSERT_GE(double(b.box[1][axis]), boxes[id].upper[axis]);
+                    ASSERT_LE(leaf.box.lower[axis], boxes[id].lower[axis]);
+                    ASSERT_GE(leaf.box.upper[axis], boxes[id].upper[axis]);
                 }
             }
         }
