@@ -361,11 +361,11 @@ static NodeArray compact_depth_first(const NodeArray& slots) {
 static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
     auto half_area = [&](uint32_t i) {
         const float(&box)[2][3] = nodes[i].box;
-        const double dx = double(box[1][0]) - box[0][0], dy = double(box[1][1]) - box[0][1],
-                     dz = double(box[1][2]) - box[0][2];
+        const float dx = box[1][0] - box[0][0], dy = box[1][1] - box[0][1], dz = box[1][2] - box[0][2];
         return dx * dy + dy * dz + dz * dx;
     };
     LargeArray<WideNode> wide(1);
+    wide.reserve(nodes.size() / 8);  // about twice what SAH trees with small leaves need
     struct Move {
         uint32_t from, to;  // the binary node whose children make wide node `to`
     };
@@ -373,22 +373,27 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
     while (!pending.empty()) {
         const Move move = pending.back();
         pending.pop_back();
-        // Step 1: the children, opening the largest inner one while there is room.
+        // Step 1: the children, opening the largest inner one while there is room (-1: a leaf).
         uint32_t children[kWide] = {move.from};
+        float area[kWide] = {-1};
         int count = 1;
+        auto add = [&](int k, uint32_t child) {
+            children[k] = child;
+            area[k] = nodes[child].count == 0 ? half_area(child) : -1.0f;
+            // An inner child's right child is far away in the large slots array: a cache miss
+            // when the child is opened, here or as a wide node of its own; started now.
+            if (nodes[child].count == 0) __builtin_prefetch(&nodes[nodes[child].index]);
+        };
         if (nodes[move.from].count == 0) {
-            children[0] = move.from + 1, children[1] = nodes[move.from].index;
+            add(0, move.from + 1), add(1, nodes[move.from].index);
             count = 2;
         }
         while (count < kWide) {
-            int largest = -1;
-            for (int k = 0; k < count; ++k)
-                if (nodes[children[k]].count == 0 && (largest < 0 || half_area(children[k]) > half_area(children[largest])))
-                    largest = k;
-            if (largest < 0) break;
+            const int largest = int(std::max_element(area, area + count) - area);
+            if (area[largest] < 0) break;
             const uint32_t opened = children[largest];
-            children[largest] = opened + 1;
-            children[count++] = nodes[opened].index;
+            add(largest, opened + 1);
+            add(count++, nodes[opened].index);
         }
         // Step 2: their boxes lane by lane, leaves as ranges, inner children as new wide nodes.
         WideNode node;
