@@ -1,12 +1,13 @@
-// A bounding volume hierarchy over any primitives, in one flat array of 32-byte nodes.
-// Leaves hold a range of `order()`, the primitive ids sorted into leaf order.
+// A bounding volume hierarchy over any primitives, in one flat array of nodes (32 bytes per
+// child). Leaves hold a range of `order()`, the primitive ids sorted into leaf order.
 //
 // Builders: Box (one leaf holding everything: the assignment's Task 3), Median (the
 // assignment's Part 2: sort centroids along x, y, z by depth, split at the median) and Sah
-// (binned surface-area heuristic). Box and Median lay the nodes out depth first: an inner
-// node's left child follows it, its right child is at `index`. Sah stores siblings side by
-// side in one 64-byte cache line (children at `index` and `index + 1`), and the traversal
-// tests both with one 8-wide vector operation.
+// (binned surface-area heuristic). All three build a binary tree. Box and Median keep it, in
+// 32-byte nodes laid out depth first: an inner node's left child follows it, its right child
+// is at `index`. Sah collapses it into a wide tree (kWide = 8 children per node with AVX,
+// else 4) whose nodes hold their children's planes side by side, so that the traversal tests
+// all the children's boxes with one vector operation per plane.
 #pragma once
 
 #include <algorithm>
@@ -81,12 +82,6 @@ struct WideEntry {
     unsigned mask;
 };
 
-
-// A ray prepared for float box tests. The origin is rounded to float and moved |origin| 2^-21
-// (at least 4 ulps) away from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013; see
-// kFarGrow) and the node boxes are rounded outwards: the margins are meant to keep rounding
-// from making a box test miss a primitive the exact ray meets (hard-cases.md A1 and A3 will
-// test it).
 // Lane by lane minimum and maximum of GCC vectors; where `a` is NaN the lane takes `b`.
 template <typename Lanes>
 inline Lanes lane_min(Lanes a, Lanes b) { return a < b ? a : b; }
@@ -98,6 +93,11 @@ inline Lanes lane_max(Lanes a, Lanes b) { return a > b ? a : b; }
 // the same four roundings and factor as scaling each distance, in another order.
 constexpr float kFarGrow = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 
+// A ray prepared for float box tests. The origin is rounded to float and moved |origin| 2^-21
+// (at least 4 ulps) away from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013; see
+// kFarGrow) and the node boxes are rounded outwards: the margins are meant to keep rounding
+// from making a box test miss a primitive the exact ray meets (hard-cases.md A1 and A3 will
+// test it).
 struct TraversalRay {
     float origin_near[3];  // origin for the entering planes
     float origin_far[3];   // origin for the leaving planes
@@ -184,7 +184,7 @@ private:
         uint32_t index, count;
         float t;  // where the ray enters its box
     };
-    // Each wide node visited pushes at most three children more than it pops.
+    // Each wide node visited pushes at most kWide - 1 children more than it pops.
     using WideStack = WideRef[(kWide - 1) * kMaxBvhDepth + 1];
 
     template <typename Test>
