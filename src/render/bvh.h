@@ -195,6 +195,30 @@ private:
     bool closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const;
     template <typename Test>
     bool any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const;
+    // A leaf's entries [first, first + count) for the nearest hit: true if one was hit (range
+    // and fast's t_max then end at it).
+    template <typename Test>
+    static bool nearest_in_leaf(uint32_t first, uint32_t count, Interval& range, TraversalRay& fast,
+                                TraversalCounts& counts, Test& test) {
+        bool found = false;
+        for (uint32_t i = first; i < first + count; ++i) {
+            ++counts.primitive_tests;
+            if (test(i, range)) {
+                found = true;
+                fast.clip(range.max);
+            }
+        }
+        return found;
+    }
+    // True at the leaf's first entry that `test` hits.
+    template <typename Test>
+    static bool any_in_leaf(uint32_t first, uint32_t count, Interval& range, TraversalCounts& counts, Test& test) {
+        for (uint32_t i = first; i < first + count; ++i) {
+            ++counts.primitive_tests;
+            if (test(i, range)) return true;
+        }
+        return false;
+    }
     template <typename ComesOffFirst>
     static WideRef next_child(const WideNode& node, const WideEntry& entry, WideStack& stack, int& top,
                               ComesOffFirst comes_off_first);
@@ -271,13 +295,7 @@ bool Bvh::closest_binary(const Ray& ray, Interval& range, TraversalCounts& count
     for (;;) {
         const BvhNode& node = nodes_[current];
         if (node.count > 0) {
-            for (uint32_t i = node.index; i < node.index + node.count; ++i) {
-                ++counts.primitive_tests;
-                if (test(i, range)) {
-                    found = true;
-                    fast.clip(range.max);
-                }
-            }
+            found |= nearest_in_leaf(node.index, node.count, range, fast, counts, test);
         } else {
             // Visit the nearer child first; the farther one waits on the stack.
             const uint32_t left = current + 1, right = node.index;
@@ -316,10 +334,7 @@ bool Bvh::any_binary(const Ray& ray, Interval range, TraversalCounts& counts, Te
     for (;;) {
         const BvhNode& node = nodes_[current];
         if (node.count > 0) {
-            for (uint32_t i = node.index; i < node.index + node.count; ++i) {
-                ++counts.primitive_tests;
-                if (test(i, range)) return true;
-            }
+            if (any_in_leaf(node.index, node.count, range, counts, test)) return true;
         } else {
             const uint32_t left = current + 1, right = node.index;
             counts.box_tests += 2;
@@ -352,13 +367,7 @@ bool Bvh::closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts,
     bool found = false;
     for (;;) {
         if (current.count != WideNode::kInner) {
-            for (uint32_t i = current.index; i < current.index + current.count; ++i) {
-                ++counts.primitive_tests;
-                if (test(i, range)) {
-                    found = true;
-                    fast.clip(range.max);
-                }
-            }
+            found |= nearest_in_leaf(current.index, current.count, range, fast, counts, test);
         } else {
             const WideNode& node = wide_[current.index];
             counts.box_tests += kWide;
@@ -386,10 +395,7 @@ bool Bvh::any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test
     WideRef current{0, WideNode::kInner, 0};
     for (;;) {
         if (current.count != WideNode::kInner) {
-            for (uint32_t i = current.index; i < current.index + current.count; ++i) {
-                ++counts.primitive_tests;
-                if (test(i, range)) return true;
-            }
+            if (any_in_leaf(current.index, current.count, range, counts, test)) return true;
         } else {
             const WideNode& node = wide_[current.index];
             counts.box_tests += kWide;
