@@ -365,7 +365,7 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
         return dx * dy + dy * dz + dz * dx;
     };
     LargeArray<WideNode> wide(1);
-    wide.reserve(nodes.size() / 8);  // about twice what SAH trees with small leaves need
+    wide.reserve(nodes.size() / 8);  // n / 4: a little more than the trees here need (0.16-0.22 n)
     struct Move {
         uint32_t from, to;  // the binary node whose children make wide node `to`
     };
