@@ -5,7 +5,7 @@
 // mesh queries also the box and triangle tests per ray. Used to compare two builds of the
 // renderer run by run (tools/bench/compare_builds.py).
 //
-//   build/release/trace_parts [scene] [--full] [--repeat K] [--leaf-size N]
+//   build/release/trace_parts [scene] [--full] [--repeat K] [--leaf-size N] [--obj FILE]
 //
 // --repeat K traces every primary ray K times in a row: the branch predictor then learns each
 // ray's path, so the time saved is roughly what mispredicted branches cost.
@@ -20,7 +20,7 @@
 #include <glm/geometric.hpp>
 
 #include "auto_crop.h"
-#include "frontend/load_scene.h"
+#include "bench_scene.h"
 #include "render/camera.h"
 #include "render/mesh_loader.h"
 #include "render/renderer.h"
@@ -72,18 +72,17 @@ int main(int argc, char** argv) {
     app.add_option("--repeat", repeat, "Trace each primary ray this many times in a row")->check(CLI::Range(1, 64));
     int leaf_size = 0;
     app.add_option("--leaf-size", leaf_size, "Override the scene's BVH leaf size")->check(CLI::Range(1, 255));
+    std::string obj;
+    app.add_option("--obj", obj, "Use this OBJ file for the scene's first mesh");
     CLI11_PARSE(app, argc, argv);
 
     // Step 1: the scene, its world on one thread, and the rays.
-    LoadResult loaded = load_scene(scene_path);
-    std::optional<std::vector<TriangleMesh>> meshes;
-    if (loaded.scene) meshes = load_meshes(*loaded.scene, loaded.diagnostics);
-    loaded.diagnostics.print(std::cerr);
-    if (!loaded.scene || !meshes || meshes->empty()) return 1;
-    if (leaf_size > 0) loaded.scene->render.leaf_size = leaf_size;
-    const SceneDescription& scene = *loaded.scene;
-    const PixelRect crop = full ? PixelRect{0, 0, scene.render.width, scene.render.height} : auto_crop(scene, *meshes);
-    const World world(scene, *meshes, 1);
+    const std::optional<BenchScene> loaded = load_bench_scene(scene_path, obj, "", leaf_size);
+    if (!loaded || loaded->meshes.empty()) return 1;
+    const SceneDescription& scene = loaded->scene;
+    const std::vector<TriangleMesh>& meshes = loaded->meshes;
+    const PixelRect crop = full ? PixelRect{0, 0, scene.render.width, scene.render.height} : auto_crop(scene, meshes);
+    const World world(scene, meshes, 1);
     const MeshAccel& mesh = world.meshes()[0];
     const PinholeCamera camera(scene.camera, scene.render.width, scene.render.height);
     std::vector<Ray> primary;

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "auto_crop.h"
-#include "frontend/load_scene.h"
+#include "bench_scene.h"
 #include "render/camera.h"
 #include "render/image_output.h"
 #include "render/mesh_loader.h"
@@ -48,23 +48,15 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     // Step 1: the scene and its meshes (not timed).
-    tracer::LoadResult loaded = tracer::load_scene(scene_path);
-    if (loaded.scene && !obj.empty() && !loaded.scene->meshes.empty()) loaded.scene->meshes[0].path = obj;
-    if (loaded.scene && !accel.empty() && !tracer::accelerator_from_name(accel, loaded.scene->render.accel)) {
-        std::cerr << "tracer_bench: unknown accelerator '" << accel << "'\n";
-        return 2;
-    }
-    if (loaded.scene && leaf_size > 0) loaded.scene->render.leaf_size = leaf_size;
-    std::optional<std::vector<tracer::TriangleMesh>> meshes;
-    if (loaded.scene) meshes = tracer::load_meshes(*loaded.scene, loaded.diagnostics);
-    loaded.diagnostics.print(std::cerr);
-    if (!loaded.scene || !meshes) return 1;
-    const tracer::SceneDescription& scene = *loaded.scene;
+    const std::optional<tracer::BenchScene> loaded = tracer::load_bench_scene(scene_path, obj, accel, leaf_size);
+    if (!loaded) return 1;
+    const tracer::SceneDescription& scene = loaded->scene;
+    const std::vector<tracer::TriangleMesh>& meshes = loaded->meshes;
 
     tracer::RenderOptions options;
     options.threads = threads;
     if (crop_text == "auto") {
-        options.crop = tracer::auto_crop(scene, *meshes);
+        options.crop = tracer::auto_crop(scene, meshes);
     } else if (!crop_text.empty()) {
         std::istringstream in(crop_text);
         in >> options.crop.x0 >> options.crop.y0 >> options.crop.width >> options.crop.height;
@@ -74,7 +66,7 @@ int main(int argc, char** argv) {
     std::vector<double> build_ms;
     std::optional<tracer::World> world;
     for (int i = 0; i <= runs; ++i) {
-        world.emplace(scene, *meshes, threads);  // build threads follow --threads, as in embree_bench
+        world.emplace(scene, meshes, threads);  // build threads follow --threads, as in embree_bench
         double ms = 0;
         for (const auto& mesh : world->meshes()) ms += mesh.build_seconds() * 1e3;
         if (i > 0) build_ms.push_back(ms);
