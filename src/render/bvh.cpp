@@ -379,10 +379,11 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
         int count = 1;
         auto add = [&](int k, uint32_t child) {
             children[k] = child;
-            area[k] = nodes[child].count == 0 ? half_area(child) : -1.0f;
+            const bool inner = nodes[child].count == 0;
+            area[k] = inner ? half_area(child) : -1.0f;
             // An inner child's right child is far away in the large slots array: a cache miss
             // when the child is opened, here or as a wide node of its own; started now.
-            if (nodes[child].count == 0) __builtin_prefetch(&nodes[nodes[child].index]);
+            if (inner) __builtin_prefetch(&nodes[nodes[child].index]);
         };
         if (nodes[move.from].count == 0) {
             add(0, move.from + 1), add(1, nodes[move.from].index);

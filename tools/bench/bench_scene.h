@@ -17,21 +17,14 @@ struct BenchScene {
     std::vector<TriangleMesh> meshes;
 };
 
-// Loads `path`; a non-empty `obj` replaces the first mesh's file, a non-empty `accel` the
-// accelerator, a positive `leaf_size` the leaf size. Prints every diagnostic on stderr;
-// nullopt on errors.
-inline std::optional<BenchScene> load_bench_scene(const std::string& path, const std::string& obj,
-                                                  const std::string& accel, int leaf_size) {
+// Loads `path`; a non-empty `obj` replaces the first mesh's file, a positive `leaf_size` the
+// leaf size. Prints every diagnostic on stderr; nullopt on errors.
+inline std::optional<BenchScene> load_bench_scene(const std::string& path, const std::string& obj, int leaf_size) {
     LoadResult loaded = load_scene(path);
     std::optional<std::vector<TriangleMesh>> meshes;
     if (loaded.scene) {
-        RenderSettings& render = loaded.scene->render;
         if (!obj.empty() && !loaded.scene->meshes.empty()) loaded.scene->meshes[0].path = obj;
-        if (!accel.empty() && !accelerator_from_name(accel, render.accel)) {
-            std::cerr << "unknown accelerator '" << accel << "'\n";
-            return std::nullopt;
-        }
-        if (leaf_size > 0) render.leaf_size = leaf_size;
+        if (leaf_size > 0) loaded.scene->render.leaf_size = leaf_size;
         meshes = load_meshes(*loaded.scene, loaded.diagnostics);
     }
     loaded.diagnostics.print(std::cerr);

@@ -48,8 +48,14 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     // Step 1: the scene and its meshes (not timed).
-    const std::optional<tracer::BenchScene> loaded = tracer::load_bench_scene(scene_path, obj, accel, leaf_size);
+    tracer::Accelerator chosen{};
+    if (!accel.empty() && !tracer::accelerator_from_name(accel, chosen)) {
+        std::cerr << "tracer_bench: unknown accelerator '" << accel << "'\n";
+        return 2;
+    }
+    std::optional<tracer::BenchScene> loaded = tracer::load_bench_scene(scene_path, obj, leaf_size);
     if (!loaded) return 1;
+    if (!accel.empty()) loaded->scene.render.accel = chosen;
     const tracer::SceneDescription& scene = loaded->scene;
     const std::vector<tracer::TriangleMesh>& meshes = loaded->meshes;
 
