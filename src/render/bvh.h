@@ -218,6 +218,15 @@ private:
         }
         return false;
     }
+    // Asks for the cache lines of the inner children in `mask` before they are visited.
+    void prefetch_children(const WideNode& node, unsigned mask) const {
+        for (; mask != 0; mask &= mask - 1) {
+            const int lane = __builtin_ctz(mask);
+            if (node.count[lane] != WideNode::kInner) continue;
+            const char* child = reinterpret_cast<const char*>(&wide_[node.index[lane]]);
+            for (size_t line = 0; line < sizeof(WideNode); line += 64) __builtin_prefetch(child + line);
+        }
+    }
     template <typename ComesOffFirst>
     static WideRef next_child(const WideNode& node, const WideEntry& entry, WideStack& stack, int& top,
                               ComesOffFirst comes_off_first);
@@ -371,6 +380,7 @@ bool Bvh::closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts,
             const WideNode& node = wide_[current.index];
             counts.box_tests += kWide;
             const WideEntry entry = enter_wide(node, fast);
+            prefetch_children(node, entry.mask);
             if (entry.mask != 0) {
                 // The nearest child next, the others on the stack, nearer ones above farther.
                 current = next_child(node, entry, stack, top, [](float a, float b) { return a < b; });
@@ -399,6 +409,7 @@ bool Bvh::any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test
             const WideNode& node = wide_[current.index];
             counts.box_tests += kWide;
             const WideEntry entry = enter_wide(node, fast);
+            prefetch_children(node, entry.mask);
             if (entry.mask != 0) {
                 // Farthest child first (see any_binary).
                 current = next_child(node, entry, stack, top, [](float a, float b) { return a > b; });
