@@ -9,35 +9,6 @@
 
 namespace tracer {
 
-// Puts the mesh's triangles in the order `ids` (slot i <- triangle ids[i]) and renumbers its
-// vertex normals in order of first use, so that the triangles rays meet one after another
-// find their shading data close together in memory.
-static void to_leaf_order(TriangleMesh& mesh, const std::vector<uint32_t>& ids, int threads) {
-    const size_t n = ids.size();
-    // Step 1: the triangles' vertex and normal ids in slot order.
-    std::vector<std::array<uint32_t, 3>> vertices(n), normal_ids(n);
-    parallel_for(n, [&](size_t i) {
-        vertices[i] = mesh.vertices[ids[i]];
-        normal_ids[i] = mesh.normal_ids[ids[i]];
-    }, threads);
-    // Step 2: the normals in order of first use.
-    constexpr uint32_t kUnseen = ~0u;
-    std::vector<uint32_t> new_id(mesh.normals.size(), kUnseen);
-    std::vector<Vec3> normals;
-    normals.reserve(mesh.normals.size());
-    for (auto& triangle : normal_ids)
-        for (uint32_t& id : triangle) {
-            if (new_id[id] == kUnseen) {
-                new_id[id] = uint32_t(normals.size());
-                normals.push_back(mesh.normals[id]);
-            }
-            id = new_id[id];
-        }
-    mesh.vertices = std::move(vertices);
-    mesh.normal_ids = std::move(normal_ids);
-    mesh.normals = std::move(normals);
-}
-
 MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int threads)
     : mesh_(std::move(mesh)), accel_(accel) {
     const auto start = std::chrono::steady_clock::now();
@@ -54,11 +25,10 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int th
         ids_.resize(n);
         for (size_t i = 0; i < n; ++i) ids_[i] = uint32_t(i);
     }
-    // Step 2: the mesh in that order, and its triangles as a vertex and two edges.
-    if (accel_ != Accelerator::None) to_leaf_order(mesh_, ids_, threads);
+    // Step 2: the triangles in that order, as a vertex and two edges.
     edges_.resize(n);
     parallel_for(n, [&](size_t i) {
-        const auto& v = mesh_.vertices[i];
+        const auto& v = mesh_.vertices[ids_[i]];
         const Vec3& p0 = mesh_.positions[v[0]];
         edges_[i] = {p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0};
     }, threads);
@@ -102,7 +72,7 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
     } else {
         found = bvh_.closest(ray, range, counts, test);
     }
-    if (found) out = {ids_[best], best, best_hit};
+    if (found) out = {ids_[best], best_hit};
     return found;
 }
 
@@ -122,16 +92,18 @@ bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts
     return bvh_.any(ray, range, counts, test);
 }
 
-Vec3 MeshAccel::geometric_normal(uint32_t slot) const {
-    return glm::normalize(glm::cross(edges_[slot].e1, edges_[slot].e2));
+Vec3 MeshAccel::geometric_normal(uint32_t triangle) const {
+    const auto& v = mesh_.vertices[triangle];
+    const Vec3& p0 = mesh_.positions[v[0]];
+    return glm::normalize(glm::cross(mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0));
 }
 
 Vec3 MeshAccel::shading_normal(const MeshHit& hit) const {
-    const auto& n = mesh_.normal_ids[hit.slot];
+    const auto& n = mesh_.normal_ids[hit.triangle];
     const Real u = hit.hit.u, v = hit.hit.v;
     const Vec3 shading =
         normalize_or_zero((1 - u - v) * mesh_.normals[n[0]] + u * mesh_.normals[n[1]] + v * mesh_.normals[n[2]]);
-    return shading != Vec3(0) ? shading : geometric_normal(hit.slot);
+    return shading != Vec3(0) ? shading : geometric_normal(hit.triangle);
 }
 
 }  // namespace tracer
