@@ -16,12 +16,11 @@
 
 #include "app/progress.h"
 #include "render/render_stats.h"
-#include "frontend/load_scene.h"
 #include "frontend/reference_doc.h"
 #include "frontend/scene_json.h"
 #include "frontend/schema.h"
 #include "render/image_output.h"
-#include "render/mesh_loader.h"
+#include "render/load_world.h"
 #include "render/renderer.h"
 
 namespace {
@@ -49,32 +48,20 @@ struct Options {
     std::string stats_json;
 };
 
-// A validated scene with its meshes loaded: everything a render needs.
-struct LoadedScene {
-    tracer::SceneDescription scene;
-    std::vector<tracer::TriangleMesh> meshes;
-};
-
-// Loads and validates the scene and reads its meshes, printing every diagnostic; nullopt on
-// errors (with `exit_code` set).
-std::optional<LoadedScene> load(const Options& options, int& exit_code) {
-    tracer::LoadResult result = tracer::load_scene(options.scene);
-    std::optional<std::vector<tracer::TriangleMesh>> meshes;
-    if (result.scene) {
-        tracer::RenderSettings& render = result.scene->render;
+// Loads and validates the scene with the command line's overrides and reads its meshes,
+// printing every diagnostic; nullopt on errors (with `exit_code` set).
+std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) {
+    bool unreadable = false;
+    auto loaded = tracer::load_scene_with_meshes(options.scene, [&](tracer::SceneDescription& scene) {
+        tracer::RenderSettings& render = scene.render;
         if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
         if (options.leaf_size > 0) render.leaf_size = options.leaf_size;
         if (options.width > 0) render.width = options.width;
         if (options.height > 0) render.height = options.height;
         if (options.samples > 0) render.samples = options.samples;
-        meshes = tracer::load_meshes(*result.scene, result.diagnostics);
-    }
-    result.diagnostics.print(std::cerr);
-    if (!result.scene || !meshes) {
-        exit_code = result.unreadable ? kIoError : kSceneError;
-        return std::nullopt;
-    }
-    return LoadedScene{std::move(*result.scene), std::move(*meshes)};
+    }, std::cerr, &unreadable);
+    if (!loaded) exit_code = unreadable ? kIoError : kSceneError;
+    return loaded;
 }
 
 std::string millions(uint64_t count) {

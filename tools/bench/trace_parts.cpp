@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
 
     // Step 1: the scene, its world on one thread, and the rays.
-    const std::optional<BenchScene> loaded = load_bench_scene(scene_path, obj, leaf_size);
+    const std::optional<LoadedScene> loaded = load_bench_scene(scene_path, obj, leaf_size);
     if (!loaded || loaded->meshes.empty()) return 1;
     const SceneDescription& scene = loaded->scene;
     const std::vector<TriangleMesh>& meshes = loaded->meshes;

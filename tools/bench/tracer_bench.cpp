@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
         std::cerr << "tracer_bench: unknown accelerator '" << accel << "'\n";
         return 2;
     }
-    std::optional<tracer::BenchScene> loaded = tracer::load_bench_scene(scene_path, obj, leaf_size);
+    std::optional<tracer::LoadedScene> loaded = tracer::load_bench_scene(scene_path, obj, leaf_size);
     if (!loaded) return 1;
     if (!accel.empty()) loaded->scene.render.accel = chosen;
     const tracer::SceneDescription& scene = loaded->scene;

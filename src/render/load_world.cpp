@@ -1,0 +1,24 @@
+#include "render/load_world.h"
+
+#include <ostream>
+
+#include "frontend/load_scene.h"
+
+namespace tracer {
+
+std::optional<LoadedScene> load_scene_with_meshes(const std::string& path,
+                                                  const std::function<void(SceneDescription&)>& adjust,
+                                                  std::ostream& errors, bool* unreadable) {
+    LoadResult loaded = load_scene(path);
+    std::optional<std::vector<TriangleMesh>> meshes;
+    if (loaded.scene) {
+        if (adjust) adjust(*loaded.scene);
+        meshes = load_meshes(*loaded.scene, loaded.diagnostics);
+    }
+    loaded.diagnostics.print(errors);
+    if (unreadable) *unreadable = loaded.unreadable;
+    if (!loaded.scene || !meshes) return std::nullopt;
+    return LoadedScene{std::move(*loaded.scene), std::move(*meshes)};
+}
+
+}  // namespace tracer
