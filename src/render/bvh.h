@@ -227,6 +227,11 @@ private:
             for (size_t line = 0; line < sizeof(WideNode); line += 64) __builtin_prefetch(child + line);
         }
     }
+    // Tests the children of inner node `current` against the ray; if it enters any, `current`
+    // becomes the one that comes off first and the others go on the stack (see next_child).
+    template <typename ComesOffFirst>
+    bool descend(WideRef& current, const TraversalRay& fast, WideStack& stack, int& top, TraversalCounts& counts,
+                 ComesOffFirst comes_off_first) const;
     template <typename ComesOffFirst>
     static WideRef next_child(const WideNode& node, const WideEntry& entry, WideStack& stack, int& top,
                               ComesOffFirst comes_off_first);
@@ -366,6 +371,18 @@ bool Bvh::any_binary(const Ray& ray, Interval range, TraversalCounts& counts, Te
     }
 }
 
+template <typename ComesOffFirst>
+bool Bvh::descend(WideRef& current, const TraversalRay& fast, WideStack& stack, int& top, TraversalCounts& counts,
+                  ComesOffFirst comes_off_first) const {
+    const WideNode& node = wide_[current.index];
+    counts.box_tests += kWide;
+    const WideEntry entry = enter_wide(node, fast);
+    prefetch_children(node, entry.mask);
+    if (entry.mask == 0) return false;
+    current = next_child(node, entry, stack, top, comes_off_first);
+    return true;
+}
+
 template <typename Test>
 bool Bvh::closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const {
     TraversalRay fast(ray, range);
@@ -376,16 +393,8 @@ bool Bvh::closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts,
     for (;;) {
         if (current.count != WideNode::kInner) {
             found |= nearest_in_leaf(current.index, current.count, range, fast, counts, test);
-        } else {
-            const WideNode& node = wide_[current.index];
-            counts.box_tests += kWide;
-            const WideEntry entry = enter_wide(node, fast);
-            prefetch_children(node, entry.mask);
-            if (entry.mask != 0) {
-                // The nearest child next, the others on the stack, nearer ones above farther.
-                current = next_child(node, entry, stack, top, [](float a, float b) { return a < b; });
-                continue;
-            }
+        } else if (descend(current, fast, stack, top, counts, [](float a, float b) { return a < b; })) {
+            continue;  // the nearest child next, the others on the stack, nearer ones above farther
         }
         // Next waiting node, unless a hit found meanwhile lies before its box.
         do {
@@ -405,16 +414,8 @@ bool Bvh::any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test
     for (;;) {
         if (current.count != WideNode::kInner) {
             if (any_in_leaf(current.index, current.count, range, counts, test)) return true;
-        } else {
-            const WideNode& node = wide_[current.index];
-            counts.box_tests += kWide;
-            const WideEntry entry = enter_wide(node, fast);
-            prefetch_children(node, entry.mask);
-            if (entry.mask != 0) {
-                // Farthest child first (see any_binary).
-                current = next_child(node, entry, stack, top, [](float a, float b) { return a > b; });
-                continue;
-            }
+        } else if (descend(current, fast, stack, top, counts, [](float a, float b) { return a > b; })) {
+            continue;  // farthest child first (see any_binary)
         }
         if (top == 0) return false;
         current = stack[--top];
