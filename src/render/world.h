@@ -28,6 +28,8 @@ public:
     std::optional<SurfaceHit> intersect(const Ray& ray, Interval range, TraversalCounts& counts) const;
     // True if any surface lies along `ray` with t inside `range` (for shadow rays).
     bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const;
+    // False only if the ray's line misses every shape's bounding sphere (planes: never).
+    bool may_hit(const Ray& ray) const;
 
     const std::vector<Material>& materials() const { return materials_; }
     const std::vector<Light>& lights() const { return lights_; }

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "render/whitted.h"
 
@@ -98,6 +99,44 @@ TEST(Whitted, NormalFacesTheRaySoInsidesAreLit) {
     RayCounts counts;
     Color c = trace(world, scene.render, {{0, 0, 0}, {0, 1, 0}}, counts);
     EXPECT_NEAR(c.r, 1.0, 1e-12);
+}
+
+// trace() answers rays that World::may_hit rules out with the background at once: that must
+// never skip a surface. Rays aimed at points on and just off the sphere's silhouette.
+TEST(Whitted, MayHitNeverRulesOutARayThatHits) {
+    SceneDescription scene = one_sphere(phong(dvec3(0.1), dvec3(0), dvec3(0), 1), {{0, 0, 10}, dvec3(0)});
+    scene.spheres[0].center = {0.3, -0.2, 0.1};
+    scene.spheres[0].radius = 0.7;
+    World world(scene);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> angle(0, 2 * M_PI), exponent(-12, -4), far(2, 50);
+    int hits = 0, ruled_out = 0;
+    for (int i = 0; i < 100000; ++i) {
+        const double a = angle(random), b = angle(random), distance = far(random);
+        const Vec3 origin = Vec3(scene.spheres[0].center) +
+                            distance * Vec3(std::cos(a) * std::sin(b), std::sin(a) * std::sin(b), std::cos(b));
+        // A point on the silhouette seen from the origin, nudged in or out by 1e-12 to 1e-4.
+        const Vec3 to_centre = Vec3(scene.spheres[0].center) - origin;
+        const Vec3 side = glm::normalize(glm::cross(to_centre, Vec3(0.3, 1, 0.2)));
+        const double r = scene.spheres[0].radius, d = glm::length(to_centre);
+        const Vec3 target = origin + to_centre * (1 - r * r / (d * d)) + side * (r * std::sqrt(d * d - r * r) / d + (i % 2 ? 1 : -1) * std::pow(10.0, exponent(random)));
+        const Ray ray{origin, glm::normalize(target - origin)};
+        TraversalCounts counts;
+        const bool hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts).has_value();
+        hits += hit;
+        ruled_out += !world.may_hit(ray);
+        if (hit) {
+            ASSERT_TRUE(world.may_hit(ray)) << "ray " << i;
+        }
+    }
+    EXPECT_GT(hits, 1000);       // the test aims at the silhouette: some rays hit ...
+    EXPECT_GT(ruled_out, 1000);  // ... and some are ruled out
+    RayCounts counts;
+    EXPECT_EQ(trace(world, scene.render, {{5, 5, 5}, {1, 0, 0}}, counts), scene.render.background);
+    EXPECT_EQ(counts.primary, 1u);
+    // A plane is unbounded: nothing is ruled out.
+    scene.planes = {{{0, -100, 0}, {0, 1, 0}, 0}};
+    EXPECT_TRUE(World(scene).may_hit({{5, 5, 5}, {1, 0, 0}}));
 }
 
 }  // namespace
