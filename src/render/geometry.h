@@ -14,15 +14,15 @@
 
 namespace tracer {
 
-// False only if the ray's line passes outside the sphere of squared radius `radius2` (the
-// caller's margin included): the squared distance of the centre from the line, times |d|^2 (no
-// division). A margin of 1e-6 r^2 covers its rounding, which grows with the centre's distance
-// squared; a NaN counts as "may meet".
+// False only if the ray's line passes outside the sphere of squared radius `radius2`: the
+// squared distance of the centre from the line, times |d|^2 (no division), against r^2 with a
+// margin (10^-6 r^2, and 10^-12 of the centre's squared distance, for its rounding); a NaN
+// counts as "may meet".
 inline bool line_may_meet_sphere(const Ray& ray, const Vec3& centre, Real radius2) {
     const Vec3 to_centre = centre - ray.origin;
     const Real along = glm::dot(to_centre, ray.direction);
     const Real dd = glm::dot(ray.direction, ray.direction), cc = glm::dot(to_centre, to_centre);
-    return !(cc * dd - along * along > (radius2 + cc * 1e-12) * dd);
+    return !(cc * dd - along * along > (radius2 * (1 + 1e-6) + cc * 1e-12) * dd);
 }
 
 // Nearest t in `range` where `ray` meets the sphere, from outside or inside.

@@ -33,13 +33,13 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int th
         const Vec3& p0 = mesh_.positions[v[0]];
         edges_[i] = {p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0};
     }, threads);
-    // Step 3: may_hit's sphere, around the root box (which holds every triangle), 10^-6 wider.
+    // Step 3: may_hit's sphere, around the root box (which holds every triangle).
     if (accel_ != Accelerator::None) {
         const Bounds& box = bvh_.bounds();
         const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
         if (std::isfinite(radius)) {
             sphere_centre_ = box.centre();
-            sphere_radius2_ = radius * radius * (1 + 1e-6);
+            sphere_radius2_ = radius * radius;
         }
     }
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -43,7 +43,6 @@ public:
     double build_seconds() const { return build_seconds_; }
 
 private:
-
     TriangleMesh mesh_;
     Accelerator accel_;
     Bvh bvh_;
@@ -51,7 +50,7 @@ private:
     std::vector<uint32_t> ids_;
     double build_seconds_ = 0;
     Vec3 sphere_centre_{0};
-    Real sphere_radius2_ = kInfinity;  // squared, with a margin (no sphere: every ray passes)
+    Real sphere_radius2_ = kInfinity;  // squared (no sphere: every ray passes)
 };
 
 }  // namespace tracer

@@ -58,7 +58,7 @@ std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range, Trave
 bool World::may_hit(const Ray& ray) const {
     if (!planes_.empty()) return true;
     for (const SphereShape& s : spheres_)
-        if (line_may_meet_sphere(ray, s.center, s.radius * s.radius * (1 + 1e-6))) return true;
+        if (line_may_meet_sphere(ray, s.center, s.radius * s.radius)) return true;
     for (const MeshAccel& mesh : meshes_)
         if (mesh.may_hit(ray)) return true;
     return false;

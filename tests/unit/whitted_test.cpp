@@ -119,7 +119,8 @@ TEST(Whitted, MayHitNeverRulesOutARayThatHits) {
         const Vec3 to_centre = Vec3(scene.spheres[0].center) - origin;
         const Vec3 side = glm::normalize(glm::cross(to_centre, Vec3(0.3, 1, 0.2)));
         const double r = scene.spheres[0].radius, d = glm::length(to_centre);
-        const Vec3 target = origin + to_centre * (1 - r * r / (d * d)) + side * (r * std::sqrt(d * d - r * r) / d + (i % 2 ? 1 : -1) * std::pow(10.0, exponent(random)));
+        const double nudge = (i % 2 ? 1 : -1) * std::pow(10.0, exponent(random));
+        const Vec3 target = origin + to_centre * (1 - r * r / (d * d)) + side * (r * std::sqrt(d * d - r * r) / d + nudge);
         const Ray ray{origin, glm::normalize(target - origin)};
         TraversalCounts counts;
         const bool hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts).has_value();
