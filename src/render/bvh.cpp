@@ -39,7 +39,9 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
         const float origin = float(ray.origin[axis]);
         // |origin| 2^-21 is at least 4 ulps of it: rounding the origin moved it by half an ulp.
         const float pad = std::fabs(origin) * 0x1p-21f;
-        const bool negative = ray.direction[axis] < 0;
+        // The sign bit, not `< 0`: 1 / -0 is -infinity, so a -0 direction enters through the
+        // upper plane, like any negative one (with `< 0` it missed every box).
+        const bool negative = std::signbit(ray.direction[axis]);
         near_side[axis] = negative ? 1 : 0;
         near_row[axis] = (near_side[axis] * 3 + axis) * kWide;
         far_row[axis] = ((1 - near_side[axis]) * 3 + axis) * kWide;

@@ -134,21 +134,25 @@ TEST(Bvh, FlatGridTraversalLosesNoHitOfTheTriangleTest) {
     for (Accelerator accel : {Accelerator::Median, Accelerator::Sah}) {
         const MeshAccel tree(grid, accel, 3);
         int rays = 0, hits = 0;
-        // (a) straight down from (0.5 a, 0.5 b, 1): 16,641 rays, 12,545 of them on grid lines.
-        for (int a = 0; a <= 128; ++a)
-            for (int b = 0; b <= 128; ++b) {
-                const Ray ray{{0.5 * a, 0.5 * b, 1.0}, {0.0, 0.0, -1.0}};
-                Interval range{0, kInfinity}, brute_range{0, kInfinity};
-                MeshHit hit, brute_hit;
-                TraversalCounts counts;
-                ++rays;
-                const bool found = tree.intersect(ray, range, hit, counts);
-                EXPECT_EQ(found, brute.intersect(ray, brute_range, brute_hit, counts))
-                    << accelerator_name(accel) << " at " << a << ", " << b;
-                if (!found) continue;
-                ++hits;
-                EXPECT_EQ(hit.hit.t, 1.0) << accelerator_name(accel) << " at " << a << ", " << b;
-            }
+        // (a) straight down from (0.5 a, 0.5 b, 1): 16,641 rays, 12,545 of them on grid lines;
+        // once with direction (0, 0, -1) and once with (-0, -0, -1), whose negative zeros must
+        // not turn the slabs around.
+        for (double zero : {0.0, -0.0}) {
+            for (int a = 0; a <= 128; ++a)
+                for (int b = 0; b <= 128; ++b) {
+                    const Ray ray{{0.5 * a, 0.5 * b, 1.0}, {zero, zero, -1.0}};
+                    Interval range{0, kInfinity}, brute_range{0, kInfinity};
+                    MeshHit hit, brute_hit;
+                    TraversalCounts counts;
+                    ++rays;
+                    const bool found = tree.intersect(ray, range, hit, counts);
+                    EXPECT_EQ(found, brute.intersect(ray, brute_range, brute_hit, counts))
+                        << accelerator_name(accel) << " at " << a << ", " << b;
+                    if (!found) continue;
+                    ++hits;
+                    EXPECT_EQ(hit.hit.t, 1.0) << accelerator_name(accel) << " at " << a << ", " << b;
+                }
+        }
         // (b) towards every interior vertex from v + (-0.3, 0.2, 5).
         for (int j = 1; j < 64; ++j)
             for (int i = 1; i < 64; ++i) {
