@@ -52,7 +52,14 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
         origin_far[axis] = negative ? origin + pad : origin - pad;
         inv_dir[axis] = float(Real(1) / ray.direction[axis]);
         inv_dir_far[axis] = inv_dir[axis] * kFarGrow;  // see kFarGrow
+        scaled_origin_near[axis] = origin_near[axis] * inv_dir[axis];
+        scaled_origin_far[axis] = origin_far[axis] * inv_dir_far[axis];
     }
+    // The fused form needs finite products: an infinite one would not round to the nearest float.
+    fused = kFusedSlabs;
+    for (int axis = 0; axis < 3; ++axis)
+        fused = fused && std::isfinite(inv_dir_far[axis]) && std::isfinite(scaled_origin_near[axis]) &&
+                std::isfinite(scaled_origin_far[axis]);
     t_min = round_down(range.min);
     t_max = round_up(range.max);
 }

@@ -92,16 +92,42 @@ inline Lanes lane_max(Lanes a, Lanes b) { return a > b ? a : b; }
 // the same four roundings and factor as scaling each distance, in another order.
 constexpr float kFarGrow = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 
+// a * b - c, rounded once where the processor has FMA (kFusedSlabs), lane by lane.
+#if defined(__FMA__)
+constexpr bool kFusedSlabs = true;
+template <typename Lanes>
+inline Lanes multiply_subtract(Lanes a, float b, float c) {
+    if constexpr (sizeof(Lanes) == 32)
+        return Lanes(_mm256_fmsub_ps(__m256(a), _mm256_set1_ps(b), _mm256_set1_ps(c)));
+    else
+        return Lanes(_mm_fmsub_ps(__m128(a), _mm_set1_ps(b), _mm_set1_ps(c)));
+}
+#else
+constexpr bool kFusedSlabs = false;
+template <typename Lanes>
+inline Lanes multiply_subtract(Lanes a, float b, float c) { return a * b - c; }  // unused: not rounded once
+#endif
+
 // A ray prepared for float box tests. The origin is rounded to float and moved |origin| 2^-21
 // (at least 4 ulps) away from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013; see
 // kFarGrow) and the node boxes are rounded outwards: the margins are meant to keep rounding
-// from making a box test miss a primitive the exact ray meets (hard-cases.md A1 and A3 will
-// test it).
+// from making a box test miss a primitive the exact ray meets (hard-cases.md A1 and A3;
+// tests/unit/bvh_test.cpp aims rays at box surfaces to check it).
+//
+// A plane's distance is (plane - origin) * inv_dir, or in the fused form (wide nodes, where
+// the processor has FMA) plane * inv_dir - origin * inv_dir, one operation shorter. Rounding
+// origin * inv_dir moves the distance as far as moving the origin by 2^-24 |origin| would,
+// which the pad covers as it covers rounding the origin; the FMA's rounding and 1 / d's are
+// within kFarGrow. An infinite 1 / d (a zero component) would make the fused form NaN
+// (infinity - infinity): such rays take the other form.
 struct TraversalRay {
-    float origin_near[3];  // origin for the entering planes
-    float origin_far[3];   // origin for the leaving planes
-    float inv_dir[3];      // 1 / direction; +-infinity for a zero component
-    float inv_dir_far[3];  // inv_dir * kFarGrow, for the leaving planes
+    float origin_near[3];         // origin for the entering planes
+    float origin_far[3];          // origin for the leaving planes
+    float inv_dir[3];             // 1 / direction; +-infinity for a zero component
+    float inv_dir_far[3];         // inv_dir * kFarGrow, for the leaving planes
+    float scaled_origin_near[3];  // origin_near * inv_dir, for the fused form
+    float scaled_origin_far[3];   // origin_far * inv_dir_far
+    bool fused = false;           // the fused form applies: FMA, and the scaled values all finite
     int near_side[3];      // which corner holds the entering plane per axis: 1 when the direction is negative
     int near_row[3];       // where enter_wide finds the entering planes per axis, in floats from planes
     int far_row[3];        // and the leaving planes
@@ -190,10 +216,21 @@ private:
     bool closest_binary(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const;
     template <typename Test>
     bool any_binary(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const;
+    // The wide traversals pick the fused box test where it applies (see TraversalRay).
     template <typename Test>
-    bool closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const;
+    bool closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const {
+        TraversalRay fast(ray, range);
+        return fast.fused ? closest_wide<true>(fast, range, counts, test) : closest_wide<false>(fast, range, counts, test);
+    }
     template <typename Test>
-    bool any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const;
+    bool any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const {
+        const TraversalRay fast(ray, range);
+        return fast.fused ? any_wide<true>(fast, range, counts, test) : any_wide<false>(fast, range, counts, test);
+    }
+    template <bool kFused, typename Test>
+    bool closest_wide(TraversalRay& fast, Interval& range, TraversalCounts& counts, Test& test) const;
+    template <bool kFused, typename Test>
+    bool any_wide(const TraversalRay& fast, Interval range, TraversalCounts& counts, Test& test) const;
     // A leaf's entries [first, first + count) for the nearest hit: true if one was hit (range
     // and fast's t_max then end at it).
     template <typename Test>
@@ -229,7 +266,7 @@ private:
     }
     // Tests the children of inner node `current` against the ray; if it enters any, `current`
     // becomes the one that comes off first and the others go on the stack (see next_child).
-    template <typename ComesOffFirst>
+    template <bool kFused, typename ComesOffFirst>
     bool descend(WideRef& current, const TraversalRay& fast, WideStack& stack, int& top, TraversalCounts& counts,
                  ComesOffFirst comes_off_first) const;
     template <typename ComesOffFirst>
@@ -272,9 +309,10 @@ inline unsigned lane_mask(Lanes hit) {
 }
 
 // enter_box for the children of a wide node at once: `t` lane i is child i's entry
-// distance, bit i of `mask` is set where the ray enters child i. Same arithmetic, same NaN
-// rules, same results as enter_box. Lanes without a child hold an empty box (lower +infinity,
-// upper -infinity).
+// distance, bit i of `mask` is set where the ray enters child i. The same NaN rules as
+// enter_box, and without kFused the same arithmetic and results. Lanes without a child hold
+// an empty box (lower +infinity, upper -infinity).
+template <bool kFused>
 inline WideEntry enter_wide(const WideNode& node, const TraversalRay& ray) {
     using Lanes = FloatLanesW;
     const float* planes = &node.planes[0][0][0];
@@ -283,8 +321,13 @@ inline WideEntry enter_wide(const WideNode& node, const TraversalRay& ray) {
         Lanes near_plane, far_plane;
         std::memcpy(&near_plane, planes + ray.near_row[axis], sizeof near_plane);
         std::memcpy(&far_plane, planes + ray.far_row[axis], sizeof far_plane);
-        near = lane_max((near_plane - ray.origin_near[axis]) * ray.inv_dir[axis], near);
-        far = lane_min((far_plane - ray.origin_far[axis]) * ray.inv_dir_far[axis], far);
+        if constexpr (kFused) {
+            near = lane_max(multiply_subtract(near_plane, ray.inv_dir[axis], ray.scaled_origin_near[axis]), near);
+            far = lane_min(multiply_subtract(far_plane, ray.inv_dir_far[axis], ray.scaled_origin_far[axis]), far);
+        } else {
+            near = lane_max((near_plane - ray.origin_near[axis]) * ray.inv_dir[axis], near);
+            far = lane_min((far_plane - ray.origin_far[axis]) * ray.inv_dir_far[axis], far);
+        }
     }
     const auto hit = near <= far;
     return {near, lane_mask(hit)};
@@ -371,21 +414,20 @@ bool Bvh::any_binary(const Ray& ray, Interval range, TraversalCounts& counts, Te
     }
 }
 
-template <typename ComesOffFirst>
+template <bool kFused, typename ComesOffFirst>
 bool Bvh::descend(WideRef& current, const TraversalRay& fast, WideStack& stack, int& top, TraversalCounts& counts,
                   ComesOffFirst comes_off_first) const {
     const WideNode& node = wide_[current.index];
     counts.box_tests += kWide;
-    const WideEntry entry = enter_wide(node, fast);
+    const WideEntry entry = enter_wide<kFused>(node, fast);
     prefetch_children(node, entry.mask);
     if (entry.mask == 0) return false;
     current = next_child(node, entry, stack, top, comes_off_first);
     return true;
 }
 
-template <typename Test>
-bool Bvh::closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const {
-    TraversalRay fast(ray, range);
+template <bool kFused, typename Test>
+bool Bvh::closest_wide(TraversalRay& fast, Interval& range, TraversalCounts& counts, Test& test) const {
     WideStack stack;
     int top = 0;
     WideRef current{0, WideNode::kInner, 0};
@@ -393,7 +435,7 @@ bool Bvh::closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts,
     for (;;) {
         if (current.count != WideNode::kInner) {
             found |= nearest_in_leaf(current.index, current.count, range, fast, counts, test);
-        } else if (descend(current, fast, stack, top, counts, [](float a, float b) { return a < b; })) {
+        } else if (descend<kFused>(current, fast, stack, top, counts, [](float a, float b) { return a < b; })) {
             continue;  // the nearest child next, the others on the stack, nearer ones above farther
         }
         // Next waiting node, unless a hit found meanwhile lies before its box.
@@ -405,16 +447,15 @@ bool Bvh::closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts,
     }
 }
 
-template <typename Test>
-bool Bvh::any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const {
-    const TraversalRay fast(ray, range);
+template <bool kFused, typename Test>
+bool Bvh::any_wide(const TraversalRay& fast, Interval range, TraversalCounts& counts, Test& test) const {
     WideStack stack;
     int top = 0;
     WideRef current{0, WideNode::kInner, 0};
     for (;;) {
         if (current.count != WideNode::kInner) {
             if (any_in_leaf(current.index, current.count, range, counts, test)) return true;
-        } else if (descend(current, fast, stack, top, counts, [](float a, float b) { return a > b; })) {
+        } else if (descend<kFused>(current, fast, stack, top, counts, [](float a, float b) { return a > b; })) {
             continue;  // farthest child first (see any_binary)
         }
         if (top == 0) return false;
