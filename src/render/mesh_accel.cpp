@@ -21,17 +21,17 @@ MeshAccel::MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int th
             for (uint32_t v : mesh_.vertices[i]) bounds[i].extend(mesh_.positions[v]);
         }, threads);
         bvh_ = Bvh(bounds, accel_, leaf_size, threads);
-        ids_ = bvh_.order();
-    } else {
-        ids_.resize(n);
-        for (size_t i = 0; i < n; ++i) ids_[i] = uint32_t(i);
     }
-    // Step 2: the triangles in that order, as a vertex and two edges.
+    // Step 2: the triangles in that order, as a vertex and two edges, and their hit records.
     edges_.resize(n);
+    hit_records_.resize(n);
     parallel_for(n, [&](size_t i) {
-        const auto& v = mesh_.vertices[ids_[i]];
+        const uint32_t triangle = accel_ != Accelerator::None ? bvh_.order()[i] : uint32_t(i);
+        const auto& v = mesh_.vertices[triangle];
         const Vec3& p0 = mesh_.positions[v[0]];
         edges_[i] = {p0, mesh_.positions[v[1]] - p0, mesh_.positions[v[2]] - p0};
+        const auto& normal = mesh_.normal_ids[triangle];
+        hit_records_[i] = {{mesh_.normals[normal[0]], mesh_.normals[normal[1]], mesh_.normals[normal[2]]}, triangle};
     }, threads);
     // Step 3: may_hit's sphere, around the root box (which holds every triangle).
     if (accel_ != Accelerator::None) {
@@ -59,6 +59,7 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
         r.max = hit.t;
         best = i;
         best_hit = hit;
+        __builtin_prefetch(&hit_records_[i]);  // read when the search ends, if no nearer hit
         return true;
     };
     bool found = false;
@@ -68,7 +69,7 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
     } else {
         found = bvh_.closest(ray, range, counts, test);
     }
-    if (found) out = {ids_[best], best_hit};
+    if (found) out = {hit_records_[best].triangle, best, best_hit};
     return found;
 }
 
@@ -95,10 +96,9 @@ Vec3 MeshAccel::geometric_normal(uint32_t triangle) const {
 }
 
 Vec3 MeshAccel::shading_normal(const MeshHit& hit) const {
-    const auto& n = mesh_.normal_ids[hit.triangle];
+    const Vec3(&n)[3] = hit_records_[hit.slot].normals;
     const Real u = hit.hit.u, v = hit.hit.v;
-    const Vec3 shading =
-        normalize_or_zero((1 - u - v) * mesh_.normals[n[0]] + u * mesh_.normals[n[1]] + v * mesh_.normals[n[2]]);
+    const Vec3 shading = normalize_or_zero((1 - u - v) * n[0] + u * n[1] + v * n[2]);
     return shading != Vec3(0) ? shading : geometric_normal(hit.triangle);
 }
 

@@ -13,6 +13,7 @@ namespace tracer {
 
 struct MeshHit {
     uint32_t triangle = 0;  // index into TriangleMesh::vertices
+    uint32_t slot = 0;      // the triangle's place in leaf order, where MeshAccel keeps its data
     TriangleHit hit;
 };
 
@@ -46,8 +47,14 @@ private:
     TriangleMesh mesh_;
     Accelerator accel_;
     Bvh bvh_;
-    LargeArray<TriangleEdges> edges_;  // entry i is triangle ids_[i]
-    std::vector<uint32_t> ids_;
+    // What shading a hit needs, in leaf order too: read in one or two cache lines, where the
+    // mesh's own arrays would cost a cache miss each for a big mesh.
+    struct HitRecord {
+        Vec3 normals[3];    // the vertex normals
+        uint32_t triangle;  // index into mesh_.vertices
+    };
+    LargeArray<TriangleEdges> edges_;  // entry i is triangle hit_records_[i].triangle
+    LargeArray<HitRecord> hit_records_;
     double build_seconds_ = 0;
     Vec3 sphere_centre_{0};
     Real sphere_radius2_ = kInfinity;  // squared (no sphere: every ray passes)
