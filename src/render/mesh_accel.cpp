@@ -59,7 +59,9 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
         r.max = hit.t;
         best = i;
         best_hit = hit;
-        __builtin_prefetch(&hit_records_[i]);  // read when the search ends, if no nearer hit
+        // Read when the search ends, if no nearer hit: ask for both cache lines it may span.
+        __builtin_prefetch(&hit_records_[i]);
+        __builtin_prefetch(&hit_records_[i].triangle);
         return true;
     };
     bool found = false;
