@@ -1,0 +1,62 @@
+#include "render/bvh_node.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace tracer {
+namespace {
+
+// The next float towards +infinity (or -infinity), by stepping the bit pattern; no libm call.
+float next_up(float f) {
+    if (!(f < std::numeric_limits<float>::infinity())) return f;  // +inf and NaN stay
+    if (f == 0) return std::numeric_limits<float>::denorm_min();
+    const uint32_t bits = std::bit_cast<uint32_t>(f);
+    return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
+}
+float next_down(float f) { return -next_up(-f); }
+
+}  // namespace
+
+float round_down(Real x) {
+    const float f = float(x);
+    return Real(f) > x ? next_down(f) : f;
+}
+float round_up(Real x) {
+    const float f = float(x);
+    return Real(f) < x ? next_up(f) : f;
+}
+
+TraversalRay::TraversalRay(const Ray& ray, Interval range) {
+    for (int axis = 0; axis < 3; ++axis) {
+        const float origin = float(ray.origin[axis]);
+        // |origin| 2^-21 is at least 4 ulps of it: rounding the origin moved it by half an ulp.
+        const float pad = std::fabs(origin) * 0x1p-21f;
+        // The sign bit, not `< 0`: 1 / -0 is -infinity, so a -0 direction enters through the
+        // upper plane, like any negative one (with `< 0` it missed every box).
+        const bool negative = std::signbit(ray.direction[axis]);
+        near_side[axis] = negative ? 1 : 0;
+        near_row[axis] = (near_side[axis] * 3 + axis) * kWide;
+        far_row[axis] = ((1 - near_side[axis]) * 3 + axis) * kWide;
+        // Widen the box by `pad` on both sides: the entering plane moves towards the origin's
+        // side (lower - pad - o = lower - (o + pad) for a positive direction), the leaving plane
+        // away from it.
+        origin_near[axis] = negative ? origin - pad : origin + pad;
+        origin_far[axis] = negative ? origin + pad : origin - pad;
+        inv_dir[axis] = float(Real(1) / ray.direction[axis]);
+        inv_dir_far[axis] = inv_dir[axis] * kFarGrow;  // see kFarGrow
+        scaled_origin_near[axis] = origin_near[axis] * inv_dir[axis];
+        scaled_origin_far[axis] = origin_far[axis] * inv_dir_far[axis];
+    }
+    // The fused form needs finite products: an infinite one would not round to the nearest float.
+    fused = kFusedSlabs;
+    for (int axis = 0; axis < 3; ++axis)
+        fused = fused && std::isfinite(inv_dir_far[axis]) && std::isfinite(scaled_origin_near[axis]) &&
+                std::isfinite(scaled_origin_far[axis]);
+    t_min = round_down(range.min);
+    t_max = round_up(range.max);
+}
+
+void TraversalRay::clip(Real t) { t_max = std::min(t_max, round_up(t)); }
+
+}  // namespace tracer
