@@ -123,7 +123,8 @@ private:
     template <typename Test>
     bool closest_wide(const Ray& ray, Interval& range, TraversalCounts& counts, Test test) const {
         TraversalRay fast(ray, range);
-        return fast.fused ? closest_wide<true>(fast, range, counts, test) : closest_wide<false>(fast, range, counts, test);
+        return fast.fused ? closest_wide<true>(fast, range, counts, test)
+                          : closest_wide<false>(fast, range, counts, test);
     }
     template <typename Test>
     bool any_wide(const Ray& ray, Interval range, TraversalCounts& counts, Test test) const {

@@ -46,7 +46,8 @@ Case random_case(std::mt19937& random, bool outside) {
     Vec3 origin;
     for (int axis = 0; axis < 3; ++axis)
         origin[axis] = target[axis] + size * std::ldexp(2 * unit(random) - 1, int(unit(random) * 12) - 4);
-    origin[face_axis] = target[face_axis] + (upper_face ? 1 : -1) * size * std::ldexp(0.5 + unit(random), int(unit(random) * 16) - 4);
+    const double away = size * std::ldexp(0.5 + unit(random), int(unit(random) * 16) - 4);
+    origin[face_axis] = target[face_axis] + (upper_face ? away : -away);
     if (unit(random) < 0.1) origin[(face_axis + 1) % 3] = target[(face_axis + 1) % 3];
     // The direction reaches the target at t = 1: exactly, or within 2^-53 |origin| of it,
     // far inside the box tests' margins.
