@@ -1,7 +1,5 @@
 #include "render/bvh.h"
 
-#include <bit>
-#include <cmath>
 #include <cstring>
 #include <future>
 
