@@ -16,11 +16,11 @@
 
 #include "app/progress.h"
 #include "render/render_stats.h"
-#include "frontend/reference_doc.h"
-#include "frontend/scene_json.h"
-#include "frontend/schema.h"
-#include "render/image_output.h"
-#include "render/load_world.h"
+#include "lang/reference_doc.h"
+#include "scene/scene_json.h"
+#include "lang/schema.h"
+#include "io/image_file.h"
+#include "app/load_files.h"
 #include "render/renderer.h"
 
 namespace {
@@ -80,7 +80,7 @@ int render_to_file(const Options& options) {
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
     const tracer::SceneDescription& scene = loaded->scene;
-    const tracer::World world(loaded->scene, std::move(loaded->meshes), options.threads);
+    const tracer::World world(loaded->scene, loaded->meshes, options.threads);
 
     // Step 2: render, stoppable with Ctrl-C.
     std::signal(SIGINT, on_interrupt);

@@ -6,7 +6,7 @@
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
-#include "render/parallel.h"
+#include "base/parallel.h"
 
 namespace tracer {
 namespace {
@@ -108,7 +108,7 @@ Range measure(const PrimRef* refs, uint32_t begin, uint32_t end) {
 // with no copying, and the used slots in increasing order are the tree depth first.
 class BvhBuilder {
 public:
-    BvhBuilder(PrimRef* refs, BvhNode* slots, Accelerator method, int leaf_size, bool parallel)
+    BvhBuilder(PrimRef* refs, BvhNode* slots, BvhBuild method, int leaf_size, bool parallel)
         : refs_(refs), slots_(slots), method_(method), leaf_size_(leaf_size), parallel_(parallel) {}
 
     // Builds the subtree over `range` with its root in slot `first`.
@@ -128,7 +128,7 @@ private:
 
     PrimRef* refs_;
     BvhNode* slots_;
-    Accelerator method_;
+    BvhBuild method_;
     int leaf_size_;
     bool parallel_;
 };
@@ -158,9 +158,9 @@ void BvhBuilder::build(const Range& range, int depth, uint32_t first) {
 
 bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right) {
     const uint32_t count = range.count();
-    if (method_ == Accelerator::Box || count <= 1) return false;
+    if (method_ == BvhBuild::Box || count <= 1) return false;
     const bool too_deep = depth >= kMaxBvhDepth - 1;
-    if (method_ == Accelerator::Median || too_deep) {
+    if (method_ == BvhBuild::Median || too_deep) {
         if (count <= uint32_t(leaf_size_)) return false;
         if (too_deep) {  // no more levels to spend: any halves will do
             split_at(range, range.begin + count / 2, left, right);
@@ -371,7 +371,7 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
     return wide;
 }
 
-Bvh::Bvh(const LargeArray<Bounds>& primitives, Accelerator method, int leaf_size, int threads) {
+Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, int threads) {
     const uint32_t n = uint32_t(primitives.size());
     order_.resize(n);
     if (n == 0) return;
@@ -389,7 +389,7 @@ Bvh::Bvh(const LargeArray<Bounds>& primitives, Accelerator method, int leaf_size
     NodeArray slots(2 * size_t(n) - 1);  // uninitialised; only the tree's nodes are written
     BvhBuilder builder(refs.data(), slots.data(), method, leaf_size, thread_count(threads) > 1);
     builder.build(root, 0, 0);
-    if (method == Accelerator::Sah)
+    if (method == BvhBuild::Sah)
         wide_ = collapse_to_wide(slots);
     else
         nodes_ = compact_depth_first(slots);
@@ -415,6 +415,49 @@ BvhStats Bvh::stats() const {
     if (s.leaves == 0) return BvhStats{};
     s.mean_leaf = double(in_leaves) / double(s.leaves);
     return s;
+}
+
+std::vector<Bounds> Bvh::cover(int levels) const {
+    std::vector<Bounds> out;
+    struct Visit {
+        uint32_t node;
+        int level;
+    };
+    std::vector<Visit> pending;
+    if (!wide_.empty()) {
+        pending.push_back({0, 0});
+        while (!pending.empty()) {
+            const Visit visit = pending.back();
+            pending.pop_back();
+            const WideNode& node = wide_[visit.node];
+            for (int lane = 0; lane < kWide; ++lane) {
+                if (node.count[lane] == 0) continue;
+                if (node.count[lane] == WideNode::kInner && visit.level + 1 < levels) {
+                    pending.push_back({node.index[lane], visit.level + 1});
+                    continue;
+                }
+                Bounds box;
+                for (int axis = 0; axis < 3; ++axis)
+                    box.lower[axis] = node.planes[0][axis][lane], box.upper[axis] = node.planes[1][axis][lane];
+                out.push_back(box);
+            }
+        }
+    } else if (!nodes_.empty()) {
+        pending.push_back({0, 0});
+        while (!pending.empty()) {
+            const Visit visit = pending.back();
+            pending.pop_back();
+            const BvhNode& node = nodes_[visit.node];
+            if (node.count > 0 || visit.level >= levels) {
+                const float(&b)[2][3] = node.box;
+                out.push_back(Bounds{{b[0][0], b[0][1], b[0][2]}, {b[1][0], b[1][1], b[1][2]}});
+                continue;
+            }
+            pending.push_back({visit.node + 1, visit.level + 1});
+            pending.push_back({node.index, visit.level + 1});
+        }
+    }
+    return out;
 }
 
 }  // namespace tracer

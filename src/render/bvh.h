@@ -19,12 +19,14 @@
 
 #include <glm/common.hpp>
 
-#include "frontend/scene.h"
 #include "render/bvh_node.h"
-#include "render/large_array.h"
+#include "base/large_array.h"
 #include "render/types.h"
 
 namespace tracer {
+
+// How a Bvh is built (see the top of this file).
+enum class BvhBuild { Box, Median, Sah };
 
 struct Bounds {
     Vec3 lower{kInfinity};
@@ -78,7 +80,7 @@ public:
     // than this; Sah never makes larger leaves (and makes smaller ones where the SAH says so).
     // Large inputs are built on `threads` threads (0: one per core), the subtrees near the
     // root in parallel.
-    Bvh(const LargeArray<Bounds>& primitives, Accelerator method, int leaf_size, int threads = 0);
+    Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, int threads = 0);
 
     // Box's and Median's binary tree, depth first: an inner node's left child follows it, its
     // right child is at `index` (empty for Sah).
@@ -89,6 +91,14 @@ public:
     // The box around every primitive (empty if there are none).
     const Bounds& bounds() const { return root_box_; }
     BvhStats stats() const;
+    // Bytes held by the nodes and the leaf order.
+    size_t memory_bytes() const {
+        return nodes_.capacity() * sizeof(BvhNode) + wide_.capacity() * sizeof(WideNode) +
+               order_.capacity() * sizeof(uint32_t);
+    }
+    // Boxes that together hold every primitive: those of the nodes `levels` below the root,
+    // and of the leaves above them.
+    std::vector<Bounds> cover(int levels) const;
     // Calls f(box, first, count, depth) for every leaf, depth first, children in order: its box,
     // its range of order() and its depth (the root node's is 1; a wide root's children are at 2).
     template <typename F>

@@ -11,7 +11,7 @@
 #include <immintrin.h>
 #endif
 
-#include "render/large_array.h"
+#include "base/large_array.h"
 #include "render/types.h"
 
 namespace tracer {

@@ -2,7 +2,7 @@
 // v = w x u; an image plane at distance `focal` whose height is 2 f tan(fovy / 2).
 #pragma once
 
-#include "frontend/scene.h"
+#include "scene/scene.h"
 #include "render/types.h"
 
 namespace tracer {

@@ -1,63 +1,78 @@
 // A triangle mesh ready for rays: its triangles stored for intersection in BVH leaf order,
-// behind the accelerator the scene chose (none, box, median or sah).
+// behind the accelerator the scene chose (every triangle, or a BVH built by box, median or
+// sah). Built once per mesh file, in the file's coordinates, and shared by every instance of
+// it; or built placed in the world, for a file that one mesh block uses (see world.h).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "render/bvh.h"
-#include "render/mesh_loader.h"
+#include "render/placement.h"
 #include "render/triangle.h"
+#include "scene/triangle_mesh.h"
 
 namespace tracer {
 
+// How a mesh's (or the world's) triangles are searched.
+struct SearchSettings {
+    bool brute_force = false;  // test every primitive for every ray (no BVH)
+    BvhBuild build = BvhBuild::Sah;
+    int leaf_size = 3;
+    int threads = 0;  // build threads (0: one per core)
+};
+
 struct MeshHit {
-    uint32_t triangle = 0;  // index into TriangleMesh::vertices
-    uint32_t slot = 0;      // the triangle's place in leaf order, where MeshAccel keeps its data
+    uint32_t slot = 0;  // the triangle's place in leaf order, where MeshAccel keeps its data
     TriangleHit hit;
 };
 
 class MeshAccel {
 public:
-    // Builds the accelerator on `threads` threads (0: one per core).
-    MeshAccel(TriangleMesh mesh, Accelerator accel, int leaf_size, int threads = 0);
+    // The file's triangles, placed by `placement`, with their vertex normals: the file's
+    // (placed by the inverse transpose), else area-weighted over the placed triangles.
+    MeshAccel(const TriangleMesh& file, const Placement& placement, const SearchSettings& settings);
 
     // The nearest triangle with t inside `range`; shrinks range.max to it.
     bool intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const;
     // True if any triangle lies along the ray inside `range`.
     bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const;
 
-    // Unit face normal (v1 - v0) x (v2 - v0) of a triangle.
-    Vec3 geometric_normal(uint32_t triangle) const;
-    // Vertex normals interpolated at the hit and renormalised; the face normal where they
-    // cancel out.
-    Vec3 shading_normal(const MeshHit& hit) const;
+    // Unit face normal (v1 - v0) x (v2 - v0) of the triangle in `slot`.
+    Vec3 geometric_normal(uint32_t slot) const;
+    // Vertex normals interpolated at barycentric (u, v) of the triangle in `slot` and
+    // renormalised; the face normal where they cancel out.
+    Vec3 shading_normal(uint32_t slot, Real u, Real v) const;
+    // The triangle in `slot` as the file numbers it (after dropping zero-area ones).
+    uint32_t triangle_of(uint32_t slot) const { return hit_records_[slot].triangle; }
 
-    // False only if the ray's line passes outside a sphere around the whole mesh: a few
-    // multiplications that spare most rays of a frame the box test's set-up (divisions).
-    // Every accelerator but None (every triangle for every ray: always true) asks it first.
-    bool may_hit(const Ray& ray) const;
-
-    const TriangleMesh& mesh() const { return mesh_; }
+    // The box around every triangle.
+    const Bounds& bounds() const { return bounds_; }
+    size_t triangle_count() const { return edges_.size(); }
     const Bvh& bvh() const { return bvh_; }
-    Accelerator accel() const { return accel_; }
+    bool brute_force() const { return brute_force_; }
     double build_seconds() const { return build_seconds_; }
+    // Bytes held by the triangles, their hit records and the BVH.
+    size_t memory_bytes() const;
 
 private:
-    TriangleMesh mesh_;
-    Accelerator accel_;
+    bool brute_force_;
     Bvh bvh_;
     // What shading a hit needs, in leaf order too: read in one or two cache lines, where the
     // mesh's own arrays would cost a cache miss each for a big mesh.
     struct HitRecord {
         Vec3 normals[3];    // the vertex normals
-        uint32_t triangle;  // index into mesh_.vertices
+        uint32_t triangle;  // the file's triangle number
     };
     LargeArray<TriangleEdges> edges_;  // entry i is triangle hit_records_[i].triangle
     LargeArray<HitRecord> hit_records_;
+    Bounds bounds_;
     double build_seconds_ = 0;
-    Vec3 sphere_centre_{0};
-    Real sphere_radius2_ = kInfinity;  // squared (no sphere: every ray passes)
 };
+
+// Area-weighted vertex normals (zero-area faces add nothing; a vertex with no area gets the
+// zero vector, which shading replaces by the face normal).
+std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& positions,
+                                        const std::vector<std::array<uint32_t, 3>>& triangles);
 
 }  // namespace tracer

@@ -3,6 +3,15 @@
 #include <cstdio>
 
 namespace tracer {
+namespace {
+
+nlohmann::ordered_json bvh_json(const Bvh& bvh) {
+    const BvhStats s = bvh.stats();
+    return {{"nodes", s.nodes},       {"leaves", s.leaves},          {"depth", s.depth},
+            {"leaf_size_min", s.min_leaf}, {"leaf_size_mean", s.mean_leaf}, {"leaf_size_max", s.max_leaf}};
+}
+
+}  // namespace
 
 nlohmann::ordered_json render_stats_json(const World& world, const SceneDescription& scene, const RenderStats& stats) {
     nlohmann::ordered_json out;
@@ -17,43 +26,92 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
     out["rays"] = {{"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection},
                    {"total", rays.total()}};
     const double total = double(std::max<uint64_t>(rays.total(), 1));
-    out["box_tests_per_ray"] = double(rays.traversal.box_tests) / total;
-    out["triangle_tests_per_ray"] = double(rays.traversal.primitive_tests) / total;
+    const SearchCounts& work = rays.traversal;
+    out["box_tests_per_ray"] = double(work.objects.box_tests + work.triangles.box_tests) / total;
+    out["object_box_tests_per_ray"] = double(work.objects.box_tests) / total;
+    out["object_tests_per_ray"] = double(work.objects.primitive_tests) / total;
+    out["mesh_box_tests_per_ray"] = double(work.triangles.box_tests) / total;
+    out["triangle_tests_per_ray"] = double(work.triangles.primitive_tests) / total;
     out["mrays_per_second"] = double(rays.total()) / stats.seconds / 1e6;
+
+    // The top level: every object, and the BVH over the bounded ones.
+    nlohmann::ordered_json top;
+    size_t counts[3] = {0, 0, 0};
+    for (const Object& object : world.objects()) ++counts[size_t(object.kind)];
+    top["spheres"] = counts[size_t(ObjectKind::Sphere)];
+    top["planes"] = counts[size_t(ObjectKind::Plane)];
+    top["mesh_instances"] = counts[size_t(ObjectKind::MeshInstance)];
+    top["bounded_objects"] = world.bounded_objects();
+    top["search"] = world.top_level_linear() ? "linear" : "sah";
+    top["build_seconds"] = world.top_level_build_seconds();
+    if (!world.top_level_linear()) top["bvh"] = bvh_json(world.top_level());
+    top["memory_bytes"] = world.top_level_memory_bytes();
+    out["objects"] = top;
+
+    // The meshes: each mesh file once, however many instances place it.
+    std::vector<size_t> instances_of(world.meshes().size(), 0);
+    std::vector<std::string> file_of(world.meshes().size());
+    for (size_t block = 0; block < world.instances().size(); ++block) {
+        const uint32_t mesh = world.instances()[block].mesh;
+        if (instances_of[mesh]++ == 0 && block < scene.meshes.size()) file_of[mesh] = scene.meshes[block].path;
+    }
     out["meshes"] = nlohmann::ordered_json::array();
-    for (const MeshAccel& mesh : world.meshes()) {
-        const BvhStats bvh = mesh.bvh().stats();
-        out["meshes"].push_back({{"triangles", mesh.mesh().vertices.size()},
-                                 {"build_seconds", mesh.build_seconds()},
-                                 {"nodes", bvh.nodes},
-                                 {"leaves", bvh.leaves},
-                                 {"depth", bvh.depth},
-                                 {"leaf_size_min", bvh.min_leaf},
-                                 {"leaf_size_mean", bvh.mean_leaf},
-                                 {"leaf_size_max", bvh.max_leaf}});
+    for (size_t i = 0; i < world.meshes().size(); ++i) {
+        const MeshAccel& mesh = world.meshes()[i];
+        nlohmann::ordered_json entry = {{"file", file_of[i]},
+                                        {"triangles", mesh.triangle_count()},
+                                        {"instances", instances_of[i]},
+                                        {"build_seconds", mesh.build_seconds()},
+                                        {"memory_bytes", mesh.memory_bytes()}};
+        if (!mesh.brute_force()) entry.update(bvh_json(mesh.bvh()));
+        out["meshes"].push_back(entry);
     }
     return out;
 }
 
 std::string render_stats_text(const nlohmann::ordered_json& s) {
-    char line[256];
+    char line[320];
     std::string out;
+    const auto& top = s["objects"];
+    std::snprintf(line, sizeof line,
+                  "objects: %zu spheres, %zu planes, %zu mesh instances; the %zu bounded searched %s",
+                  top["spheres"].get<size_t>(), top["planes"].get<size_t>(), top["mesh_instances"].get<size_t>(),
+                  top["bounded_objects"].get<size_t>(),
+                  top["search"] == "linear" ? "one by one" : "through a BVH");
+    out += line;
+    if (top.contains("bvh")) {
+        const auto& bvh = top["bvh"];
+        std::snprintf(line, sizeof line, " built in %.3f ms: %zu nodes, %zu leaves, depth %d",
+                      top["build_seconds"].get<double>() * 1e3, bvh["nodes"].get<size_t>(),
+                      bvh["leaves"].get<size_t>(), bvh["depth"].get<int>());
+        out += line;
+    }
+    std::snprintf(line, sizeof line, "; %.1f KiB\n", top["memory_bytes"].get<double>() / 1024);
+    out += line;
     for (const auto& mesh : s["meshes"]) {
-        std::snprintf(line, sizeof line,
-                      "mesh: %zu triangles, %s built in %.3f ms: %zu nodes, %zu leaves, depth %d, leaf size "
-                      "%zu..%zu (mean %.2f)\n",
-                      mesh["triangles"].get<size_t>(), s["accel"].get<std::string>().c_str(),
-                      mesh["build_seconds"].get<double>() * 1e3, mesh["nodes"].get<size_t>(),
-                      mesh["leaves"].get<size_t>(), mesh["depth"].get<int>(), mesh["leaf_size_min"].get<size_t>(),
-                      mesh["leaf_size_max"].get<size_t>(), mesh["leaf_size_mean"].get<double>());
+        const std::string file = mesh["file"].get<std::string>();
+        std::snprintf(line, sizeof line, "mesh %s: %zu triangles, %s built in %.3f ms",
+                      file.substr(file.find_last_of('/') + 1).c_str(), mesh["triangles"].get<size_t>(),
+                      s["accel"].get<std::string>().c_str(), mesh["build_seconds"].get<double>() * 1e3);
+        out += line;
+        if (mesh.contains("nodes")) {
+            std::snprintf(line, sizeof line, ": %zu nodes, %zu leaves, depth %d, leaf size %zu..%zu (mean %.2f)",
+                          mesh["nodes"].get<size_t>(), mesh["leaves"].get<size_t>(), mesh["depth"].get<int>(),
+                          mesh["leaf_size_min"].get<size_t>(), mesh["leaf_size_max"].get<size_t>(),
+                          mesh["leaf_size_mean"].get<double>());
+            out += line;
+        }
+        std::snprintf(line, sizeof line, "; %zu instance%s; %.1f KiB\n", mesh["instances"].get<size_t>(),
+                      mesh["instances"].get<size_t>() == 1 ? "" : "s", mesh["memory_bytes"].get<double>() / 1024);
         out += line;
     }
     const auto& rays = s["rays"];
     std::snprintf(line, sizeof line,
-                  "rays: %llu primary, %llu shadow, %llu reflection; per ray %.2f box tests, %.2f triangle tests; "
-                  "%.3f s, %.1f Mrays/s\n",
+                  "rays: %llu primary, %llu shadow, %llu reflection; per ray %.2f object box tests, %.2f object "
+                  "tests, %.2f mesh box tests, %.2f triangle tests; %.3f s, %.1f Mrays/s\n",
                   (unsigned long long)rays["primary"].get<uint64_t>(), (unsigned long long)rays["shadow"].get<uint64_t>(),
-                  (unsigned long long)rays["reflection"].get<uint64_t>(), s["box_tests_per_ray"].get<double>(),
+                  (unsigned long long)rays["reflection"].get<uint64_t>(), s["object_box_tests_per_ray"].get<double>(),
+                  s["object_tests_per_ray"].get<double>(), s["mesh_box_tests_per_ray"].get<double>(),
                   s["triangle_tests_per_ray"].get<double>(), s["render_seconds"].get<double>(),
                   s["mrays_per_second"].get<double>());
     return out + line;

@@ -5,7 +5,7 @@
 #include <mutex>
 
 #include "render/camera.h"
-#include "render/parallel.h"
+#include "base/parallel.h"
 #include "render/world.h"
 
 namespace tracer {

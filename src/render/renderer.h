@@ -6,19 +6,13 @@
 #include <functional>
 #include <vector>
 
-#include "frontend/scene.h"
+#include "base/image.h"
+#include "scene/scene.h"
 #include "render/whitted.h"
-#include "render/worker_pool.h"
+#include "base/worker_pool.h"
 #include "render/world.h"
 
 namespace tracer {
-
-// Linear RGB, unclamped, row 0 at the top of the view.
-struct Image {
-    int width = 0;
-    int height = 0;
-    std::vector<double> rgb;  // width * height * 3, kept in double so 8-bit rounding is exact
-};
 
 // A rectangle of pixels: columns x0 .. x0 + width - 1, rows y0 .. y0 + height - 1.
 struct PixelRect {

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-#include "frontend/scene.h"
+#include "scene/scene.h"
 #include "render/types.h"
 #include "render/world.h"
 
@@ -19,7 +19,7 @@ struct RayCounts {
     uint64_t primary = 0;
     uint64_t shadow = 0;
     uint64_t reflection = 0;
-    TraversalCounts traversal;  // box and triangle tests of all those rays
+    SearchCounts traversal;  // box, object and triangle tests of all those rays
 
     uint64_t total() const { return primary + shadow + reflection; }
     RayCounts& operator+=(const RayCounts& other);

@@ -1,77 +1,228 @@
 #include "render/world.h"
 
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
 #include "render/geometry.h"
 
 namespace tracer {
+namespace {
 
-World::World(const SceneDescription& scene, std::vector<TriangleMesh> meshes, int threads)
-    : materials_(scene.materials), lights_(scene.lights) {
-    for (const Sphere& s : scene.spheres) spheres_.push_back({Vec3(s.center), Real(s.radius), s.material});
-    for (const Plane& p : scene.planes) planes_.push_back({Vec3(p.point), Vec3(p.normal), p.material});
-    for (TriangleMesh& mesh : meshes) meshes_.emplace_back(std::move(mesh), scene.render.accel, scene.render.leaf_size, threads);
+// The top level's leaves hold at most this many objects (measured: docs/performance.md).
+constexpr int kTopLeafSize = 1;
+// How far below a shared mesh's BVH root its instances' world boxes are taken from: the placed
+// corners of the boxes there (up to 64 in a wide tree) bound a rotated mesh far more tightly
+// than the placed corners of its whole box.
+constexpr int kInstanceBoxLevels = 2;
+
+SearchSettings search_settings(const RenderSettings& render, int threads) {
+    SearchSettings settings;
+    settings.brute_force = render.accel == Accelerator::None;
+    settings.build = render.accel == Accelerator::Box      ? BvhBuild::Box
+                     : render.accel == Accelerator::Median ? BvhBuild::Median
+                                                           : BvhBuild::Sah;
+    settings.leaf_size = render.leaf_size;
+    settings.threads = threads;
+    return settings;
 }
 
-std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range, TraversalCounts& counts) const {
-    // Each hit shrinks range.max, so later primitives only count when they are nearer.
-    const SphereShape* nearest_sphere = nullptr;
-    const PlaneShape* nearest_plane = nullptr;
-    const MeshAccel* nearest_mesh = nullptr;
-    MeshHit mesh_hit;
-    for (const SphereShape& s : spheres_) {
-        if (auto t = intersect_sphere(ray, s.center, s.radius, range)) {
-            range.max = *t;
-            nearest_sphere = &s;
-        }
+// The box around `box` placed by `linear` and `translate` (its eight corners placed).
+Bounds placed_box(const Bounds& box, const glm::dmat3& linear, const Vec3& translate) {
+    Bounds out;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p{(corner & 1 ? box.upper : box.lower).x, (corner & 2 ? box.upper : box.lower).y,
+                     (corner & 4 ? box.upper : box.lower).z};
+        out.extend(linear * p + translate);
     }
+    return out;
+}
+
+}  // namespace
+
+World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads)
+    : materials_(scene.materials), lights_(scene.lights) {
+    const SearchSettings settings = search_settings(scene.render, threads);
+    // Step 1: spheres and planes.
+    for (const Sphere& s : scene.spheres) {
+        const uint32_t index = uint32_t(spheres_.size()), object = uint32_t(objects_.size());
+        objects_.push_back({ObjectKind::Sphere, index, s.material});
+        spheres_.push_back({Vec3(s.center), Real(s.radius)});
+        bounded_.push_back({Vec3(s.center), Real(s.radius), object, index, ObjectKind::Sphere});
+    }
+    for (const Plane& p : scene.planes) {
+        objects_.push_back({ObjectKind::Plane, uint32_t(planes_.size()), p.material});
+        planes_.push_back({Vec3(p.point), Vec3(p.normal), uint32_t(objects_.size() - 1)});
+    }
+    // Step 2: the meshes, each file built once, and an instance per mesh block.
+    add_meshes(scene, meshes, settings);
+    // Step 3: the top level over every bounded object.
+    build_top_level(settings);
+}
+
+void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings) {
+    std::vector<int> blocks_of_file(meshes.files.size(), 0);
+    for (uint32_t file : meshes.file_of_block) ++blocks_of_file[file];
+    std::map<uint32_t, uint32_t> shared_mesh;  // file -> index into meshes_
+    for (size_t block = 0; block < scene.meshes.size() && block < meshes.file_of_block.size(); ++block) {
+        const Mesh& mesh = scene.meshes[block];
+        const uint32_t file = meshes.file_of_block[block];
+        const Placement placement(mesh);
+        MeshInstance instance;
+        Bounds box;
+        if (blocks_of_file[file] == 1) {
+            // Used once: built placed, so its rays need no transform.
+            instance.mesh = uint32_t(meshes_.size());
+            meshes_.emplace_back(meshes.files[file], placement, settings);
+            box = meshes_.back().bounds();
+        } else {
+            auto [known, is_new] = shared_mesh.try_emplace(file, uint32_t(meshes_.size()));
+            if (is_new) meshes_.emplace_back(meshes.files[file], Placement(), settings);
+            instance.mesh = known->second;
+            instance.placed = false;
+            instance.to_object = glm::inverse(placement.linear);
+            instance.translate = placement.translate;
+            const MeshAccel& shared = meshes_[instance.mesh];
+            const std::vector<Bounds> cover =
+                shared.brute_force() ? std::vector<Bounds>{shared.bounds()} : shared.bvh().cover(kInstanceBoxLevels);
+            for (const Bounds& part : cover) box.extend(placed_box(part, placement.linear, placement.translate));
+        }
+        const uint32_t index = uint32_t(instances_.size()), object = uint32_t(objects_.size());
+        instances_.push_back(instance);
+        objects_.push_back({ObjectKind::MeshInstance, index, mesh.material});
+        const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
+        bounded_.push_back({box.centre(), std::isfinite(radius) ? radius : kInfinity, object, index,
+                            ObjectKind::MeshInstance});
+    }
+}
+
+void World::build_top_level(const SearchSettings& settings) {
+    const auto start = std::chrono::steady_clock::now();
+    LargeArray<Bounds> boxes(bounded_.size());
+    Bounds all;
+    for (size_t i = 0; i < bounded_.size(); ++i) {
+        const Bounded& b = bounded_[i];
+        boxes[i] = Bounds{b.centre - b.radius, b.centre + b.radius};
+        all.extend(boxes[i]);
+    }
+    if (!bounded_.empty()) {
+        const Real radius = glm::length(all.upper - all.lower) * Real(0.5);
+        sphere_centre_ = all.centre();
+        sphere_radius2_ = std::isfinite(radius) ? radius * radius : kInfinity;
+    }
+    linear_ = settings.brute_force || bounded_.size() <= kLinearObjects;
+    if (!linear_) {
+        top_ = Bvh(boxes, BvhBuild::Sah, kTopLeafSize, settings.threads);
+        std::vector<Bounded> in_leaf_order;
+        in_leaf_order.reserve(bounded_.size());
+        for (uint32_t i : top_.order()) in_leaf_order.push_back(bounded_[i]);
+        bounded_ = std::move(in_leaf_order);
+    }
+    top_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool World::hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const {
+    if (b.kind == ObjectKind::Sphere) {
+        const auto t = intersect_sphere(ray, b.centre, b.radius, range);
+        if (!t) return false;
+        range.max = *t;
+        hit = {b.object, 0, *t, 0, 0};
+        return true;
+    }
+    if (!line_may_meet_sphere(ray, b.centre, b.radius * b.radius)) return false;
+    const MeshInstance& instance = instances_[b.index];
+    MeshHit mesh_hit;
+    if (!meshes_[instance.mesh].intersect(instance.to_mesh(ray), range, mesh_hit, counts.triangles)) return false;
+    hit = {b.object, mesh_hit.slot, range.max, mesh_hit.hit.u, mesh_hit.hit.v};
+    return true;
+}
+
+bool World::blocks(const Bounded& b, const Ray& ray, Interval range, SearchCounts& counts) const {
+    if (b.kind == ObjectKind::Sphere) return intersect_sphere(ray, b.centre, b.radius, range).has_value();
+    if (!line_may_meet_sphere(ray, b.centre, b.radius * b.radius)) return false;
+    const MeshInstance& instance = instances_[b.index];
+    return meshes_[instance.mesh].occluded(instance.to_mesh(ray), range, counts.triangles);
+}
+
+std::optional<Hit> World::nearest_hit(const Ray& ray, Interval range, SearchCounts& counts) const {
+    // Each hit shrinks range.max, so later objects only count when they are nearer. Planes
+    // first: a floor's hit lets the top level skip every box behind it.
+    Hit hit;
+    bool found = false;
     for (const PlaneShape& p : planes_) {
         if (auto t = intersect_plane(ray, p.point, p.normal, range)) {
             range.max = *t;
-            nearest_plane = &p;
-            nearest_sphere = nullptr;
+            hit = {p.object, 0, *t, 0, 0};
+            found = true;
         }
     }
-    for (const MeshAccel& mesh : meshes_) {
-        if (mesh.intersect(ray, range, mesh_hit, counts)) {
-            nearest_mesh = &mesh;
-            nearest_plane = nullptr;
-            nearest_sphere = nullptr;
-        }
-    }
-    if (!nearest_sphere && !nearest_plane && !nearest_mesh) return std::nullopt;
-
-    SurfaceHit hit;
-    hit.t = range.max;
-    hit.point = ray.at(hit.t);
-    if (nearest_mesh) {
-        hit.normal = nearest_mesh->shading_normal(mesh_hit);
-        hit.material = nearest_mesh->mesh().material;
-    } else if (nearest_plane) {
-        hit.normal = nearest_plane->normal;
-        hit.material = nearest_plane->material;
+    auto test = [&](uint32_t i, Interval& r) { return hit_bounded(bounded_[i], ray, r, hit, counts); };
+    if (linear_) {
+        counts.objects.primitive_tests += bounded_.size();
+        for (uint32_t i = 0; i < bounded_.size(); ++i) found = test(i, range) || found;
     } else {
-        hit.normal = (hit.point - nearest_sphere->center) / nearest_sphere->radius;
-        hit.material = nearest_sphere->material;
+        found = top_.closest(ray, range, counts.objects, test) || found;
     }
+    if (!found) return std::nullopt;
     return hit;
+}
+
+SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
+    const Object& object = objects_[hit.object];
+    SurfaceHit out;
+    out.t = hit.t;
+    out.point = ray.at(hit.t);
+    out.material = object.material;
+    switch (object.kind) {
+        case ObjectKind::Sphere: {
+            const SphereShape& s = spheres_[object.index];
+            out.normal = (out.point - s.center) / s.radius;
+            break;
+        }
+        case ObjectKind::Plane: out.normal = planes_[object.index].normal; break;
+        case ObjectKind::MeshInstance: {
+            const MeshInstance& instance = instances_[object.index];
+            const MeshAccel& mesh = meshes_[instance.mesh];
+            out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v);
+            if (!instance.placed) {
+                // Normals map by the inverse transpose of the placement: transpose(to_object).
+                out.normal = normalize_or_zero(out.normal * instance.to_object);
+                if (out.normal == Vec3(0))
+                    out.normal = glm::normalize(mesh.geometric_normal(hit.primitive) * instance.to_object);
+            }
+            break;
+        }
+    }
+    return out;
 }
 
 bool World::may_hit(const Ray& ray) const {
     if (!planes_.empty()) return true;
-    for (const SphereShape& s : spheres_)
-        if (line_may_meet_sphere(ray, s.center, s.radius * s.radius)) return true;
-    for (const MeshAccel& mesh : meshes_)
-        if (mesh.may_hit(ray)) return true;
+    if (!linear_) return line_may_meet_sphere(ray, sphere_centre_, sphere_radius2_);
+    for (const Bounded& b : bounded_)
+        if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius)) return true;
     return false;
 }
 
-bool World::occluded(const Ray& ray, Interval range, TraversalCounts& counts) const {
-    for (const SphereShape& s : spheres_)
-        if (intersect_sphere(ray, s.center, s.radius, range)) return true;
+bool World::occluded(const Ray& ray, Interval range, SearchCounts& counts) const {
     for (const PlaneShape& p : planes_)
         if (intersect_plane(ray, p.point, p.normal, range)) return true;
-    for (const MeshAccel& mesh : meshes_)
-        if (mesh.occluded(ray, range, counts)) return true;
+    auto test = [&](uint32_t i, Interval& r) { return blocks(bounded_[i], ray, r, counts); };
+    if (!linear_) return top_.any(ray, range, counts.objects, test);
+    for (uint32_t i = 0; i < bounded_.size(); ++i) {
+        ++counts.objects.primitive_tests;
+        if (test(i, range)) return true;
+    }
     return false;
+}
+
+size_t World::top_level_memory_bytes() const {
+    return top_.memory_bytes() + bounded_.capacity() * sizeof(Bounded) + objects_.capacity() * sizeof(Object) +
+           instances_.capacity() * sizeof(MeshInstance) + spheres_.capacity() * sizeof(SphereShape) +
+           planes_.capacity() * sizeof(PlaneShape);
 }
 
 }  // namespace tracer

@@ -1,16 +1,35 @@
-// The renderer's view of a scene: flat arrays of primitives, lights and materials, and the
-// two ray queries the shading needs (nearest hit, and "is anything in the way").
+// The renderer's view of a scene and the two ray queries the shading needs: the nearest hit,
+// and "is anything in the way". Two levels: one BVH over every bounded object (spheres and
+// mesh instances; tinybvh's TLAS) and, below it, each mesh's own BVH (the BLAS), built once
+// per mesh file however many mesh blocks place it. Infinite planes are a short list tested
+// beside the top level. A search returns a Hit (object, primitive, t, u, v); the surface
+// (point, normal, material) is worked out once, after the search, by surface().
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
-#include "frontend/scene.h"
+#include "render/bvh.h"
 #include "render/mesh_accel.h"
+#include "render/placement.h"
 #include "render/types.h"
+#include "scene/scene.h"
+#include "scene/triangle_mesh.h"
 
 namespace tracer {
 
+enum class ObjectKind : uint8_t { Sphere, Plane, MeshInstance };
+
+// What a search found.
+struct Hit {
+    uint32_t object = 0;     // index into World::objects()
+    uint32_t primitive = 0;  // mesh instances: the triangle's slot in its MeshAccel; else 0
+    Real t = 0;
+    Real u = 0, v = 0;  // barycentric coordinates of a triangle hit
+};
+
+// The surface at a hit, for shading.
 struct SurfaceHit {
     Real t = 0;
     Vec3 point{0};
@@ -18,37 +37,115 @@ struct SurfaceHit {
     int material = 0;  // index into World::materials()
 };
 
+// Work done by searches, for --stats: the top level's box tests and object tests, and the
+// box and triangle tests inside meshes.
+struct SearchCounts {
+    TraversalCounts objects;
+    TraversalCounts triangles;
+    SearchCounts& operator+=(const SearchCounts& other) {
+        objects += other.objects;
+        triangles += other.triangles;
+        return *this;
+    }
+};
+
+// One shape of the scene: its kind, its index among the shapes of that kind, its material.
+struct Object {
+    ObjectKind kind;
+    uint32_t index;  // into spheres, planes or instances
+    int material;
+};
+
+// A mesh block: a shared mesh and where the block places it. A mesh whose file no other block
+// uses is built placed (`placed`: rays reach it unchanged); a shared one is built in its
+// file's coordinates and rays are carried there by `to_object`.
+struct MeshInstance {
+    uint32_t mesh = 0;  // index into World::meshes()
+    bool placed = true;
+    glm::dmat3 to_object{1.0};  // the inverse of the placement's linear part
+    Vec3 translate{0};
+
+    // The ray in the mesh's coordinates, with the same parameter t along it.
+    Ray to_mesh(const Ray& ray) const {
+        return placed ? ray : Ray{to_object * (ray.origin - translate), to_object * ray.direction};
+    }
+};
+
+// Up to this many bounded objects are tested one after the other instead of through the top
+// level's BVH (measured: see docs/performance.md, "Many objects").
+constexpr size_t kLinearObjects = 4;
+
 class World {
 public:
-    // The shapes of a validated scene, with its meshes as loaded by load_meshes (in the
-    // scene's order), each behind the scene's accelerator, built on `threads` threads (0: all).
-    World(const SceneDescription& scene, std::vector<TriangleMesh> meshes = {}, int threads = 0);
+    // The shapes of a validated scene with its mesh files as loaded (SceneMeshes), behind the
+    // scene's accelerator, built on `threads` threads (0: all).
+    World(const SceneDescription& scene, const SceneMeshes& meshes = {}, int threads = 0);
 
     // The nearest surface along `ray` with t inside `range`.
-    std::optional<SurfaceHit> intersect(const Ray& ray, Interval range, TraversalCounts& counts) const;
+    std::optional<Hit> nearest_hit(const Ray& ray, Interval range, SearchCounts& counts) const;
+    // The surface at a hit that nearest_hit returned for `ray`.
+    SurfaceHit surface(const Ray& ray, const Hit& hit) const;
+    // nearest_hit, then surface.
+    std::optional<SurfaceHit> intersect(const Ray& ray, Interval range, SearchCounts& counts) const {
+        const auto hit = nearest_hit(ray, range, counts);
+        if (!hit) return std::nullopt;
+        return surface(ray, *hit);
+    }
     // True if any surface lies along `ray` with t inside `range` (for shadow rays).
-    bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const;
-    // False only if the ray's line misses every shape's bounding sphere (planes: never).
+    bool occluded(const Ray& ray, Interval range, SearchCounts& counts) const;
+    // False only if the ray's line misses a bounding sphere of every bounded object, and there
+    // are no planes.
     bool may_hit(const Ray& ray) const;
 
     const std::vector<Material>& materials() const { return materials_; }
     const std::vector<Light>& lights() const { return lights_; }
+    const std::vector<Object>& objects() const { return objects_; }
     const std::vector<MeshAccel>& meshes() const { return meshes_; }
+    const std::vector<MeshInstance>& instances() const { return instances_; }
+    // The top level: a BVH over the bounded objects, unless they are few (kLinearObjects) or
+    // the scene asks for no accelerator.
+    bool top_level_linear() const { return linear_; }
+    const Bvh& top_level() const { return top_; }
+    double top_level_build_seconds() const { return top_build_seconds_; }
+    size_t bounded_objects() const { return bounded_.size(); }
+    // Bytes held by the top level (its BVH, the objects, the instances; not the meshes).
+    size_t top_level_memory_bytes() const;
 
 private:
     struct SphereShape {
         Vec3 center;
         Real radius;
-        int material;
     };
     struct PlaneShape {
         Vec3 point;
         Vec3 normal;
-        int material;
+        uint32_t object;  // index into objects_
     };
+    // An entry of the top level, in its BVH's leaf order.
+    struct Bounded {
+        Vec3 centre;  // sphere: the sphere; instance: a sphere around the placed mesh's box
+        Real radius;
+        uint32_t object;  // index into objects_
+        uint32_t index;   // into spheres_ or instances_
+        ObjectKind kind;
+    };
+
+    void add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings);
+    void build_top_level(const SearchSettings& settings);
+    bool hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
+    bool blocks(const Bounded& b, const Ray& ray, Interval range, SearchCounts& counts) const;
+
+    std::vector<Object> objects_;
     std::vector<SphereShape> spheres_;
     std::vector<PlaneShape> planes_;
     std::vector<MeshAccel> meshes_;
+    std::vector<MeshInstance> instances_;
+    std::vector<Bounded> bounded_;
+    Bvh top_;
+    bool linear_ = true;
+    double top_build_seconds_ = 0;
+    Vec3 sphere_centre_{0};  // around every bounded object, for may_hit
+    Real sphere_radius2_ = -1;
     std::vector<Material> materials_;
     std::vector<Light> lights_;
 };

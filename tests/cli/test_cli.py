@@ -162,11 +162,15 @@ class CommandLine(unittest.TestCase):
             out = self.tmp / f"{accel}.png"
             result = run(mesh_scene, "-o", out, "--accel", accel, "--stats", "--stats-json", stats_path)
             self.assertEqual(result.returncode, 0, result.stderr)
-            self.assertRegex(result.stderr, r"mesh: 4 triangles, " + accel)
-            self.assertRegex(result.stderr, r"per ray [0-9.]+ box tests, [0-9.]+ triangle tests")
+            self.assertRegex(result.stderr, r"mesh tetrahedron.obj: 4 triangles, " + accel)
+            self.assertRegex(result.stderr, r"objects: 1 spheres, 0 planes, 1 mesh instances")
+            self.assertRegex(result.stderr, r"per ray [0-9.]+ object box tests, [0-9.]+ object tests, "
+                                            r"[0-9.]+ mesh box tests, [0-9.]+ triangle tests")
             stats = json.loads(stats_path.read_text())
             self.assertEqual(stats["accel"], accel)
             self.assertEqual(stats["meshes"][0]["triangles"], 4)
+            self.assertEqual(stats["meshes"][0]["instances"], 1)
+            self.assertEqual(stats["objects"]["bounded_objects"], 2)
             self.assertEqual(stats["rays"]["primary"], 64 * 48)
             images[accel] = out.read_bytes()
         self.assertEqual(len(set(images.values())), 1)  # every accelerator, the same image

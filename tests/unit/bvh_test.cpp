@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <random>
 
 #include <glm/geometric.hpp>
 
+#include "io/obj_mesh.h"
 #include "render/mesh_accel.h"
-#include "render/mesh_loader.h"
+#include "render/world.h"
 
 namespace tracer {
 namespace {
@@ -24,10 +26,17 @@ TriangleMesh bunny() {
     return mesh ? *mesh : TriangleMesh{};
 }
 
-// Gives a mesh built in code the normals load_mesh gives an OBJ file without normals.
-void add_area_weighted_normals(TriangleMesh& mesh) {
-    mesh.normals = area_weighted_normals(mesh.positions, mesh.vertices);
-    mesh.normal_ids = mesh.vertices;
+// The mesh in its own coordinates: brute force (no build given) or behind a BVH.
+MeshAccel accel(const TriangleMesh& mesh, std::optional<BvhBuild> build, int leaf_size) {
+    SearchSettings settings;
+    settings.brute_force = !build;
+    settings.build = build.value_or(BvhBuild::Sah);
+    settings.leaf_size = leaf_size;
+    return MeshAccel(mesh, Placement(), settings);
+}
+
+const char* build_name(BvhBuild build) {
+    return build == BvhBuild::Box ? "box" : build == BvhBuild::Median ? "median" : "sah";
 }
 
 // Random triangles of very different sizes, overlapping and intersecting each other.
@@ -41,10 +50,9 @@ TriangleMesh triangle_soup(int count, uint32_t seed) {
         const uint32_t first = uint32_t(soup.positions.size());
         for (int k = 0; k < 3; ++k)
             soup.positions.push_back(centre + size * Vec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
-        soup.vertices.push_back({first, first + 1, first + 2});
+        soup.triangles.push_back({first, first + 1, first + 2});
     }
-    add_area_weighted_normals(soup);
-    return soup;
+        return soup;
 }
 
 struct Agreement {
@@ -54,10 +62,11 @@ struct Agreement {
 // 10^5 rays from a sphere around the mesh towards random points of its bounding box, each
 // traced by brute force and by box, median and sah.
 void compare_with_brute_force(const TriangleMesh& mesh, uint32_t seed, Agreement& result) {
-    const MeshAccel brute(mesh, Accelerator::None, 1);
-    const MeshAccel trees[] = {{mesh, Accelerator::Box, 3}, {mesh, Accelerator::Median, 3}, {mesh, Accelerator::Sah, 3}};
+    const MeshAccel brute = accel(mesh, std::nullopt, 1);
+    const BvhBuild builds[] = {BvhBuild::Box, BvhBuild::Median, BvhBuild::Sah};
+    const MeshAccel trees[] = {accel(mesh, builds[0], 3), accel(mesh, builds[1], 3), accel(mesh, builds[2], 3)};
     Bounds box;
-    for (const Vec3& p : mesh.positions) box.extend(p);
+    for (const auto& p : mesh.positions) box.extend(Vec3(p));
     const Vec3 centre = box.centre();
     const double radius = glm::length(box.upper - box.lower);
     std::mt19937 random(seed);
@@ -75,15 +84,16 @@ void compare_with_brute_force(const TriangleMesh& mesh, uint32_t seed, Agreement
         const double fraction = 2 * unit(random);
         ++result.rays;
         result.hits += brute_found;
-        for (const MeshAccel& tree : trees) {
-            const char* name = accelerator_name(tree.accel());
+        for (int k = 0; k < 3; ++k) {
+            const MeshAccel& tree = trees[k];
+            const char* name = build_name(builds[k]);
             Interval tree_range{0, kInfinity};
             MeshHit tree_hit;
             const bool tree_found = tree.intersect(ray, tree_range, tree_hit, counts);
             ASSERT_EQ(tree_found, brute_found) << name << ", ray " << i;
             if (!brute_found) continue;
             ASSERT_EQ(tree_hit.hit.t, brute_hit.hit.t) << name << ", ray " << i;
-            if (tree_hit.triangle != brute_hit.triangle) ++result.ties;  // two triangles at the very same t
+            if (tree.triangle_of(tree_hit.slot) != brute.triangle_of(brute_hit.slot)) ++result.ties;  // two triangles at the very same t
             // Any-hit over a random part of the ray agrees with "the nearest hit lies inside it".
             const Interval part{0, brute_hit.hit.t * fraction};
             ASSERT_EQ(tree.occluded(ray, part, counts), part.contains(brute_hit.hit.t)) << name << ", ray " << i;
@@ -126,13 +136,12 @@ TEST(Bvh, FlatGridTraversalLosesNoHitOfTheTriangleTest) {
     auto at = [](int i, int j) { return uint32_t(j * 65 + i); };
     for (int j = 0; j < 64; ++j)
         for (int i = 0; i < 64; ++i) {
-            grid.vertices.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            grid.vertices.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+            grid.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            grid.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
         }
-    add_area_weighted_normals(grid);
-    const MeshAccel brute(grid, Accelerator::None, 1);
-    for (Accelerator accel : {Accelerator::Median, Accelerator::Sah}) {
-        const MeshAccel tree(grid, accel, 3);
+    const MeshAccel brute = accel(grid, std::nullopt, 1);
+    for (BvhBuild build : {BvhBuild::Median, BvhBuild::Sah}) {
+        const MeshAccel tree = accel(grid, build, 3);
         int rays = 0, hits = 0;
         // (a) straight down from (0.5 a, 0.5 b, 1): 16,641 rays, 12,545 of them on grid lines;
         // once with direction (0, 0, -1) and once with (-0, -0, -1), whose negative zeros must
@@ -147,10 +156,10 @@ TEST(Bvh, FlatGridTraversalLosesNoHitOfTheTriangleTest) {
                     ++rays;
                     const bool found = tree.intersect(ray, range, hit, counts);
                     EXPECT_EQ(found, brute.intersect(ray, brute_range, brute_hit, counts))
-                        << accelerator_name(accel) << " at " << a << ", " << b;
+                        << build_name(build) << " at " << a << ", " << b;
                     if (!found) continue;
                     ++hits;
-                    EXPECT_EQ(hit.hit.t, 1.0) << accelerator_name(accel) << " at " << a << ", " << b;
+                    EXPECT_EQ(hit.hit.t, 1.0) << build_name(build) << " at " << a << ", " << b;
                 }
         }
         // (b) towards every interior vertex from v + (-0.3, 0.2, 5).
@@ -169,13 +178,13 @@ TEST(Bvh, FlatGridTraversalLosesNoHitOfTheTriangleTest) {
                     EXPECT_EQ(tree_hit.hit.t, brute_hit.hit.t);
                 }
             }
-        EXPECT_GE(hits, rays - 24) << accelerator_name(accel);  // today's triangle-test leaks, at most
-        ::testing::Test::RecordProperty(std::string("misses_") + accelerator_name(accel), rays - hits);
+        EXPECT_GE(hits, rays - 24) << build_name(build);  // today's triangle-test leaks, at most
+        ::testing::Test::RecordProperty(std::string("misses_") + build_name(build), rays - hits);
     }
 }
 
-// The bounding-sphere pre-test (MeshAccel::may_hit) must not reject rays that only just hit:
-// a square's corners lie on the sphere around its box, so rays aimed just inside the corners,
+// The bounding-sphere pre-tests (World::may_hit, and the one before each mesh instance) must
+// not reject rays that only just hit: a square's corners lie on the sphere around its box, so rays aimed just inside the corners,
 // from near and from very far, at several scales and offsets, graze that sphere.
 TEST(Bvh, SpherePreTestKeepsRaysThatGrazeTheMeshCorners) {
     std::mt19937 random(5);
@@ -186,24 +195,27 @@ TEST(Bvh, SpherePreTestKeepsRaysThatGrazeTheMeshCorners) {
             TriangleMesh square;
             for (Vec3 corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)})
                 square.positions.push_back(offset + scale * corner);
-            square.vertices = {{0, 1, 2}, {0, 2, 3}};
-            add_area_weighted_normals(square);
-            const MeshAccel brute(square, Accelerator::None, 1), sah(square, Accelerator::Sah, 3);
+            square.triangles = {{0, 1, 2}, {0, 2, 3}};
+            const MeshAccel brute = accel(square, std::nullopt, 1);
+            SceneDescription scene;
+            scene.meshes.resize(1);
+            const World world(scene, SceneMeshes{{square}, {0}});
             for (int corner = 0; corner < 4; ++corner) {
                 const Vec3 inward = glm::normalize(Vec3(0.5, 0.5, 0) * scale + offset - square.positions[corner]);
-                const Vec3 target = square.positions[corner] + inward * (1e-7 * scale);
+                const Vec3 target = Vec3(square.positions[corner]) + inward * (1e-7 * scale);
                 for (double distance : {10.0, 1e6})
                     for (int i = 0; i < 50; ++i) {
                         Vec3 from = glm::normalize(Vec3(gauss(random), gauss(random), gauss(random)));
                         from.z = std::abs(from.z) + 0.05;  // not in the plane of the square
                         const Ray ray{target + distance * scale * glm::normalize(from), -glm::normalize(from)};
                         TraversalCounts counts;
-                        Interval brute_range, sah_range;
-                        MeshHit brute_hit, sah_hit;
+                        SearchCounts world_counts;
+                        Interval brute_range;
+                        MeshHit brute_hit;
                         const bool found = brute.intersect(ray, brute_range, brute_hit, counts);
                         hits += found;
-                        ASSERT_EQ(sah.intersect(ray, sah_range, sah_hit, counts), found);
-                        ASSERT_EQ(sah.occluded(ray, {0, kInfinity}, counts), found);
+                        ASSERT_EQ(world.may_hit(ray) && world.nearest_hit(ray, {0, kInfinity}, world_counts), found);
+                        ASSERT_EQ(world.may_hit(ray) && world.occluded(ray, {0, kInfinity}, world_counts), found);
                     }
             }
         }
@@ -212,7 +224,7 @@ TEST(Bvh, SpherePreTestKeepsRaysThatGrazeTheMeshCorners) {
 
 TEST(Bvh, MedianFollowsTheAssignment) {
     // Leaves hold at most leaf_size triangles; the tree splits x, y, z by depth.
-    const MeshAccel median(bunny(), Accelerator::Median, 3);
+    const MeshAccel median = accel(bunny(), BvhBuild::Median, 3);
     const BvhStats stats = median.bvh().stats();
     EXPECT_LE(stats.max_leaf, 3u);
     EXPECT_EQ(stats.nodes, 2 * stats.leaves - 1);
@@ -221,33 +233,34 @@ TEST(Bvh, MedianFollowsTheAssignment) {
 
 TEST(Bvh, SahLeavesNeverExceedTheLeafSize) {
     for (int leaf : {1, 3, 8}) {
-        const MeshAccel sah(bunny(), Accelerator::Sah, leaf);
+        const MeshAccel sah = accel(bunny(), BvhBuild::Sah, leaf);
         EXPECT_LE(sah.bvh().stats().max_leaf, size_t(leaf));
     }
 }
 
 TEST(Bvh, LeavesContainTheirTriangles) {
-    for (Accelerator method : {Accelerator::Median, Accelerator::Sah}) {
-        const MeshAccel tree(triangle_soup(500, 3), method, 3);
+    const TriangleMesh soup = triangle_soup(500, 3);
+    for (BvhBuild method : {BvhBuild::Median, BvhBuild::Sah}) {
+        const MeshAccel tree = accel(soup, method, 3);
         const auto& order = tree.bvh().order();
         std::vector<int> seen(order.size(), 0);
         tree.bvh().for_each_leaf([&](const Bounds& box, uint32_t first, uint32_t count, int) {
             for (uint32_t i = first; i < first + count; ++i) {
                 ++seen[i];
-                for (uint32_t v : tree.mesh().vertices[order[i]])
+                for (uint32_t v : soup.triangles[order[i]])
                     for (int axis = 0; axis < 3; ++axis) {
-                        EXPECT_LE(box.lower[axis], tree.mesh().positions[v][axis]);
-                        EXPECT_GE(box.upper[axis], tree.mesh().positions[v][axis]);
+                        EXPECT_LE(box.lower[axis], soup.positions[v][axis]);
+                        EXPECT_GE(box.upper[axis], soup.positions[v][axis]);
                     }
             }
         });
-        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(order.size())) << accelerator_name(method);
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(order.size())) << build_name(method);
     }
 }
 
 // Sah's wide nodes: every inner child's box holds its node's children's boxes.
 TEST(Bvh, WideNodesContainTheirChildren) {
-    const MeshAccel sah(triangle_soup(2000, 5), Accelerator::Sah, 1);
+    const MeshAccel sah = accel(triangle_soup(2000, 5), BvhBuild::Sah, 1);
     const auto& wide = sah.bvh().wide_nodes();
     ASSERT_GT(wide.size(), 1u);
     size_t inner = 0;
@@ -279,8 +292,8 @@ TEST(Bvh, ParallelBuildsMakeTheSingleThreadedTree) {
         box.extend(corner);
         box.extend(corner + 0.01 * Vec3(unit(random), unit(random), unit(random)));
     }
-    for (Accelerator method : {Accelerator::Median, Accelerator::Sah}) {
-        const char* name = accelerator_name(method);
+    for (BvhBuild method : {BvhBuild::Median, BvhBuild::Sah}) {
+        const char* name = build_name(method);
         const Bvh serial(boxes, method, 3, 1), parallel(boxes, method, 3, 2);
         // The same nodes, byte for byte (the nodes hold no padding).
         auto same_bytes = [](const auto& a, const auto& b) {

@@ -7,7 +7,7 @@
 #include <random>
 #include <sstream>
 
-#include "frontend/load_scene.h"
+#include "lang/load_scene.h"
 
 namespace tracer {
 namespace {

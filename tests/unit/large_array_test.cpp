@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <numeric>
 
-#include "render/large_array.h"
+#include "base/large_array.h"
 
 namespace tracer {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "frontend/lexer.h"
+#include "lang/lexer.h"
 
 namespace tracer {
 namespace {

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "frontend/parser.h"
+#include "lang/parser.h"
 
 namespace tracer {
 namespace {

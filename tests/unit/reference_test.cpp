@@ -6,9 +6,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "frontend/load_scene.h"
-#include "frontend/reference_doc.h"
-#include "frontend/schema.h"
+#include "lang/load_scene.h"
+#include "lang/reference_doc.h"
+#include "lang/schema.h"
 
 namespace tracer {
 namespace {

@@ -11,9 +11,10 @@
 #include <OpenImageIO/imageio.h>
 #include <glm/geometric.hpp>
 
-#include "frontend/load_scene.h"
-#include "render/image_output.h"
-#include "render/mesh_loader.h"
+#include "lang/load_scene.h"
+#include "io/image_file.h"
+#include "io/obj_mesh.h"
+#include "render/placement.h"
 #include "render/renderer.h"
 
 namespace tracer {
@@ -69,7 +70,7 @@ Bytes render_scene(const std::string& name, const RenderOptions& options = {}) {
     auto meshes = load_meshes(*loaded.scene, loaded.diagnostics);
     EXPECT_TRUE(meshes) << name;
     if (!meshes) return {};
-    const World world(*loaded.scene, std::move(*meshes));
+    const World world(*loaded.scene, *meshes);
     Image image;
     RenderStats stats;
     EXPECT_TRUE(render(world, *loaded.scene, options, image, stats));
@@ -134,9 +135,11 @@ TEST(BunnyRoom, BunnyStandsOnTheFloorClearOfEverySphere) {
     LoadResult loaded = load_scene((kScenes / "bunny_room.scn").string());
     ASSERT_TRUE(loaded.scene);
     auto meshes = load_meshes(*loaded.scene, loaded.diagnostics);
-    ASSERT_TRUE(meshes && meshes->size() == 1);
+    ASSERT_TRUE(meshes && meshes->files.size() == 1);
+    const Placement placement(loaded.scene->meshes[0]);
     double lowest = kInfinity;
-    for (const Vec3& p : meshes->front().positions) {
+    for (const auto& file_point : meshes->files[0].positions) {
+        const Vec3 p = placement.point(Vec3(file_point));
         lowest = std::min(lowest, p.y);
         for (const Sphere& s : loaded.scene->spheres)
             ASSERT_GT(glm::length(p - s.center), s.radius + 0.05) << "a bunny vertex is inside or touching a sphere";

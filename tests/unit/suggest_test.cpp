@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "frontend/suggest.h"
+#include "lang/suggest.h"
 
 namespace tracer {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <filesystem>
 
-#include "frontend/load_scene.h"
-#include "frontend/scene_json.h"
+#include "lang/load_scene.h"
+#include "scene/scene_json.h"
 
 namespace tracer {
 namespace {

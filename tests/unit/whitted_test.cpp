@@ -122,7 +122,7 @@ TEST(Whitted, MayHitNeverRulesOutARayThatHits) {
         const double nudge = (i % 2 ? 1 : -1) * std::pow(10.0, exponent(random));
         const Vec3 target = origin + to_centre * (1 - r * r / (d * d)) + side * (r * std::sqrt(d * d - r * r) / d + nudge);
         const Ray ray{origin, glm::normalize(target - origin)};
-        TraversalCounts counts;
+        SearchCounts counts;
         const bool hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts).has_value();
         const bool may_hit = world.may_hit(ray);
         hits += hit;

@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "render/worker_pool.h"
+#include "base/worker_pool.h"
 
 namespace tracer {
 namespace {

@@ -6,23 +6,26 @@
 #include <cmath>
 #include <vector>
 
-#include "frontend/scene.h"
+#include "scene/scene.h"
 #include "render/camera.h"
-#include "render/mesh_loader.h"
+#include "render/placement.h"
+#include "scene/triangle_mesh.h"
 #include "render/renderer.h"
 
 namespace tracer {
 
 // The pixels that show the meshes, plus 4 on every side, clipped to the image.
-inline PixelRect auto_crop(const SceneDescription& scene, const std::vector<TriangleMesh>& meshes) {
+inline PixelRect auto_crop(const SceneDescription& scene, const SceneMeshes& meshes) {
     const PinholeCamera camera(scene.camera, scene.render.width, scene.render.height);
     double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const auto& mesh : meshes)
-        for (const Vec3& p : mesh.positions) {
+    for (size_t block = 0; block < scene.meshes.size(); ++block) {
+        const Placement placement(scene.meshes[block]);
+        for (const auto& p : meshes.files[meshes.file_of_block[block]].positions) {
             Real x, y;
-            if (!camera.project(p, x, y)) continue;
+            if (!camera.project(placement.point(Vec3(p)), x, y)) continue;
             x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
         }
+    }
     PixelRect crop;
     crop.x0 = std::max(0, int(std::floor(x0)) - 4);
     crop.y0 = std::max(0, int(std::floor(y0)) - 4);

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "render/load_world.h"
+#include "app/load_files.h"
 
 namespace tracer {
 

@@ -22,7 +22,7 @@
 #include "auto_crop.h"
 #include "bench_scene.h"
 #include "render/camera.h"
-#include "render/mesh_loader.h"
+#include "io/obj_mesh.h"
 #include "render/renderer.h"
 #include "render/whitted.h"
 #include "render/world.h"
@@ -78,9 +78,9 @@ int main(int argc, char** argv) {
 
     // Step 1: the scene, its world on one thread, and the rays.
     const std::optional<LoadedScene> loaded = load_bench_scene(scene_path, obj, leaf_size);
-    if (!loaded || loaded->meshes.empty()) return 1;
+    if (!loaded || loaded->meshes.files.empty()) return 1;
     const SceneDescription& scene = loaded->scene;
-    const std::vector<TriangleMesh>& meshes = loaded->meshes;
+    const SceneMeshes& meshes = loaded->meshes;
     const PixelRect crop = full ? PixelRect{0, 0, scene.render.width, scene.render.height} : auto_crop(scene, meshes);
     const World world(scene, meshes, 1);
     const MeshAccel& mesh = world.meshes()[0];
@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
         for (int x = crop.x0; x < crop.x0 + crop.width; ++x)
             for (int k = 0; k < repeat; ++k) primary.push_back(camera.ray_through(x + 0.5, y + 0.5));
     std::vector<std::pair<Ray, Interval>> shadow;  // from every hit to every light
-    TraversalCounts counts;
+    SearchCounts counts;
     for (const Ray& ray : primary) {
         const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts);
         if (!hit) continue;
@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
         for (const Ray& ray : primary) {
             Interval range{kSelfHitEpsilon, kInfinity};
             MeshHit hit;
-            if (mesh.intersect(ray, range, hit, mesh_counts)) sum += range.max;
+            if (world.may_hit(ray) && mesh.intersect(ray, range, hit, mesh_counts)) sum += range.max;
         }
         sink = sum;
     }), primary.size());
@@ -132,7 +132,7 @@ int main(int argc, char** argv) {
     report("mesh.occluded  ", fastest_ms([&] {
         blocked = 0;
         shadow_counts = {};
-        for (const auto& [ray, range] : shadow) blocked += mesh.occluded(ray, range, shadow_counts);
+        for (const auto& [ray, range] : shadow) blocked += world.may_hit(ray) && mesh.occluded(ray, range, shadow_counts);
         sink = blocked;
     }), shadow.size());
     report_work(shadow_counts, shadow.size());

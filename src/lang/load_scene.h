@@ -4,8 +4,8 @@
 #include <optional>
 #include <string>
 
-#include "frontend/diagnostics.h"
-#include "frontend/scene.h"
+#include "base/diagnostics.h"
+#include "scene/scene.h"
 
 namespace tracer {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <string_view>
 
-#include "frontend/diagnostics.h"
-#include "frontend/source.h"
+#include "base/diagnostics.h"
+#include "base/source.h"
 
 namespace tracer {
 

@@ -1,9 +1,9 @@
-#include "frontend/schema.h"
+#include "lang/schema.h"
 
 #include <charconv>
 #include <cmath>
 
-#include "frontend/scene.h"
+#include "scene/scene.h"
 
 namespace tracer {
 namespace {
@@ -176,25 +176,6 @@ const BlockSpec* find_block_spec(std::string_view kind) {
     for (const BlockSpec* spec : all_block_specs())
         if (spec->top_level && spec->kind == kind) return spec;
     return nullptr;
-}
-
-const char* accelerator_name(Accelerator accelerator) {
-    switch (accelerator) {
-        case Accelerator::None: return "none";
-        case Accelerator::Box: return "box";
-        case Accelerator::Median: return "median";
-        case Accelerator::Sah: return "sah";
-    }
-    return "sah";
-}
-
-bool accelerator_from_name(std::string_view name, Accelerator& out) {
-    for (Accelerator a : {Accelerator::None, Accelerator::Box, Accelerator::Median, Accelerator::Sah})
-        if (name == accelerator_name(a)) {
-            out = a;
-            return true;
-        }
-    return false;
 }
 
 std::string format_number(double value) {

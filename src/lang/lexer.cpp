@@ -1,4 +1,4 @@
-#include "frontend/lexer.h"
+#include "lang/lexer.h"
 
 #include <charconv>
 #include <cmath>

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "frontend/scene.h"
+#include "scene/scene.h"
 
 namespace tracer {
 

@@ -6,16 +6,15 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
-#include <vector>
 
-#include "frontend/scene.h"
-#include "render/mesh_loader.h"
+#include "scene/scene.h"
+#include "scene/triangle_mesh.h"
 
 namespace tracer {
 
 struct LoadedScene {
     SceneDescription scene;
-    std::vector<TriangleMesh> meshes;
+    SceneMeshes meshes;
 };
 
 // Loads the scene at `path`, lets `adjust` change it before its meshes are read, and prints

@@ -1,10 +1,10 @@
-#include "frontend/reference_doc.h"
+#include "lang/reference_doc.h"
 
 #include <charconv>
 #include <cmath>
 #include <sstream>
 
-#include "frontend/schema.h"
+#include "lang/schema.h"
 
 namespace tracer {
 namespace {

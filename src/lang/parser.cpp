@@ -1,9 +1,9 @@
-#include "frontend/parser.h"
+#include "lang/parser.h"
 
 #include <deque>
 
-#include "frontend/lexer.h"
-#include "frontend/schema.h"
+#include "lang/lexer.h"
+#include "lang/schema.h"
 
 namespace tracer {
 namespace {

@@ -4,10 +4,10 @@
 
 #include <optional>
 
-#include "frontend/ast.h"
-#include "frontend/diagnostics.h"
-#include "frontend/scene.h"
-#include "frontend/source.h"
+#include "lang/ast.h"
+#include "base/diagnostics.h"
+#include "scene/scene.h"
+#include "base/source.h"
 
 namespace tracer {
 

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <thread>
 
-#include "render/worker_pool.h"
+#include "base/worker_pool.h"
 
 namespace tracer {
 

@@ -1,16 +1,16 @@
-#include "render/mesh_loader.h"
+#include "io/obj_mesh.h"
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <tiny_obj_loader.h>  // TINYOBJLOADER_USE_DOUBLE comes with the CMake target
 static_assert(sizeof(tinyobj::real_t) == sizeof(double), "link the double-precision tinyobjloader");
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/mat3x3.hpp>
 
 namespace tracer {
 namespace {
@@ -118,35 +118,7 @@ private:
     bool ok_ = true;
 };
 
-// Scale, then rotate about the axis, as one matrix; normals use its inverse transpose.
-struct Placement {
-    glm::dmat3 linear;
-    glm::dmat3 normal;
-    Vec3 translate;
-
-    explicit Placement(const Mesh& mesh) {
-        glm::dmat3 rotation = glm::dmat3(glm::rotate(glm::dmat4(1.0), glm::radians(mesh.rotate_degrees), mesh.rotate_axis));
-        glm::dmat3 scale(1.0);
-        for (int i = 0; i < 3; ++i) scale[i][i] = mesh.scale[i];
-        linear = rotation * scale;
-        normal = glm::transpose(glm::inverse(linear));
-        translate = mesh.translate;
-    }
-};
-
 }  // namespace
-
-std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& positions,
-                                        const std::vector<std::array<uint32_t, 3>>& triangles) {
-    std::vector<Vec3> sums(positions.size(), Vec3(0));
-    for (const auto& t : triangles) {
-        // The unnormalised cross product is the face normal times twice the area.
-        const Vec3 weighted = glm::cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
-        for (uint32_t v : t) sums[v] += weighted;
-    }
-    for (Vec3& n : sums) n = normalize_or_zero(n);
-    return sums;
-}
 
 // After errors in an OBJ file: where the scene names it.
 static void note_where_used(const Mesh& mesh, Diagnostics& diagnostics) {
@@ -183,13 +155,10 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
     }
     const tinyobj::attrib_t& attrib = reader.GetAttrib();
 
-    // Step 3: place the vertices and collect the triangles, dropping zero-area ones.
-    const Placement placement(mesh);
+    // Step 3: the vertices and triangles, dropping zero-area ones.
     TriangleMesh out;
-    out.material = mesh.material;
     for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
-        out.positions.push_back(placement.linear * Vec3(attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]) +
-                                placement.translate);
+        out.positions.push_back({attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
     bool file_normals = !attrib.normals.empty();
     size_t degenerate = 0;
     for (const tinyobj::shape_t& shape : reader.GetShapes()) {
@@ -197,52 +166,56 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
         for (size_t i = 0; i + 2 < indices.size(); i += 3) {
             std::array<uint32_t, 3> v{uint32_t(indices[i].vertex_index), uint32_t(indices[i + 1].vertex_index),
                                       uint32_t(indices[i + 2].vertex_index)};
-            const Vec3 cross = glm::cross(out.positions[v[1]] - out.positions[v[0]], out.positions[v[2]] - out.positions[v[0]]);
+            const glm::dvec3 cross = glm::cross(out.positions[v[1]] - out.positions[v[0]],
+                                                out.positions[v[2]] - out.positions[v[0]]);
             if (!(glm::dot(cross, cross) > 0)) {
                 ++degenerate;
                 continue;
             }
-            out.vertices.push_back(v);
-            bool has_normals = indices[i].normal_index >= 0 && indices[i + 1].normal_index >= 0 &&
-                               indices[i + 2].normal_index >= 0;
-            file_normals = file_normals && has_normals;
-            out.normal_ids.push_back({uint32_t(std::max(indices[i].normal_index, 0)),
-                                      uint32_t(std::max(indices[i + 1].normal_index, 0)),
-                                      uint32_t(std::max(indices[i + 2].normal_index, 0))});
+            out.triangles.push_back(v);
+            file_normals = file_normals && indices[i].normal_index >= 0 && indices[i + 1].normal_index >= 0 &&
+                           indices[i + 2].normal_index >= 0;
+            if (file_normals)
+                out.normal_ids.push_back({uint32_t(indices[i].normal_index), uint32_t(indices[i + 1].normal_index),
+                                          uint32_t(indices[i + 2].normal_index)});
         }
     }
     if (degenerate > 0)
         diagnostics.report(Severity::Warning, Diagnostics::whole_file(mesh.path),
                            std::to_string(degenerate) + " degenerate (zero-area) triangle" +
                                (degenerate == 1 ? "" : "s") + " dropped");
-    if (out.vertices.empty()) {
+    if (out.triangles.empty()) {
         diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path),
                            "the mesh has no triangles (with non-zero area)");
         note_where_used(mesh, diagnostics);
         return std::nullopt;
     }
 
-    // Step 4: normals from the file (when every face has them), else area-weighted.
+    // Step 4: the file's normals, when every triangle has them.
     if (file_normals) {
-        for (size_t i = 0; i + 2 < attrib.normals.size(); i += 3) {
-            out.normals.push_back(normalize_or_zero(
-                placement.normal * Vec3(attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2])));
-        }
+        for (size_t i = 0; i + 2 < attrib.normals.size(); i += 3)
+            out.normals.push_back({attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2]});
     } else {
-        out.normals = area_weighted_normals(out.positions, out.vertices);
-        out.normal_ids = out.vertices;
+        out.normal_ids.clear();
     }
     return out;
 }
 
-std::optional<std::vector<TriangleMesh>> load_meshes(const SceneDescription& scene, Diagnostics& diagnostics) {
-    std::vector<TriangleMesh> meshes;
+std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostics& diagnostics) {
+    SceneMeshes meshes;
+    std::map<std::string, uint32_t> file_index;  // by normalised absolute path
     bool ok = true;
     for (const Mesh& mesh : scene.meshes) {
-        if (auto loaded = load_mesh(mesh, diagnostics))
-            meshes.push_back(std::move(*loaded));
-        else
+        const std::string key = std::filesystem::path(mesh.path).lexically_normal().string();
+        auto [known, is_new] = file_index.try_emplace(key, uint32_t(meshes.files.size()));
+        meshes.file_of_block.push_back(known->second);
+        if (!is_new) continue;
+        if (auto loaded = load_mesh(mesh, diagnostics)) {
+            meshes.files.push_back(std::move(*loaded));
+        } else {
+            meshes.files.emplace_back();
             ok = false;
+        }
     }
     if (!ok) return std::nullopt;
     return meshes;

@@ -1,4 +1,4 @@
-#include "frontend/source.h"
+#include "base/source.h"
 
 #include <algorithm>
 

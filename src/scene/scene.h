@@ -5,7 +5,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "frontend/diagnostics.h"
+#include "base/diagnostics.h"
 #include <string>
 #include <string_view>
 #include <vector>

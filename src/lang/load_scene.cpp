@@ -1,4 +1,4 @@
-#include "frontend/load_scene.h"
+#include "lang/load_scene.h"
 
 #include <cerrno>
 #include <cstring>
@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "frontend/parser.h"
-#include "frontend/validate.h"
+#include "lang/parser.h"
+#include "lang/validate.h"
 
 namespace tracer {
 

@@ -3,9 +3,9 @@
 // top-level block and carries on, so one run reports the errors of several blocks.
 #pragma once
 
-#include "frontend/ast.h"
-#include "frontend/diagnostics.h"
-#include "frontend/source.h"
+#include "lang/ast.h"
+#include "base/diagnostics.h"
+#include "base/source.h"
 
 namespace tracer {
 

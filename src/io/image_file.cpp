@@ -1,4 +1,4 @@
-#include "render/image_output.h"
+#include "io/image_file.h"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-#include "frontend/validate.h"
+#include "lang/validate.h"
 
 #include <algorithm>
 #include <charconv>
@@ -11,9 +11,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "frontend/parser.h"
-#include "frontend/schema.h"
-#include "frontend/suggest.h"
+#include "lang/parser.h"
+#include "lang/schema.h"
+#include "lang/suggest.h"
 
 namespace tracer {
 namespace {

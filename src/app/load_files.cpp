@@ -1,8 +1,9 @@
-#include "render/load_world.h"
+#include "app/load_files.h"
 
 #include <ostream>
 
-#include "frontend/load_scene.h"
+#include "io/obj_mesh.h"
+#include "lang/load_scene.h"
 
 namespace tracer {
 
@@ -10,7 +11,7 @@ std::optional<LoadedScene> load_scene_with_meshes(const std::string& path,
                                                   const std::function<void(SceneDescription&)>& adjust,
                                                   std::ostream& errors, bool* unreadable) {
     LoadResult loaded = load_scene(path);
-    std::optional<std::vector<TriangleMesh>> meshes;
+    std::optional<SceneMeshes> meshes;
     if (loaded.scene) {
         if (adjust) adjust(*loaded.scene);
         meshes = load_meshes(*loaded.scene, loaded.diagnostics);

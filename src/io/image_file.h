@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "render/renderer.h"
+#include "base/image.h"
 
 namespace tracer {
 

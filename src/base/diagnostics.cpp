@@ -1,4 +1,4 @@
-#include "frontend/diagnostics.h"
+#include "base/diagnostics.h"
 
 #include <algorithm>
 #include <climits>

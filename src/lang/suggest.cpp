@@ -1,4 +1,4 @@
-#include "frontend/suggest.h"
+#include "lang/suggest.h"
 
 #include <algorithm>
 #include <cctype>

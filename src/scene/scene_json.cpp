@@ -1,4 +1,4 @@
-#include "frontend/scene_json.h"
+#include "scene/scene_json.h"
 
 namespace tracer {
 namespace {

@@ -1,0 +1,21 @@
+// Triangle meshes from OBJ files (read by tinyobjloader), in the file's own coordinates:
+// polygons triangulated, zero-area triangles dropped (with a warning), normals kept as the
+// file gives them when every face has them. Placing a mesh is the renderer's work.
+#pragma once
+
+#include <optional>
+
+#include "base/diagnostics.h"
+#include "scene/scene.h"
+#include "scene/triangle_mesh.h"
+
+namespace tracer {
+
+// Reads the OBJ file of one mesh block; bad files are reported as `obj-file:line:col: error: ...`.
+std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics);
+
+// Reads the file of every mesh block, each file once however many blocks name it (every bad
+// file is reported in one run).
+std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostics& diagnostics);
+
+}  // namespace tracer
