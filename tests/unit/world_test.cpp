@@ -1,0 +1,277 @@
+// The two-level search (a BVH over the objects, each mesh's BVH below it, instances placed by
+// transforming rays) against brute force over every primitive of the placed scene.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "io/obj_mesh.h"
+#include "render/geometry.h"
+#include "render/placement.h"
+#include "render/triangle.h"
+#include "render/world.h"
+
+namespace tracer {
+namespace {
+
+const std::filesystem::path kMeshes = std::filesystem::path(TRACER_SOURCE_DIR) / "scenes" / "meshes";
+
+TriangleMesh read(const std::string& name) {
+    Mesh block;
+    block.path = (kMeshes / name).string();
+    Diagnostics diagnostics;
+    auto mesh = load_mesh(block, diagnostics);
+    EXPECT_TRUE(mesh) << name;
+    return mesh ? *mesh : TriangleMesh{};
+}
+
+// A mixed scene: `spheres` random spheres, a floor plane, the bunny placed five times (rotated
+// about tilted axes, scaled non-uniformly), the tetrahedron three times and a one-off
+// triangle soup (which the world builds placed rather than instanced).
+struct MixedScene {
+    SceneDescription scene;
+    SceneMeshes meshes;
+};
+
+MixedScene mixed_scene(int spheres, uint32_t seed, Accelerator accel = Accelerator::Sah) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    MixedScene out;
+    SceneDescription& scene = out.scene;
+    scene.render.accel = accel;
+    scene.materials.resize(4);
+    for (int i = 0; i < spheres; ++i)
+        scene.spheres.push_back({{8 * unit(random) - 4, 8 * unit(random) - 4, 8 * unit(random) - 4},
+                                 0.02 + 0.3 * unit(random) * unit(random), i % 4});
+    scene.planes.push_back({{0, -6, 0}, {0, 1, 0}, 1});
+
+    TriangleMesh soup;
+    for (int i = 0; i < 200; ++i) {
+        const glm::dvec3 centre(2 * unit(random) - 1, 2 * unit(random) - 1, 2 * unit(random) - 1);
+        const uint32_t first = uint32_t(soup.positions.size());
+        for (int k = 0; k < 3; ++k)
+            soup.positions.push_back(centre + 0.3 * glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+        soup.triangles.push_back({first, first + 1, first + 2});
+    }
+    out.meshes.files = {read("bunny.obj"), read("tetrahedron.obj"), soup};
+    auto place = [&](uint32_t file, dvec3 scale, double angle) {
+        Mesh block;
+        block.scale = scale;
+        block.rotate_axis = glm::normalize(dvec3(unit(random) - 0.5, 1, unit(random) - 0.5));
+        block.rotate_degrees = angle;
+        block.translate = {8 * unit(random) - 4, 8 * unit(random) - 4, 8 * unit(random) - 4};
+        block.material = int(file) + 1;
+        scene.meshes.push_back(block);
+        out.meshes.file_of_block.push_back(file);
+    };
+    for (int i = 0; i < 5; ++i) place(0, dvec3(0.1 + 0.1 * unit(random), 0.1, 0.15 + 0.1 * unit(random)), 360 * unit(random));
+    for (int i = 0; i < 3; ++i) place(1, dvec3(0.5 + unit(random), 0.7, 1.2), 360 * unit(random));
+    place(2, dvec3(1.5, 1, 0.8), 30);
+    return out;
+}
+
+// The nearest hit found by testing every sphere, plane and placed triangle in world
+// coordinates, independently of World: its object (numbered as World numbers them: spheres,
+// planes, mesh blocks) and t.
+struct BruteHit {
+    bool found = false;
+    uint32_t object = 0;
+    Real t = kInfinity;
+};
+
+class BruteForce {
+public:
+    explicit BruteForce(const MixedScene& mixed) : scene_(mixed.scene) {
+        for (size_t block = 0; block < scene_.meshes.size(); ++block) {
+            const Placement placement(scene_.meshes[block]);
+            const TriangleMesh& file = mixed.meshes.files[mixed.meshes.file_of_block[block]];
+            std::vector<TriangleEdges> placed;
+            for (const auto& t : file.triangles) {
+                const Vec3 p0 = placement.point(file.positions[t[0]]);
+                placed.push_back({p0, placement.point(file.positions[t[1]]) - p0, placement.point(file.positions[t[2]]) - p0});
+            }
+            triangles_.push_back(std::move(placed));
+        }
+    }
+
+    BruteHit nearest(const Ray& ray, Interval range) const {
+        BruteHit best;
+        uint32_t object = 0;
+        auto take = [&](Real t) {
+            best = {true, object, t};
+            range.max = t;
+        };
+        for (const Sphere& s : scene_.spheres) {
+            if (auto t = intersect_sphere(ray, s.center, s.radius, range)) take(*t);
+            ++object;
+        }
+        for (const Plane& p : scene_.planes) {
+            if (auto t = intersect_plane(ray, p.point, p.normal, range)) take(*t);
+            ++object;
+        }
+        for (const auto& mesh : triangles_) {
+            for (const TriangleEdges& edges : mesh) {
+                TriangleHit hit;
+                if (intersect_triangle(ray, edges, range, hit)) take(hit.t);
+            }
+            ++object;
+        }
+        return best;
+    }
+
+private:
+    const SceneDescription& scene_;
+    std::vector<std::vector<TriangleEdges>> triangles_;
+};
+
+// Rays from a sphere around the scene towards random points of its box, and from random
+// points inside it in random directions (as secondary rays start).
+std::vector<Ray> random_rays(int count, uint32_t seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::normal_distribution<double> gauss;
+    std::vector<Ray> rays;
+    for (int i = 0; i < count; ++i) {
+        const Vec3 inside(10 * unit(random) - 5, 10 * unit(random) - 5, 10 * unit(random) - 5);
+        const Vec3 direction = glm::normalize(Vec3(gauss(random), gauss(random), gauss(random)));
+        if (i % 2) {
+            rays.push_back({inside, direction});
+        } else {
+            const Vec3 origin = 20.0 * direction;
+            rays.push_back({origin, glm::normalize(inside - origin)});
+        }
+    }
+    return rays;
+}
+
+// The same arithmetic through both levels and with every primitive tested (accel none): the
+// answers must be identical, bit for bit.
+TEST(World, TwoLevelSearchFindsExactlyWhatTestingEveryPrimitiveFinds) {
+    const MixedScene mixed = mixed_scene(400, 1), brute_mixed = mixed_scene(400, 1, Accelerator::None);
+    const World world(mixed.scene, mixed.meshes), brute(brute_mixed.scene, brute_mixed.meshes);
+    ASSERT_FALSE(world.top_level_linear());
+    ASSERT_TRUE(brute.top_level_linear());
+    ASSERT_EQ(world.meshes().size(), 3u);  // bunny and tetrahedron shared, the soup placed
+    int hits = 0, instance_hits = 0;
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> fraction(0, 2);
+    for (const Ray& ray : random_rays(100000, 2)) {
+        SearchCounts counts;
+        const auto expected = brute.nearest_hit(ray, {0, kInfinity}, counts);
+        const auto found = world.nearest_hit(ray, {0, kInfinity}, counts);
+        ASSERT_EQ(found.has_value(), expected.has_value());
+        if (!found) {
+            ASSERT_FALSE(world.occluded(ray, {0, kInfinity}, counts));
+            continue;
+        }
+        ++hits;
+        instance_hits += world.objects()[found->object].kind == ObjectKind::MeshInstance;
+        ASSERT_EQ(found->t, expected->t);
+        ASSERT_EQ(found->object, expected->object);
+        const SurfaceHit a = world.surface(ray, *found), b = brute.surface(ray, *expected);
+        ASSERT_EQ(a.normal, b.normal);
+        ASSERT_EQ(a.material, b.material);
+        // Any hit over a random part of the ray: blocked exactly when the nearest hit lies in it.
+        const Interval part{0, found->t * fraction(random)};
+        ASSERT_EQ(world.occluded(ray, part, counts), part.contains(found->t));
+        ASSERT_EQ(brute.occluded(ray, part, counts), part.contains(found->t));
+    }
+    EXPECT_GT(hits, 30000);
+    EXPECT_GT(instance_hits, 3000);
+}
+
+// Against every primitive placed in world coordinates, without World (3 10^4 rays, as it is
+// slow): the same objects and t up to the rounding of carrying rays into an instance's
+// coordinates.
+TEST(World, TwoLevelSearchAgreesWithTestingEveryPlacedTriangle) {
+    const MixedScene mixed = mixed_scene(400, 4);
+    const World world(mixed.scene, mixed.meshes);
+    const BruteForce brute(mixed);
+    int rays = 0, hits = 0, disagreements = 0;
+    for (const Ray& ray : random_rays(30000, 5)) {
+        ++rays;
+        SearchCounts counts;
+        const BruteHit expected = brute.nearest(ray, {0, kInfinity});
+        const auto found = world.nearest_hit(ray, {0, kInfinity}, counts);
+        if (found.has_value() != expected.found) {
+            ++disagreements;  // a ray grazing an edge, decided otherwise after the transform's rounding
+            continue;
+        }
+        if (!found) continue;
+        ++hits;
+        if (found->object != expected.object) {
+            ++disagreements;
+            continue;
+        }
+        ASSERT_NEAR(found->t, expected.t, 1e-9 * expected.t);
+        EXPECT_EQ(world.occluded(ray, {0, expected.t * (1 - 1e-9)}, counts), false);
+        EXPECT_EQ(world.occluded(ray, {0, expected.t * (1 + 1e-9)}, counts), true);
+    }
+    EXPECT_GT(hits, 9000);
+    ::testing::Test::RecordProperty("disagreements", disagreements);
+    EXPECT_LE(disagreements, 2) << "of " << rays << " rays";
+}
+
+// An instance's shading normal is the one the same mesh gets when built placed in the world
+// (the area-weighted normals carried by the inverse transpose are those of the placed mesh).
+TEST(World, InstanceNormalsMatchTheMeshBuiltPlaced) {
+    SceneDescription scene;
+    scene.materials.resize(1);
+    Mesh block;
+    block.scale = dvec3(0.3);
+    block.rotate_axis = glm::normalize(dvec3(1, 2, 3));
+    block.rotate_degrees = 70;
+    block.translate = {0.5, -0.2, 0.1};
+    scene.meshes = {block};
+    const SceneMeshes once{{read("bunny.obj")}, {0}};
+    const World placed(scene, once);
+    scene.meshes.push_back(block);
+    scene.meshes.back().translate.x += 100;  // out of the way
+    const World instanced(scene, SceneMeshes{once.files, {0, 0}});
+    ASSERT_TRUE(placed.instances()[0].placed);
+    ASSERT_FALSE(instanced.instances()[0].placed);
+    int hits = 0;
+    for (const Ray& ray : random_rays(20000, 6)) {
+        SearchCounts counts;
+        const auto a = placed.intersect(ray, {0, kInfinity}, counts), b = instanced.intersect(ray, {0, kInfinity}, counts);
+        ASSERT_EQ(a.has_value(), b.has_value());
+        if (!a) continue;
+        ++hits;
+        ASSERT_NEAR(a->t, b->t, 1e-9 * a->t);
+        ASSERT_LT(glm::length(a->normal - b->normal), 1e-9);
+    }
+    EXPECT_GT(hits, 500);
+}
+
+// A mesh file named by many blocks is read once and built once; every extra instance costs a
+// few hundred bytes, not a copy of the mesh.
+TEST(World, InstancesShareOneMesh) {
+    SceneDescription scene;
+    scene.materials.resize(1);
+    const std::string bunny = (kMeshes / "bunny.obj").string();
+    for (int i = 0; i < 4096; ++i) {
+        Mesh block;
+        block.path = bunny;
+        block.translate = {i % 64, 0, i / 64};
+        block.rotate_degrees = i;
+        scene.meshes.push_back(block);
+    }
+    Diagnostics diagnostics;
+    const auto meshes = load_meshes(scene, diagnostics);
+    ASSERT_TRUE(meshes);
+    ASSERT_EQ(meshes->files.size(), 1u);
+    const World many(scene, *meshes);
+    ASSERT_EQ(many.meshes().size(), 1u);
+    ASSERT_EQ(many.instances().size(), 4096u);
+    scene.meshes.resize(1);
+    const World one(scene, SceneMeshes{meshes->files, {0}});
+    const size_t one_bunny = one.meshes()[0].memory_bytes() + one.top_level_memory_bytes();
+    const size_t all = many.meshes()[0].memory_bytes() + many.top_level_memory_bytes();
+    ::testing::Test::RecordProperty("bytes_per_instance", int((all - one_bunny) / 4095));
+    EXPECT_LE(all, 2 * one_bunny + 200 * 4096);
+}
+
+}  // namespace
+}  // namespace tracer
