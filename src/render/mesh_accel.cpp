@@ -114,6 +114,14 @@ Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v) const {
     return shading != Vec3(0) ? shading : geometric_normal(slot);
 }
 
+Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const glm::dmat3& normal_map) const {
+    const Vec3(&n)[3] = hit_records_[slot].normals;
+    const Vec3 shading = normalize_or_zero((1 - u - v) * normalize_or_zero(normal_map * n[0]) +
+                                           u * normalize_or_zero(normal_map * n[1]) +
+                                           v * normalize_or_zero(normal_map * n[2]));
+    return shading != Vec3(0) ? shading : glm::normalize(normal_map * geometric_normal(slot));
+}
+
 size_t MeshAccel::memory_bytes() const {
     return bvh_.memory_bytes() + edges_.capacity() * sizeof(TriangleEdges) + hit_records_.capacity() * sizeof(HitRecord);
 }

@@ -41,8 +41,11 @@ public:
     // Unit face normal (v1 - v0) x (v2 - v0) of the triangle in `slot`.
     Vec3 geometric_normal(uint32_t slot) const;
     // Vertex normals interpolated at barycentric (u, v) of the triangle in `slot` and
-    // renormalised; the face normal where they cancel out.
+    // renormalised; the face normal where they cancel out. With `normal_map` (an instance's
+    // inverse transpose), each vertex normal is mapped and renormalised first, so that an
+    // instance shades as the same mesh built placed would.
     Vec3 shading_normal(uint32_t slot, Real u, Real v) const;
+    Vec3 shading_normal(uint32_t slot, Real u, Real v, const glm::dmat3& normal_map) const;
     // The triangle in `slot` as the file numbers it (after dropping zero-area ones).
     uint32_t triangle_of(uint32_t slot) const { return hit_records_[slot].triangle; }
 

@@ -186,13 +186,10 @@ SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
         case ObjectKind::MeshInstance: {
             const MeshInstance& instance = instances_[object.index];
             const MeshAccel& mesh = meshes_[instance.mesh];
-            out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v);
-            if (!instance.placed) {
-                // Normals map by the inverse transpose of the placement: transpose(to_object).
-                out.normal = normalize_or_zero(out.normal * instance.to_object);
-                if (out.normal == Vec3(0))
-                    out.normal = glm::normalize(mesh.geometric_normal(hit.primitive) * instance.to_object);
-            }
+            // Normals map by the inverse transpose of the placement: transpose(to_object).
+            out.normal = instance.placed ? mesh.shading_normal(hit.primitive, hit.u, hit.v)
+                                         : mesh.shading_normal(hit.primitive, hit.u, hit.v,
+                                                               glm::transpose(instance.to_object));
             break;
         }
     }

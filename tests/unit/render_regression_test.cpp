@@ -131,6 +131,13 @@ TEST(Bunny, MatchesTheCommittedGoldenImage) { expect_matches_golden(render_scene
 
 TEST(BunnyRoom, MatchesTheCommittedGoldenImage) { expect_matches_golden(render_scene("bunny_room"), "bunny_room"); }
 
+// The many-object scenes: 4,099 spheres through the top level's BVH; 64 instances of one mesh.
+TEST(ManySpheres, MatchesTheCommittedGoldenImage) {
+    expect_matches_golden(render_scene("many_spheres"), "many_spheres");
+}
+
+TEST(Bunnies, MatchesTheCommittedGoldenImage) { expect_matches_golden(render_scene("bunnies"), "bunnies"); }
+
 TEST(BunnyRoom, BunnyStandsOnTheFloorClearOfEverySphere) {
     LoadResult loaded = load_scene((kScenes / "bunny_room.scn").string());
     ASSERT_TRUE(loaded.scene);

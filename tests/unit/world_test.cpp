@@ -214,13 +214,14 @@ TEST(World, TwoLevelSearchAgreesWithTestingEveryPlacedTriangle) {
     EXPECT_LE(disagreements, 2) << "of " << rays << " rays";
 }
 
-// An instance's shading normal is the one the same mesh gets when built placed in the world
-// (the area-weighted normals carried by the inverse transpose are those of the placed mesh).
+// An instance's shading normal is the one the same mesh gets when built placed in the world,
+// also under a non-uniform scale: the area-weighted normals carried by the inverse transpose
+// are those of the placed mesh, and they are interpolated after being carried.
 TEST(World, InstanceNormalsMatchTheMeshBuiltPlaced) {
     SceneDescription scene;
     scene.materials.resize(1);
     Mesh block;
-    block.scale = dvec3(0.3);
+    block.scale = dvec3(0.3, 0.2, 0.45);
     block.rotate_axis = glm::normalize(dvec3(1, 2, 3));
     block.rotate_degrees = 70;
     block.translate = {0.5, -0.2, 0.1};
