@@ -52,6 +52,7 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
         objects_.push_back({ObjectKind::Sphere, index, s.material});
         spheres_.push_back({Vec3(s.center), Real(s.radius)});
         bounded_.push_back({Vec3(s.center), Real(s.radius), object, index, ObjectKind::Sphere});
+        boxes_.push_back({Vec3(s.center) - Real(s.radius), Vec3(s.center) + Real(s.radius)});
     }
     for (const Plane& p : scene.planes) {
         objects_.push_back({ObjectKind::Plane, uint32_t(planes_.size()), p.material});
@@ -96,18 +97,14 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
         const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
         bounded_.push_back({box.centre(), std::isfinite(radius) ? radius : kInfinity, object, index,
                             ObjectKind::MeshInstance});
+        boxes_.push_back(box);
     }
 }
 
 void World::build_top_level(const SearchSettings& settings) {
     const auto start = std::chrono::steady_clock::now();
-    LargeArray<Bounds> boxes(bounded_.size());
     Bounds all;
-    for (size_t i = 0; i < bounded_.size(); ++i) {
-        const Bounded& b = bounded_[i];
-        boxes[i] = Bounds{b.centre - b.radius, b.centre + b.radius};
-        all.extend(boxes[i]);
-    }
+    for (const Bounds& box : boxes_) all.extend(box);
     if (!bounded_.empty()) {
         const Real radius = glm::length(all.upper - all.lower) * Real(0.5);
         sphere_centre_ = all.centre();
@@ -115,12 +112,13 @@ void World::build_top_level(const SearchSettings& settings) {
     }
     linear_ = settings.brute_force || bounded_.size() <= kLinearObjects;
     if (!linear_) {
-        top_ = Bvh(boxes, BvhBuild::Sah, kTopLeafSize, settings.threads);
+        top_ = Bvh(boxes_, BvhBuild::Sah, kTopLeafSize, settings.threads);
         std::vector<Bounded> in_leaf_order;
         in_leaf_order.reserve(bounded_.size());
         for (uint32_t i : top_.order()) in_leaf_order.push_back(bounded_[i]);
         bounded_ = std::move(in_leaf_order);
     }
+    boxes_ = {};  // only the build needs them
     top_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -132,7 +130,8 @@ bool World::hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& 
         hit = {b.object, 0, *t, 0, 0};
         return true;
     }
-    if (!line_may_meet_sphere(ray, b.centre, b.radius * b.radius)) return false;
+    // Through the BVH, the ray entered the instance's box, which lies inside this sphere.
+    if (linear_ && !line_may_meet_sphere(ray, b.centre, b.radius * b.radius)) return false;
     const MeshInstance& instance = instances_[b.index];
     MeshHit mesh_hit;
     if (!meshes_[instance.mesh].intersect(instance.to_mesh(ray), range, mesh_hit, counts.triangles)) return false;
@@ -142,7 +141,7 @@ bool World::hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& 
 
 bool World::blocks(const Bounded& b, const Ray& ray, Interval range, SearchCounts& counts) const {
     if (b.kind == ObjectKind::Sphere) return intersect_sphere(ray, b.centre, b.radius, range).has_value();
-    if (!line_may_meet_sphere(ray, b.centre, b.radius * b.radius)) return false;
+    if (linear_ && !line_may_meet_sphere(ray, b.centre, b.radius * b.radius)) return false;
     const MeshInstance& instance = instances_[b.index];
     return meshes_[instance.mesh].occluded(instance.to_mesh(ray), range, counts.triangles);
 }

@@ -141,6 +141,7 @@ private:
     std::vector<MeshAccel> meshes_;
     std::vector<MeshInstance> instances_;
     std::vector<Bounded> bounded_;
+    LargeArray<Bounds> boxes_;  // of bounded_, while the world is built
     Bvh top_;
     bool linear_ = true;
     double top_build_seconds_ = 0;
