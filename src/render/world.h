@@ -65,15 +65,13 @@ struct MeshInstance {
     glm::dmat3 to_object{1.0};  // the inverse of the placement's linear part
     Vec3 translate{0};
 
-    // The ray in the mesh's coordinates, with the same parameter t along it.
-    Ray to_mesh(const Ray& ray) const {
-        return placed ? ray : Ray{to_object * (ray.origin - translate), to_object * ray.direction};
-    }
+    // The ray in the mesh's coordinates (of a mesh not built placed), with the same t along it.
+    Ray to_mesh(const Ray& ray) const { return {to_object * (ray.origin - translate), to_object * ray.direction}; }
 };
 
 // Up to this many bounded objects are tested one after the other instead of through the top
 // level's BVH (measured: see docs/performance.md, "Many objects").
-constexpr size_t kLinearObjects = 4;
+constexpr size_t kLinearObjects = 8;
 
 class World {
 public:
@@ -86,11 +84,7 @@ public:
     // The surface at a hit that nearest_hit returned for `ray`.
     SurfaceHit surface(const Ray& ray, const Hit& hit) const;
     // nearest_hit, then surface.
-    std::optional<SurfaceHit> intersect(const Ray& ray, Interval range, SearchCounts& counts) const {
-        const auto hit = nearest_hit(ray, range, counts);
-        if (!hit) return std::nullopt;
-        return surface(ray, *hit);
-    }
+    std::optional<SurfaceHit> intersect(const Ray& ray, Interval range, SearchCounts& counts) const;
     // True if any surface lies along `ray` with t inside `range` (for shadow rays).
     bool occluded(const Ray& ray, Interval range, SearchCounts& counts) const;
     // False only if the ray's line misses a bounding sphere of every bounded object, and there
@@ -132,8 +126,12 @@ private:
 
     void add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings);
     void build_top_level(const SearchSettings& settings);
-    bool hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
-    bool blocks(const Bounded& b, const Ray& ray, Interval range, SearchCounts& counts) const;
+    bool hit_instance(uint32_t index, uint32_t object, const Ray& ray, Interval& range, Hit& hit,
+                      SearchCounts& counts) const;
+    bool instance_blocks(uint32_t index, const Ray& ray, Interval range, SearchCounts& counts) const;
+    bool nearest_plane(const Ray& ray, Interval& range, Hit& hit) const;
+    SurfaceHit surface_at(const Ray& ray, const Hit& hit) const;
+    bool nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
 
     std::vector<Object> objects_;
     std::vector<SphereShape> spheres_;

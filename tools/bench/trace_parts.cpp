@@ -127,6 +127,12 @@ int main(int argc, char** argv) {
             if (const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts)) sum += hit->t;
         sink = sum;
     }), primary.size());
+    report("world.nearest  ", fastest_ms([&] {
+        double sum = 0;
+        for (const Ray& ray : primary)
+            if (const auto hit = world.nearest_hit(ray, {kSelfHitEpsilon, kInfinity}, counts)) sum += hit->t;
+        sink = sum;
+    }), primary.size());
     TraversalCounts shadow_counts;
     int blocked = 0;
     report("mesh.occluded  ", fastest_ms([&] {
