@@ -21,31 +21,67 @@ std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& positions,
     return sums;
 }
 
-MeshAccel::MeshAccel(const TriangleMesh& file, const Placement& placement, const SearchSettings& settings)
+namespace {
+
+// The parts placed and put together: positions, normals and triangles, as in one file.
+struct PlacedMesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;
+    std::vector<std::array<uint32_t, 3>> triangles;
+    std::vector<std::array<uint32_t, 3>> normal_ids;
+    std::vector<std::pair<uint32_t, uint32_t>> origin;  // per triangle: its part and its number there
+};
+
+PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
+    PlacedMesh out;
+    for (uint32_t part = 0; part < parts.size(); ++part) {
+        const TriangleMesh& file = *parts[part].file;
+        const Placement& placement = parts[part].placement;
+        const uint32_t first_position = uint32_t(out.positions.size()), first_normal = uint32_t(out.normals.size());
+        out.positions.resize(first_position + file.positions.size());
+        parallel_for(file.positions.size(), [&](size_t i) {
+            out.positions[first_position + i] = placement.point(Vec3(file.positions[i]));
+        }, threads);
+        // Normals: the file's placed by the inverse transpose, else area-weighted over the
+        // placed triangles.
+        std::vector<Vec3> normals;
+        if (!file.normal_ids.empty()) {
+            normals.resize(file.normals.size());
+            parallel_for(normals.size(), [&](size_t i) {
+                normals[i] = normalize_or_zero(placement.normal * Vec3(file.normals[i]));
+            }, threads);
+        } else {
+            const std::vector<Vec3> placed(out.positions.begin() + first_position, out.positions.end());
+            normals = area_weighted_normals(placed, file.triangles);
+        }
+        out.normals.insert(out.normals.end(), normals.begin(), normals.end());
+        const auto& ids = file.normal_ids.empty() ? file.triangles : file.normal_ids;
+        for (uint32_t t = 0; t < file.triangles.size(); ++t) {
+            const auto& v = file.triangles[t];
+            const auto& n = ids[t];
+            out.triangles.push_back({first_position + v[0], first_position + v[1], first_position + v[2]});
+            out.normal_ids.push_back({first_normal + n[0], first_normal + n[1], first_normal + n[2]});
+            out.origin.emplace_back(part, t);
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& settings)
     : brute_force_(settings.brute_force) {
     const auto start = std::chrono::steady_clock::now();
-    const size_t n = file.triangles.size();
     const int threads = settings.threads;
     // Step 1: the placed vertices and their normals.
-    std::vector<Vec3> positions(file.positions.size());
-    parallel_for(positions.size(), [&](size_t i) { positions[i] = placement.point(Vec3(file.positions[i])); }, threads);
-    const bool file_normals = !file.normal_ids.empty();
-    std::vector<Vec3> normals;
-    if (file_normals) {
-        normals.resize(file.normals.size());
-        parallel_for(normals.size(), [&](size_t i) {
-            normals[i] = normalize_or_zero(placement.normal * Vec3(file.normals[i]));
-        }, threads);
-    } else {
-        normals = area_weighted_normals(positions, file.triangles);
-    }
-    const auto& normal_ids = file_normals ? file.normal_ids : file.triangles;
+    const PlacedMesh mesh = place(parts, threads);
+    const size_t n = mesh.triangles.size();
 
     // Step 2: the accelerator over the triangles' bounds, and the leaf order.
     LargeArray<Bounds> boxes(n);
     parallel_for(n, [&](size_t i) {
         boxes[i] = Bounds{};
-        for (uint32_t v : file.triangles[i]) boxes[i].extend(positions[v]);
+        for (uint32_t v : mesh.triangles[i]) boxes[i].extend(mesh.positions[v]);
     }, threads);
     for (const Bounds& box : boxes) bounds_.extend(box);
     if (!brute_force_) bvh_ = Bvh(boxes, settings.build, settings.leaf_size, threads);
@@ -55,11 +91,12 @@ MeshAccel::MeshAccel(const TriangleMesh& file, const Placement& placement, const
     hit_records_.resize(n);
     parallel_for(n, [&](size_t i) {
         const uint32_t triangle = brute_force_ ? uint32_t(i) : bvh_.order()[i];
-        const auto& v = file.triangles[triangle];
-        const Vec3& p0 = positions[v[0]];
-        edges_[i] = {p0, positions[v[1]] - p0, positions[v[2]] - p0};
-        const auto& ids = normal_ids[triangle];
-        hit_records_[i] = {{normals[ids[0]], normals[ids[1]], normals[ids[2]]}, triangle};
+        const auto& v = mesh.triangles[triangle];
+        const Vec3& p0 = mesh.positions[v[0]];
+        edges_[i] = {p0, mesh.positions[v[1]] - p0, mesh.positions[v[2]] - p0};
+        const auto& ids = mesh.normal_ids[triangle];
+        const auto [part, number] = mesh.origin[triangle];
+        hit_records_[i] = {{mesh.normals[ids[0]], mesh.normals[ids[1]], mesh.normals[ids[2]]}, number, parts[part].tag};
     }, threads);
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -1,7 +1,7 @@
 // A triangle mesh ready for rays: its triangles stored for intersection in BVH leaf order,
 // behind the accelerator the scene chose (every triangle, or a BVH built by box, median or
 // sah). Built once per mesh file, in the file's coordinates, and shared by every instance of
-// it; or built placed in the world, for a file that one mesh block uses (see world.h).
+// it; or built placed in the world from one or several mesh blocks merged (see world.h).
 #pragma once
 
 #include <cstdint>
@@ -27,11 +27,21 @@ struct MeshHit {
     TriangleHit hit;
 };
 
+// A file's triangles placed by `placement`, marked with `tag` (World: the mesh block's object).
+struct MeshPart {
+    const TriangleMesh* file;
+    Placement placement;
+    uint32_t tag = 0;
+};
+
 class MeshAccel {
 public:
-    // The file's triangles, placed by `placement`, with their vertex normals: the file's
-    // (placed by the inverse transpose), else area-weighted over the placed triangles.
-    MeshAccel(const TriangleMesh& file, const Placement& placement, const SearchSettings& settings);
+    // The parts' triangles, placed, behind one accelerator, with their vertex normals: the
+    // file's (placed by the inverse transpose), else area-weighted over the placed triangles.
+    MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& settings);
+    // One file, placed.
+    MeshAccel(const TriangleMesh& file, const Placement& placement, const SearchSettings& settings)
+        : MeshAccel(std::vector<MeshPart>{{&file, placement, 0}}, settings) {}
 
     // The nearest triangle with t inside `range`; shrinks range.max to it.
     bool intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const;
@@ -46,8 +56,9 @@ public:
     // instance shades as the same mesh built placed would.
     Vec3 shading_normal(uint32_t slot, Real u, Real v) const;
     Vec3 shading_normal(uint32_t slot, Real u, Real v, const glm::dmat3& normal_map) const;
-    // The triangle in `slot` as the file numbers it (after dropping zero-area ones).
+    // The triangle in `slot` as its file numbers it (after dropping zero-area ones), and its part's tag.
     uint32_t triangle_of(uint32_t slot) const { return hit_records_[slot].triangle; }
+    uint32_t tag_of(uint32_t slot) const { return hit_records_[slot].tag; }
 
     // The box around every triangle.
     const Bounds& bounds() const { return bounds_; }
@@ -66,6 +77,7 @@ private:
     struct HitRecord {
         Vec3 normals[3];    // the vertex normals
         uint32_t triangle;  // the file's triangle number
+        uint32_t tag;       // its part's
     };
     LargeArray<TriangleEdges> edges_;  // entry i is triangle hit_records_[i].triangle
     LargeArray<HitRecord> hit_records_;

@@ -43,7 +43,7 @@ Bounds placed_box(const Bounds& box, const glm::dmat3& linear, const Vec3& trans
 
 }  // namespace
 
-World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads)
+World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared)
     : materials_(scene.materials), lights_(scene.lights) {
     const SearchSettings settings = search_settings(scene.render, threads);
     // Step 1: spheres and planes.
@@ -59,27 +59,38 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
         planes_.push_back({Vec3(p.point), Vec3(p.normal), uint32_t(objects_.size() - 1)});
     }
     // Step 2: the meshes, each file built once, and an instance per mesh block.
-    add_meshes(scene, meshes, settings);
+    add_meshes(scene, meshes, settings, flatten_shared);
     // Step 3: the top level over every bounded object.
     build_top_level(settings);
 }
 
-void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings) {
+void World::add_bounded(const Bounds& box, uint32_t object, uint32_t instance) {
+    const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
+    bounded_.push_back({box.centre(), std::isfinite(radius) ? radius : kInfinity, object, instance,
+                        ObjectKind::MeshInstance});
+    boxes_.push_back(box);
+}
+
+void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
+                       bool flatten_shared) {
     std::vector<int> blocks_of_file(meshes.files.size(), 0);
     for (uint32_t file : meshes.file_of_block) ++blocks_of_file[file];
     std::map<uint32_t, uint32_t> shared_mesh;  // file -> index into meshes_
+    std::vector<MeshPart> merged;              // the blocks built placed, in one mesh
+    std::vector<uint32_t> merged_instances;
     for (size_t block = 0; block < scene.meshes.size() && block < meshes.file_of_block.size(); ++block) {
         const Mesh& mesh = scene.meshes[block];
         const uint32_t file = meshes.file_of_block[block];
         const Placement placement(mesh);
+        const uint32_t index = uint32_t(instances_.size()), object = uint32_t(objects_.size());
+        objects_.push_back({ObjectKind::MeshInstance, index, mesh.material});
         MeshInstance instance;
-        Bounds box;
-        if (blocks_of_file[file] == 1) {
-            // Used once: built placed, so its rays need no transform.
-            instance.mesh = uint32_t(meshes_.size());
-            meshes_.emplace_back(meshes.files[file], placement, settings);
-            box = meshes_.back().bounds();
+        if (blocks_of_file[file] == 1 || flatten_shared) {
+            // Placed in world coordinates, with every other such block, in one mesh.
+            merged.push_back({&meshes.files[file], placement, object});
+            merged_instances.push_back(index);
         } else {
+            // Shared: built once in the file's coordinates; rays are carried there.
             auto [known, is_new] = shared_mesh.try_emplace(file, uint32_t(meshes_.size()));
             if (is_new) meshes_.emplace_back(meshes.files[file], Placement(), settings);
             instance.mesh = known->second;
@@ -89,16 +100,16 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
             const MeshAccel& shared = meshes_[instance.mesh];
             const std::vector<Bounds> cover =
                 shared.brute_force() ? std::vector<Bounds>{shared.bounds()} : shared.bvh().cover(kInstanceBoxLevels);
+            Bounds box;
             for (const Bounds& part : cover) box.extend(placed_box(part, placement.linear, placement.translate));
+            add_bounded(box, object, index);
         }
-        const uint32_t index = uint32_t(instances_.size()), object = uint32_t(objects_.size());
         instances_.push_back(instance);
-        objects_.push_back({ObjectKind::MeshInstance, index, mesh.material});
-        const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
-        bounded_.push_back({box.centre(), std::isfinite(radius) ? radius : kInfinity, object, index,
-                            ObjectKind::MeshInstance});
-        boxes_.push_back(box);
     }
+    if (merged.empty()) return;
+    for (uint32_t index : merged_instances) instances_[index].mesh = uint32_t(meshes_.size());
+    meshes_.emplace_back(merged, settings);
+    add_bounded(meshes_.back().bounds(), kObjectOfTriangle, merged_instances.front());
 }
 
 void World::build_top_level(const SearchSettings& settings) {
@@ -129,7 +140,9 @@ void World::build_top_level(const SearchSettings& settings) {
     MeshHit mesh_hit;
     const bool found = instance.placed ? mesh.intersect(ray, range, mesh_hit, counts.triangles)
                                        : mesh.intersect(instance.to_mesh(ray), range, mesh_hit, counts.triangles);
-    if (found) hit = {object, mesh_hit.slot, range.max, mesh_hit.hit.u, mesh_hit.hit.v};
+    if (found)
+        hit = {object != kObjectOfTriangle ? object : mesh.tag_of(mesh_hit.slot), mesh_hit.slot, range.max,
+               mesh_hit.hit.u, mesh_hit.hit.v};
     return found;
 }
 
@@ -153,8 +166,8 @@ bool World::instance_blocks(uint32_t index, const Ray& ray, Interval range, Sear
 }
 
 [[gnu::always_inline]] inline bool World::nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const {
-    // Spheres, planes, then mesh instances (objects are numbered in this order; bounded_
-    // lists the spheres, then the instances).
+    // Spheres, planes, then meshes (objects are numbered in this order; bounded_ lists the
+    // spheres, then the meshes).
     bool found = false;
     const uint32_t spheres = uint32_t(spheres_.size());
     for (uint32_t i = 0; i < spheres; ++i) {
@@ -165,10 +178,10 @@ bool World::instance_blocks(uint32_t index, const Ray& ray, Interval range, Sear
         }
     }
     found = nearest_plane(ray, range, hit) || found;
-    for (uint32_t i = 0; i < instances_.size(); ++i) {
-        const Bounded& b = bounded_[spheres + i];
+    for (size_t i = spheres; i < bounded_.size(); ++i) {
+        const Bounded& b = bounded_[i];
         if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
-            found = hit_instance(i, b.object, ray, range, hit, counts) || found;
+            found = hit_instance(b.index, b.object, ray, range, hit, counts) || found;
     }
     counts.objects.primitive_tests += bounded_.size();
     return found;
@@ -251,10 +264,10 @@ bool World::occluded(const Ray& ray, Interval range, SearchCounts& counts) const
         if (intersect_plane(ray, p.point, p.normal, range)) return true;
     if (linear_) {
         counts.objects.primitive_tests += spheres_.size();
-        for (uint32_t i = 0; i < instances_.size(); ++i) {
-            const Bounded& b = bounded_[spheres_.size() + i];
+        for (size_t i = spheres_.size(); i < bounded_.size(); ++i) {
+            const Bounded& b = bounded_[i];
             ++counts.objects.primitive_tests;
-            if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius) && instance_blocks(i, ray, range, counts))
+            if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius) && instance_blocks(b.index, ray, range, counts))
                 return true;
         }
         return false;

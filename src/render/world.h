@@ -56,9 +56,10 @@ struct Object {
     int material;
 };
 
-// A mesh block: a shared mesh and where the block places it. A mesh whose file no other block
-// uses is built placed (`placed`: rays reach it unchanged); a shared one is built in its
-// file's coordinates and rays are carried there by `to_object`.
+// A mesh block: a mesh and where the block places it. Blocks whose file no other block uses
+// are built placed in the world, all of them merged into one mesh (`placed`: rays reach it
+// unchanged); a file that several blocks name is built once in its own coordinates, and rays
+// are carried there by each block's `to_object`.
 struct MeshInstance {
     uint32_t mesh = 0;  // index into World::meshes()
     bool placed = true;
@@ -76,8 +77,9 @@ constexpr size_t kLinearObjects = 8;
 class World {
 public:
     // The shapes of a validated scene with its mesh files as loaded (SceneMeshes), behind the
-    // scene's accelerator, built on `threads` threads (0: all).
-    World(const SceneDescription& scene, const SceneMeshes& meshes = {}, int threads = 0);
+    // scene's accelerator, built on `threads` threads (0: all). `flatten_shared` merges every
+    // mesh block into one placed mesh, shared files too (for measuring instancing against it).
+    World(const SceneDescription& scene, const SceneMeshes& meshes = {}, int threads = 0, bool flatten_shared = false);
 
     // The nearest surface along `ray` with t inside `range`.
     std::optional<Hit> nearest_hit(const Ray& ray, Interval range, SearchCounts& counts) const;
@@ -115,16 +117,20 @@ private:
         Vec3 normal;
         uint32_t object;  // index into objects_
     };
+    // Bounded::object of the merged mesh: each triangle's object is its hit record's tag.
+    static constexpr uint32_t kObjectOfTriangle = ~uint32_t(0);
     // An entry of the top level, in its BVH's leaf order.
     struct Bounded {
         Vec3 centre;  // sphere: the sphere; instance: a sphere around the placed mesh's box
         Real radius;
-        uint32_t object;  // index into objects_
+        uint32_t object;  // index into objects_, or kObjectOfTriangle
         uint32_t index;   // into spheres_ or instances_
         ObjectKind kind;
     };
 
-    void add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings);
+    void add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
+                    bool flatten_shared);
+    void add_bounded(const Bounds& box, uint32_t object, uint32_t instance);
     void build_top_level(const SearchSettings& settings);
     bool hit_instance(uint32_t index, uint32_t object, const Ray& ray, Interval& range, Hit& hit,
                       SearchCounts& counts) const;

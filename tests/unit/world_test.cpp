@@ -184,34 +184,37 @@ TEST(World, TwoLevelSearchFindsExactlyWhatTestingEveryPrimitiveFinds) {
 
 // Against every primitive placed in world coordinates, without World (3 10^4 rays, as it is
 // slow): the same objects and t up to the rounding of carrying rays into an instance's
-// coordinates.
+// coordinates. Also with every mesh block flattened into one placed mesh.
 TEST(World, TwoLevelSearchAgreesWithTestingEveryPlacedTriangle) {
     const MixedScene mixed = mixed_scene(400, 4);
-    const World world(mixed.scene, mixed.meshes);
     const BruteForce brute(mixed);
-    int rays = 0, hits = 0, disagreements = 0;
-    for (const Ray& ray : random_rays(30000, 5)) {
-        ++rays;
-        SearchCounts counts;
-        const BruteHit expected = brute.nearest(ray, {0, kInfinity});
-        const auto found = world.nearest_hit(ray, {0, kInfinity}, counts);
-        if (found.has_value() != expected.found) {
-            ++disagreements;  // a ray grazing an edge, decided otherwise after the transform's rounding
-            continue;
+    for (bool flatten : {false, true}) {
+        const World world(mixed.scene, mixed.meshes, 0, flatten);
+        ASSERT_EQ(world.meshes().size(), flatten ? 1u : 3u);
+        int rays = 0, hits = 0, disagreements = 0;
+        for (const Ray& ray : random_rays(30000, 5)) {
+            ++rays;
+            SearchCounts counts;
+            const BruteHit expected = brute.nearest(ray, {0, kInfinity});
+            const auto found = world.nearest_hit(ray, {0, kInfinity}, counts);
+            if (found.has_value() != expected.found) {
+                ++disagreements;  // a ray grazing an edge, decided otherwise after the transform's rounding
+                continue;
+            }
+            if (!found) continue;
+            ++hits;
+            if (found->object != expected.object) {
+                ++disagreements;
+                continue;
+            }
+            ASSERT_NEAR(found->t, expected.t, 1e-9 * expected.t) << "flatten " << flatten;
+            EXPECT_EQ(world.occluded(ray, {0, expected.t * (1 - 1e-9)}, counts), false);
+            EXPECT_EQ(world.occluded(ray, {0, expected.t * (1 + 1e-9)}, counts), true);
         }
-        if (!found) continue;
-        ++hits;
-        if (found->object != expected.object) {
-            ++disagreements;
-            continue;
-        }
-        ASSERT_NEAR(found->t, expected.t, 1e-9 * expected.t);
-        EXPECT_EQ(world.occluded(ray, {0, expected.t * (1 - 1e-9)}, counts), false);
-        EXPECT_EQ(world.occluded(ray, {0, expected.t * (1 + 1e-9)}, counts), true);
+        EXPECT_GT(hits, 9000);
+        ::testing::Test::RecordProperty(flatten ? "disagreements_flattened" : "disagreements", disagreements);
+        EXPECT_LE(disagreements, 2) << "of " << rays << " rays, flatten " << flatten;
     }
-    EXPECT_GT(hits, 9000);
-    ::testing::Test::RecordProperty("disagreements", disagreements);
-    EXPECT_LE(disagreements, 2) << "of " << rays << " rays";
 }
 
 // An instance's shading normal is the one the same mesh gets when built placed in the world,
