@@ -20,7 +20,8 @@ import sys
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
-PALETTE = """material red    { ka 0.1  kd (0.85, 0.2, 0.15)  ks 0.5  n 30 }
+PALETTE = """\
+material red    { ka 0.1  kd (0.85, 0.2, 0.15)  ks 0.5  n 30 }
 material green  { ka 0.1  kd (0.2, 0.75, 0.3)   ks 0.5  n 30 }
 material blue   { ka 0.1  kd (0.15, 0.3, 0.85)  ks 0.5  n 30 }
 material gold   { ka 0.1  kd (0.85, 0.65, 0.2)  ks 0.8  n 60 }
@@ -32,6 +33,12 @@ material floor  { ka 0.1  kd 0.6 }
 COLOURS = ["red", "green", "blue", "gold", "white"]
 
 
+def used_materials(text):
+    """PALETTE's lines for the materials `text` uses (an unused material is a warning)."""
+    return "\n".join(line for line in PALETTE.splitlines() if f"material {line.split()[1]} " in text
+                     or f"material {line.split()[1]} }}" in text) + "\n"
+
+
 def spheres(count):
     rng = random.Random(count)
     side = math.ceil(math.sqrt(count))
@@ -41,7 +48,7 @@ def spheres(count):
              f" --count {count}.", "",
              "render { width 800  height 600  max_depth 4 }", "",
              f"camera {{ eye (0, {0.42 * side + 2:.4g}, {0.62 * side + 3:.4g})  lookat (0, 0, {-0.12 * side:.4g})"
-             "  up (0, 1, 0)  fovy 50 }", "", PALETTE,
+             "  up (0, 1, 0)  fovy 50 }", "", "PALETTE",
              "plane { point (0, 0, 0)  normal (0, 1, 0)  material floor }", ""]
     for x, r in ((-0.45, 0.18), (0.0, 0.22), (0.45, 0.18)):
         radius = r * side
@@ -56,7 +63,8 @@ def spheres(count):
         lines.append(f"sphere {{ center ({x:.4f}, {radius:.4f}, {z:.4f})  radius {radius:.4f}  material {material} }}")
     lines += ["", f"light {{ position ({-0.6 * side:.4g}, {side + 5:.4g}, {0.8 * side:.4g})  color 0.6 }}",
               f"light {{ position ({0.7 * side:.4g}, {0.5 * side + 3:.4g}, {0.2 * side:.4g})  color 0.35 }}"]
-    return "\n".join(lines) + "\n"
+    text = "\n".join(lines) + "\n"
+    return text.replace("PALETTE\n", used_materials(text))
 
 
 def bunnies(count, obj):
@@ -69,7 +77,7 @@ def bunnies(count, obj):
              f"# Written by tools/make_many_objects.py bunnies --count {count}.", "",
              "render { width 800  height 600  max_depth 4 }", "",
              f"camera {{ eye (0, {0.75 * half + 2.5:.4g}, {1.35 * half + 3.5:.4g})  lookat (0, 0, {-0.3 * half:.4g})"
-             "  up (0, 1, 0)  fovy 45 }", "", PALETTE,
+             "  up (0, 1, 0)  fovy 45 }", "", "PALETTE",
              "plane { point (0, 0, 0)  normal (0, 1, 0)  material floor }",
              f"sphere {{ center ({-0.4 * half:.4f}, {0.35 * half:.4f}, {-half - 0.4 * half:.4f})  radius {0.35 * half:.4f}"
              "  material mirror }",
@@ -90,7 +98,8 @@ def bunnies(count, obj):
                      f"  translate ({x:.4f}, {height:.5f}, {z:.4f})  material {material} }}")
     lines += ["", f"light {{ position ({-0.5 * half:.4g}, {half + 6:.4g}, {half + 4:.4g})  color 0.6 }}",
               f"light {{ position ({0.8 * half + 2:.4g}, {0.4 * half + 3:.4g}, {0.3 * half:.4g})  color 0.35 }}"]
-    return "\n".join(lines) + "\n"
+    text = "\n".join(lines) + "\n"
+    return text.replace("PALETTE\n", used_materials(text))
 
 
 def main():

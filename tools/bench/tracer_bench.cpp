@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
 
     // Step 4: report.
     size_t triangles = 0;
-    for (const auto& instance : world->instances()) triangles += world->meshes()[instance.mesh].triangle_count();
+    for (uint32_t file : meshes.file_of_block) triangles += meshes.files[file].triangles.size();
     const tracer::RayCounts& rays = stats.rays;
     const auto figures = tracer::render_stats_json(*world, scene, stats);  // of the last render
     nlohmann::ordered_json out;
