@@ -18,7 +18,7 @@ namespace tracer {
 // squared distance of the centre from the line, times |d|^2 (no division), against r^2 with a
 // margin (10^-6 r^2, and 10^-12 of the centre's squared distance, for its rounding); a NaN
 // counts as "may meet".
-inline bool line_may_meet_sphere(const Ray& ray, const Vec3& centre, Real radius2) {
+[[gnu::always_inline]] inline bool line_may_meet_sphere(const Ray& ray, const Vec3& centre, Real radius2) {
     const Vec3 to_centre = centre - ray.origin;
     const Real along = glm::dot(to_centre, ray.direction);
     const Real dd = glm::dot(ray.direction, ray.direction), cc = glm::dot(to_centre, to_centre);
@@ -28,7 +28,7 @@ inline bool line_may_meet_sphere(const Ray& ray, const Vec3& centre, Real radius
 // Nearest t in `range` where `ray` meets the sphere, from outside or inside.
 // Uses the discriminant form of Haines et al. (Ray Tracing Gems ch. 7), which stays accurate
 // for small spheres far from the ray origin.
-inline std::optional<Real> intersect_sphere(const Ray& ray, const Vec3& center, Real radius, Interval range) {
+[[gnu::always_inline]] inline std::optional<Real> intersect_sphere(const Ray& ray, const Vec3& center, Real radius, Interval range) {
     const Vec3 f = ray.origin - center;
     const Vec3& d = ray.direction;
     const Real b = glm::dot(f, d);  // half of the usual b
@@ -54,7 +54,7 @@ inline std::optional<Real> intersect_sphere(const Ray& ray, const Vec3& center, 
 
 // t in `range` where `ray` meets the infinite plane through `point` with normal `normal`
 // (either side); a ray parallel to the plane misses.
-inline std::optional<Real> intersect_plane(const Ray& ray, const Vec3& point, const Vec3& normal,
+[[gnu::always_inline]] inline std::optional<Real> intersect_plane(const Ray& ray, const Vec3& point, const Vec3& normal,
                                            Interval range) {
     const Real denominator = glm::dot(normal, ray.direction);
     if (denominator == 0) return std::nullopt;

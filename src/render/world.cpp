@@ -109,7 +109,9 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
     if (merged.empty()) return;
     for (uint32_t index : merged_instances) instances_[index].mesh = uint32_t(meshes_.size());
     meshes_.emplace_back(merged, settings);
-    add_bounded(meshes_.back().bounds(), kObjectOfTriangle, merged_instances.front());
+    // One block alone needs no look-up of its triangles' tag (the hit record's cache line).
+    add_bounded(meshes_.back().bounds(), merged.size() == 1 ? merged[0].tag : kObjectOfTriangle,
+                merged_instances.front());
 }
 
 void World::build_top_level(const SearchSettings& settings) {
@@ -133,119 +135,6 @@ void World::build_top_level(const SearchSettings& settings) {
     top_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-[[gnu::always_inline]] inline bool World::hit_instance(uint32_t index, uint32_t object, const Ray& ray, Interval& range, Hit& hit,
-                         SearchCounts& counts) const {
-    const MeshInstance& instance = instances_[index];
-    const MeshAccel& mesh = meshes_[instance.mesh];
-    MeshHit mesh_hit;
-    const bool found = instance.placed ? mesh.intersect(ray, range, mesh_hit, counts.triangles)
-                                       : mesh.intersect(instance.to_mesh(ray), range, mesh_hit, counts.triangles);
-    if (found)
-        hit = {object != kObjectOfTriangle ? object : mesh.tag_of(mesh_hit.slot), mesh_hit.slot, range.max,
-               mesh_hit.hit.u, mesh_hit.hit.v};
-    return found;
-}
-
-bool World::instance_blocks(uint32_t index, const Ray& ray, Interval range, SearchCounts& counts) const {
-    const MeshInstance& instance = instances_[index];
-    const MeshAccel& mesh = meshes_[instance.mesh];
-    return instance.placed ? mesh.occluded(ray, range, counts.triangles)
-                           : mesh.occluded(instance.to_mesh(ray), range, counts.triangles);
-}
-
-[[gnu::always_inline]] inline bool World::nearest_plane(const Ray& ray, Interval& range, Hit& hit) const {
-    bool found = false;
-    for (const PlaneShape& p : planes_) {
-        if (auto t = intersect_plane(ray, p.point, p.normal, range)) {
-            range.max = *t;
-            hit = {p.object, 0, *t, 0, 0};
-            found = true;
-        }
-    }
-    return found;
-}
-
-[[gnu::always_inline]] inline bool World::nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const {
-    // Spheres, planes, then meshes (objects are numbered in this order; bounded_ lists the
-    // spheres, then the meshes).
-    bool found = false;
-    const uint32_t spheres = uint32_t(spheres_.size());
-    for (uint32_t i = 0; i < spheres; ++i) {
-        if (auto t = intersect_sphere(ray, spheres_[i].center, spheres_[i].radius, range)) {
-            range.max = *t;
-            hit = {i, 0, *t, 0, 0};
-            found = true;
-        }
-    }
-    found = nearest_plane(ray, range, hit) || found;
-    for (size_t i = spheres; i < bounded_.size(); ++i) {
-        const Bounded& b = bounded_[i];
-        if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
-            found = hit_instance(b.index, b.object, ray, range, hit, counts) || found;
-    }
-    counts.objects.primitive_tests += bounded_.size();
-    return found;
-}
-
-std::optional<Hit> World::nearest_hit(const Ray& ray, Interval range, SearchCounts& counts) const {
-    Hit hit;
-    bool found = false;
-    if (linear_) {
-        found = nearest_one_by_one(ray, range, hit, counts);
-    } else {
-        // Each hit shrinks range.max, so later objects only count when they are nearer. Planes
-        // first: a floor's hit lets the top level skip every box behind it.
-        found = nearest_plane(ray, range, hit);
-        auto test = [&](uint32_t i, Interval& r) {
-            const Bounded& b = bounded_[i];
-            if (b.kind != ObjectKind::Sphere) return hit_instance(b.index, b.object, ray, r, hit, counts);
-            const auto t = intersect_sphere(ray, b.centre, b.radius, r);
-            if (!t) return false;
-            r.max = *t;
-            hit = {b.object, 0, *t, 0, 0};
-            return true;
-        };
-        found = top_.closest(ray, range, counts.objects, test) || found;
-    }
-    if (!found) return std::nullopt;
-    return hit;
-}
-
-// Inlined into intersect(): as a call of its own it costs the bunny's primary rays 10% (the
-// hit's fields go through memory).
-[[gnu::always_inline]] inline SurfaceHit World::surface_at(const Ray& ray, const Hit& hit) const {
-    const Object& object = objects_[hit.object];
-    SurfaceHit out;
-    out.t = hit.t;
-    out.point = ray.at(hit.t);
-    out.material = object.material;
-    switch (object.kind) {
-        case ObjectKind::Sphere: {
-            const SphereShape& s = spheres_[object.index];
-            out.normal = (out.point - s.center) / s.radius;
-            break;
-        }
-        case ObjectKind::Plane: out.normal = planes_[object.index].normal; break;
-        case ObjectKind::MeshInstance: {
-            const MeshInstance& instance = instances_[object.index];
-            const MeshAccel& mesh = meshes_[instance.mesh];
-            // Normals map by the inverse transpose of the placement: transpose(to_object).
-            out.normal = instance.placed ? mesh.shading_normal(hit.primitive, hit.u, hit.v)
-                                         : mesh.shading_normal(hit.primitive, hit.u, hit.v,
-                                                               glm::transpose(instance.to_object));
-            break;
-        }
-    }
-    return out;
-}
-
-SurfaceHit World::surface(const Ray& ray, const Hit& hit) const { return surface_at(ray, hit); }
-
-std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range, SearchCounts& counts) const {
-    const auto hit = nearest_hit(ray, range, counts);
-    if (!hit) return std::nullopt;
-    return surface_at(ray, *hit);
-}
 
 bool World::may_hit(const Ray& ray) const {
     if (!planes_.empty()) return true;
@@ -253,33 +142,6 @@ bool World::may_hit(const Ray& ray) const {
     for (const Bounded& b : bounded_)
         if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius)) return true;
     return false;
-}
-
-bool World::occluded(const Ray& ray, Interval range, SearchCounts& counts) const {
-    if (linear_) {
-        for (const SphereShape& s : spheres_)
-            if (intersect_sphere(ray, s.center, s.radius, range)) return true;
-    }
-    for (const PlaneShape& p : planes_)
-        if (intersect_plane(ray, p.point, p.normal, range)) return true;
-    if (linear_) {
-        counts.objects.primitive_tests += spheres_.size();
-        for (size_t i = spheres_.size(); i < bounded_.size(); ++i) {
-            const Bounded& b = bounded_[i];
-            ++counts.objects.primitive_tests;
-            if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius) && instance_blocks(b.index, ray, range, counts))
-                return true;
-        }
-        return false;
-    }
-    // Through the BVH the ray has entered an instance's box before it is tested, so the
-    // bounding sphere (which holds the box) would rule nothing out.
-    auto test = [&](uint32_t i, Interval& r) {
-        const Bounded& b = bounded_[i];
-        if (b.kind == ObjectKind::Sphere) return intersect_sphere(ray, b.centre, b.radius, r).has_value();
-        return instance_blocks(b.index, ray, r, counts);
-    };
-    return top_.any(ray, range, counts.objects, test);
 }
 
 size_t World::top_level_memory_bytes() const {

@@ -156,3 +156,5 @@ private:
 };
 
 }  // namespace tracer
+
+#include "render/world_queries.h"  // the queries' inline definitions
