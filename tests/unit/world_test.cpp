@@ -147,7 +147,7 @@ std::vector<Ray> random_rays(int count, uint32_t seed) {
 }
 
 // The same arithmetic through both levels and with every primitive tested (accel none): the
-// answers must be identical, bit for bit.
+// same objects at the same t (to an ulp or two), the same normals and materials.
 TEST(World, TwoLevelSearchFindsExactlyWhatTestingEveryPrimitiveFinds) {
     const MixedScene mixed = mixed_scene(400, 1), brute_mixed = mixed_scene(400, 1, Accelerator::None);
     const World world(mixed.scene, mixed.meshes), brute(brute_mixed.scene, brute_mixed.meshes);
@@ -168,10 +168,12 @@ TEST(World, TwoLevelSearchFindsExactlyWhatTestingEveryPrimitiveFinds) {
         }
         ++hits;
         instance_hits += world.objects()[found->object].kind == ObjectKind::MeshInstance;
-        ASSERT_EQ(found->t, expected->t);
+        // The same test on the same ray, but GCC may fuse a multiply-add at one call site and
+        // not at the other (-ffp-contract=fast; turning it off costs 8% on task2): an ulp or two.
+        ASSERT_NEAR(found->t, expected->t, 1e-14 * expected->t);
         ASSERT_EQ(found->object, expected->object);
         const SurfaceHit a = world.surface(ray, *found), b = brute.surface(ray, *expected);
-        ASSERT_LT(glm::length(a.normal - b.normal), 1e-12);  // the compiler may fuse a multiply-add at one call only
+        ASSERT_LT(glm::length(a.normal - b.normal), 1e-12);
         ASSERT_EQ(a.material, b.material);
         // Any hit over a random part of the ray: blocked exactly when the nearest hit lies in it.
         const Interval part{0, found->t * fraction(random)};
