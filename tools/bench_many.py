@@ -2,7 +2,7 @@
 """The many-object benchmark: build time, render time, memory and the ratio to Embree on
 scenes of many objects, measured side by side. Writes docs/many-objects-data-Nt.json,
 docs/many-objects-tables-Nt.md and docs/many-objects-Nt.png (N = threads);
-docs/performance.md ("Many objects") discusses them.
+docs/many-objects.md discusses them.
 
     tools/bench_many.py                    # everything at 2 threads (about 10 minutes)
     tools/bench_many.py --quick            # fewer pairs and runs, for a try

@@ -58,7 +58,9 @@ const BlockSpec kRender{
         one_of(key("accel", ValueType::Choice, "sah",
                    "How rays find a mesh's triangles: `none` tests every triangle, `box` one bounding "
                    "box around the mesh, `median` a BVH split at the median centroid (x, y, z by "
-                   "depth), `sah` a BVH built with the surface-area heuristic."),
+                   "depth), `sah` a BVH built with the surface-area heuristic. Objects (spheres, "
+                   "meshes) are found through a BVH of their own unless there are at most 8, or "
+                   "`none` asks for every one to be tested."),
                {accelerator_name(Accelerator::None), accelerator_name(Accelerator::Box),
                 accelerator_name(Accelerator::Median), accelerator_name(Accelerator::Sah)}),
         ranged(key("leaf_size", ValueType::Integer, "3",
@@ -136,7 +138,9 @@ const BlockSpec kMesh{
     "mesh", false, true, Occurs::Any,
     "A triangle mesh from an OBJ file, placed by scale, then rotate, then translate.",
     {
-        key("file", ValueType::Path, "", "The OBJ file, relative to the scene file's folder."),
+        key("file", ValueType::Path, "",
+            "The OBJ file, relative to the scene file's folder. Blocks naming the same file share "
+            "it: it is read and its BVH built once."),
         ranged(key("scale", ValueType::Triple, "1", "Scale factor, uniform or per axis."), 0, kInf, true),
         nested(key("rotate", ValueType::Block, "{ axis (0, 1, 0) angle 0 }",
                    "Rotation, applied after scaling: `rotate { axis (x, y, z) angle degrees }`."),

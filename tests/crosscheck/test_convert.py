@@ -146,7 +146,7 @@ def test_meshes_without_normals_get_area_weighted_ones(dump, tmp_path):
 
 
 def test_file_normals_count_only_when_every_face_names_them(tmp_path):
-    # tracer's rule (mesh_loader.cpp): vn lines alone are not enough.
+    # tracer's rule (io/obj_mesh.cpp): vn lines alone are not enough.
     cases = {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n": True,
              "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1\n": True,
              "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1 2 3\n": False,

@@ -21,7 +21,7 @@ plugins.register()
 
 
 def obj_normals_used(path):
-    """True when tracer takes an OBJ file's own vertex normals (render/mesh_loader.cpp): the
+    """True when tracer takes an OBJ file's own vertex normals (src/io/obj_mesh.cpp): the
     file has `vn` lines and every face corner names one (v//vn or v/vt/vn). Otherwise tracer
     computes area-weighted normals. (tracer decides after dropping zero-area faces; a zero-area
     face without normals is the one case where the two could disagree.)"""
