@@ -49,18 +49,23 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
     out["objects"] = top;
 
     // The meshes: each mesh file once, however many instances place it.
-    std::vector<size_t> instances_of(world.meshes().size(), 0);
+    // Each mesh's blocks: the instances of a shared file, or the blocks merged into a placed mesh.
+    std::vector<size_t> blocks_of(world.meshes().size(), 0);
+    std::vector<bool> placed(world.meshes().size(), false);
     std::vector<std::string> file_of(world.meshes().size());
     for (size_t block = 0; block < world.instances().size(); ++block) {
-        const uint32_t mesh = world.instances()[block].mesh;
-        if (instances_of[mesh]++ == 0 && block < scene.meshes.size()) file_of[mesh] = scene.meshes[block].path;
+        const MeshInstance& instance = world.instances()[block];
+        placed[instance.mesh] = instance.placed;
+        if (blocks_of[instance.mesh]++ == 0 && block < scene.meshes.size()) file_of[instance.mesh] = scene.meshes[block].path;
     }
     out["meshes"] = nlohmann::ordered_json::array();
     for (size_t i = 0; i < world.meshes().size(); ++i) {
         const MeshAccel& mesh = world.meshes()[i];
-        nlohmann::ordered_json entry = {{"file", file_of[i]},
+        nlohmann::ordered_json entry = {{"file", file_of[i]},  // the first block's
                                         {"triangles", mesh.triangle_count()},
-                                        {"instances", instances_of[i]},
+                                        {"placed", bool(placed[i])},  // in world coordinates, merged
+                                        {"blocks", blocks_of[i]},
+                                        {"instances", placed[i] ? 0 : blocks_of[i]},
                                         {"build_seconds", mesh.build_seconds()},
                                         {"memory_bytes", mesh.memory_bytes()}};
         if (!mesh.brute_force()) entry.update(bvh_json(mesh.bvh()));
@@ -90,9 +95,14 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
     out += line;
     for (const auto& mesh : s["meshes"]) {
         const std::string file = mesh["file"].get<std::string>();
-        std::snprintf(line, sizeof line, "mesh %s: %zu triangles, %s built in %.3f ms",
-                      file.substr(file.find_last_of('/') + 1).c_str(), mesh["triangles"].get<size_t>(),
-                      s["accel"].get<std::string>().c_str(), mesh["build_seconds"].get<double>() * 1e3);
+        const size_t blocks = mesh["blocks"].get<size_t>();
+        const std::string others = mesh["placed"].get<bool>() && blocks > 1
+                                       ? " and " + std::to_string(blocks - 1) + " more blocks, merged"
+                                       : "";
+        std::snprintf(line, sizeof line, "mesh %s%s: %zu triangles, %s built in %.3f ms",
+                      file.substr(file.find_last_of('/') + 1).c_str(), others.c_str(),
+                      mesh["triangles"].get<size_t>(), s["accel"].get<std::string>().c_str(),
+                      mesh["build_seconds"].get<double>() * 1e3);
         out += line;
         if (mesh.contains("nodes")) {
             std::snprintf(line, sizeof line, ": %zu nodes, %zu leaves, depth %d, leaf size %zu..%zu (mean %.2f)",
@@ -101,8 +111,9 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
                           mesh["leaf_size_mean"].get<double>());
             out += line;
         }
-        std::snprintf(line, sizeof line, "; %zu instance%s; %.1f KiB\n", mesh["instances"].get<size_t>(),
-                      mesh["instances"].get<size_t>() == 1 ? "" : "s", mesh["memory_bytes"].get<double>() / 1024);
+        const size_t instances = mesh["instances"].get<size_t>();
+        const std::string use = instances == 0 ? "placed" : std::to_string(instances) + " instances";
+        std::snprintf(line, sizeof line, "; %s; %.1f KiB\n", use.c_str(), mesh["memory_bytes"].get<double>() / 1024);
         out += line;
     }
     const auto& rays = s["rays"];

@@ -12,7 +12,7 @@
 namespace tracer {
 namespace {
 
-// The top level's leaves hold at most this many objects (measured: docs/performance.md).
+// The top level's leaves hold at most this many objects (measured: docs/many-objects.md).
 constexpr int kTopLeafSize = 1;
 // How far below a shared mesh's BVH root its instances' world boxes are taken from: the placed
 // corners of the boxes there (up to 64 in a wide tree) bound a rotated mesh far more tightly
@@ -30,7 +30,8 @@ SearchSettings search_settings(const RenderSettings& render, int threads) {
     return settings;
 }
 
-// The box around `box` placed by `linear` and `translate` (its eight corners placed).
+// The box around `box` placed by `linear` and `translate` (its eight corners placed), grown by
+// 10^-12 of its coordinates' magnitude: more than the few double roundings of placing a corner.
 Bounds placed_box(const Bounds& box, const glm::dmat3& linear, const Vec3& translate) {
     Bounds out;
     for (int corner = 0; corner < 8; ++corner) {
@@ -38,7 +39,8 @@ Bounds placed_box(const Bounds& box, const glm::dmat3& linear, const Vec3& trans
                      (corner & 4 ? box.upper : box.lower).z};
         out.extend(linear * p + translate);
     }
-    return out;
+    const Vec3 pad = Real(1e-12) * (glm::max(glm::abs(out.lower), glm::abs(out.upper)) + glm::abs(translate));
+    return {out.lower - pad, out.upper + pad};
 }
 
 }  // namespace

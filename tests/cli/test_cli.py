@@ -169,7 +169,7 @@ class CommandLine(unittest.TestCase):
             stats = json.loads(stats_path.read_text())
             self.assertEqual(stats["accel"], accel)
             self.assertEqual(stats["meshes"][0]["triangles"], 4)
-            self.assertEqual(stats["meshes"][0]["instances"], 1)
+            self.assertEqual((stats["meshes"][0]["blocks"], stats["meshes"][0]["placed"]), (1, True))
             self.assertEqual(stats["objects"]["bounded_objects"], 2)
             self.assertEqual(stats["rays"]["primary"], 64 * 48)
             images[accel] = out.read_bytes()
