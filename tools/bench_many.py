@@ -24,6 +24,7 @@ pairs. Memory is tracer's acceleration structures (top level, meshes), as tracer
 reports it. Without embree_scene (no ../shared, or no Debian Embree) the Embree columns are
 left empty and said so.
 """
+
 import argparse
 import datetime
 import json
@@ -54,9 +55,21 @@ def scene(kind: str, count: int) -> tuple:
     OUT.mkdir(parents=True, exist_ok=True)
     path = OUT / f"{kind}_{count}.scn"
     if not path.exists():
-        subprocess.run([sys.executable, ROOT / "tools" / "make_many_objects.py", kind, "--count", str(count),
-                        "-o", path, "--obj", ROOT / "scenes" / "meshes" / "bunny.obj"],
-                       check=True, stdout=subprocess.DEVNULL)
+        subprocess.run(
+            [
+                sys.executable,
+                ROOT / "tools" / "make_many_objects.py",
+                kind,
+                "--count",
+                str(count),
+                "-o",
+                path,
+                "--obj",
+                ROOT / "scenes" / "meshes" / "bunny.obj",
+            ],
+            check=True,
+            stdout=subprocess.DEVNULL,
+        )
     dump = path.with_suffix(".json")
     if not dump.exists():
         with open(dump, "w") as out:
@@ -65,7 +78,7 @@ def scene(kind: str, count: int) -> tuple:
 
 
 def machine() -> str:
-    model = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
+    model = next((ln.split(":", 1)[1].strip() for ln in open("/proc/cpuinfo") if ln.startswith("model name")), "?")
     compiler = subprocess.run(["c++", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
     return f"{model}, {os.cpu_count()} cores visible, {platform.system()} {platform.release()}, {compiler}"
 
@@ -88,23 +101,34 @@ def measure(args, kind: str, count: int, embree) -> dict:
     result = {"kind": kind, "count": count, "pairs": pairs, "runs": int(runs)}
     for name, runs_of in rounds.items():
         last = runs_of[-1]
-        result[name] = {"render_ms": statistics.median(r["render_ms_median"] for r in runs_of),
-                        "build_ms": statistics.median(r["build_ms"] for r in runs_of),
-                        "rays": last["rays"], "triangles": last.get("triangles", 0),
-                        "memory_bytes": last.get("memory_bytes"),
-                        "render_ms_all": [r["render_ms_median"] for r in runs_of],
-                        "build_ms_all": [r["build_ms"] for r in runs_of]}
+        result[name] = {
+            "render_ms": statistics.median(r["render_ms_median"] for r in runs_of),
+            "build_ms": statistics.median(r["build_ms"] for r in runs_of),
+            "rays": last["rays"],
+            "triangles": last.get("triangles", 0),
+            "memory_bytes": last.get("memory_bytes"),
+            "render_ms_all": [r["render_ms_median"] for r in runs_of],
+            "build_ms_all": [r["build_ms"] for r in runs_of],
+        }
         if name != "tracer":
-            ratios = [a["render_ms_median"] / b["render_ms_median"] for a, b in zip(rounds["tracer"], runs_of)]
-            builds = [a["build_ms"] / b["build_ms"] for a, b in zip(rounds["tracer"], runs_of) if b["build_ms"] > 0]
+            ratios = [
+                a["render_ms_median"] / b["render_ms_median"] for a, b in zip(rounds["tracer"], runs_of, strict=True)
+            ]
+            builds = [
+                a["build_ms"] / b["build_ms"]
+                for a, b in zip(rounds["tracer"], runs_of, strict=True)
+                if b["build_ms"] > 0
+            ]
             result[name]["tracer_over_this_render"] = statistics.median(ratios)
             result[name]["tracer_over_this_build"] = statistics.median(builds) if builds else None
     t = result["tracer"]
     t["ns_per_ray"] = t["render_ms"] * 1e6 / t["rays"]
-    print(f"{kind} {count}: tracer render {t['render_ms']:.1f} ms, build {t['build_ms']:.2f} ms, "
-          f"{t['ns_per_ray']:.1f} ns/ray, {t['memory_bytes'] / 2**20:.2f} MiB"
-          + (f"; /Embree render {result['embree']['tracer_over_this_render']:.2f}" if "embree" in result else ""),
-          flush=True)
+    print(
+        f"{kind} {count}: tracer render {t['render_ms']:.1f} ms, build {t['build_ms']:.2f} ms, "
+        f"{t['ns_per_ray']:.1f} ns/ray, {t['memory_bytes'] / 2**20:.2f} MiB"
+        + (f"; /Embree render {result['embree']['tracer_over_this_render']:.2f}" if "embree" in result else ""),
+        flush=True,
+    )
     return result
 
 
@@ -113,42 +137,60 @@ def cell(value, form="{:.2f}"):
 
 
 def write_report(results, path_md: pathlib.Path, path_png: pathlib.Path):
-    lines = [f"<!-- Written by tools/bench_many.py on {results['date']}; do not edit by hand. -->", "",
-             "## Measured figures: many objects", "",
-             f"Machine: {results['machine']}. Threads: {results['threads']}. Scenes 800x600, 1 sample "
-             "(tools/make_many_objects.py). Each cell: the median over alternating pairs (tracer, "
-             "[tracer flattened,] Embree) of each run's median render; ratios are medians of per-pair "
-             "ratios, tracer / other (> 1: tracer slower). Memory: tracer's acceleration structures.", ""]
+    lines = [
+        f"<!-- Written by tools/bench_many.py on {results['date']}; do not edit by hand. -->",
+        "",
+        "## Measured figures: many objects",
+        "",
+        f"Machine: {results['machine']}. Threads: {results['threads']}. Scenes 800x600, 1 sample "
+        "(tools/make_many_objects.py). Each cell: the median over alternating pairs (tracer, "
+        "[tracer flattened,] Embree) of each run's median render; ratios are medians of per-pair "
+        "ratios, tracer / other (> 1: tracer slower). Memory: tracer's acceleration structures.",
+        "",
+    ]
     if not results["embree"]:
         lines += ["Embree's embree_scene was not available: its columns are empty.", ""]
     spheres = [r for r in results["scenes"] if r["kind"] == "spheres"]
     base = spheres[0]["tracer"]["ns_per_ray"] if spheres else None
-    lines += ["### Spheres", "",
-              "| spheres | rays | tracer render ms | ns per ray | per ray vs 16 | tracer build ms | memory MiB "
-              "| Embree render ms | Embree build ms | render tracer/Embree | build tracer/Embree |",
-              "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    lines += [
+        "### Spheres",
+        "",
+        "| spheres | rays | tracer render ms | ns per ray | per ray vs 16 | tracer build ms | memory MiB "
+        "| Embree render ms | Embree build ms | render tracer/Embree | build tracer/Embree |",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
     for r in spheres:
         t, e = r["tracer"], r.get("embree", {})
-        lines.append(f"| {r['count'] + 3:,} | {t['rays']:,} | {t['render_ms']:.1f} | {t['ns_per_ray']:.1f} | "
-                     f"{t['ns_per_ray'] / base:.2f}x | {t['build_ms']:.2f} | {t['memory_bytes'] / 2**20:.2f} | "
-                     f"{cell(e.get('render_ms'), '{:.1f}')} | {cell(e.get('build_ms'))} | "
-                     f"{cell(e.get('tracer_over_this_render'))} | {cell(e.get('tracer_over_this_build'))} |")
-    lines += ["", "(Each scene has three large mirror spheres besides the grid, counted here.)", "",
-              "### Bunny instances", "",
-              "| bunnies | triangles | tracer render ms | build ms | memory MiB | flattened render ms | build ms "
-              "| memory MiB | instanced/flattened render | Embree render ms | Embree build ms "
-              "| render tracer/Embree | build tracer/Embree |",
-              "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+        lines.append(
+            f"| {r['count'] + 3:,} | {t['rays']:,} | {t['render_ms']:.1f} | {t['ns_per_ray']:.1f} | "
+            f"{t['ns_per_ray'] / base:.2f}x | {t['build_ms']:.2f} | {t['memory_bytes'] / 2**20:.2f} | "
+            f"{cell(e.get('render_ms'), '{:.1f}')} | {cell(e.get('build_ms'))} | "
+            f"{cell(e.get('tracer_over_this_render'))} | {cell(e.get('tracer_over_this_build'))} |"
+        )
+    lines += [
+        "",
+        "(Each scene has three large mirror spheres besides the grid, counted here.)",
+        "",
+        "### Bunny instances",
+        "",
+        "| bunnies | triangles | tracer render ms | build ms | memory MiB | flattened render ms | build ms "
+        "| memory MiB | instanced/flattened render | Embree render ms | Embree build ms "
+        "| render tracer/Embree | build tracer/Embree |",
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
     for r in (r for r in results["scenes"] if r["kind"] == "bunnies"):
         t, f, e = r["tracer"], r["flattened"], r.get("embree", {})
-        lines.append(f"| {r['count']:,} | {t['triangles']:,} | {t['render_ms']:.1f} | {t['build_ms']:.2f} | "
-                     f"{t['memory_bytes'] / 2**20:.2f} | {f['render_ms']:.1f} | {f['build_ms']:.1f} | "
-                     f"{f['memory_bytes'] / 2**20:.1f} | {f['tracer_over_this_render']:.2f} | "
-                     f"{cell(e.get('render_ms'), '{:.1f}')} | {cell(e.get('build_ms'), '{:.1f}')} | "
-                     f"{cell(e.get('tracer_over_this_render'))} | {cell(e.get('tracer_over_this_build'), '{:.3f}')} |")
+        lines.append(
+            f"| {r['count']:,} | {t['triangles']:,} | {t['render_ms']:.1f} | {t['build_ms']:.2f} | "
+            f"{t['memory_bytes'] / 2**20:.2f} | {f['render_ms']:.1f} | {f['build_ms']:.1f} | "
+            f"{f['memory_bytes'] / 2**20:.1f} | {f['tracer_over_this_render']:.2f} | "
+            f"{cell(e.get('render_ms'), '{:.1f}')} | {cell(e.get('build_ms'), '{:.1f}')} | "
+            f"{cell(e.get('tracer_over_this_render'))} | {cell(e.get('tracer_over_this_build'), '{:.3f}')} |"
+        )
     path_md.write_text("\n".join(lines) + "\n")
     try:
         import matplotlib
+
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
@@ -158,8 +200,9 @@ def write_report(results, path_md: pathlib.Path, path_png: pathlib.Path):
     counts = [r["count"] + 3 for r in spheres]
     axes[0].plot(counts, [r["tracer"]["ns_per_ray"] for r in spheres], "o-", label="tracer")
     if results["embree"]:
-        axes[0].plot(counts, [r["embree"]["render_ms"] * 1e6 / r["embree"]["rays"] for r in spheres], "s--",
-                     label="Embree")
+        axes[0].plot(
+            counts, [r["embree"]["render_ms"] * 1e6 / r["embree"]["rays"] for r in spheres], "s--", label="Embree"
+        )
     axes[0].set(xscale="log", xlabel="spheres", ylabel="ns per ray (2 threads, wall)", title="Spheres", ylim=(0, None))
     bunnies = [r for r in results["scenes"] if r["kind"] == "bunnies"]
     counts = [r["count"] for r in bunnies]
@@ -207,16 +250,27 @@ def main() -> int:
         if not BENCH.exists():
             subprocess.run([ROOT / "tools" / "bootstrap"], check=True)
         embree = find_embree(args)
-        results = {"date": datetime.date.today().isoformat(), "machine": machine(), "threads": args.threads,
-                   "runs": args.runs, "pairs": args.pairs, "embree": bool(embree), "scenes": []}
+        results = {
+            "date": datetime.date.today().isoformat(),
+            "machine": machine(),
+            "threads": args.threads,
+            "runs": args.runs,
+            "pairs": args.pairs,
+            "embree": bool(embree),
+            "scenes": [],
+        }
         for count in SPHERES:
             results["scenes"].append(measure(args, "spheres", count, embree))
         for count in BUNNIES:
             results["scenes"].append(measure(args, "bunnies", count, embree))
         data_path.write_text(json.dumps(results, indent=1) + "\n")
-    write_report(results, ROOT / "docs" / f"many-objects-tables-{suffix}.md", ROOT / "docs" / f"many-objects-{suffix}.png")
-    print(f"wrote docs/many-objects-data-{suffix}.json, docs/many-objects-tables-{suffix}.md, "
-          f"docs/many-objects-{suffix}.png")
+    write_report(
+        results, ROOT / "docs" / f"many-objects-tables-{suffix}.md", ROOT / "docs" / f"many-objects-{suffix}.png"
+    )
+    print(
+        f"wrote docs/many-objects-data-{suffix}.json, docs/many-objects-tables-{suffix}.md, "
+        f"docs/many-objects-{suffix}.png"
+    )
     return 0
 
 

@@ -12,6 +12,7 @@ non-uniformly) and coloured differently, on a floor with two mirror spheres. The
 always gives the same file. scenes/many_spheres.scn and scenes/bunnies.scn are the defaults;
 tools/bench_many.py writes other sizes.
 """
+
 import argparse
 import math
 import pathlib
@@ -35,25 +36,39 @@ COLOURS = ["red", "green", "blue", "gold", "white"]
 
 def used_materials(text):
     """PALETTE's lines for the materials `text` uses (an unused material is a warning)."""
-    return "\n".join(line for line in PALETTE.splitlines() if f"material {line.split()[1]} " in text
-                     or f"material {line.split()[1]} }}" in text) + "\n"
+    return (
+        "\n".join(
+            line
+            for line in PALETTE.splitlines()
+            if f"material {line.split()[1]} " in text or f"material {line.split()[1]} }}" in text
+        )
+        + "\n"
+    )
 
 
 def spheres(count):
     rng = random.Random(count)
     side = math.ceil(math.sqrt(count))
     half = side / 2
-    lines = [f"# {count:,} spheres on a {side} x {side} grid over a floor, about one in eight a mirror, and",
-             "# three large mirror spheres behind them. Written by tools/make_many_objects.py spheres"
-             f" --count {count}.", "",
-             "render { width 800  height 600  max_depth 4 }", "",
-             f"camera {{ eye (0, {0.42 * side + 2:.4g}, {0.62 * side + 3:.4g})  lookat (0, 0, {-0.12 * side:.4g})"
-             "  up (0, 1, 0)  fovy 50 }", "", "PALETTE",
-             "plane { point (0, 0, 0)  normal (0, 1, 0)  material floor }", ""]
+    lines = [
+        f"# {count:,} spheres on a {side} x {side} grid over a floor, about one in eight a mirror, and",
+        "# three large mirror spheres behind them. Written by tools/make_many_objects.py spheres" f" --count {count}.",
+        "",
+        "render { width 800  height 600  max_depth 4 }",
+        "",
+        f"camera {{ eye (0, {0.42 * side + 2:.4g}, {0.62 * side + 3:.4g})  lookat (0, 0, {-0.12 * side:.4g})"
+        "  up (0, 1, 0)  fovy 50 }",
+        "",
+        "PALETTE",
+        "plane { point (0, 0, 0)  normal (0, 1, 0)  material floor }",
+        "",
+    ]
     for x, r in ((-0.45, 0.18), (0.0, 0.22), (0.45, 0.18)):
         radius = r * side
-        lines.append(f"sphere {{ center ({x * side:.4f}, {radius:.4f}, {-half - radius - 1:.4f})"
-                     f"  radius {radius:.4f}  material mirror }}")
+        lines.append(
+            f"sphere {{ center ({x * side:.4f}, {radius:.4f}, {-half - radius - 1:.4f})"
+            f"  radius {radius:.4f}  material mirror }}"
+        )
     for i in range(count):
         gx, gz = i % side, i // side
         radius = 0.25 + 0.2 * rng.random()
@@ -61,8 +76,11 @@ def spheres(count):
         z = gz - half + 0.5 + (rng.random() - 0.5) * (0.9 - 2 * radius)
         material = "chrome" if rng.random() < 0.125 else rng.choice(COLOURS)
         lines.append(f"sphere {{ center ({x:.4f}, {radius:.4f}, {z:.4f})  radius {radius:.4f}  material {material} }}")
-    lines += ["", f"light {{ position ({-0.6 * side:.4g}, {side + 5:.4g}, {0.8 * side:.4g})  color 0.6 }}",
-              f"light {{ position ({0.7 * side:.4g}, {0.5 * side + 3:.4g}, {0.2 * side:.4g})  color 0.35 }}"]
+    lines += [
+        "",
+        f"light {{ position ({-0.6 * side:.4g}, {side + 5:.4g}, {0.8 * side:.4g})  color 0.6 }}",
+        f"light {{ position ({0.7 * side:.4g}, {0.5 * side + 3:.4g}, {0.2 * side:.4g})  color 0.35 }}",
+    ]
     text = "\n".join(lines) + "\n"
     return text.replace("PALETTE\n", used_materials(text))
 
@@ -72,17 +90,24 @@ def bunnies(count, obj):
     side = math.ceil(math.sqrt(count))
     pitch = 1.6
     half = side * pitch / 2
-    lines = [f"# {count:,} Stanford bunnies: one mesh file, read and built once, placed by {count:,} mesh blocks",
-             "# (turned, scaled, some squashed, coloured), on a floor with two mirror spheres.",
-             f"# Written by tools/make_many_objects.py bunnies --count {count}.", "",
-             "render { width 800  height 600  max_depth 4 }", "",
-             f"camera {{ eye (0, {0.75 * half + 2.5:.4g}, {1.35 * half + 3.5:.4g})  lookat (0, 0, {-0.3 * half:.4g})"
-             "  up (0, 1, 0)  fovy 45 }", "", "PALETTE",
-             "plane { point (0, 0, 0)  normal (0, 1, 0)  material floor }",
-             f"sphere {{ center ({-0.4 * half:.4f}, {0.35 * half:.4f}, {-half - 0.4 * half:.4f})  radius {0.35 * half:.4f}"
-             "  material mirror }",
-             f"sphere {{ center ({0.45 * half:.4f}, {0.25 * half:.4f}, {-half - 0.3 * half:.4f})  radius {0.25 * half:.4f}"
-             "  material mirror }", ""]
+    lines = [
+        f"# {count:,} Stanford bunnies: one mesh file, read and built once, placed by {count:,} mesh blocks",
+        "# (turned, scaled, some squashed, coloured), on a floor with two mirror spheres.",
+        f"# Written by tools/make_many_objects.py bunnies --count {count}.",
+        "",
+        "render { width 800  height 600  max_depth 4 }",
+        "",
+        f"camera {{ eye (0, {0.75 * half + 2.5:.4g}, {1.35 * half + 3.5:.4g})  lookat (0, 0, {-0.3 * half:.4g})"
+        "  up (0, 1, 0)  fovy 45 }",
+        "",
+        "PALETTE",
+        "plane { point (0, 0, 0)  normal (0, 1, 0)  material floor }",
+        f"sphere {{ center ({-0.4 * half:.4f}, {0.35 * half:.4f}, {-half - 0.4 * half:.4f})  radius {0.35 * half:.4f}"
+        "  material mirror }",
+        f"sphere {{ center ({0.45 * half:.4f}, {0.25 * half:.4f}, {-half - 0.3 * half:.4f})  radius {0.25 * half:.4f}"
+        "  material mirror }",
+        "",
+    ]
     for i in range(count):
         gx, gz = i % side, i // side
         size = 0.09 + 0.04 * rng.random()
@@ -94,10 +119,15 @@ def bunnies(count, obj):
         x = gx * pitch - half + pitch / 2 + 0.3 * (rng.random() - 0.5)
         z = gz * pitch - half + pitch / 2 + 0.3 * (rng.random() - 0.5)
         material = "chrome" if rng.random() < 0.125 else rng.choice(COLOURS)
-        lines.append(f'mesh {{ file "{obj}"  scale {scale}  rotate {{ axis (0, 1, 0)  angle {angle:.2f} }}'
-                     f"  translate ({x:.4f}, {height:.5f}, {z:.4f})  material {material} }}")
-    lines += ["", f"light {{ position ({-0.5 * half:.4g}, {half + 6:.4g}, {half + 4:.4g})  color 0.6 }}",
-              f"light {{ position ({0.8 * half + 2:.4g}, {0.4 * half + 3:.4g}, {0.3 * half:.4g})  color 0.35 }}"]
+        lines.append(
+            f'mesh {{ file "{obj}"  scale {scale}  rotate {{ axis (0, 1, 0)  angle {angle:.2f} }}'
+            f"  translate ({x:.4f}, {height:.5f}, {z:.4f})  material {material} }}"
+        )
+    lines += [
+        "",
+        f"light {{ position ({-0.5 * half:.4g}, {half + 6:.4g}, {half + 4:.4g})  color 0.6 }}",
+        f"light {{ position ({0.8 * half + 2:.4g}, {0.4 * half + 3:.4g}, {0.3 * half:.4g})  color 0.35 }}",
+    ]
     text = "\n".join(lines) + "\n"
     return text.replace("PALETTE\n", used_materials(text))
 

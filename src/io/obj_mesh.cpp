@@ -40,11 +40,12 @@ public:
                         return;
                     }
                     double value = 0;
-                    auto [end, status] = std::from_chars(tokens[i].text.data(),
-                                                         tokens[i].text.data() + tokens[i].text.size(), value);
+                    auto [end, status] =
+                        std::from_chars(tokens[i].text.data(), tokens[i].text.data() + tokens[i].text.size(), value);
                     bool parsed = status == std::errc() && end == tokens[i].text.data() + tokens[i].text.size();
                     if (!parsed || !std::isfinite(value))
-                        error(tokens[i].span, "coordinate '" + std::string(tokens[i].text) + "' is not a finite number");
+                        error(tokens[i].span,
+                              "coordinate '" + std::string(tokens[i].text) + "' is not a finite number");
                 }
             } else if (keyword == "f") {
                 if (tokens.size() < 3) error(keyword_span_, "a face needs at least three vertices");
@@ -55,7 +56,8 @@ public:
                     check_index(token, corner.substr(0, slash), vertices_so_far, vertex_total, "vertex", "vertices");
                     size_t second = slash == std::string_view::npos ? slash : corner.find('/', slash + 1);
                     if (second != std::string_view::npos)
-                        check_index(token, corner.substr(second + 1), normals_so_far, normal_total, "normal", "normals");
+                        check_index(token, corner.substr(second + 1), normals_so_far, normal_total, "normal",
+                                    "normals");
                 }
             }
         });
@@ -103,8 +105,9 @@ private:
         }
         long resolved = index < 0 ? long(so_far) + index + 1 : index;  // negative: relative to here
         if (index == 0 || resolved < 1 || resolved > long(total))
-            error(token.span, std::string(what) + " index " + std::to_string(index) + " is out of range (the file has " +
-                                  std::to_string(total) + " " + (total == 1 ? what : plural) + ")");
+            error(token.span, std::string(what) + " index " + std::to_string(index) +
+                                  " is out of range (the file has " + std::to_string(total) + " " +
+                                  (total == 1 ? what : plural) + ")");
     }
 
     void error(Span span, std::string message) {
@@ -122,8 +125,7 @@ private:
 
 // After errors in an OBJ file: where the scene names it.
 static void note_where_used(const Mesh& mesh, Diagnostics& diagnostics) {
-    if (mesh.named_at.line > 0)
-        diagnostics.report(Severity::Note, mesh.named_at, "the mesh file is used here");
+    if (mesh.named_at.line > 0) diagnostics.report(Severity::Note, mesh.named_at, "the mesh file is used here");
 }
 
 std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics) {
@@ -166,8 +168,8 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
         for (size_t i = 0; i + 2 < indices.size(); i += 3) {
             std::array<uint32_t, 3> v{uint32_t(indices[i].vertex_index), uint32_t(indices[i + 1].vertex_index),
                                       uint32_t(indices[i + 2].vertex_index)};
-            const glm::dvec3 cross = glm::cross(out.positions[v[1]] - out.positions[v[0]],
-                                                out.positions[v[2]] - out.positions[v[0]]);
+            const glm::dvec3 cross =
+                glm::cross(out.positions[v[1]] - out.positions[v[0]], out.positions[v[2]] - out.positions[v[0]]);
             if (!(glm::dot(cross, cross) > 0)) {
                 ++degenerate;
                 continue;

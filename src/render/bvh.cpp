@@ -80,7 +80,8 @@ struct VectorBin {
     }
     FloatBounds bounds() const { return {{lower[0], lower[1], lower[2]}, {upper[0], upper[1], upper[2]}}; }
     FloatBounds centres() const {
-        return {{centre_lower[0], centre_lower[1], centre_lower[2]}, {centre_upper[0], centre_upper[1], centre_upper[2]}};
+        return {{centre_lower[0], centre_lower[1], centre_lower[2]},
+                {centre_upper[0], centre_upper[1], centre_upper[2]}};
     }
 };
 
@@ -249,7 +250,8 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
             if (accumulated.count == 0 || right_count == 0) continue;
             const double cost = kTraversalCost + kIntersectionCost *
                                                      (double(accumulated.half_area()) * accumulated.count +
-                                                      double(right_area[b + 1]) * right_count) / node_area;
+                                                      double(right_area[b + 1]) * right_count) /
+                                                     node_area;
             if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
         }
     }
@@ -376,13 +378,16 @@ Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, i
     order_.resize(n);
     if (n == 0) return;
     LargeArray<PrimRef> refs(n);
-    parallel_for(n, [&](size_t i) {
-        for (int axis = 0; axis < 3; ++axis) {
-            refs[i].lower[axis] = round_down(primitives[i].lower[axis]);
-            refs[i].upper[axis] = round_up(primitives[i].upper[axis]);
-        }
-        refs[i].id = uint32_t(i);
-    }, threads);
+    parallel_for(
+        n,
+        [&](size_t i) {
+            for (int axis = 0; axis < 3; ++axis) {
+                refs[i].lower[axis] = round_down(primitives[i].lower[axis]);
+                refs[i].upper[axis] = round_up(primitives[i].upper[axis]);
+            }
+            refs[i].id = uint32_t(i);
+        },
+        threads);
     leaf_size = std::max(leaf_size, 1);
     const Range root = measure(refs.data(), 0, n);
 
@@ -397,7 +402,8 @@ Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, i
         root_box_.lower[axis] = root.bounds.lower[axis];
         root_box_.upper[axis] = root.bounds.upper[axis];
     }
-    parallel_for(n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
+    parallel_for(
+        n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
 }
 
 BvhStats Bvh::stats() const {

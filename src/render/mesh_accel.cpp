@@ -39,17 +39,17 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
         const Placement& placement = parts[part].placement;
         const uint32_t first_position = uint32_t(out.positions.size()), first_normal = uint32_t(out.normals.size());
         out.positions.resize(first_position + file.positions.size());
-        parallel_for(file.positions.size(), [&](size_t i) {
-            out.positions[first_position + i] = placement.point(Vec3(file.positions[i]));
-        }, threads);
+        parallel_for(
+            file.positions.size(),
+            [&](size_t i) { out.positions[first_position + i] = placement.point(Vec3(file.positions[i])); }, threads);
         // Normals: the file's placed by the inverse transpose, else area-weighted over the
         // placed triangles.
         std::vector<Vec3> normals;
         if (!file.normal_ids.empty()) {
             normals.resize(file.normals.size());
-            parallel_for(normals.size(), [&](size_t i) {
-                normals[i] = normalize_or_zero(placement.normal * Vec3(file.normals[i]));
-            }, threads);
+            parallel_for(
+                normals.size(),
+                [&](size_t i) { normals[i] = normalize_or_zero(placement.normal * Vec3(file.normals[i])); }, threads);
         } else {
             const std::vector<Vec3> placed(out.positions.begin() + first_position, out.positions.end());
             normals = area_weighted_normals(placed, file.triangles);
@@ -79,25 +79,32 @@ MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& s
 
     // Step 2: the accelerator over the triangles' bounds, and the leaf order.
     LargeArray<Bounds> boxes(n);
-    parallel_for(n, [&](size_t i) {
-        boxes[i] = Bounds{};
-        for (uint32_t v : mesh.triangles[i]) boxes[i].extend(mesh.positions[v]);
-    }, threads);
+    parallel_for(
+        n,
+        [&](size_t i) {
+            boxes[i] = Bounds{};
+            for (uint32_t v : mesh.triangles[i]) boxes[i].extend(mesh.positions[v]);
+        },
+        threads);
     for (const Bounds& box : boxes) bounds_.extend(box);
     if (!brute_force_) bvh_ = Bvh(boxes, settings.build, settings.leaf_size, threads);
 
     // Step 3: the triangles in that order, as a vertex and two edges, and their hit records.
     edges_.resize(n);
     hit_records_.resize(n);
-    parallel_for(n, [&](size_t i) {
-        const uint32_t triangle = brute_force_ ? uint32_t(i) : bvh_.order()[i];
-        const auto& v = mesh.triangles[triangle];
-        const Vec3& p0 = mesh.positions[v[0]];
-        edges_[i] = {p0, mesh.positions[v[1]] - p0, mesh.positions[v[2]] - p0};
-        const auto& ids = mesh.normal_ids[triangle];
-        const auto [part, number] = mesh.origin[triangle];
-        hit_records_[i] = {{mesh.normals[ids[0]], mesh.normals[ids[1]], mesh.normals[ids[2]]}, number, parts[part].tag};
-    }, threads);
+    parallel_for(
+        n,
+        [&](size_t i) {
+            const uint32_t triangle = brute_force_ ? uint32_t(i) : bvh_.order()[i];
+            const auto& v = mesh.triangles[triangle];
+            const Vec3& p0 = mesh.positions[v[0]];
+            edges_[i] = {p0, mesh.positions[v[1]] - p0, mesh.positions[v[2]] - p0};
+            const auto& ids = mesh.normal_ids[triangle];
+            const auto [part, number] = mesh.origin[triangle];
+            hit_records_[i] = {
+                {mesh.normals[ids[0]], mesh.normals[ids[1]], mesh.normals[ids[2]]}, number, parts[part].tag};
+        },
+        threads);
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -153,14 +160,15 @@ Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v) const {
 
 Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const glm::dmat3& normal_map) const {
     const Vec3(&n)[3] = hit_records_[slot].normals;
-    const Vec3 shading = normalize_or_zero((1 - u - v) * normalize_or_zero(normal_map * n[0]) +
-                                           u * normalize_or_zero(normal_map * n[1]) +
-                                           v * normalize_or_zero(normal_map * n[2]));
+    const Vec3 shading =
+        normalize_or_zero((1 - u - v) * normalize_or_zero(normal_map * n[0]) +
+                          u * normalize_or_zero(normal_map * n[1]) + v * normalize_or_zero(normal_map * n[2]));
     return shading != Vec3(0) ? shading : glm::normalize(normal_map * geometric_normal(slot));
 }
 
 size_t MeshAccel::memory_bytes() const {
-    return bvh_.memory_bytes() + edges_.capacity() * sizeof(TriangleEdges) + hit_records_.capacity() * sizeof(HitRecord);
+    return bvh_.memory_bytes() + edges_.capacity() * sizeof(TriangleEdges) +
+           hit_records_.capacity() * sizeof(HitRecord);
 }
 
 }  // namespace tracer

@@ -7,8 +7,12 @@ namespace {
 
 nlohmann::ordered_json bvh_json(const Bvh& bvh) {
     const BvhStats s = bvh.stats();
-    return {{"nodes", s.nodes},       {"leaves", s.leaves},          {"depth", s.depth},
-            {"leaf_size_min", s.min_leaf}, {"leaf_size_mean", s.mean_leaf}, {"leaf_size_max", s.max_leaf}};
+    return {{"nodes", s.nodes},
+            {"leaves", s.leaves},
+            {"depth", s.depth},
+            {"leaf_size_min", s.min_leaf},
+            {"leaf_size_mean", s.mean_leaf},
+            {"leaf_size_max", s.max_leaf}};
 }
 
 }  // namespace
@@ -23,8 +27,8 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
     out["accel"] = accelerator_name(scene.render.accel);
     out["leaf_size"] = scene.render.leaf_size;
     out["render_seconds"] = stats.seconds;
-    out["rays"] = {{"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection},
-                   {"total", rays.total()}};
+    out["rays"] = {
+        {"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection}, {"total", rays.total()}};
     const double total = double(std::max<uint64_t>(rays.total(), 1));
     const SearchCounts& work = rays.traversal;
     out["box_tests_per_ray"] = double(work.objects.box_tests + work.triangles.box_tests) / total;
@@ -56,7 +60,8 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
     for (size_t block = 0; block < world.instances().size(); ++block) {
         const MeshInstance& instance = world.instances()[block];
         placed[instance.mesh] = instance.placed;
-        if (blocks_of[instance.mesh]++ == 0 && block < scene.meshes.size()) file_of[instance.mesh] = scene.meshes[block].path;
+        if (blocks_of[instance.mesh]++ == 0 && block < scene.meshes.size())
+            file_of[instance.mesh] = scene.meshes[block].path;
     }
     out["meshes"] = nlohmann::ordered_json::array();
     for (size_t i = 0; i < world.meshes().size(); ++i) {
@@ -81,14 +86,13 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
     std::snprintf(line, sizeof line,
                   "objects: %zu spheres, %zu planes, %zu mesh instances; the %zu bounded searched %s",
                   top["spheres"].get<size_t>(), top["planes"].get<size_t>(), top["mesh_instances"].get<size_t>(),
-                  top["bounded_objects"].get<size_t>(),
-                  top["search"] == "linear" ? "one by one" : "through a BVH");
+                  top["bounded_objects"].get<size_t>(), top["search"] == "linear" ? "one by one" : "through a BVH");
     out += line;
     if (top.contains("bvh")) {
         const auto& bvh = top["bvh"];
         std::snprintf(line, sizeof line, " built in %.3f ms: %zu nodes, %zu leaves, depth %d",
-                      top["build_seconds"].get<double>() * 1e3, bvh["nodes"].get<size_t>(),
-                      bvh["leaves"].get<size_t>(), bvh["depth"].get<int>());
+                      top["build_seconds"].get<double>() * 1e3, bvh["nodes"].get<size_t>(), bvh["leaves"].get<size_t>(),
+                      bvh["depth"].get<int>());
         out += line;
     }
     std::snprintf(line, sizeof line, "; %.1f KiB\n", top["memory_bytes"].get<double>() / 1024);
@@ -100,9 +104,8 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
                                        ? " and " + std::to_string(blocks - 1) + " more blocks, merged"
                                        : "";
         std::snprintf(line, sizeof line, "mesh %s%s: %zu triangles, %s built in %.3f ms",
-                      file.substr(file.find_last_of('/') + 1).c_str(), others.c_str(),
-                      mesh["triangles"].get<size_t>(), s["accel"].get<std::string>().c_str(),
-                      mesh["build_seconds"].get<double>() * 1e3);
+                      file.substr(file.find_last_of('/') + 1).c_str(), others.c_str(), mesh["triangles"].get<size_t>(),
+                      s["accel"].get<std::string>().c_str(), mesh["build_seconds"].get<double>() * 1e3);
         out += line;
         if (mesh.contains("nodes")) {
             std::snprintf(line, sizeof line, ": %zu nodes, %zu leaves, depth %d, leaf size %zu..%zu (mean %.2f)",
@@ -120,7 +123,8 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
     std::snprintf(line, sizeof line,
                   "rays: %llu primary, %llu shadow, %llu reflection; per ray %.2f object box tests, %.2f object "
                   "tests, %.2f mesh box tests, %.2f triangle tests; %.3f s, %.1f Mrays/s\n",
-                  (unsigned long long)rays["primary"].get<uint64_t>(), (unsigned long long)rays["shadow"].get<uint64_t>(),
+                  (unsigned long long)rays["primary"].get<uint64_t>(),
+                  (unsigned long long)rays["shadow"].get<uint64_t>(),
                   (unsigned long long)rays["reflection"].get<uint64_t>(), s["object_box_tests_per_ray"].get<double>(),
                   s["object_tests_per_ray"].get<double>(), s["mesh_box_tests_per_ray"].get<double>(),
                   s["triangle_tests_per_ray"].get<double>(), s["render_seconds"].get<double>(),

@@ -68,8 +68,8 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
 
 void World::add_bounded(const Bounds& box, uint32_t object, uint32_t instance) {
     const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
-    bounded_.push_back({box.centre(), std::isfinite(radius) ? radius : kInfinity, object, instance,
-                        ObjectKind::MeshInstance});
+    bounded_.push_back(
+        {box.centre(), std::isfinite(radius) ? radius : kInfinity, object, instance, ObjectKind::MeshInstance});
     boxes_.push_back(box);
 }
 
@@ -136,7 +136,6 @@ void World::build_top_level(const SearchSettings& settings) {
     boxes_ = {};  // only the build needs them
     top_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-
 
 bool World::may_hit(const Ray& ray) const {
     if (!planes_.empty()) return true;

@@ -8,8 +8,8 @@
 
 namespace tracer {
 
-[[gnu::always_inline]] inline bool World::hit_instance(uint32_t index, uint32_t object, const Ray& ray, Interval& range, Hit& hit,
-                         SearchCounts& counts) const {
+[[gnu::always_inline]] inline bool World::hit_instance(uint32_t index, uint32_t object, const Ray& ray, Interval& range,
+                                                       Hit& hit, SearchCounts& counts) const {
     const MeshInstance& instance = instances_[index];
     const MeshAccel& mesh = meshes_[instance.mesh];
     MeshHit mesh_hit;
@@ -40,7 +40,8 @@ inline bool World::instance_blocks(uint32_t index, const Ray& ray, Interval rang
     return found;
 }
 
-[[gnu::always_inline]] inline bool World::nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const {
+[[gnu::always_inline]] inline bool World::nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit,
+                                                             SearchCounts& counts) const {
     // Spheres, planes, then meshes (objects are numbered in this order; bounded_ lists the
     // spheres, then the meshes).
     bool found = false;
@@ -62,7 +63,8 @@ inline bool World::instance_blocks(uint32_t index, const Ray& ray, Interval rang
     return found;
 }
 
-[[gnu::always_inline]] inline std::optional<Hit> World::nearest_hit(const Ray& ray, Interval range, SearchCounts& counts) const {
+[[gnu::always_inline]] inline std::optional<Hit> World::nearest_hit(const Ray& ray, Interval range,
+                                                                    SearchCounts& counts) const {
     Hit hit;
     bool found = false;
     if (linear_) {
@@ -98,23 +100,28 @@ inline bool World::instance_blocks(uint32_t index, const Ray& ray, Interval rang
             out.normal = (out.point - s.center) / s.radius;
             break;
         }
-        case ObjectKind::Plane: out.normal = planes_[object.index].normal; break;
+        case ObjectKind::Plane:
+            out.normal = planes_[object.index].normal;
+            break;
         case ObjectKind::MeshInstance: {
             const MeshInstance& instance = instances_[object.index];
             const MeshAccel& mesh = meshes_[instance.mesh];
             // Normals map by the inverse transpose of the placement: transpose(to_object).
-            out.normal = instance.placed ? mesh.shading_normal(hit.primitive, hit.u, hit.v)
-                                         : mesh.shading_normal(hit.primitive, hit.u, hit.v,
-                                                               glm::transpose(instance.to_object));
+            out.normal = instance.placed
+                             ? mesh.shading_normal(hit.primitive, hit.u, hit.v)
+                             : mesh.shading_normal(hit.primitive, hit.u, hit.v, glm::transpose(instance.to_object));
             break;
         }
     }
     return out;
 }
 
-inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const { return surface_at(ray, hit); }
+inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
+    return surface_at(ray, hit);
+}
 
-[[gnu::always_inline]] inline std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range, SearchCounts& counts) const {
+[[gnu::always_inline]] inline std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range,
+                                                                         SearchCounts& counts) const {
     const auto hit = nearest_hit(ray, range, counts);
     if (!hit) return std::nullopt;
     return surface_at(ray, *hit);
@@ -132,7 +139,8 @@ inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const { return 
         for (size_t i = spheres_.size(); i < bounded_.size(); ++i) {
             const Bounded& b = bounded_[i];
             ++counts.objects.primitive_tests;
-            if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius) && instance_blocks(b.index, ray, range, counts))
+            if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius) &&
+                instance_blocks(b.index, ray, range, counts))
                 return true;
         }
         return false;

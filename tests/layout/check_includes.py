@@ -6,6 +6,7 @@
 lang, io and render are siblings and include none of each other (the renderer knows nothing
 of the language or of files). Fails, naming each offending line, otherwise.
 Usage: check_includes.py SRC_DIR"""
+
 import pathlib
 import re
 import sys

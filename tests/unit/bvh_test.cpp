@@ -52,7 +52,7 @@ TriangleMesh triangle_soup(int count, uint32_t seed) {
             soup.positions.push_back(centre + size * Vec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
         soup.triangles.push_back({first, first + 1, first + 2});
     }
-        return soup;
+    return soup;
 }
 
 struct Agreement {
@@ -93,7 +93,8 @@ void compare_with_brute_force(const TriangleMesh& mesh, uint32_t seed, Agreement
             ASSERT_EQ(tree_found, brute_found) << name << ", ray " << i;
             if (!brute_found) continue;
             ASSERT_EQ(tree_hit.hit.t, brute_hit.hit.t) << name << ", ray " << i;
-            if (tree.triangle_of(tree_hit.slot) != brute.triangle_of(brute_hit.slot)) ++result.ties;  // two triangles at the very same t
+            if (tree.triangle_of(tree_hit.slot) != brute.triangle_of(brute_hit.slot))
+                ++result.ties;  // two triangles at the very same t
             // Any-hit over a random part of the ray agrees with "the nearest hit lies inside it".
             const Interval part{0, brute_hit.hit.t * fraction};
             ASSERT_EQ(tree.occluded(ray, part, counts), part.contains(brute_hit.hit.t)) << name << ", ray " << i;
@@ -184,8 +185,8 @@ TEST(Bvh, FlatGridTraversalLosesNoHitOfTheTriangleTest) {
 }
 
 // The bounding-sphere pre-tests (World::may_hit, and the one before each mesh instance) must
-// not reject rays that only just hit: a square's corners lie on the sphere around its box, so rays aimed just inside the corners,
-// from near and from very far, at several scales and offsets, graze that sphere.
+// not reject rays that only just hit: a square's corners lie on the sphere around its box, so rays aimed just inside
+// the corners, from near and from very far, at several scales and offsets, graze that sphere.
 TEST(Bvh, SpherePreTestKeepsRaysThatGrazeTheMeshCorners) {
     std::mt19937 random(5);
     std::normal_distribution<double> gauss;

@@ -44,7 +44,8 @@ MixedScene mixed_scene(int spheres, uint32_t seed, Accelerator accel = Accelerat
     scene.materials.resize(4);
     for (int i = 0; i < spheres; ++i)
         scene.spheres.push_back({{8 * unit(random) - 4, 8 * unit(random) - 4, 8 * unit(random) - 4},
-                                 0.02 + 0.3 * unit(random) * unit(random), i % 4});
+                                 0.02 + 0.3 * unit(random) * unit(random),
+                                 i % 4});
     scene.planes.push_back({{0, -6, 0}, {0, 1, 0}, 1});
 
     TriangleMesh soup;
@@ -52,7 +53,8 @@ MixedScene mixed_scene(int spheres, uint32_t seed, Accelerator accel = Accelerat
         const glm::dvec3 centre(2 * unit(random) - 1, 2 * unit(random) - 1, 2 * unit(random) - 1);
         const uint32_t first = uint32_t(soup.positions.size());
         for (int k = 0; k < 3; ++k)
-            soup.positions.push_back(centre + 0.3 * glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+            soup.positions.push_back(centre +
+                                     0.3 * glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
         soup.triangles.push_back({first, first + 1, first + 2});
     }
     out.meshes.files = {read("bunny.obj"), read("tetrahedron.obj"), soup};
@@ -66,7 +68,8 @@ MixedScene mixed_scene(int spheres, uint32_t seed, Accelerator accel = Accelerat
         scene.meshes.push_back(block);
         out.meshes.file_of_block.push_back(file);
     };
-    for (int i = 0; i < 5; ++i) place(0, dvec3(0.1 + 0.1 * unit(random), 0.1, 0.15 + 0.1 * unit(random)), 360 * unit(random));
+    for (int i = 0; i < 5; ++i)
+        place(0, dvec3(0.1 + 0.1 * unit(random), 0.1, 0.15 + 0.1 * unit(random)), 360 * unit(random));
     for (int i = 0; i < 3; ++i) place(1, dvec3(0.5 + unit(random), 0.7, 1.2), 360 * unit(random));
     place(2, dvec3(1.5, 1, 0.8), 30);
     return out;
@@ -90,7 +93,8 @@ public:
             std::vector<TriangleEdges> placed;
             for (const auto& t : file.triangles) {
                 const Vec3 p0 = placement.point(file.positions[t[0]]);
-                placed.push_back({p0, placement.point(file.positions[t[1]]) - p0, placement.point(file.positions[t[2]]) - p0});
+                placed.push_back(
+                    {p0, placement.point(file.positions[t[1]]) - p0, placement.point(file.positions[t[2]]) - p0});
             }
             triangles_.push_back(std::move(placed));
         }
@@ -241,7 +245,8 @@ TEST(World, InstanceNormalsMatchTheMeshBuiltPlaced) {
     int hits = 0, disagreements = 0;
     for (const Ray& ray : random_rays(20000, 6)) {
         SearchCounts counts;
-        const auto a = placed.intersect(ray, {0, kInfinity}, counts), b = instanced.intersect(ray, {0, kInfinity}, counts);
+        const auto a = placed.intersect(ray, {0, kInfinity}, counts),
+                   b = instanced.intersect(ray, {0, kInfinity}, counts);
         if (a.has_value() != b.has_value()) ++disagreements;  // grazing an edge: rounding decides
         if (!a || !b) continue;
         ++hits;

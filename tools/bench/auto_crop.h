@@ -6,11 +6,11 @@
 #include <cmath>
 #include <vector>
 
-#include "scene/scene.h"
 #include "render/camera.h"
 #include "render/placement.h"
-#include "scene/triangle_mesh.h"
 #include "render/renderer.h"
+#include "scene/scene.h"
+#include "scene/triangle_mesh.h"
 
 namespace tracer {
 

@@ -13,11 +13,11 @@
 #include <nlohmann/json.hpp>
 
 #include "auto_crop.h"
+#include "base/parallel.h"
 #include "bench_scene.h"
-#include "render/camera.h"
 #include "io/image_file.h"
 #include "io/obj_mesh.h"
-#include "base/parallel.h"
+#include "render/camera.h"
 #include "render/render_stats.h"
 #include "render/renderer.h"
 
@@ -105,9 +105,10 @@ int main(int argc, char** argv) {
     out["triangles"] = triangles;
     out["threads"] = stats.threads;
     out["runs"] = runs;
-    out["crop"] = options.crop.width > 0 ? nlohmann::ordered_json::array({options.crop.x0, options.crop.y0,
-                                                                            options.crop.width, options.crop.height})
-                                         : nlohmann::ordered_json("full_frame");
+    out["crop"] =
+        options.crop.width > 0
+            ? nlohmann::ordered_json::array({options.crop.x0, options.crop.y0, options.crop.width, options.crop.height})
+            : nlohmann::ordered_json("full_frame");
     out["build_ms"] = median(build_ms);
     out["render_ms_median"] = median(render_ms);
     out["render_ms_min"] = *std::min_element(render_ms.begin(), render_ms.end());
