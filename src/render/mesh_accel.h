@@ -65,6 +65,7 @@ public:
     size_t triangle_count() const { return edges_.size(); }
     const Bvh& bvh() const { return bvh_; }
     bool brute_force() const { return brute_force_; }
+    // The BVH's build and the triangles' storage in its order (not placing the vertices).
     double build_seconds() const { return build_seconds_; }
     // Bytes held by the triangles, their hit records and the BVH.
     size_t memory_bytes() const;
