@@ -71,7 +71,7 @@ struct MeshInstance {
 };
 
 // Up to this many bounded objects are tested one after the other instead of through the top
-// level's BVH (measured: see docs/performance.md, "Many objects").
+// level's BVH (measured: docs/many-objects.md).
 constexpr size_t kLinearObjects = 8;
 
 class World {
