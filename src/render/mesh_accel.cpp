@@ -9,7 +9,7 @@
 
 namespace tracer {
 
-std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& positions,
+std::vector<Vec3> area_weighted_normals(std::span<const Vec3> positions,
                                         const std::vector<std::array<uint32_t, 3>>& triangles) {
     std::vector<Vec3> sums(positions.size(), Vec3(0));
     for (const auto& t : triangles) {
@@ -56,8 +56,7 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
                 normals.size(),
                 [&](size_t i) { normals[i] = normalize_or_zero(placement.normal * Vec3(file.normals[i])); }, threads);
         } else {
-            const std::vector<Vec3> placed(out.positions.begin() + first_position, out.positions.end());
-            normals = area_weighted_normals(placed, file.triangles);
+            normals = area_weighted_normals(std::span(out.positions).subspan(first_position), file.triangles);
         }
         out.normals.insert(out.normals.end(), normals.begin(), normals.end());
         const auto& ids = file.normal_ids.empty() ? file.triangles : file.normal_ids;

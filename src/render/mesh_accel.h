@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "render/bvh.h"
@@ -88,7 +89,7 @@ private:
 
 // Area-weighted vertex normals (zero-area faces add nothing; a vertex with no area gets the
 // zero vector, which shading replaces by the face normal).
-std::vector<Vec3> area_weighted_normals(const std::vector<Vec3>& positions,
+std::vector<Vec3> area_weighted_normals(std::span<const Vec3> positions,
                                         const std::vector<std::array<uint32_t, 3>>& triangles);
 
 }  // namespace tracer

@@ -43,6 +43,13 @@ Bounds placed_box(const Bounds& box, const glm::dmat3& linear, const Vec3& trans
     return {out.lower - pad, out.upper + pad};
 }
 
+// Half the diagonal of `box`: a sphere around its centre holding it (infinite where the
+// diagonal overflows).
+Real half_diagonal(const Bounds& box) {
+    const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
+    return std::isfinite(radius) ? radius : kInfinity;
+}
+
 }  // namespace
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared)
@@ -67,9 +74,7 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
 }
 
 void World::add_bounded(const Bounds& box, uint32_t object, uint32_t instance) {
-    const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
-    bounded_.push_back(
-        {box.centre(), std::isfinite(radius) ? radius : kInfinity, object, instance, ObjectKind::MeshInstance});
+    bounded_.push_back({box.centre(), half_diagonal(box), object, instance, ObjectKind::MeshInstance});
     boxes_.push_back(box);
 }
 
@@ -121,9 +126,9 @@ void World::build_top_level(const SearchSettings& settings) {
     Bounds all;
     for (const Bounds& box : boxes_) all.extend(box);
     if (!bounded_.empty()) {
-        const Real radius = glm::length(all.upper - all.lower) * Real(0.5);
+        const Real radius = half_diagonal(all);
         sphere_centre_ = all.centre();
-        sphere_radius2_ = std::isfinite(radius) ? radius * radius : kInfinity;
+        sphere_radius2_ = radius * radius;
     }
     linear_ = settings.brute_force || bounded_.size() <= kLinearObjects;
     if (!linear_) {
