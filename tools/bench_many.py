@@ -28,12 +28,12 @@ left empty and said so.
 import argparse
 import datetime
 import json
-import os
 import pathlib
-import platform
 import statistics
 import subprocess
 import sys
+
+from bench_bvh import machine, run_json  # the same machine line and tracer_bench runner
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 BENCH = ROOT / "build" / "release" / "tracer_bench"
@@ -41,13 +41,6 @@ TRACER = ROOT / "build" / "release" / "tracer"
 OUT = ROOT / "out" / "bench" / "many"
 SPHERES = [16, 4096, 65536, 1000000]
 BUNNIES = [1, 64, 4096]
-
-
-def run_json(command: list) -> dict:
-    result = subprocess.run([str(c) for c in command], capture_output=True, text=True, cwd=ROOT)
-    if result.returncode != 0:
-        sys.exit(f"failed: {' '.join(map(str, command))}\n{result.stderr}")
-    return json.loads([line for line in result.stdout.splitlines() if line.startswith("{")][-1])
 
 
 def scene(kind: str, count: int) -> tuple:
@@ -75,12 +68,6 @@ def scene(kind: str, count: int) -> tuple:
         with open(dump, "w") as out:
             subprocess.run([TRACER, "--dump-json", path], check=True, stdout=out)
     return path, dump
-
-
-def machine() -> str:
-    model = next((ln.split(":", 1)[1].strip() for ln in open("/proc/cpuinfo") if ln.startswith("model name")), "?")
-    compiler = subprocess.run(["c++", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
-    return f"{model}, {os.cpu_count()} cores visible, {platform.system()} {platform.release()}, {compiler}"
 
 
 def measure(args, kind: str, count: int, embree) -> dict:

@@ -34,6 +34,12 @@ material floor  { ka 0.1  kd 0.6 }
 COLOURS = ["red", "green", "blue", "gold", "white"]
 
 
+def scene_text(lines):
+    """The scene's lines as text, its "PALETTE" line replaced by the materials it uses."""
+    text = "\n".join(lines) + "\n"
+    return text.replace("PALETTE\n", used_materials(text))
+
+
 def used_materials(text):
     """PALETTE's lines for the materials `text` uses (an unused material is a warning)."""
     return (
@@ -81,8 +87,7 @@ def spheres(count):
         f"light {{ position ({-0.6 * side:.4g}, {side + 5:.4g}, {0.8 * side:.4g})  color 0.6 }}",
         f"light {{ position ({0.7 * side:.4g}, {0.5 * side + 3:.4g}, {0.2 * side:.4g})  color 0.35 }}",
     ]
-    text = "\n".join(lines) + "\n"
-    return text.replace("PALETTE\n", used_materials(text))
+    return scene_text(lines)
 
 
 def bunnies(count, obj):
@@ -128,8 +133,7 @@ def bunnies(count, obj):
         f"light {{ position ({-0.5 * half:.4g}, {half + 6:.4g}, {half + 4:.4g})  color 0.6 }}",
         f"light {{ position ({0.8 * half + 2:.4g}, {0.4 * half + 3:.4g}, {0.3 * half:.4g})  color 0.35 }}",
     ]
-    text = "\n".join(lines) + "\n"
-    return text.replace("PALETTE\n", used_materials(text))
+    return scene_text(lines)
 
 
 def main():
