@@ -94,16 +94,15 @@ MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& s
     for (const Bounds& box : boxes) bounds_.extend(box);
     if (!brute_force_) bvh_ = Bvh(boxes, settings.build, settings.leaf_size, threads);
 
-    // Step 3: the triangles in that order, as a vertex and two edges, and their hit records.
-    edges_.resize(n);
+    // Step 3: the triangles in that order, and their hit records.
+    triangles_.resize(n);
     hit_records_.resize(n);
     parallel_for(
         n,
         [&](size_t i) {
             const uint32_t triangle = brute_force_ ? uint32_t(i) : bvh_.order()[i];
             const auto& v = mesh.triangles[triangle];
-            const Vec3& p0 = mesh.positions[v[0]];
-            edges_[i] = {p0, mesh.positions[v[1]] - p0, mesh.positions[v[2]] - p0};
+            triangles_[i] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
             const auto& ids = mesh.normal_ids[triangle];
             const auto [part, number] = mesh.origin[triangle];
             hit_records_[i] = {
@@ -116,9 +115,10 @@ MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& s
 bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const {
     uint32_t best = 0;
     TriangleHit best_hit;
+    const TriangleTester tester(ray);
     auto test = [&](uint32_t i, Interval& r) {
         TriangleHit hit;
-        if (!intersect_triangle(ray, edges_[i], r, hit)) return false;
+        if (!tester(triangles_[i], r, hit)) return false;
         r.max = hit.t;
         best = i;
         best_hit = hit;
@@ -129,8 +129,8 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
     };
     bool found = false;
     if (brute_force_) {
-        counts.primitive_tests += edges_.size();
-        for (uint32_t i = 0; i < edges_.size(); ++i) found = test(i, range) || found;
+        counts.primitive_tests += triangles_.size();
+        for (uint32_t i = 0; i < triangles_.size(); ++i) found = test(i, range) || found;
     } else {
         found = bvh_.closest(ray, range, counts, test);
     }
@@ -139,12 +139,13 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
 }
 
 bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts) const {
+    const TriangleTester tester(ray);
     auto test = [&](uint32_t i, Interval& r) {
         TriangleHit hit;
-        return intersect_triangle(ray, edges_[i], r, hit);
+        return tester(triangles_[i], r, hit);
     };
     if (brute_force_) {
-        for (uint32_t i = 0; i < edges_.size(); ++i) {
+        for (uint32_t i = 0; i < triangles_.size(); ++i) {
             ++counts.primitive_tests;
             if (test(i, range)) return true;
         }
@@ -154,7 +155,8 @@ bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts
 }
 
 Vec3 MeshAccel::geometric_normal(uint32_t slot) const {
-    return glm::normalize(glm::cross(edges_[slot].e1, edges_[slot].e2));
+    const Triangle& t = triangles_[slot];
+    return glm::normalize(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
 }
 
 Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v) const {
@@ -172,8 +174,7 @@ Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const glm::dmat3& 
 }
 
 size_t MeshAccel::memory_bytes() const {
-    return bvh_.memory_bytes() + edges_.capacity() * sizeof(TriangleEdges) +
-           hit_records_.capacity() * sizeof(HitRecord);
+    return bvh_.memory_bytes() + triangles_.capacity() * sizeof(Triangle) + hit_records_.capacity() * sizeof(HitRecord);
 }
 
 }  // namespace tracer

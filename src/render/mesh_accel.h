@@ -63,7 +63,7 @@ public:
 
     // The box around every triangle.
     const Bounds& bounds() const { return bounds_; }
-    size_t triangle_count() const { return edges_.size(); }
+    size_t triangle_count() const { return triangles_.size(); }
     const Bvh& bvh() const { return bvh_; }
     bool brute_force() const { return brute_force_; }
     // The BVH's build and the triangles' storage in its order (not placing the vertices).
@@ -81,7 +81,7 @@ private:
         uint32_t triangle;  // the file's triangle number
         uint32_t tag;       // its part's
     };
-    LargeArray<TriangleEdges> edges_;  // entry i is triangle hit_records_[i].triangle
+    LargeArray<Triangle> triangles_;  // entry i is triangle hit_records_[i].triangle
     LargeArray<HitRecord> hit_records_;
     Bounds bounds_;
     double build_seconds_ = 0;

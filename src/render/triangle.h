@@ -1,12 +1,28 @@
-// Ray-triangle intersection (Moller-Trumbore), returning t and the barycentric (u, v) of the
-// hit: the point is (1 - u - v) v0 + u v1 + v v2.
+// Ray-triangle intersection, returning t and the barycentric (u, v) of the hit: the point is
+// (1 - u - v) v0 + u v1 + v v2. Two tests: the watertight one (Woop, Benthin & Wald 2013), the
+// default, and Moller-Trumbore, kept to measure what watertightness costs and buys
+// (docs/speed-vs-error.md).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
 #include <glm/geometric.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "render/types.h"
 
 namespace tracer {
+
+// Build-time choice (CMake option TRACER_ROBUST): watertight triangles and error-bounded
+// spawn points, or Moller-Trumbore and a fixed t-min of 1e-4 (the first wave's "naive" rules).
+#if defined(TRACER_ROBUST) && !TRACER_ROBUST
+constexpr bool kRobust = false;
+#else
+constexpr bool kRobust = true;
+#endif
 
 struct TriangleHit {
     Real t = 0;
@@ -14,29 +30,154 @@ struct TriangleHit {
     Real v = 0;
 };
 
-// A triangle stored for intersection: one vertex and the two edges leaving it.
-struct TriangleEdges {
-    Vec3 v0, e1, e2;  // e1 = v1 - v0, e2 = v2 - v0
+// A triangle stored for intersection: its three vertices, exactly as the mesh holds them, so
+// that two triangles sharing an edge see the very same edge.
+struct Triangle {
+    Vec3 v0, v1, v2;
 };
 
-// True, with `hit` filled in, if the ray meets the triangle at t inside `range`. Edges and
-// vertices count as inside. No epsilon on the determinant: only an exactly parallel ray (or a
-// zero-area triangle) is rejected, so tiny triangles are still found.
-inline bool intersect_triangle(const Ray& ray, const TriangleEdges& tri, Interval range, TriangleHit& hit) {
+// a b - c d with a relative error of at most 2 ulp (Kahan's algorithm with fused
+// multiply-adds; Jeannerod et al. 2013), so its sign is the exact sign, and it is exactly 0
+// only when a b = c d exactly.
+inline Real difference_of_products(Real a, Real b, Real c, Real d) {
+    const Real cd = c * d;
+    const Real error = std::fma(-c, d, cd);  // cd - c d, exactly
+    return std::fma(a, b, -cd) + error;
+}
+
+// Component k of p (glm's operator[] is a switch on k).
+inline Real component(const Vec3& p, int k) {
+    return glm::value_ptr(p)[k];
+}
+
+// What the watertight test needs of a ray, worked out once per ray: the axis along which the
+// direction is largest becomes z, and the shear that maps the direction to (0, 0, 1).
+struct RayShear {
+    int kx = 0, ky = 1, kz = 2;
+    Real sx = 0, sy = 0, sz = 1;
+    Vec3 origin{0};  // the ray's origin, permuted to (kx, ky, kz)
+
+    // The shear of `ray`; a zero direction gives a shear that no triangle passes.
+    explicit RayShear(const Ray& ray) {
+        const Vec3 a = glm::abs(ray.direction);
+        kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+        kx = kz == 2 ? 0 : kz + 1;
+        ky = kx == 2 ? 0 : kx + 1;
+        if (ray.direction[kz] < 0) std::swap(kx, ky);  // keeps the winding
+        sz = 1 / ray.direction[kz];
+        sx = ray.direction[kx] * sz;
+        sy = ray.direction[ky] * sz;
+        origin = {ray.origin[kx], ray.origin[ky], ray.origin[kz]};
+    }
+};
+
+// A triangle in a ray's frame (see intersect_triangle): its sheared vertices a, b, c, its edge
+// functions e0..e2 (the weights of v0..v2 times det) and t times det.
+struct ShearedTriangle {
+    Real ax, ay, az, bx, by, bz, cx, cy, cz;
+    Real e0, e1, e2, det, t_scaled;
+};
+
+// The hit of a triangle that passed the edge and range tests, unless its t might be <= 0
+// within rounding (pbrt-v4's conservative bound on t, from the magnitudes of the sheared
+// vertices and edge functions; gamma(n) = n u / (1 - n u)). Out of line: it runs for hits only,
+// and inlined into the BVH's loop it slowed every test (measured: docs/speed-vs-error.md).
+[[gnu::noinline]] inline bool finish_triangle_hit(const ShearedTriangle& s, Interval range, TriangleHit& hit) {
+    const Real inv_det = 1 / s.det;
+    const Real t = s.t_scaled * inv_det;
+    constexpr Real u = std::numeric_limits<Real>::epsilon() / 2;
+    auto gamma = [](int n) { return n * u / (1 - n * u); };
+    const Real max_z = std::max({std::abs(s.az), std::abs(s.bz), std::abs(s.cz)});
+    const Real max_x = std::max({std::abs(s.ax), std::abs(s.bx), std::abs(s.cx)});
+    const Real max_y = std::max({std::abs(s.ay), std::abs(s.by), std::abs(s.cy)});
+    const Real delta_z = gamma(3) * max_z;
+    const Real delta_x = gamma(5) * (max_x + max_z);
+    const Real delta_y = gamma(5) * (max_y + max_z);
+    const Real delta_e = 2 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+    const Real max_e = std::max({std::abs(s.e0), std::abs(s.e1), std::abs(s.e2)});
+    const Real delta_t = 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * std::abs(inv_det);
+    if (!(t > delta_t) || !range.contains(t)) return false;
+    hit = {t, s.e1 * inv_det, s.e2 * inv_det};
+    return true;
+}
+
+// Watertight test (Woop, Benthin & Wald 2013): the vertices are moved into the ray's frame
+// (origin at 0, direction (0, 0, 1)), and the ray meets the triangle where the 2D point (0, 0)
+// lies inside it. Each edge function is evaluated with its exact sign, from the vertices'
+// sheared coordinates alone, so the two triangles of a shared edge see the same edge with
+// opposite signs: a ray through an edge or a vertex meets at least one of them. (The paper
+// recomputes an edge function in double when it is exactly 0; difference_of_products makes
+// every sign exact at once.) Hits on an edge or vertex count, from either side; a triangle
+// whose sheared projection has zero area (a ray in its plane, or no area) is never hit; and a
+// hit whose t might be <= 0 within rounding is refused, so a ray spawned off a surface cannot
+// re-hit it behind its origin.
+inline bool intersect_triangle(const RayShear& shear, const Triangle& tri, Interval range, TriangleHit& hit) {
+    // Step 1: translate, permute, shear (x, y; z only scaled, below).
+    ShearedTriangle s;
+    auto sheared = [&](const Vec3& p, Real& x, Real& y, Real& z) {
+        z = component(p, shear.kz) - shear.origin.z;
+        x = std::fma(-shear.sx, z, component(p, shear.kx) - shear.origin.x);
+        y = std::fma(-shear.sy, z, component(p, shear.ky) - shear.origin.y);
+    };
+    sheared(tri.v0, s.ax, s.ay, s.az);
+    sheared(tri.v1, s.bx, s.by, s.bz);
+    sheared(tri.v2, s.cx, s.cy, s.cz);
+
+    // Step 2: the edge functions, with exact signs; (0, 0) inside when they agree.
+    s.e0 = difference_of_products(s.cx, s.by, s.cy, s.bx);
+    s.e1 = difference_of_products(s.ax, s.cy, s.ay, s.cx);
+    s.e2 = difference_of_products(s.bx, s.ay, s.by, s.ax);
+    const bool some_negative = (s.e0 < 0) | (s.e1 < 0) | (s.e2 < 0);
+    const bool some_positive = (s.e0 > 0) | (s.e1 > 0) | (s.e2 > 0);
+    s.det = s.e0 + s.e1 + s.e2;
+
+    // Step 3: t times det, compared with the range times det (no division for a miss). Fused
+    // explicitly, so that every call site rounds alike (GCC fuses at will otherwise).
+    s.az *= shear.sz;
+    s.bz *= shear.sz;
+    s.cz *= shear.sz;
+    s.t_scaled = std::fma(s.e0, s.az, std::fma(s.e1, s.bz, s.e2 * s.cz));
+    const bool in_range = s.det > 0 ? (s.t_scaled > range.min * s.det) & (s.t_scaled < range.max * s.det)
+                                    : (s.t_scaled < range.min * s.det) & (s.t_scaled > range.max * s.det);
+    if ((some_negative & some_positive) | (s.det == 0) | !in_range) return false;
+    return finish_triangle_hit(s, range, hit);
+}
+
+// Moller-Trumbore: fewer operations, but not watertight (two triangles sharing an edge can
+// both reject a ray through it: hard-cases.md A1, A3, A5). No epsilon on the determinant:
+// only an exactly parallel ray (or a zero-area triangle) is rejected, so tiny triangles are
+// still found.
+inline bool intersect_triangle_moller_trumbore(const Ray& ray, const Triangle& tri, Interval range, TriangleHit& hit) {
     // Every quantity is computed before one combined test: a miss usually fails one of the
     // early tests at random, and one branch mispredicts less than four.
-    const Vec3 p = glm::cross(ray.direction, tri.e2);
-    const Real det = glm::dot(tri.e1, p);
+    const Vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
+    const Vec3 p = glm::cross(ray.direction, e2);
+    const Real det = glm::dot(e1, p);
     const Real inv_det = 1 / det;
     const Vec3 s = ray.origin - tri.v0;
     const Real u = glm::dot(s, p) * inv_det;
-    const Vec3 q = glm::cross(s, tri.e1);
+    const Vec3 q = glm::cross(s, e1);
     const Real v = glm::dot(ray.direction, q) * inv_det;
-    const Real t = glm::dot(tri.e2, q) * inv_det;
+    const Real t = glm::dot(e2, q) * inv_det;
     const bool inside = (det != 0) & (u >= 0) & (u <= 1) & (v >= 0) & (u + v <= 1) & (range.min < t) & (t < range.max);
     if (!inside) return false;
     hit = {t, u, v};
     return true;
 }
+
+// The test the build chose (kRobust), with the shear it needs worked out per ray.
+struct TriangleTester {
+    explicit TriangleTester(const Ray& r) : ray(r), shear(r) {}
+
+    bool operator()(const Triangle& tri, Interval range, TriangleHit& hit) const {
+        if constexpr (kRobust)
+            return intersect_triangle(shear, tri, range, hit);
+        else
+            return intersect_triangle_moller_trumbore(ray, tri, range, hit);
+    }
+
+    Ray ray;
+    RayShear shear;
+};
 
 }  // namespace tracer
