@@ -1,5 +1,6 @@
 #include "io/obj_mesh.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -123,6 +124,40 @@ private:
 
 }  // namespace
 
+// Which triangles to keep: every one with an area, and a zero-area one only if its three
+// corners are distinct points and each of its edges belongs to another triangle too. Such a
+// sliver closes a T-junction of a closed surface (a vertex in the middle of another triangle's
+// edge): the watertight triangle test needs it there, or rays slip through the crack that
+// rounding opens. Any other zero-area triangle is a line or a point: nothing to hit.
+template <typename Vertices>
+static std::vector<bool> triangles_to_keep(const std::vector<glm::dvec3>& positions,
+                                           const std::vector<const tinyobj::index_t*>& corners, Vertices vertices) {
+    std::vector<bool> keep(corners.size());
+    bool any_degenerate = false;
+    for (size_t t = 0; t < corners.size(); ++t) {
+        const auto v = vertices(corners[t]);
+        const glm::dvec3 cross = glm::cross(positions[v[1]] - positions[v[0]], positions[v[2]] - positions[v[0]]);
+        keep[t] = glm::dot(cross, cross) > 0;
+        any_degenerate = any_degenerate || !keep[t];
+    }
+    if (!any_degenerate) return keep;
+    std::map<std::pair<uint32_t, uint32_t>, int> edge_uses;
+    for (const auto* c : corners) {
+        const auto v = vertices(c);
+        for (int k = 0; k < 3; ++k) ++edge_uses[std::minmax(v[k], v[(k + 1) % 3])];
+    }
+    for (size_t t = 0; t < corners.size(); ++t) {
+        if (keep[t]) continue;
+        const auto v = vertices(corners[t]);
+        const bool distinct = positions[v[0]] != positions[v[1]] && positions[v[1]] != positions[v[2]] &&
+                              positions[v[0]] != positions[v[2]];
+        bool edges_shared = true;
+        for (int k = 0; k < 3; ++k) edges_shared = edges_shared && edge_uses[std::minmax(v[k], v[(k + 1) % 3])] >= 2;
+        keep[t] = distinct && edges_shared;
+    }
+    return keep;
+}
+
 // After errors in an OBJ file: where the scene names it.
 static void note_where_used(const Mesh& mesh, Diagnostics& diagnostics) {
     if (mesh.named_at.line > 0) diagnostics.report(Severity::Note, mesh.named_at, "the mesh file is used here");
@@ -157,30 +192,31 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
     }
     const tinyobj::attrib_t& attrib = reader.GetAttrib();
 
-    // Step 3: the vertices and triangles, dropping zero-area ones.
+    // Step 3: the vertices and triangles, dropping zero-area ones unless they close a gap.
     TriangleMesh out;
     for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
         out.positions.push_back({attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
+    std::vector<const tinyobj::index_t*> corners;  // per triangle: its first corner
+    for (const tinyobj::shape_t& shape : reader.GetShapes())
+        for (size_t i = 0; i + 2 < shape.mesh.indices.size(); i += 3) corners.push_back(&shape.mesh.indices[i]);
+    auto vertices = [](const tinyobj::index_t* c) {
+        return std::array<uint32_t, 3>{uint32_t(c[0].vertex_index), uint32_t(c[1].vertex_index),
+                                       uint32_t(c[2].vertex_index)};
+    };
+    const std::vector<bool> keep = triangles_to_keep(out.positions, corners, vertices);
     bool file_normals = !attrib.normals.empty();
     size_t degenerate = 0;
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-        const auto& indices = shape.mesh.indices;
-        for (size_t i = 0; i + 2 < indices.size(); i += 3) {
-            std::array<uint32_t, 3> v{uint32_t(indices[i].vertex_index), uint32_t(indices[i + 1].vertex_index),
-                                      uint32_t(indices[i + 2].vertex_index)};
-            const glm::dvec3 cross =
-                glm::cross(out.positions[v[1]] - out.positions[v[0]], out.positions[v[2]] - out.positions[v[0]]);
-            if (!(glm::dot(cross, cross) > 0)) {
-                ++degenerate;
-                continue;
-            }
-            out.triangles.push_back(v);
-            file_normals = file_normals && indices[i].normal_index >= 0 && indices[i + 1].normal_index >= 0 &&
-                           indices[i + 2].normal_index >= 0;
-            if (file_normals)
-                out.normal_ids.push_back({uint32_t(indices[i].normal_index), uint32_t(indices[i + 1].normal_index),
-                                          uint32_t(indices[i + 2].normal_index)});
+    for (size_t t = 0; t < corners.size(); ++t) {
+        if (!keep[t]) {
+            ++degenerate;
+            continue;
         }
+        const tinyobj::index_t* c = corners[t];
+        out.triangles.push_back(vertices(c));
+        file_normals = file_normals && c[0].normal_index >= 0 && c[1].normal_index >= 0 && c[2].normal_index >= 0;
+        if (file_normals)
+            out.normal_ids.push_back(
+                {uint32_t(c[0].normal_index), uint32_t(c[1].normal_index), uint32_t(c[2].normal_index)});
     }
     if (degenerate > 0)
         diagnostics.report(Severity::Warning, Diagnostics::whole_file(mesh.path),

@@ -19,8 +19,8 @@
 
 #include <glm/common.hpp>
 
-#include "render/bvh_node.h"
 #include "base/large_array.h"
+#include "render/bvh_node.h"
 #include "render/types.h"
 
 namespace tracer {
@@ -42,7 +42,6 @@ struct Bounds {
     }
     Vec3 centre() const { return (lower + upper) * Real(0.5); }
 };
-
 
 // Per-ray work, for --stats.
 struct TraversalCounts {

@@ -39,9 +39,9 @@ constexpr int kWide = 4;
 
 struct WideNode {
     static constexpr uint32_t kInner = ~uint32_t(0);  // count of an inner child
-    float planes[2][3][kWide];  // [0]: lower, [1]: upper corner; [axis]; [child]
-    uint32_t index[kWide];      // leaf: first entry of order(); inner: the child's node index
-    uint32_t count[kWide];      // leaf: number of primitives (0: no child in this lane); inner: kInner
+    float planes[2][3][kWide];                        // [0]: lower, [1]: upper corner; [axis]; [child]
+    uint32_t index[kWide];                            // leaf: first entry of order(); inner: the child's node index
+    uint32_t count[kWide];  // leaf: number of primitives (0: no child in this lane); inner: kInner
 };
 static_assert(sizeof(WideNode) == 32 * kWide, "wide nodes are 32 bytes per child");
 
@@ -55,9 +55,13 @@ struct WideEntry {
 
 // Lane by lane minimum and maximum of GCC vectors; where `a` is NaN the lane takes `b`.
 template <typename Lanes>
-inline Lanes lane_min(Lanes a, Lanes b) { return a < b ? a : b; }
+inline Lanes lane_min(Lanes a, Lanes b) {
+    return a < b ? a : b;
+}
 template <typename Lanes>
-inline Lanes lane_max(Lanes a, Lanes b) { return a > b ? a : b; }
+inline Lanes lane_max(Lanes a, Lanes b) {
+    return a > b ? a : b;
+}
 
 // Box tests scale the leaving distance by 1 + 2 gamma_3 (Ize 2013), so that float rounding
 // cannot make the ray leave a box before the exact ray does. They scale 1 / d, once per ray:
@@ -77,7 +81,9 @@ inline Lanes multiply_subtract(Lanes a, float b, float c) {
 #else
 constexpr bool kFusedSlabs = false;
 template <typename Lanes>
-inline Lanes multiply_subtract(Lanes a, float b, float c) { return a * b - c; }  // unused: not rounded once
+inline Lanes multiply_subtract(Lanes a, float b, float c) {
+    return a * b - c;
+}  // unused: not rounded once
 #endif
 
 // A ray prepared for float box tests. The origin is rounded to float and moved |origin| 2^-21

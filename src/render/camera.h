@@ -2,8 +2,8 @@
 // v = w x u; an image plane at distance `focal` whose height is 2 f tan(fovy / 2).
 #pragma once
 
-#include "scene/scene.h"
 #include "render/types.h"
+#include "scene/scene.h"
 
 namespace tracer {
 

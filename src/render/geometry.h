@@ -28,7 +28,8 @@ namespace tracer {
 // Nearest t in `range` where `ray` meets the sphere, from outside or inside.
 // Uses the discriminant form of Haines et al. (Ray Tracing Gems ch. 7), which stays accurate
 // for small spheres far from the ray origin.
-[[gnu::always_inline]] inline std::optional<Real> intersect_sphere(const Ray& ray, const Vec3& center, Real radius, Interval range) {
+[[gnu::always_inline]] inline std::optional<Real> intersect_sphere(const Ray& ray, const Vec3& center, Real radius,
+                                                                   Interval range) {
     const Vec3 f = ray.origin - center;
     const Vec3& d = ray.direction;
     const Real b = glm::dot(f, d);  // half of the usual b
@@ -55,7 +56,7 @@ namespace tracer {
 // t in `range` where `ray` meets the infinite plane through `point` with normal `normal`
 // (either side); a ray parallel to the plane misses.
 [[gnu::always_inline]] inline std::optional<Real> intersect_plane(const Ray& ray, const Vec3& point, const Vec3& normal,
-                                           Interval range) {
+                                                                  Interval range) {
     const Real denominator = glm::dot(normal, ray.direction);
     if (denominator == 0) return std::nullopt;
     const Real t = glm::dot(point - ray.origin, normal) / denominator;

@@ -156,7 +156,7 @@ bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts
 
 Vec3 MeshAccel::geometric_normal(uint32_t slot) const {
     const Triangle& t = triangles_[slot];
-    return glm::normalize(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
+    return normalize_or_zero(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
 }
 
 Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v) const {
@@ -170,7 +170,7 @@ Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const glm::dmat3& 
     const Vec3 shading =
         normalize_or_zero((1 - u - v) * normalize_or_zero(normal_map * n[0]) +
                           u * normalize_or_zero(normal_map * n[1]) + v * normalize_or_zero(normal_map * n[2]));
-    return shading != Vec3(0) ? shading : glm::normalize(normal_map * geometric_normal(slot));
+    return shading != Vec3(0) ? shading : normalize_or_zero(normal_map * geometric_normal(slot));
 }
 
 size_t MeshAccel::memory_bytes() const {

@@ -49,12 +49,13 @@ public:
     // True if any triangle lies along the ray inside `range`.
     bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const;
 
-    // Unit face normal (v1 - v0) x (v2 - v0) of the triangle in `slot`.
+    // Unit face normal (v1 - v0) x (v2 - v0) of the triangle in `slot`; zero if it has no area
+    // (a sliver kept to close a T-junction, see io/obj_mesh.cpp).
     Vec3 geometric_normal(uint32_t slot) const;
     // Vertex normals interpolated at barycentric (u, v) of the triangle in `slot` and
-    // renormalised; the face normal where they cancel out. With `normal_map` (an instance's
-    // inverse transpose), each vertex normal is mapped and renormalised first, so that an
-    // instance shades as the same mesh built placed would.
+    // renormalised; the face normal where they cancel out (zero if that has no length either). With `normal_map` (an
+    // instance's inverse transpose), each vertex normal is mapped and renormalised first, so that an instance shades as
+    // the same mesh built placed would.
     Vec3 shading_normal(uint32_t slot, Real u, Real v) const;
     Vec3 shading_normal(uint32_t slot, Real u, Real v, const glm::dmat3& normal_map) const;
     // The triangle in `slot` as its file numbers it (after dropping zero-area ones), and its part's tag.

@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "base/image.h"
-#include "scene/scene.h"
-#include "render/whitted.h"
 #include "base/worker_pool.h"
+#include "render/whitted.h"
 #include "render/world.h"
+#include "scene/scene.h"
 
 namespace tracer {
 

@@ -131,14 +131,18 @@ inline bool intersect_triangle(const RayShear& shear, const Triangle& tri, Inter
     const bool some_positive = (s.e0 > 0) | (s.e1 > 0) | (s.e2 > 0);
     s.det = s.e0 + s.e1 + s.e2;
 
-    // Step 3: t times det, compared with the range times det (no division for a miss). Fused
+    // Step 3: t times det, compared with the range times det (no division for a miss); fused
     // explicitly, so that every call site rounds alike (GCC fuses at will otherwise).
     s.az *= shear.sz;
     s.bz *= shear.sz;
     s.cz *= shear.sz;
     s.t_scaled = std::fma(s.e0, s.az, std::fma(s.e1, s.bz, s.e2 * s.cz));
-    const bool in_range = s.det > 0 ? (s.t_scaled > range.min * s.det) & (s.t_scaled < range.max * s.det)
-                                    : (s.t_scaled < range.min * s.det) & (s.t_scaled > range.max * s.det);
+    // Loose by a few ulps here, so that no t inside the range is lost to the rounding of
+    // range x det; finish_triangle_hit tests t itself.
+    constexpr Real loose = 8 * std::numeric_limits<Real>::epsilon();
+    const Real abs_det = std::abs(s.det), t_signed = s.det < 0 ? -s.t_scaled : s.t_scaled;
+    const bool in_range =
+        (t_signed > range.min * abs_det * (1 - loose)) & (t_signed < range.max * abs_det * (1 + loose));
     if ((some_negative & some_positive) | (s.det == 0) | !in_range) return false;
     return finish_triangle_hit(s, range, hit);
 }

@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#include "scene/scene.h"
 #include "render/types.h"
 #include "render/world.h"
+#include "scene/scene.h"
 
 namespace tracer {
 

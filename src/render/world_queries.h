@@ -110,6 +110,9 @@ inline bool World::instance_blocks(uint32_t index, const Ray& ray, Interval rang
             out.normal = instance.placed
                              ? mesh.shading_normal(hit.primitive, hit.u, hit.v)
                              : mesh.shading_normal(hit.primitive, hit.u, hit.v, glm::transpose(instance.to_object));
+            // A zero-area sliver whose vertex normals cancel: it faces the ray.
+            if (out.normal == Vec3(0)) [[unlikely]]
+                out.normal = -normalize_or_zero(ray.direction);
             break;
         }
     }

@@ -1,0 +1,113 @@
+// Shared by the hard cases of ../shared/spec/hard-cases.md (kept in the repository as
+// tests/hard_cases/README.md's summary): a mesh behind its BVH and tested triangle by
+// triangle, the three ways of aiming a ray, and the figures each case reports.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "io/obj_mesh.h"
+#include "render/mesh_accel.h"
+#include "render/triangle.h"
+
+namespace tracer::hard_cases {
+
+// What a ray found in a mesh: the nearest triangle's t and outward face normal.
+struct MeshResult {
+    bool hit = false;
+    Real t = 0;
+    Vec3 face_normal{0};  // (v1 - v0) x (v2 - v0), normalised; zero for a zero-area triangle
+    uint32_t triangle = 0;
+};
+
+// A mesh in its own coordinates, behind a SAH BVH and with every triangle tested.
+class MeshUnderTest {
+public:
+    explicit MeshUnderTest(const TriangleMesh& mesh)
+        : bvh_(mesh, Placement(), settings(false)), brute_(mesh, Placement(), settings(true)) {}
+
+    MeshResult nearest(const Ray& ray) const { return query(bvh_, ray); }
+    MeshResult nearest_brute(const Ray& ray) const { return query(brute_, ray); }
+    const MeshAccel& bvh() const { return bvh_; }
+
+private:
+    static SearchSettings settings(bool brute_force) {
+        SearchSettings s;
+        s.brute_force = brute_force;
+        s.threads = 1;
+        return s;
+    }
+    static MeshResult query(const MeshAccel& accel, const Ray& ray) {
+        Interval range{0, kInfinity};
+        MeshHit hit;
+        TraversalCounts counts;
+        if (!accel.intersect(ray, range, hit, counts)) return {};
+        return {true, hit.hit.t, accel.geometric_normal(hit.slot), accel.triangle_of(hit.slot)};
+    }
+    MeshAccel bvh_, brute_;
+};
+
+// The ways every aimed case is run (hard-cases.md, measurement conventions): the direction
+// normalised in double and rounded to float, kept in double, and kept in double with one
+// component moved one ulp up or down.
+struct AimedRay {
+    Ray ray;
+    const char* way;
+};
+inline std::vector<AimedRay> aimed_rays(const Vec3& origin, const Vec3& target) {
+    const Vec3 d = glm::normalize(target - origin);
+    std::vector<AimedRay> out;
+    out.push_back({{origin, Vec3(glm::vec3(d))}, "float-aimed"});
+    out.push_back({{origin, d}, "double-aimed"});
+    for (int k = 0; k < 3; ++k) {
+        for (Real to : {kInfinity, -kInfinity}) {
+            Vec3 moved = d;
+            moved[k] = std::nextafter(d[k], to);
+            out.push_back({{origin, moved}, "double-aimed, one component moved 1 ulp"});
+        }
+    }
+    return out;
+}
+
+// A leak from inside a closed, outward-oriented mesh towards `target`: no hit, or a first hit
+// that enters (n . d < 0) beyond the target (ties at the target are accepted).
+inline bool interior_leak(const MeshResult& r, const Ray& ray, const Vec3& target) {
+    if (!r.hit) return true;
+    return glm::dot(r.face_normal, ray.direction) < 0 && r.t > glm::length(target - ray.origin) * (1 + 1e-4);
+}
+
+// True if any of t, the normal is NaN or infinite.
+inline bool non_finite(const MeshResult& r) {
+    return r.hit && !(std::isfinite(r.t) && std::isfinite(r.face_normal.x) && std::isfinite(r.face_normal.y) &&
+                      std::isfinite(r.face_normal.z));
+}
+
+// ulp(x): the spacing of Real numbers at |x|.
+inline Real ulp(Real x) {
+    x = std::abs(x);
+    return std::nextafter(x, kInfinity) - x;
+}
+
+// Records a figure for the report (tools/speed-vs-error reads them from --gtest_output=json)
+// and prints it.
+inline void report(const std::string& name, double value) {
+    ::testing::Test::RecordProperty(name, std::to_string(value));
+    std::printf("  %-40s %g\n", name.c_str(), value);
+}
+
+inline TriangleMesh load_obj(const std::string& relative) {
+    Mesh block;
+    block.path = (std::filesystem::path(TRACER_SOURCE_DIR) / relative).string();
+    Diagnostics diagnostics;
+    auto mesh = load_mesh(block, diagnostics);
+    EXPECT_TRUE(mesh) << "cannot load " << relative;
+    return mesh ? *mesh : TriangleMesh{};
+}
+
+}  // namespace tracer::hard_cases
