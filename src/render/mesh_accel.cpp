@@ -154,6 +154,16 @@ bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts
     return bvh_.any(ray, range, counts, test);
 }
 
+Vec3 MeshAccel::surface_point(uint32_t slot, Real u, Real v, Vec3& error) const {
+    const Triangle& t = triangles_[slot];
+    const Real w = 1 - u - v;
+    const Vec3 a = w * t.v0, b = u * t.v1, c = v * t.v2;
+    // The weights sum to 1 only up to the rounding of w: that moves the point by up to
+    // gamma(2) |v0| off the affine combination.
+    error = gamma(7) * (glm::abs(a) + glm::abs(b) + glm::abs(c)) + gamma(3) * glm::abs(t.v0);
+    return a + b + c;
+}
+
 Vec3 MeshAccel::geometric_normal(uint32_t slot) const {
     const Triangle& t = triangles_[slot];
     return normalize_or_zero(glm::cross(t.v1 - t.v0, t.v2 - t.v0));

@@ -49,6 +49,10 @@ public:
     // True if any triangle lies along the ray inside `range`.
     bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const;
 
+    // The point at barycentric (u, v) of the triangle in `slot`, interpolated from its vertices,
+    // and a bound on each coordinate's rounding error (pbrt-v4's, grown by the rounding of
+    // 1 - u - v): off the triangle's plane by no more than that.
+    Vec3 surface_point(uint32_t slot, Real u, Real v, Vec3& error) const;
     // Unit face normal (v1 - v0) x (v2 - v0) of the triangle in `slot`; zero if it has no area
     // (a sliver kept to close a T-junction, see io/obj_mesh.cpp).
     Vec3 geometric_normal(uint32_t slot) const;

@@ -80,13 +80,11 @@ struct ShearedTriangle {
 
 // The hit of a triangle that passed the edge and range tests, unless its t might be <= 0
 // within rounding (pbrt-v4's conservative bound on t, from the magnitudes of the sheared
-// vertices and edge functions; gamma(n) = n u / (1 - n u)). Out of line: it runs for hits only,
+// vertices and edge functions). Out of line: it runs for hits only,
 // and inlined into the BVH's loop it slowed every test (measured: docs/speed-vs-error.md).
 [[gnu::noinline]] inline bool finish_triangle_hit(const ShearedTriangle& s, Interval range, TriangleHit& hit) {
     const Real inv_det = 1 / s.det;
     const Real t = s.t_scaled * inv_det;
-    constexpr Real u = std::numeric_limits<Real>::epsilon() / 2;
-    auto gamma = [](int n) { return n * u / (1 - n * u); };
     const Real max_z = std::max({std::abs(s.az), std::abs(s.bz), std::abs(s.cz)});
     const Real max_x = std::max({std::abs(s.ax), std::abs(s.bx), std::abs(s.cx)});
     const Real max_y = std::max({std::abs(s.ay), std::abs(s.by), std::abs(s.cy)});

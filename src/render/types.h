@@ -16,6 +16,13 @@ using Color = glm::dvec3;  // linear RGB, unclamped
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
+// n u / (1 - n u), u the unit roundoff: bounds the relative error of n successive roundings
+// (pbrt-v4's gamma), for the error bounds of hit points and triangle t.
+constexpr Real gamma(int n) {
+    constexpr Real u = std::numeric_limits<Real>::epsilon() / 2;
+    return n * u / (1 - n * u);
+}
+
 struct Ray {
     Vec3 origin;
     Vec3 direction;  // unit length

@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/spawn.h"
+
 namespace tracer {
 
 RayCounts& RayCounts::operator+=(const RayCounts& other) {
@@ -19,11 +21,12 @@ RayCounts& RayCounts::operator+=(const RayCounts& other) {
 // term is exactly zero (a mirror with kd = ks = 0, a back face without specular) adds
 // nothing either way, so it costs no shadow ray.
 static Color direct_light(const World& world, const RenderSettings& settings, const Material& material,
-                          const Vec3& point, const Vec3& normal, const Vec3& to_viewer, RayCounts& counts) {
+                          const SurfaceHit& hit, const Vec3& normal, const Vec3& to_viewer, RayCounts& counts) {
     Color sum(0.0);
     for (const Light& light : world.lights()) {
-        Vec3 to_light = Vec3(light.position) - point;
+        Vec3 to_light = Vec3(light.position) - hit.point;
         const Real distance = glm::length(to_light);
+        if (!(distance > 0)) continue;  // a light exactly at the point lights nothing there
         to_light /= distance;
         const Real n_dot_l = glm::dot(normal, to_light);
         const Vec3 reflected_light = 2 * n_dot_l * normal - to_light;  // R = 2(N.L)N - L
@@ -34,7 +37,8 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         if (term == Color(0.0)) continue;
         if (settings.shadows) {
             ++counts.shadow;
-            if (world.occluded({point, to_light}, {kSelfHitEpsilon, distance}, counts.traversal)) continue;
+            const SpawnedRay shadow = spawn_ray_to(hit, Vec3(light.position));
+            if (world.occluded(shadow.ray, shadow.range, counts.traversal)) continue;
         }
         sum += term;
     }
@@ -49,23 +53,25 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
                                               RayCounts& counts) {
     Color color(0.0);
     Color weight(1.0);
+    Interval range = kPrimaryRange;
     for (int depth = 0;; ++depth) {
         // Step 1: the nearest surface, or the background.
-        const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts.traversal);
+        const auto hit = world.intersect(ray, range, counts.traversal);
         if (!hit) return color + weight * settings.background;
 
         // Step 2: local Phong shading with the normal facing the incoming ray.
         const Material& material = world.materials()[size_t(hit->material)];
         const Vec3 normal = glm::dot(hit->normal, ray.direction) > 0 ? -hit->normal : hit->normal;
         const Vec3 to_viewer = -ray.direction;
-        color += weight * (material.ka + direct_light(world, settings, material, hit->point, normal,
-                                                      to_viewer, counts));
+        color += weight * (material.ka + direct_light(world, settings, material, *hit, normal, to_viewer, counts));
 
         // Step 3: continue along the mirror direction D - 2(D.N)N.
         weight *= material.km;
         if (depth == settings.max_depth || weight == Color(0.0)) return color;
         ++counts.reflection;
-        ray = {hit->point, ray.direction - 2 * glm::dot(ray.direction, normal) * normal};
+        const SpawnedRay reflected = spawn_ray(*hit, ray.direction - 2 * glm::dot(ray.direction, normal) * normal);
+        ray = reflected.ray;
+        range = reflected.range;
     }
 }
 

@@ -11,10 +11,6 @@
 
 namespace tracer {
 
-// Secondary rays ignore hits closer than this (scene units), so they do not re-hit the
-// surface they leave. conventions.md: 1e-4 reproduces Figure 1.
-constexpr Real kSelfHitEpsilon = 1e-4;
-
 struct RayCounts {
     uint64_t primary = 0;
     uint64_t shadow = 0;

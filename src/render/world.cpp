@@ -102,6 +102,7 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
             if (is_new) meshes_.emplace_back(meshes.files[file], Placement(), settings);
             instance.mesh = known->second;
             instance.placed = false;
+            instance.to_world = placement.linear;
             instance.to_object = glm::inverse(placement.linear);
             instance.translate = placement.translate;
             const MeshAccel& shared = meshes_[instance.mesh];

@@ -92,27 +92,60 @@ inline bool World::instance_blocks(uint32_t index, const Ray& ray, Interval rang
     const Object& object = objects_[hit.object];
     SurfaceHit out;
     out.t = hit.t;
-    out.point = ray.at(hit.t);
     out.material = object.material;
     switch (object.kind) {
         case ObjectKind::Sphere: {
+            // The point put back on the sphere (pbrt-v4): its error is then gamma(5) of the
+            // offset from the centre, plus the rounding of adding the centre.
             const SphereShape& s = spheres_[object.index];
-            out.normal = (out.point - s.center) / s.radius;
+            const Vec3 from_centre = ray.at(hit.t) - s.center;
+            const Real length = glm::length(from_centre);
+            const Vec3 on_sphere = length > 0 ? from_centre * (s.radius / length) : from_centre;
+            out.point = s.center + on_sphere;
+            out.error = gamma(6) * (glm::abs(s.center) + glm::abs(on_sphere));
+            out.normal = on_sphere / s.radius;
+            out.geometric_normal = out.normal;
             break;
         }
-        case ObjectKind::Plane:
-            out.normal = planes_[object.index].normal;
+        case ObjectKind::Plane: {
+            // The point projected onto the plane; the bound covers that projection and the
+            // plane test of a ray leaving it.
+            const PlaneShape& p = planes_[object.index];
+            const Vec3 along_ray = ray.at(hit.t);
+            out.point = along_ray - glm::dot(along_ray - p.point, p.normal) * p.normal;
+            out.error = gamma(8) * (glm::abs(out.point) + glm::abs(p.point));
+            out.normal = p.normal;
+            out.geometric_normal = p.normal;
             break;
+        }
         case ObjectKind::MeshInstance: {
             const MeshInstance& instance = instances_[object.index];
             const MeshAccel& mesh = meshes_[instance.mesh];
-            // Normals map by the inverse transpose of the placement: transpose(to_object).
-            out.normal = instance.placed
-                             ? mesh.shading_normal(hit.primitive, hit.u, hit.v)
-                             : mesh.shading_normal(hit.primitive, hit.u, hit.v, glm::transpose(instance.to_object));
-            // A zero-area sliver whose vertex normals cancel: it faces the ray.
-            if (out.normal == Vec3(0)) [[unlikely]]
+            out.point = mesh.surface_point(hit.primitive, hit.u, hit.v, out.error);
+            out.geometric_normal = mesh.geometric_normal(hit.primitive);
+            if (instance.placed) {
+                out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v);
+            } else {
+                // Normals map by the inverse transpose of the placement: transpose(to_object).
+                // The point's error grows by the placing's roundings (pbrt-v4's transform of
+                // a point with an error bound).
+                const glm::dmat3 normal_map = glm::transpose(instance.to_object);
+                out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v, normal_map);
+                out.geometric_normal = normalize_or_zero(normal_map * out.geometric_normal);
+                glm::dmat3 abs_to_world;
+                for (int c = 0; c < 3; ++c) abs_to_world[c] = glm::abs(instance.to_world[c]);
+                out.error = (1 + gamma(3)) * (abs_to_world * out.error) +
+                            gamma(3) * (abs_to_world * glm::abs(out.point) + glm::abs(instance.translate));
+                out.point = instance.to_world * out.point + instance.translate;
+            }
+            // A zero-area sliver: its vertex normals stand for the face's; if they cancel too,
+            // it faces the ray.
+            if (out.geometric_normal == Vec3(0)) [[unlikely]]
+                out.geometric_normal = out.normal;
+            if (out.normal == Vec3(0)) [[unlikely]] {
                 out.normal = -normalize_or_zero(ray.direction);
+                out.geometric_normal = out.normal;
+            }
             break;
         }
     }

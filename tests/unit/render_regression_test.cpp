@@ -124,7 +124,7 @@ TEST_F(Task2, MatchesFigure1OfTheAssignment) {
     const int over_two_levels = pixels_differing(*rendered_, reference, 2);
     RecordProperty("pixels_over_2_levels", over_two_levels);
     std::cout << "[ figure 1 ] pixels differing by more than 2 levels: " << over_two_levels << " of 960000\n";
-    EXPECT_LE(over_two_levels, 480);  // 0.05% of the image
+    EXPECT_LE(over_two_levels, 40);  // 19 since the first wave; hard-cases work may not cost more
 }
 
 TEST(Bunny, MatchesTheCommittedGoldenImage) { expect_matches_golden(render_scene("bunny"), "bunny"); }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "render/spawn.h"
 #include "render/whitted.h"
 
 namespace tracer {
@@ -123,7 +124,7 @@ TEST(Whitted, MayHitNeverRulesOutARayThatHits) {
         const Vec3 target = origin + to_centre * (1 - r * r / (d * d)) + side * (r * std::sqrt(d * d - r * r) / d + nudge);
         const Ray ray{origin, glm::normalize(target - origin)};
         SearchCounts counts;
-        const bool hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts).has_value();
+        const bool hit = world.intersect(ray, kPrimaryRange, counts).has_value();
         const bool may_hit = world.may_hit(ray);
         hits += hit;
         ruled_out += !may_hit;

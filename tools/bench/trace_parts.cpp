@@ -24,6 +24,7 @@
 #include "render/camera.h"
 #include "io/obj_mesh.h"
 #include "render/renderer.h"
+#include "render/spawn.h"
 #include "render/whitted.h"
 #include "render/world.h"
 
@@ -92,19 +93,18 @@ int main(int argc, char** argv) {
     std::vector<std::pair<Ray, Interval>> shadow;  // from every hit to every light
     SearchCounts counts;
     for (const Ray& ray : primary) {
-        const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts);
+        const auto hit = world.intersect(ray, kPrimaryRange, counts);
         if (!hit) continue;
         for (const Light& light : world.lights()) {
-            const Vec3 to_light = Vec3(light.position) - hit->point;
-            const Real distance = glm::length(to_light);
-            shadow.push_back({{hit->point, to_light / distance}, {kSelfHitEpsilon, distance}});
+            const SpawnedRay ray_to_light = spawn_ray_to(*hit, Vec3(light.position));
+            shadow.push_back({ray_to_light.ray, ray_to_light.range});
         }
     }
 
     // Step 2: each part on its own.
     report("TraversalRay   ", fastest_ms([&] {
         float sum = 0;
-        for (const Ray& ray : primary) sum += TraversalRay(ray, {kSelfHitEpsilon, kInfinity}).inv_dir[1];
+        for (const Ray& ray : primary) sum += TraversalRay(ray, kPrimaryRange).inv_dir[1];
         sink = sum;
     }), primary.size());
     TraversalCounts mesh_counts;
@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
         double sum = 0;
         mesh_counts = {};
         for (const Ray& ray : primary) {
-            Interval range{kSelfHitEpsilon, kInfinity};
+            Interval range = kPrimaryRange;
             MeshHit hit;
             if (world.may_hit(ray) && mesh.intersect(ray, range, hit, mesh_counts)) sum += range.max;
         }
@@ -124,13 +124,13 @@ int main(int argc, char** argv) {
     report("world.intersect", fastest_ms([&] {
         double sum = 0;
         for (const Ray& ray : primary)
-            if (const auto hit = world.intersect(ray, {kSelfHitEpsilon, kInfinity}, counts)) sum += hit->t;
+            if (const auto hit = world.intersect(ray, kPrimaryRange, counts)) sum += hit->t;
         sink = sum;
     }), primary.size());
     report("world.nearest  ", fastest_ms([&] {
         double sum = 0;
         for (const Ray& ray : primary)
-            if (const auto hit = world.nearest_hit(ray, {kSelfHitEpsilon, kInfinity}, counts)) sum += hit->t;
+            if (const auto hit = world.nearest_hit(ray, kPrimaryRange, counts)) sum += hit->t;
         sink = sum;
     }), primary.size());
     TraversalCounts shadow_counts;
