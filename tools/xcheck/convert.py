@@ -11,8 +11,8 @@ from xml.sax.saxutils import quoteattr
 
 from . import PHONG_PLUGIN, WHITTED_PLUGIN, ToolError
 
-# Primary and secondary rays count hits with t > EPSILON only (conventions.md; tracer's
-# kSelfHitEpsilon).
+# Primary rays start this far in front of the eye (the camera's near clip). Secondary rays
+# leave surfaces by Mitsuba's spawn_ray / spawn_ray_to, as tracer's by its spawn rule.
 EPSILON = 1e-4
 
 # The Whitted integrator unrolls its levels into one kernel: this many bounces at the most.
@@ -28,11 +28,11 @@ def _numbers(values):
 
 
 def _sub(a, b):
-    return [x - y for x, y in zip(a, b)]
+    return [x - y for x, y in zip(a, b, strict=False)]
 
 
 def _dot(a, b):
-    return sum(x * y for x, y in zip(a, b))
+    return sum(x * y for x, y in zip(a, b, strict=False))
 
 
 def _cross(a, b):
@@ -80,12 +80,14 @@ def plane_mesh_obj(scene, plane):
     tangent = _normalize(_cross(helper, normal))
     bitangent = _cross(normal, tangent)  # (tangent, bitangent, normal) is right-handed
     size, extent = max(abs(height), 1.0), plane_extent(scene, plane)
-    lines = [f"# plane through {plane['point']} with normal {plane['normal']}: half-size {extent:.6g}",
-             f"vn {normal[0]!r} {normal[1]!r} {normal[2]!r}"]
+    lines = [
+        f"# plane through {plane['point']} with normal {plane['normal']}: half-size {extent:.6g}",
+        f"vn {normal[0]!r} {normal[1]!r} {normal[2]!r}",
+    ]
     squares = 0
     while True:
         for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):  # counter-clockwise seen from the normal
-            point = [c + size * (a * t + b * u) for c, t, u in zip(centre, tangent, bitangent)]
+            point = [c + size * (a * t + b * u) for c, t, u in zip(centre, tangent, bitangent, strict=False)]
             lines.append(f"v {point[0]!r} {point[1]!r} {point[2]!r}")
         squares += 1
         if size >= extent:
@@ -136,20 +138,23 @@ def to_mitsuba_xml(scene):
     """The Mitsuba 3 XML text for a scene description (a dict from `tracer --dump-json`)."""
     render, camera = scene["render"], scene["camera"]
     if render["max_depth"] > MAX_DEPTH:
-        raise ToolError(f"max_depth {render['max_depth']}: the Mitsuba integrator unrolls one level per "
-                        f"bounce and takes at most {MAX_DEPTH}")
+        raise ToolError(
+            f"max_depth {render['max_depth']}: the Mitsuba integrator unrolls one level per "
+            f"bounce and takes at most {MAX_DEPTH}"
+        )
     out = _Writer()
     out.line("<?xml version='1.0' encoding='utf-8'?>")
-    out.line(f"<!-- From `tracer --dump-json {scene['source']}` by tools/xcheck. It names the "
-             f"plugins {WHITTED_PLUGIN} and {PHONG_PLUGIN}: render it with tools/crosscheck "
-             "(or xcheck.mitsuba_render), which registers them. -->")
+    out.line(
+        f"<!-- From `tracer --dump-json {scene['source']}` by tools/xcheck. It names the "
+        f"plugins {WHITTED_PLUGIN} and {PHONG_PLUGIN}: render it with tools/crosscheck "
+        "(or xcheck.mitsuba_render), which registers them. -->"
+    )
     out.open("scene", version="3.0.0")
 
     # Step 1: the Whitted integrator with the render settings.
     out.open("integrator", type=WHITTED_PLUGIN)
     out.leaf("integer", name="max_depth", value=render["max_depth"])
     out.leaf("boolean", name="shadows", value="true" if render["shadows"] else "false")
-    out.leaf("float", name="epsilon", value=repr(EPSILON))
     out.leaf("rgb", name="background", value=_numbers(render["background"]))
     out.close("integrator")
 
@@ -205,8 +210,10 @@ def to_mitsuba_xml(scene):
         out.leaf("ref", id=ids[_material_key(sphere["material"])])
         out.close("shape")
     for index, plane in enumerate(scene["planes"]):
-        out.line(f"<!-- plane {index}: a square of half-size {plane_extent(scene, plane):.6g} "
-                 "(xcheck.convert.plane_extent, plane_mesh_obj) -->")
+        out.line(
+            f"<!-- plane {index}: a square of half-size {plane_extent(scene, plane):.6g} "
+            "(xcheck.convert.plane_extent, plane_mesh_obj) -->"
+        )
         out.open("shape", type="obj", id=f"plane{index}")
         out.leaf("string", name="filename", value=f"plane{index}.obj")
         out.leaf("ref", id=ids[_material_key(plane["material"])])

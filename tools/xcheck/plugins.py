@@ -29,9 +29,11 @@ class PhongBSDF(mi.BSDF):
         self.km = _color(props, "km")
         self.n = mi.Float(props.get("n"))
         two_sided = mi.BSDFFlags.FrontSide | mi.BSDFFlags.BackSide
-        self.m_components = [mi.BSDFFlags.DiffuseReflection | two_sided,
-                             mi.BSDFFlags.GlossyReflection | two_sided,
-                             mi.BSDFFlags.DeltaReflection | two_sided]
+        self.m_components = [
+            mi.BSDFFlags.DiffuseReflection | two_sided,
+            mi.BSDFFlags.GlossyReflection | two_sided,
+            mi.BSDFFlags.DeltaReflection | two_sided,
+        ]
         self.m_flags = self.m_components[0] | self.m_components[1] | self.m_components[2]
 
     def eval(self, ctx, si, wo, active=True):
@@ -73,6 +75,35 @@ class PhongBSDF(mi.BSDF):
         return f"PhongBSDF[ka={self.ka}, kd={self.kd}, ks={self.ks}, km={self.km}, n={self.n}]"
 
 
+# tracer's spawn rule (docs/robustness.md) in float32: a ray leaving a surface starts off it
+# along the geometric normal, on the side it leaves, by a bound relative to the point's
+# magnitude; a shadow ray stops SHADOW_EPSILON of the way short of its light. The bound is 64
+# float32 ulps of (1 + max |p|): Mitsuba's own spawn_ray moves by 1500 (RayEpsilon), about 1e-3
+# at task2's scale, and darkens floor pixels next to where a sphere touches it.
+SPAWN_OFFSET = 2.0**-18
+SHADOW_EPSILON = 1e-4
+
+
+def _offset_origin(si, direction):
+    n = mi.Vector3f(si.n)
+    offset = SPAWN_OFFSET * (1.0 + dr.max(dr.abs(si.p)))
+    side = dr.select(dr.dot(n, direction) < 0.0, -1.0, 1.0)
+    return si.p + n * (side * offset)
+
+
+def _spawn_ray(si, direction):
+    return mi.Ray3f(_offset_origin(si, direction), direction)
+
+
+def _spawn_ray_to(si, target):
+    origin = _offset_origin(si, target - si.p)
+    to_target = target - origin
+    distance = dr.norm(to_target)
+    ray = mi.Ray3f(origin, to_target / distance)
+    ray.maxt = distance * (1.0 - SHADOW_EPSILON)
+    return ray
+
+
 class WhittedIntegrator(mi.SamplingIntegrator):
     """Whitted recursion of conventions.md: colour = ka + sum over unblocked point lights of
     light colour * Phong (no fall-off) + km * trace(mirror ray), for levels 0..max_depth;
@@ -82,9 +113,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
         mi.SamplingIntegrator.__init__(self, props)
         self.max_depth = props.get("max_depth", 4)
         self.shadows = props.get("shadows", True)
-        self.epsilon = props.get("epsilon", 1e-4)
-        self.background = _color(props, "background") if "background" in props \
-            else mi.Color3f(0.0)
+        self.background = _color(props, "background") if "background" in props else mi.Color3f(0.0)
 
     def sample(self, scene, sampler, ray, medium=None, active=True):
         ray = mi.Ray3f(ray)
@@ -104,7 +133,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
             # epsilon on the big outer triangles of the plane squares.
             si.p = ray(si.t)
 
-            # Step 2: ambient, then each light that the point sees (shadow ray over (eps, dist)).
+            # Step 2: ambient, then each light that the point sees.
             color += dr.select(active, weight * bsdf.eval_attribute_3("ka", si, active), 0.0)
             for emitter in scene.emitters():
                 ds, spectrum = emitter.sample_direction(si, mi.Point2f(0.0), active)
@@ -112,8 +141,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
                 term = light_color * bsdf.eval(ctx, si, si.to_local(ds.d), active)
                 lit = active & dr.any(term != 0.0)
                 if self.shadows:
-                    shadow = mi.Ray3f(mi.Ray3f(si.p + self.epsilon * ds.d, ds.d), ds.dist - self.epsilon)
-                    lit &= ~scene.ray_test(shadow, lit)
+                    lit &= ~scene.ray_test(_spawn_ray_to(si, ds.p), lit)
                 color += dr.select(lit, weight * term, 0.0)
 
             # Step 3: continue along the mirror direction, weighted by km.
@@ -123,7 +151,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
             weight *= dr.select(active, km, 0.0)
             active &= dr.any(weight != 0.0)
             direction = si.to_world(bs.wo)
-            ray = mi.Ray3f(si.p + self.epsilon * direction, direction)
+            ray = _spawn_ray(si, direction)
         return color, mi.Bool(True), []
 
     def aov_names(self):
