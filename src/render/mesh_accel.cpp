@@ -46,7 +46,7 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
         out.positions.resize(first_position + file.positions.size());
         parallel_for(
             file.positions.size(),
-            [&](size_t i) { out.positions[first_position + i] = placement.point(Vec3(file.positions[i])); }, threads);
+            [&](size_t i) { out.positions[first_position + i] = Vec3(placement.point(file.positions[i])); }, threads);
         // Normals: the file's placed by the inverse transpose, else area-weighted over the
         // placed triangles.
         std::vector<Vec3> normals;
@@ -54,7 +54,7 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
             normals.resize(file.normals.size());
             parallel_for(
                 normals.size(),
-                [&](size_t i) { normals[i] = normalize_or_zero(placement.normal * Vec3(file.normals[i])); }, threads);
+                [&](size_t i) { normals[i] = normalize_or_zero(Vec3(placement.normal * file.normals[i])); }, threads);
         } else {
             normals = area_weighted_normals(std::span(out.positions).subspan(first_position), file.triangles);
         }
@@ -175,7 +175,7 @@ Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v) const {
     return shading != Vec3(0) ? shading : geometric_normal(slot);
 }
 
-Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const glm::dmat3& normal_map) const {
+Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const Mat3& normal_map) const {
     const Vec3(&n)[3] = hit_records_[slot].normals;
     const Vec3 shading =
         normalize_or_zero((1 - u - v) * normalize_or_zero(normal_map * n[0]) +

@@ -61,7 +61,7 @@ public:
     // instance's inverse transpose), each vertex normal is mapped and renormalised first, so that an instance shades as
     // the same mesh built placed would.
     Vec3 shading_normal(uint32_t slot, Real u, Real v) const;
-    Vec3 shading_normal(uint32_t slot, Real u, Real v, const glm::dmat3& normal_map) const;
+    Vec3 shading_normal(uint32_t slot, Real u, Real v, const Mat3& normal_map) const;
     // The triangle in `slot` as its file numbers it (after dropping zero-area ones), and its part's tag.
     uint32_t triangle_of(uint32_t slot) const { return hit_records_[slot].triangle; }
     uint32_t tag_of(uint32_t slot) const { return hit_records_[slot].tag; }

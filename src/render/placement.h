@@ -14,7 +14,7 @@ namespace tracer {
 struct Placement {
     glm::dmat3 linear{1.0};  // scale, then rotation
     glm::dmat3 normal{1.0};  // inverse transpose of `linear`
-    Vec3 translate{0};
+    glm::dvec3 translate{0.0};
 
     Placement() = default;  // the identity: the file's own coordinates
     explicit Placement(const Mesh& mesh) {
@@ -27,8 +27,8 @@ struct Placement {
         translate = mesh.translate;
     }
 
-    // A point of the file, placed in the world.
-    Vec3 point(const Vec3& p) const { return linear * p + translate; }
+    // A point of the file, placed in the world (in double, whatever Real is).
+    glm::dvec3 point(const glm::dvec3& p) const { return linear * p + translate; }
 };
 
 }  // namespace tracer

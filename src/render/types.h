@@ -1,17 +1,23 @@
-// Basic types of the renderer. `Real` is the precision of all ray arithmetic; one alias so a
-// float build can be measured against this double build later.
+// Basic types of the renderer. `Real` is the precision of all ray arithmetic: double, or float
+// in a build made to measure what double buys (docs/speed-vs-error.md).
 #pragma once
 
 #include <cmath>
 #include <limits>
 
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
 
 namespace tracer {
 
+#if defined(TRACER_REAL_FLOAT) && TRACER_REAL_FLOAT
+using Real = float;  // CMake: -DTRACER_REAL=float
+#else
 using Real = double;
+#endif
 using Vec3 = glm::vec<3, Real>;
+using Mat3 = glm::mat<3, 3, Real>;
 using Color = glm::dvec3;  // linear RGB, unclamped
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();

@@ -32,7 +32,8 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         const Vec3 reflected_light = 2 * n_dot_l * normal - to_light;  // R = 2(N.L)N - L
         const Real r_dot_v = std::max(Real(0), glm::dot(reflected_light, to_viewer));
         const Color diffuse = material.kd * double(std::max(Real(0), n_dot_l));
-        const Color specular = material.ks == Color(0.0) ? Color(0.0) : material.ks * std::pow(double(r_dot_v), material.n);
+        const Color specular =
+            material.ks == Color(0.0) ? Color(0.0) : material.ks * std::pow(double(r_dot_v), material.n);
         const Color term = light.color * (diffuse + specular);
         if (term == Color(0.0)) continue;
         if (settings.shadows) {

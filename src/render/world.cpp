@@ -30,16 +30,18 @@ SearchSettings search_settings(const RenderSettings& render, int threads) {
     return settings;
 }
 
-// The box around `box` placed by `linear` and `translate` (its eight corners placed), grown by
-// 10^-12 of its coordinates' magnitude: more than the few double roundings of placing a corner.
-Bounds placed_box(const Bounds& box, const glm::dmat3& linear, const Vec3& translate) {
+// The box around `box` placed by `placement` (its eight corners placed), grown by gamma(16) of
+// its coordinates' magnitude: more than the few roundings of placing a corner and of carrying a
+// ray into the mesh's coordinates.
+Bounds placed_box(const Bounds& box, const Placement& placement) {
     Bounds out;
     for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 p{(corner & 1 ? box.upper : box.lower).x, (corner & 2 ? box.upper : box.lower).y,
-                     (corner & 4 ? box.upper : box.lower).z};
-        out.extend(linear * p + translate);
+        const glm::dvec3 p{(corner & 1 ? box.upper : box.lower).x, (corner & 2 ? box.upper : box.lower).y,
+                           (corner & 4 ? box.upper : box.lower).z};
+        out.extend(Vec3(placement.point(p)));
     }
-    const Vec3 pad = Real(1e-12) * (glm::max(glm::abs(out.lower), glm::abs(out.upper)) + glm::abs(translate));
+    const Vec3 pad =
+        gamma(16) * (glm::max(glm::abs(out.lower), glm::abs(out.upper)) + glm::abs(Vec3(placement.translate)));
     return {out.lower - pad, out.upper + pad};
 }
 
@@ -102,14 +104,14 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
             if (is_new) meshes_.emplace_back(meshes.files[file], Placement(), settings);
             instance.mesh = known->second;
             instance.placed = false;
-            instance.to_world = placement.linear;
-            instance.to_object = glm::inverse(placement.linear);
-            instance.translate = placement.translate;
+            instance.to_world = Mat3(placement.linear);
+            instance.to_object = Mat3(glm::inverse(placement.linear));
+            instance.translate = Vec3(placement.translate);
             const MeshAccel& shared = meshes_[instance.mesh];
             const std::vector<Bounds> cover =
                 shared.brute_force() ? std::vector<Bounds>{shared.bounds()} : shared.bvh().cover(kInstanceBoxLevels);
             Bounds box;
-            for (const Bounds& part : cover) box.extend(placed_box(part, placement.linear, placement.translate));
+            for (const Bounds& part : cover) box.extend(placed_box(part, placement));
             add_bounded(box, object, index);
         }
         instances_.push_back(instance);

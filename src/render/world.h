@@ -33,8 +33,8 @@ struct Hit {
 struct SurfaceHit {
     Real t = 0;
     Vec3 point{0};
-    Vec3 normal{0};    // shading normal, unit length, not yet turned towards the ray
-    int material = 0;  // index into World::materials()
+    Vec3 normal{0};            // shading normal, unit length, not yet turned towards the ray
+    int material = 0;          // index into World::materials()
     Vec3 error{0};             // a bound on each coordinate's rounding error in `point`
     Vec3 geometric_normal{0};  // the surface's own unit normal (for spawning rays off it)
 };
@@ -65,8 +65,8 @@ struct Object {
 struct MeshInstance {
     uint32_t mesh = 0;  // index into World::meshes()
     bool placed = true;
-    glm::dmat3 to_world{1.0};   // the placement's linear part
-    glm::dmat3 to_object{1.0};  // its inverse
+    Mat3 to_world{1};   // the placement's linear part
+    Mat3 to_object{1};  // its inverse
     Vec3 translate{0};
 
     // The ray in the mesh's coordinates (of a mesh not built placed), with the same t along it.

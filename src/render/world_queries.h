@@ -129,10 +129,10 @@ inline bool World::instance_blocks(uint32_t index, const Ray& ray, Interval rang
                 // Normals map by the inverse transpose of the placement: transpose(to_object).
                 // The point's error grows by the placing's roundings (pbrt-v4's transform of
                 // a point with an error bound).
-                const glm::dmat3 normal_map = glm::transpose(instance.to_object);
+                const Mat3 normal_map = glm::transpose(instance.to_object);
                 out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v, normal_map);
                 out.geometric_normal = normalize_or_zero(normal_map * out.geometric_normal);
-                glm::dmat3 abs_to_world;
+                Mat3 abs_to_world;
                 for (int c = 0; c < 3; ++c) abs_to_world[c] = glm::abs(instance.to_world[c]);
                 out.error = (1 + gamma(3)) * (abs_to_world * out.error) +
                             gamma(3) * (abs_to_world * glm::abs(out.point) + glm::abs(instance.translate));

@@ -4,6 +4,7 @@
 // for the differential check, triangle by triangle.
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -63,7 +64,8 @@ TEST(HardCases, A1_BunnyRaysThroughEveryVertexFindTheSurface) {
     ASSERT_EQ(bunny.positions.size(), 1839u);
     ASSERT_EQ(bunny.triangles.size(), 3674u);
     const MeshUnderTest mesh(bunny);
-    report_leaks("a1", shoot_from_inside(mesh, kBunnyInside, bunny.positions, bunny.positions.size()));
+    const std::vector<Vec3> vertices(bunny.positions.begin(), bunny.positions.end());
+    report_leaks("a1", shoot_from_inside(mesh, kBunnyInside, vertices, vertices.size()));
 }
 
 // A1 (a2): towards the midpoint of every edge.
@@ -88,8 +90,8 @@ TEST(HardCases, A1_BunnyRaysThroughRandomEdgePointsFindTheSurface) {
     std::vector<Vec3> targets(1000000);
     for (Vec3& target : targets) {
         const auto [a, b] = edges[edge(random)];
-        const Vec3 &pa = bunny.positions[a], &pb = bunny.positions[b];
-        target = pa + s(random) * (pb - pa);
+        const glm::dvec3 &pa = bunny.positions[a], &pb = bunny.positions[b];
+        target = Vec3(pa + s(random) * (pb - pa));
     }
     const MeshUnderTest mesh(bunny);
     report_leaks("a3", shoot_from_inside(mesh, kBunnyInside, targets, 20000));
@@ -251,14 +253,15 @@ TEST(HardCases, A5_CubeClosedByASliverDoesNotLeak) {
     std::vector<Vec3> targets(100000);
     for (Vec3& target : targets) {
         const auto& [a, b] = segments[segment(random)];
-        target = a + s(random) * (b - a);
+        target = a + Real(s(random)) * (b - a);
     }
     const LeakCount count = shoot_from_inside(mesh, Vec3(0.5), targets, 2000);
     report_leaks("a5_cube", count);
     // Vertex normals stay finite though one face has no area.
-    for (const Vec3& n : area_weighted_normals(cube.positions, cube.triangles)) {
+    const std::vector<Vec3> corners(cube.positions.begin(), cube.positions.end());
+    for (const Vec3& n : area_weighted_normals(corners, cube.triangles)) {
         EXPECT_TRUE(std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z));
-        EXPECT_NEAR(glm::length(n), 1, 1e-12);
+        EXPECT_NEAR(glm::length(n), 1, 16 * std::numeric_limits<Real>::epsilon());
     }
 }
 
@@ -335,7 +338,7 @@ TEST(HardCases, A5_DegenerateNeedleAndTinyTriangles) {
         for (const Vec3& v : {tri.v0, tri.v1, tri.v2}) box.extend(v);
         const Vec3 lo = box.lower, hi = box.upper;
         const Real grow = 0.1 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-        const Vec3 centre = 0.5 * (lo + hi);
+        const Vec3 centre = Real(0.5) * (lo + hi);
         std::mt19937 random(3);
         std::uniform_real_distribution<double> unit(0, 1);
         std::normal_distribution<double> gauss;
@@ -365,7 +368,11 @@ TEST(HardCases, A5_DegenerateNeedleAndTinyTriangles) {
             EXPECT_EQ(hits, 0) << name;
         } else {
             EXPECT_EQ(mismatches, 0) << name;
-            EXPECT_GT(hits, 10) << name;  // the rays do find the triangle
+            // The rays do find the triangle (unless, in a float build, the tiny one lies wholly
+            // inside the 4-ulp band around its edges, where no answer is wrong).
+            if (near_edge < 90000) {
+                EXPECT_GT(hits, 10) << name;
+            }
         }
     }
 }

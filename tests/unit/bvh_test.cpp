@@ -49,7 +49,8 @@ TriangleMesh triangle_soup(int count, uint32_t seed) {
         const double size = 0.002 + 0.2 * unit(random) * unit(random);
         const uint32_t first = uint32_t(soup.positions.size());
         for (int k = 0; k < 3; ++k)
-            soup.positions.push_back(centre + size * Vec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
+            soup.positions.push_back(glm::dvec3(centre) +
+                                     size * glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
         soup.triangles.push_back({first, first + 1, first + 2});
     }
     return soup;
@@ -74,7 +75,7 @@ void compare_with_brute_force(const TriangleMesh& mesh, uint32_t seed, Agreement
     std::normal_distribution<double> gauss;
     for (int i = 0; i < 100000 && !::testing::Test::HasFailure(); ++i) {
         const Vec3 on_sphere = glm::normalize(Vec3(gauss(random), gauss(random), gauss(random)));
-        const Vec3 origin = centre + radius * on_sphere;
+        const Vec3 origin = centre + Real(radius) * on_sphere;
         const Vec3 target = box.lower + Vec3(unit(random), unit(random), unit(random)) * (box.upper - box.lower);
         const Ray ray{origin, glm::normalize(target - origin)};
         TraversalCounts counts;
@@ -196,20 +197,21 @@ TEST(Bvh, SpherePreTestKeepsRaysThatGrazeTheMeshCorners) {
         for (double offset : {0.0, 1e4}) {
             TriangleMesh square;
             for (Vec3 corner : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)})
-                square.positions.push_back(offset + scale * corner);
+                square.positions.push_back(glm::dvec3(offset) + scale * glm::dvec3(corner));
             square.triangles = {{0, 1, 2}, {0, 2, 3}};
             const MeshAccel brute = accel(square, std::nullopt, 1);
             SceneDescription scene;
             scene.meshes.resize(1);
             const World world(scene, SceneMeshes{{square}, {0}});
             for (int corner = 0; corner < 4; ++corner) {
-                const Vec3 inward = glm::normalize(Vec3(0.5, 0.5, 0) * scale + offset - square.positions[corner]);
-                const Vec3 target = Vec3(square.positions[corner]) + inward * (1e-7 * scale);
+                const Vec3 inward = glm::normalize(
+                    Vec3(glm::dvec3(0.5, 0.5, 0) * scale + glm::dvec3(offset) - square.positions[corner]));
+                const Vec3 target = Vec3(square.positions[corner]) + inward * Real(1e-7 * scale);
                 for (double distance : {10.0, 1e6})
                     for (int i = 0; i < 50; ++i) {
                         Vec3 from = glm::normalize(Vec3(gauss(random), gauss(random), gauss(random)));
                         from.z = std::abs(from.z) + 0.05;  // not in the plane of the square
-                        const Ray ray{target + distance * scale * glm::normalize(from), -glm::normalize(from)};
+                        const Ray ray{target + Real(distance * scale) * glm::normalize(from), -glm::normalize(from)};
                         TraversalCounts counts;
                         SearchCounts world_counts;
                         Interval brute_range;
@@ -292,7 +294,7 @@ TEST(Bvh, ParallelBuildsMakeTheSingleThreadedTree) {
     for (Bounds& box : boxes) {
         const Vec3 corner(unit(random), unit(random), unit(random));
         box.extend(corner);
-        box.extend(corner + 0.01 * Vec3(unit(random), unit(random), unit(random)));
+        box.extend(corner + Real(0.01) * Vec3(unit(random), unit(random), unit(random)));
     }
     for (BvhBuild method : {BvhBuild::Median, BvhBuild::Sah}) {
         const char* name = build_name(method);

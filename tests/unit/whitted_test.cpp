@@ -27,8 +27,8 @@ Material phong(dvec3 ka, dvec3 kd, dvec3 ks, double n, dvec3 km = dvec3(0)) {
 const Ray kDown{{0, 0, 5}, {0, 0, -1}};  // hits the unit sphere at (0, 0, 1), normal +z
 
 TEST(Whitted, PhongTermsAddUpWithLightColourOnDiffuseAndSpecularOnly) {
-    SceneDescription scene = one_sphere(phong(dvec3(0.1), dvec3(0.2, 0.4, 0.6), dvec3(0.5), 10),
-                                        {{0, 0, 10}, {0.5, 1.0, 0.25}});
+    SceneDescription scene =
+        one_sphere(phong(dvec3(0.1), dvec3(0.2, 0.4, 0.6), dvec3(0.5), 10), {{0, 0, 10}, {0.5, 1.0, 0.25}});
     World world(scene);
     RayCounts counts;
     Color c = trace(world, scene.render, kDown, counts);
@@ -115,13 +115,14 @@ TEST(Whitted, MayHitNeverRulesOutARayThatHits) {
     for (int i = 0; i < 100000; ++i) {
         const double a = angle(random), b = angle(random), distance = far(random);
         const Vec3 origin = Vec3(scene.spheres[0].center) +
-                            distance * Vec3(std::cos(a) * std::sin(b), std::sin(a) * std::sin(b), std::cos(b));
+                            Real(distance) * Vec3(std::cos(a) * std::sin(b), std::sin(a) * std::sin(b), std::cos(b));
         // A point on the silhouette seen from the origin, nudged in or out by 1e-12 to 1e-4.
         const Vec3 to_centre = Vec3(scene.spheres[0].center) - origin;
         const Vec3 side = glm::normalize(glm::cross(to_centre, Vec3(0.3, 1, 0.2)));
         const double r = scene.spheres[0].radius, d = glm::length(to_centre);
         const double nudge = (i % 2 ? 1 : -1) * std::pow(10.0, exponent(random));
-        const Vec3 target = origin + to_centre * (1 - r * r / (d * d)) + side * (r * std::sqrt(d * d - r * r) / d + nudge);
+        const Vec3 target =
+            origin + to_centre * Real(1 - r * r / (d * d)) + side * Real(r * std::sqrt(d * d - r * r) / d + nudge);
         const Ray ray{origin, glm::normalize(target - origin)};
         SearchCounts counts;
         const bool hit = world.intersect(ray, kPrimaryRange, counts).has_value();

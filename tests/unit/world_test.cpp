@@ -142,7 +142,7 @@ std::vector<Ray> random_rays(int count, uint32_t seed) {
         if (i % 2) {
             rays.push_back({inside, direction});
         } else {
-            const Vec3 origin = 20.0 * direction;
+            const Vec3 origin = Real(20) * direction;
             rays.push_back({origin, glm::normalize(inside - origin)});
         }
     }

@@ -22,8 +22,9 @@ inline PixelRect auto_crop(const SceneDescription& scene, const SceneMeshes& mes
         const Placement placement(scene.meshes[block]);
         for (const auto& p : meshes.files[meshes.file_of_block[block]].positions) {
             Real x, y;
-            if (!camera.project(placement.point(Vec3(p)), x, y)) continue;
-            x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+            if (!camera.project(Vec3(placement.point(p)), x, y)) continue;
+            x0 = std::min(x0, double(x)), y0 = std::min(y0, double(y));
+            x1 = std::max(x1, double(x)), y1 = std::max(y1, double(y));
         }
     }
     PixelRect crop;
