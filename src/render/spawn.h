@@ -1,7 +1,7 @@
 // Where secondary rays start and which t they search (docs/robustness.md).
 // Robust rule (pbrt-v4's): a ray leaving a surface starts at the hit point moved along the
 // surface's geometric normal, to the side the ray leaves on, by the bound on the point's
-// rounding error, each coordinate then rounded one ulp further; it searches t in (0, inf), and a
+// rounding error (grown by the rounding of that move); it searches t in (0, inf), and a
 // shadow ray stops (1 - kShadowEpsilon) of the way to its light. Every length involved is
 // relative to the scene's own coordinates, so a scene renders alike in millimetres or in
 // kilometres. Naive rule (TRACER_ROBUST=OFF, the first wave's): start at the hit point, ignore
@@ -33,37 +33,56 @@ struct SpawnedRay {
     Interval range;
 };
 
-// The hit point moved off the surface to the side `w` points to (robust rule).
-inline Vec3 offset_origin(const SurfaceHit& hit, const Vec3& w) {
-    const Vec3& n = hit.geometric_normal;
-    const Real distance = glm::dot(glm::abs(n), hit.error);
-    Vec3 offset = distance * n;
-    if (glm::dot(w, n) < 0) offset = -offset;
-    Vec3 origin = hit.point + offset;
-    for (int k = 0; k < 3; ++k) {
-        if (offset[k] > 0) origin[k] = std::nextafter(origin[k], kInfinity);
-        if (offset[k] < 0) origin[k] = std::nextafter(origin[k], -kInfinity);
+// Rays leaving one surface hit. The robust rule's two origins (off the surface on either side)
+// are worked out once, however many rays leave: one per light and the reflection.
+class SpawnPoint {
+public:
+    explicit SpawnPoint(const SurfaceHit& hit) : point_(hit.point), normal_(hit.geometric_normal) {
+        if constexpr (kRobust) {
+            // The error bound along the normal, grown by what rounding p +- offset can take
+            // back (half an ulp of each coordinate), so that no next-float step is needed.
+            const Vec3 abs_n = glm::abs(normal_);
+            const Real distance =
+                (1 + gamma(2)) * glm::dot(abs_n, hit.error) + gamma(2) * glm::dot(abs_n, glm::abs(hit.point));
+            above_ = hit.point + distance * normal_;
+            below_ = hit.point - distance * normal_;
+        }
     }
-    return origin;
-}
+
+    // The origin of a ray leaving along `w` (robust rule: on w's side of the surface).
+    Vec3 origin(const Vec3& w) const {
+        if constexpr (kRobust) return glm::dot(w, normal_) < 0 ? below_ : above_;
+        return point_;
+    }
+
+    // A ray leaving along the unit `direction`.
+    SpawnedRay ray(const Vec3& direction) const {
+        return {{origin(direction), direction}, {kRobust ? 0 : kSelfHitEpsilon, kInfinity}};
+    }
+
+    // A ray to a light `distance` away from the hit point along the unit `direction`, stopping
+    // short of it. (Robust rule: the origin moves by the offset, some 10^-15 of the point's
+    // coordinates, while the end stops kShadowEpsilon of the distance short: it stays short.)
+    SpawnedRay ray_to(const Vec3& direction, Real distance) const {
+        if constexpr (kRobust) return {{origin(direction), direction}, {0, distance * (1 - kShadowEpsilon)}};
+        return {{point_, direction}, {kSelfHitEpsilon, distance}};
+    }
+
+private:
+    Vec3 point_, normal_;
+    Vec3 above_{0}, below_{0};
+};
 
 // A ray leaving the surface at `hit` along the unit `direction`.
 inline SpawnedRay spawn_ray(const SurfaceHit& hit, const Vec3& direction) {
-    if constexpr (kRobust)
-        return {{offset_origin(hit, direction), direction}, {0, kInfinity}};
-    else
-        return {{hit.point, direction}, {kSelfHitEpsilon, kInfinity}};
+    return SpawnPoint(hit).ray(direction);
 }
 
-// A ray from the surface at `hit` towards `target` (a light), ending just before it.
+// A ray from the surface at `hit` towards `target`, stopping short of it.
 inline SpawnedRay spawn_ray_to(const SurfaceHit& hit, const Vec3& target) {
-    const Vec3 origin = kRobust ? offset_origin(hit, target - hit.point) : hit.point;
-    const Vec3 to_target = target - origin;
+    const Vec3 to_target = target - hit.point;
     const Real distance = glm::length(to_target);
-    if constexpr (kRobust)
-        return {{origin, to_target / distance}, {0, distance * (1 - kShadowEpsilon)}};
-    else
-        return {{origin, to_target / distance}, {kSelfHitEpsilon, distance}};
+    return SpawnPoint(hit).ray_to(to_target / distance, distance);
 }
 
 }  // namespace tracer

@@ -21,7 +21,8 @@ RayCounts& RayCounts::operator+=(const RayCounts& other) {
 // term is exactly zero (a mirror with kd = ks = 0, a back face without specular) adds
 // nothing either way, so it costs no shadow ray.
 static Color direct_light(const World& world, const RenderSettings& settings, const Material& material,
-                          const SurfaceHit& hit, const Vec3& normal, const Vec3& to_viewer, RayCounts& counts) {
+                          const SurfaceHit& hit, const SpawnPoint& spawn, const Vec3& normal, const Vec3& to_viewer,
+                          RayCounts& counts) {
     Color sum(0.0);
     for (const Light& light : world.lights()) {
         Vec3 to_light = Vec3(light.position) - hit.point;
@@ -38,7 +39,7 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         if (term == Color(0.0)) continue;
         if (settings.shadows) {
             ++counts.shadow;
-            const SpawnedRay shadow = spawn_ray_to(hit, Vec3(light.position));
+            const SpawnedRay shadow = spawn.ray_to(to_light, distance);
             if (world.occluded(shadow.ray, shadow.range, counts.traversal)) continue;
         }
         sum += term;
@@ -64,13 +65,15 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         const Material& material = world.materials()[size_t(hit->material)];
         const Vec3 normal = glm::dot(hit->normal, ray.direction) > 0 ? -hit->normal : hit->normal;
         const Vec3 to_viewer = -ray.direction;
-        color += weight * (material.ka + direct_light(world, settings, material, *hit, normal, to_viewer, counts));
+        const SpawnPoint spawn(*hit);
+        color +=
+            weight * (material.ka + direct_light(world, settings, material, *hit, spawn, normal, to_viewer, counts));
 
         // Step 3: continue along the mirror direction D - 2(D.N)N.
         weight *= material.km;
         if (depth == settings.max_depth || weight == Color(0.0)) return color;
         ++counts.reflection;
-        const SpawnedRay reflected = spawn_ray(*hit, ray.direction - 2 * glm::dot(ray.direction, normal) * normal);
+        const SpawnedRay reflected = spawn.ray(ray.direction - 2 * glm::dot(ray.direction, normal) * normal);
         ray = reflected.ray;
         range = reflected.range;
     }

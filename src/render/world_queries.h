@@ -4,6 +4,7 @@
 #pragma once
 
 #include "render/geometry.h"
+#include "render/triangle.h"
 #include "render/world.h"
 
 namespace tracer {
@@ -93,27 +94,35 @@ inline bool World::instance_blocks(uint32_t index, const Ray& ray, Interval rang
     SurfaceHit out;
     out.t = hit.t;
     out.material = object.material;
+    // The naive rule (TRACER_ROBUST=OFF) takes the point along the ray and needs no error bound.
+    if constexpr (!kRobust) out.point = ray.at(hit.t);
     switch (object.kind) {
         case ObjectKind::Sphere: {
-            // The point put back on the sphere (pbrt-v4): its error is then gamma(5) of the
-            // offset from the centre, plus the rounding of adding the centre.
             const SphereShape& s = spheres_[object.index];
-            const Vec3 from_centre = ray.at(hit.t) - s.center;
-            const Real length = glm::length(from_centre);
-            const Vec3 on_sphere = length > 0 ? from_centre * (s.radius / length) : from_centre;
-            out.point = s.center + on_sphere;
-            out.error = gamma(6) * (glm::abs(s.center) + glm::abs(on_sphere));
-            out.normal = on_sphere / s.radius;
+            if constexpr (kRobust) {
+                // The point put back on the sphere (pbrt-v4): its error is then gamma(5) of the
+                // offset from the centre, plus the rounding of adding the centre.
+                const Vec3 from_centre = ray.at(hit.t) - s.center;
+                const Real length = glm::length(from_centre);
+                out.normal = length > 0 ? from_centre * (1 / length) : Vec3(0, 0, 1);
+                const Vec3 on_sphere = out.normal * s.radius;
+                out.point = s.center + on_sphere;
+                out.error = gamma(6) * (glm::abs(s.center) + glm::abs(on_sphere));
+            } else {
+                out.normal = (out.point - s.center) / s.radius;
+            }
             out.geometric_normal = out.normal;
             break;
         }
         case ObjectKind::Plane: {
-            // The point projected onto the plane; the bound covers that projection and the
-            // plane test of a ray leaving it.
             const PlaneShape& p = planes_[object.index];
-            const Vec3 along_ray = ray.at(hit.t);
-            out.point = along_ray - glm::dot(along_ray - p.point, p.normal) * p.normal;
-            out.error = gamma(8) * (glm::abs(out.point) + glm::abs(p.point));
+            if constexpr (kRobust) {
+                // The point projected onto the plane; the bound covers that projection and the
+                // plane test of a ray leaving it.
+                const Vec3 along_ray = ray.at(hit.t);
+                out.point = along_ray - glm::dot(along_ray - p.point, p.normal) * p.normal;
+                out.error = gamma(8) * (glm::abs(out.point) + glm::abs(p.point));
+            }
             out.normal = p.normal;
             out.geometric_normal = p.normal;
             break;
@@ -121,22 +130,24 @@ inline bool World::instance_blocks(uint32_t index, const Ray& ray, Interval rang
         case ObjectKind::MeshInstance: {
             const MeshInstance& instance = instances_[object.index];
             const MeshAccel& mesh = meshes_[instance.mesh];
-            out.point = mesh.surface_point(hit.primitive, hit.u, hit.v, out.error);
+            if constexpr (kRobust) out.point = mesh.surface_point(hit.primitive, hit.u, hit.v, out.error);
             out.geometric_normal = mesh.geometric_normal(hit.primitive);
             if (instance.placed) {
                 out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v);
             } else {
                 // Normals map by the inverse transpose of the placement: transpose(to_object).
-                // The point's error grows by the placing's roundings (pbrt-v4's transform of
-                // a point with an error bound).
                 const Mat3 normal_map = glm::transpose(instance.to_object);
                 out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v, normal_map);
                 out.geometric_normal = normalize_or_zero(normal_map * out.geometric_normal);
-                Mat3 abs_to_world;
-                for (int c = 0; c < 3; ++c) abs_to_world[c] = glm::abs(instance.to_world[c]);
-                out.error = (1 + gamma(3)) * (abs_to_world * out.error) +
-                            gamma(3) * (abs_to_world * glm::abs(out.point) + glm::abs(instance.translate));
-                out.point = instance.to_world * out.point + instance.translate;
+                if constexpr (kRobust) {
+                    // The point placed, its error grown by the placing's roundings (pbrt-v4's
+                    // transform of a point with an error bound).
+                    Mat3 abs_to_world;
+                    for (int c = 0; c < 3; ++c) abs_to_world[c] = glm::abs(instance.to_world[c]);
+                    out.error = (1 + gamma(3)) * (abs_to_world * out.error) +
+                                gamma(3) * (abs_to_world * glm::abs(out.point) + glm::abs(instance.translate));
+                    out.point = instance.to_world * out.point + instance.translate;
+                }
             }
             // A zero-area sliver: its vertex normals stand for the face's; if they cancel too,
             // it faces the ray.
