@@ -107,7 +107,7 @@ const BlockSpec kSphere{
     "A sphere.",
     {
         key("center", ValueType::Vector, "", "Centre."),
-        ranged(key("radius", ValueType::Number, "", "Radius."), 0, kInf, true),
+        ranged(key("radius", ValueType::Number, "", "Radius."), kSmallestSize, kInf),
         key("material", ValueType::MaterialRef, "", "A material name or an inline material block."),
     },
     "sphere {\n  center (1, -0.5, 3)\n  radius 0.5\n  material { ka 0.1 kd (0, 0, 1) ks 1 n 10 }\n}\n",
@@ -141,7 +141,7 @@ const BlockSpec kMesh{
         key("file", ValueType::Path, "",
             "The OBJ file, relative to the scene file's folder. Blocks naming the same file share "
             "it: it is read and its BVH built once."),
-        ranged(key("scale", ValueType::Triple, "1", "Scale factor, uniform or per axis."), 0, kInf, true),
+        ranged(key("scale", ValueType::Triple, "1", "Scale factor, uniform or per axis."), kSmallestSize, kInf),
         nested(key("rotate", ValueType::Block, "{ axis (0, 1, 0) angle 0 }",
                    "Rotation, applied after scaling: `rotate { axis (x, y, z) angle degrees }`."),
                &kRotate),

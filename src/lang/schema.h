@@ -24,17 +24,23 @@ enum class ValueType {
 
 struct BlockSpec;
 
+// Every number in a scene lies within +-kLargestMagnitude, and every size (radius, scale) is at
+// least kSmallestSize: the renderer squares lengths and, in the watertight triangle test's
+// error bound, cubes them, in double; beyond these, results overflow or underflow.
+constexpr double kLargestMagnitude = 1e100;
+constexpr double kSmallestSize = 1e-100;
+
 struct KeySpec {
     std::string_view name;
     ValueType type;
-    std::string_view default_value;  // written in scene syntax; empty means required
+    std::string_view default_value;                         // written in scene syntax; empty means required
     double min = -std::numeric_limits<double>::infinity();  // applies to every component
     double max = std::numeric_limits<double>::infinity();
     bool min_open = false;  // true: the minimum itself is not allowed
     bool max_open = false;
-    bool nonzero = false;   // vectors: must not have zero length
+    bool nonzero = false;  // vectors: must not have zero length
     std::string_view meaning;
-    const BlockSpec* block = nullptr;  // ValueType::Block: the nested block's table
+    const BlockSpec* block = nullptr;       // ValueType::Block: the nested block's table
     std::vector<std::string_view> choices;  // ValueType::Choice: the allowed names
 
     bool required() const { return default_value.empty(); }
@@ -44,8 +50,8 @@ enum class Occurs { ExactlyOnce, AtMostOnce, Any };
 
 struct BlockSpec {
     std::string_view kind;
-    bool named;     // `material shiny { ... }`: the block must have a name
-    bool top_level; // false for blocks that only appear nested (rotate)
+    bool named;      // `material shiny { ... }`: the block must have a name
+    bool top_level;  // false for blocks that only appear nested (rotate)
     Occurs occurs;
     std::string_view summary;
     std::vector<KeySpec> keys;

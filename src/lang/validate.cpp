@@ -22,13 +22,17 @@ namespace fs = std::filesystem;
 
 std::string describe_found(const Value& value) {
     switch (value.kind) {
-        case Value::Kind::Number: return "the number " + format_number(value.number);
+        case Value::Kind::Number:
+            return "the number " + format_number(value.number);
         case Value::Kind::Vector:
             return "a vector with " + std::to_string(value.components.size()) + " component" +
                    (value.components.size() == 1 ? "" : "s");
-        case Value::Kind::String: return "a string";
-        case Value::Kind::Identifier: return "'" + value.text + "'";
-        case Value::Kind::Block: return "a block { ... }";
+        case Value::Kind::String:
+            return "a string";
+        case Value::Kind::Identifier:
+            return "'" + value.text + "'";
+        case Value::Kind::Block:
+            return "a block { ... }";
     }
     return "a value";
 }
@@ -66,17 +70,11 @@ class Fields {
 public:
     explicit Fields(const BlockSpec& spec) : spec_(&spec) {}
 
-    void set(const KeySpec& key, const Value& value, Span key_span) {
-        given_[key.name] = {&value, key_span};
-    }
-    void set_child(const KeySpec& key, std::unique_ptr<Fields> child) {
-        children_[key.name] = std::move(child);
-    }
+    void set(const KeySpec& key, const Value& value, Span key_span) { given_[key.name] = {&value, key_span}; }
+    void set_child(const KeySpec& key, std::unique_ptr<Fields> child) { children_[key.name] = std::move(child); }
     bool has(std::string_view name) const { return given_.count(name) > 0; }
     Span key_span(std::string_view name) const { return given_.at(name).key_span; }
-    Span value_span(std::string_view name) const {
-        return has(name) ? given_.at(name).value->span : Span{};
-    }
+    Span value_span(std::string_view name) const { return has(name) ? given_.at(name).value->span : Span{}; }
 
     const Value& get(std::string_view name) const {
         auto found = given_.find(name);
@@ -208,8 +206,7 @@ bool Validator::check_block_header(const Block& block, const BlockSpec& spec) {
     }
     auto [first, inserted] = first_of_kind_.emplace(spec.kind, &block);
     if (!inserted && spec.occurs != Occurs::Any) {
-        Diagnostic* d = diagnostics_.error(file_, block.kind_span,
-                                           "a scene has only one " + block.kind + " block");
+        Diagnostic* d = diagnostics_.error(file_, block.kind_span, "a scene has only one " + block.kind + " block");
         Diagnostics::note(d, file_, first->second->kind_span, "the first " + block.kind + " block is here");
         return false;
     }
@@ -226,9 +223,9 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
             std::vector<std::string_view> names;
             for (const KeySpec& k : spec.keys) names.push_back(k.name);
             suggested.push_back(closest_match(entry.key, names));
-            diagnostics_.error(file_, entry.key_span,
-                               "unknown key '" + entry.key + "' in " + std::string(spec.kind) +
-                                   did_you_mean(entry.key, names));
+            diagnostics_.error(
+                file_, entry.key_span,
+                "unknown key '" + entry.key + "' in " + std::string(spec.kind) + did_you_mean(entry.key, names));
             ok = false;
             continue;
         }
@@ -245,8 +242,8 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
         bool misspelled = std::find(suggested.begin(), suggested.end(), key.name) != suggested.end();
         if (key.required() && !fields.has(key.name) && !misspelled) {
             diagnostics_.error(file_, owner,
-                               std::string(spec.kind) + " is missing the required key '" +
-                                   std::string(key.name) + "' (" + std::string(describe(key.type)) + ")");
+                               std::string(spec.kind) + " is missing the required key '" + std::string(key.name) +
+                                   "' (" + std::string(describe(key.type)) + ")");
             ok = false;
         }
         // Nested blocks left out still get their defaults as checked fields.
@@ -259,8 +256,8 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
 }
 
 bool Validator::type_error(const Value& value, const KeySpec& key, const std::string& extra) {
-    std::string message = "'" + std::string(key.name) + "' expects " + std::string(describe(key.type)) +
-                          ", found " + describe_found(value);
+    std::string message = "'" + std::string(key.name) + "' expects " + std::string(describe(key.type)) + ", found " +
+                          describe_found(value);
     if (names_nan_or_infinity(value)) message += " (NaN and infinity are not allowed)";
     diagnostics_.error(file_, value.span, message + extra);
     return false;
@@ -271,8 +268,7 @@ bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fiel
     auto check_vector = [&] {
         if (value.components.size() != 3) return type_error(value, key);
         bool ok = true;
-        for (size_t i = 0; i < 3; ++i)
-            ok = check_number(value.components[i], value.component_spans[i], key) && ok;
+        for (size_t i = 0; i < 3; ++i) ok = check_number(value.components[i], value.component_spans[i], key) && ok;
         dvec3 v{value.components[0], value.components[1], value.components[2]};
         if (ok && key.nonzero && normalized(v) == dvec3(0.0)) {
             diagnostics_.error(file_, value.span, "'" + std::string(key.name) + "' must not be the zero vector");
@@ -284,8 +280,7 @@ bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fiel
         case ValueType::Number:
             return value.kind == Kind::Number ? check_number(value.number, value.span, key) : type_error(value, key);
         case ValueType::Integer:
-            if (value.kind != Kind::Number || std::floor(value.number) != value.number)
-                return type_error(value, key);
+            if (value.kind != Kind::Number || std::floor(value.number) != value.number) return type_error(value, key);
             return check_number(value.number, value.span, key);
         case ValueType::Boolean:
             if (value.kind == Kind::Identifier && (value.text == "true" || value.text == "false")) return true;
@@ -319,8 +314,9 @@ bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fiel
             std::string allowed;
             for (std::string_view choice : key.choices) allowed += (allowed.empty() ? "" : ", ") + std::string(choice);
             std::string hint = value.kind == Kind::Identifier ? did_you_mean(value.text, key.choices) : "";
-            diagnostics_.error(file_, value.span, "'" + std::string(key.name) + "' must be one of " + allowed +
-                                                      ", found " + describe_found(value) + hint);
+            diagnostics_.error(file_, value.span,
+                               "'" + std::string(key.name) + "' must be one of " + allowed + ", found " +
+                                   describe_found(value) + hint);
             return false;
         }
         case ValueType::Block: {
@@ -335,19 +331,29 @@ bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fiel
 }
 
 bool Validator::check_number(double number, Span span, const KeySpec& key) {
+    if (std::abs(number) > kLargestMagnitude) {
+        diagnostics_.error(file_, span,
+                           "'" + std::string(key.name) + "' must lie between -1e100 and 1e100 (the renderer squares " +
+                               "and cubes lengths in double, which overflows beyond that), found " +
+                               format_number(number));
+        return false;
+    }
     bool below = key.min_open ? number <= key.min : number < key.min;
     bool above = key.max_open ? number >= key.max : number > key.max;
     if (!below && !above) return true;
     std::string name = "'" + std::string(key.name) + "'";
     std::string rule;
     if (std::isinf(key.max))
-        rule = key.min == 0 && !key.min_open ? "must not be negative"
-                                             : std::string("must be ") + (key.min_open ? "greater than " : "at least ") +
-                                                   format_number(key.min);
+        rule = key.min == 0 && !key.min_open
+                   ? "must not be negative"
+                   : std::string("must be ") + (key.min_open ? "greater than " : "at least ") + format_number(key.min);
     else if (key.min_open || key.max_open)
         rule = "must be greater than " + format_number(key.min) + " and less than " + format_number(key.max);
     else
         rule = "must be between " + format_number(key.min) + " and " + format_number(key.max);
+    if (key.min == kSmallestSize)  // a size: not positive, or too small to square
+        rule = number <= 0 ? "must be greater than 0"
+                           : "must be at least 1e-100 (smaller sizes underflow to zero when squared)";
     diagnostics_.error(file_, span, name + " " + rule + ", found " + format_number(number));
     return false;
 }
@@ -412,8 +418,7 @@ void Validator::build(const Block& block, const Fields& fields) {
     } else if (kind == "sphere") {
         scene_.spheres.push_back({fields.triple("center"), fields.number("radius"), material_index(fields)});
     } else if (kind == "plane") {
-        scene_.planes.push_back(
-            {fields.triple("point"), normalized(fields.triple("normal")), material_index(fields)});
+        scene_.planes.push_back({fields.triple("point"), normalized(fields.triple("normal")), material_index(fields)});
     }
 }
 
@@ -479,8 +484,7 @@ void Validator::build_mesh(const Fields& fields) {
     else if (!std::ifstream(path).good())
         problem = "it cannot be opened for reading";
     if (!problem.empty())
-        diagnostics_.error(file_, fields.value_span("file"),
-                           "cannot read mesh file '" + mesh.path + "': " + problem);
+        diagnostics_.error(file_, fields.value_span("file"), "cannot read mesh file '" + mesh.path + "': " + problem);
 
     mesh.scale = fields.triple("scale");
     const Fields& rotate = *fields.child("rotate");
@@ -493,8 +497,8 @@ void Validator::build_mesh(const Fields& fields) {
 
 }  // namespace
 
-std::optional<SceneDescription> validate_scene(const SceneAst& ast, const SourceFile& file,
-                                               Diagnostics& diagnostics, const ValidateOptions& options) {
+std::optional<SceneDescription> validate_scene(const SceneAst& ast, const SourceFile& file, Diagnostics& diagnostics,
+                                               const ValidateOptions& options) {
     return Validator(file, diagnostics, options).run(ast);
 }
 

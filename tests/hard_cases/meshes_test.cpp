@@ -272,7 +272,7 @@ TEST(HardCases, A5_ObjReaderKeepsTheSliverThatClosesTheCube) {
     const std::filesystem::path path = std::filesystem::temp_directory_path() / "tracer_a5_cube.obj";
     {
         std::ofstream obj(path);
-        for (const Vec3& p : cube.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+        for (const glm::dvec3& p : cube.positions) obj << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
         obj << "v 2 1 0\nv 3 2 0\nv 4 3 0\n";  // a collinear triangle on its own
         for (const auto& t : cube.triangles) obj << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
         obj << "f 10 11 12\n";
