@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -47,6 +48,10 @@ public:
                     if (!parsed || !std::isfinite(value))
                         error(tokens[i].span,
                               "coordinate '" + std::string(tokens[i].text) + "' is not a finite number");
+                    else if (std::abs(value) > kLargestMagnitude)
+                        error(tokens[i].span, "coordinate '" + std::string(tokens[i].text) +
+                                                  "' lies beyond +-1e100 (the renderer squares and cubes " +
+                                                  "lengths in double, which overflows beyond that)");
                 }
             } else if (keyword == "f") {
                 if (tokens.size() < 3) error(keyword_span_, "a face needs at least three vertices");
@@ -252,6 +257,28 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
             meshes.files.push_back(std::move(*loaded));
         } else {
             meshes.files.emplace_back();
+            ok = false;
+        }
+    }
+    if (!ok) return std::nullopt;
+    // Placed, no coordinate may leave the renderer's range either: a bound on each block's
+    // placed coordinates (scaled, turned, moved) from its file's largest coordinate.
+    for (size_t block = 0; block < scene.meshes.size(); ++block) {
+        const Mesh& mesh = scene.meshes[block];
+        double largest = 0;
+        for (const glm::dvec3& p : meshes.files[meshes.file_of_block[block]].positions)
+            largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        const double scale = std::max({mesh.scale.x, mesh.scale.y, mesh.scale.z});
+        const double translate =
+            std::max({std::abs(mesh.translate.x), std::abs(mesh.translate.y), std::abs(mesh.translate.z)});
+        const double reach = std::sqrt(3.0) * scale * largest + translate;
+        if (!(reach <= kLargestMagnitude)) {
+            char reach_text[32];
+            std::snprintf(reach_text, sizeof reach_text, "%.3g", reach);
+            diagnostics.report(Severity::Error, mesh.named_at,
+                               "this mesh, scaled and moved, reaches coordinates up to " + std::string(reach_text) +
+                                   ", beyond +-1e100 (the renderer squares and cubes " +
+                                   "lengths in double, which overflows beyond that)");
             ok = false;
         }
     }

@@ -24,12 +24,6 @@ enum class ValueType {
 
 struct BlockSpec;
 
-// Every number in a scene lies within +-kLargestMagnitude, and every size (radius, scale) is at
-// least kSmallestSize: the renderer squares lengths and, in the watertight triangle test's
-// error bound, cubes them, in double; beyond these, results overflow or underflow.
-constexpr double kLargestMagnitude = 1e100;
-constexpr double kSmallestSize = 1e-100;
-
 struct KeySpec {
     std::string_view name;
     ValueType type;

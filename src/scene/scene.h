@@ -5,22 +5,29 @@
 
 #include <glm/vec3.hpp>
 
-#include "base/diagnostics.h"
 #include <string>
 #include <string_view>
 #include <vector>
+#include "base/diagnostics.h"
 
 namespace tracer {
 
 using dvec3 = glm::dvec3;
 
+// Every number in a scene (and every coordinate of its mesh files) lies within
+// +-kLargestMagnitude, and every size (radius, scale) is at least kSmallestSize: the renderer
+// squares lengths and, in the watertight triangle test's error bound, cubes them, in double;
+// beyond these, results overflow or underflow (docs/robustness.md).
+constexpr double kLargestMagnitude = 1e100;
+constexpr double kSmallestSize = 1e-100;
+
 struct Material {
-    std::string name;   // empty for a material written inline in a shape
-    dvec3 ka{0.0};      // ambient, added once, never shadowed
-    dvec3 kd{0.0};      // diffuse
-    dvec3 ks{0.0};      // specular
-    dvec3 km{0.0};      // mirror reflection
-    double n = 1.0;     // specular (Phong) exponent
+    std::string name;  // empty for a material written inline in a shape
+    dvec3 ka{0.0};     // ambient, added once, never shadowed
+    dvec3 kd{0.0};     // diffuse
+    dvec3 ks{0.0};     // specular
+    dvec3 km{0.0};     // mirror reflection
+    double n = 1.0;    // specular (Phong) exponent
 };
 
 struct Camera {
@@ -42,12 +49,12 @@ bool accelerator_from_name(std::string_view name, Accelerator& out);
 struct RenderSettings {
     int width = 1200;
     int height = 800;
-    int max_depth = 4;        // reflection bounces after the primary hit
-    int samples = 1;          // samples per pixel, a perfect square (N x N stratified)
-    dvec3 background{0.0};    // colour of rays that leave the scene
-    bool shadows = true;      // trace shadow rays to the lights
+    int max_depth = 4;      // reflection bounces after the primary hit
+    int samples = 1;        // samples per pixel, a perfect square (N x N stratified)
+    dvec3 background{0.0};  // colour of rays that leave the scene
+    bool shadows = true;    // trace shadow rays to the lights
     Accelerator accel = Accelerator::Sah;
-    int leaf_size = 3;        // most triangles in a BVH leaf (median; sah may make smaller leaves)
+    int leaf_size = 3;  // most triangles in a BVH leaf (median; sah may make smaller leaves)
 };
 
 struct Sphere {
@@ -69,8 +76,8 @@ struct Light {
 
 // A triangle mesh from an OBJ file, placed by scale, then rotation, then translation.
 struct Mesh {
-    std::string path;  // absolute
-    Location named_at; // the `file` value in the scene, for messages about the OBJ file
+    std::string path;   // absolute
+    Location named_at;  // the `file` value in the scene, for messages about the OBJ file
     dvec3 scale{1.0};
     dvec3 rotate_axis{0.0, 1.0, 0.0};  // unit length
     double rotate_degrees = 0.0;
