@@ -1,7 +1,7 @@
 // Ray-triangle intersection, returning t and the barycentric (u, v) of the hit: the point is
 // (1 - u - v) v0 + u v1 + v v2. Two tests: the watertight one (Woop, Benthin & Wald 2013), the
 // default, and Moller-Trumbore, kept to measure what watertightness costs and buys
-// (docs/speed-vs-error.md).
+// (docs/robustness.md).
 #pragma once
 
 #include <algorithm>
@@ -80,8 +80,8 @@ struct ShearedTriangle {
 
 // The hit of a triangle that passed the edge and range tests, unless its t might be <= 0
 // within rounding (pbrt-v4's conservative bound on t, from the magnitudes of the sheared
-// vertices and edge functions). Out of line: it runs for hits only,
-// and inlined into the BVH's loop it slowed every test (measured: docs/speed-vs-error.md).
+// vertices and edge functions). Out of line: it runs for candidate hits only, and inlined into
+// the BVH's loop it slowed every test (measured: docs/robustness.md).
 [[gnu::noinline]] inline bool finish_triangle_hit(const ShearedTriangle& s, Interval range, TriangleHit& hit) {
     const Real inv_det = 1 / s.det;
     const Real t = s.t_scaled * inv_det;
