@@ -59,6 +59,14 @@ FIGURES = [
         "E1 leak pixels / self-occlusions / pixels over 4 levels",
         ["e1_leak_pixels", "e1_self_occlusions", "e1_pixels_over_4_levels"],
     ),
+    (
+        "D2 tie rule broken (blocks, T = 0 / 1e4; one mesh, in order / shuffled)",
+        ["d2_i_t0_second_quad_wins", "d2_i_t1e4_second_quad_wins", "d2_mesh_wrong", "d2_mesh_shuffled_wrong"],
+    ),
+    (
+        "D2 upper quad seen (1e-3, 1e-5, 1e-3 at 1e4)",
+        ["d2_ii_1e-3_upper_fraction", "d2_ii_1e-5_upper_fraction", "d2_ii_1e-3_at_1e4_upper_fraction"],
+    ),
     ("F1 reflections (291 exact)", ["f1_mirror_reflections"]),
     ("F1 max relative drift", ["f1_max_relative_drift"]),
     (

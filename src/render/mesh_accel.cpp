@@ -1,7 +1,10 @@
 #include "render/mesh_accel.h"
 
+#include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <type_traits>
 
 #include <glm/geometric.hpp>
 
@@ -112,27 +115,44 @@ MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& s
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The next Real above a finite positive x (std::nextafter without the library call).
+static Real next_up(Real x) {
+    using Bits = std::conditional_t<sizeof(Real) == 8, uint64_t, uint32_t>;
+    return std::bit_cast<Real>(std::bit_cast<Bits>(x) + 1);
+}
+
 bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const {
     uint32_t best = 0;
     TriangleHit best_hit;
+    bool found = false;
+    // Ties: once a hit is found at t, a triangle at exactly t wins if it comes first in its
+    // file (lower part, then lower triangle number), whatever order the search meets them in
+    // (docs/robustness.md, hard case D2). So the test admits t up to one Real past r.max.
+    Real admit_max = range.max;
     const TriangleTester tester(ray);
     auto test = [&](uint32_t i, Interval& r) {
         TriangleHit hit;
-        if (!tester(triangles_[i], r, hit)) return false;
+        if (!tester(triangles_[i], {r.min, admit_max}, hit)) return false;
+        if (hit.t == r.max) {
+            if (!found) return false;  // the range is open: its end is no hit
+            const HitRecord &a = hit_records_[i], &b = hit_records_[best];
+            if (!(a.tag < b.tag || (a.tag == b.tag && a.triangle < b.triangle))) return false;
+        }
         r.max = hit.t;
+        admit_max = next_up(hit.t);
         best = i;
         best_hit = hit;
+        found = true;
         // Read when the search ends, if no nearer hit: ask for both cache lines it may span.
         __builtin_prefetch(&hit_records_[i]);
         __builtin_prefetch(&hit_records_[i].triangle);
         return true;
     };
-    bool found = false;
     if (brute_force_) {
         counts.primitive_tests += triangles_.size();
-        for (uint32_t i = 0; i < triangles_.size(); ++i) found = test(i, range) || found;
+        for (uint32_t i = 0; i < triangles_.size(); ++i) test(i, range);
     } else {
-        found = bvh_.closest(ray, range, counts, test);
+        bvh_.closest(ray, range, counts, test);
     }
     if (found) out = {best, best_hit};
     return found;
