@@ -38,10 +38,12 @@ namespace tracer {
     // leave here, without a division.
     if (c > 0 && b > 0) return std::nullopt;
     const Real a = glm::dot(d, d);
-    // b^2 - ac computed as a (r^2 - |f - (b/a) d|^2): no cancellation when the sphere is small
-    // and far away.
-    const Vec3 chord = f - (b / a) * d;
-    const Real discriminant = a * (radius * radius - glm::dot(chord, chord));
+    // b^2 - ac computed as a r^2 - |f x d|^2 (Lagrange's identity; Haines et al.'s
+    // a (r^2 - |f - (b/a) d|^2)), each component of the cross product a difference of products
+    // with an exact sign: no cancellation when the sphere is small and far away, even in float.
+    const Vec3 f_cross_d{difference_of_products(f.y, d.z, f.z, d.y), difference_of_products(f.z, d.x, f.x, d.z),
+                         difference_of_products(f.x, d.y, f.y, d.x)};
+    const Real discriminant = a * (radius * radius) - glm::dot(f_cross_d, f_cross_d);
     if (!(discriminant >= 0)) return std::nullopt;
     // The root with the larger magnitude first (no cancellation), the other from t0 t1 = c/a.
     const Real q = -(b + std::copysign(std::sqrt(discriminant), b));

@@ -36,15 +36,6 @@ struct Triangle {
     Vec3 v0, v1, v2;
 };
 
-// a b - c d with a relative error of at most 2 ulp (Kahan's algorithm with fused
-// multiply-adds; Jeannerod et al. 2013), so its sign is the exact sign, and it is exactly 0
-// only when a b = c d exactly.
-inline Real difference_of_products(Real a, Real b, Real c, Real d) {
-    const Real cd = c * d;
-    const Real error = std::fma(-c, d, cd);  // cd - c d, exactly
-    return std::fma(a, b, -cd) + error;
-}
-
 // Component k of p (glm's operator[] is a switch on k).
 inline Real component(const Vec3& p, int k) {
     return glm::value_ptr(p)[k];

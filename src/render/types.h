@@ -43,6 +43,15 @@ inline Vec3 normalize_or_zero(const Vec3& v) {
     return length > 0 && std::isfinite(length) ? v / length : Vec3(0);
 }
 
+// a b - c d with a relative error of at most 2 ulp (Kahan's algorithm with fused
+// multiply-adds; Jeannerod et al. 2013), so its sign is the exact sign, and it is exactly 0
+// only when a b = c d exactly.
+inline Real difference_of_products(Real a, Real b, Real c, Real d) {
+    const Real cd = c * d;
+    const Real error = std::fma(-c, d, cd);  // cd - c d, exactly
+    return std::fma(a, b, -cd) + error;
+}
+
 // An open interval of ray parameters (min, max): hits must lie strictly inside.
 struct Interval {
     Real min = 0;
