@@ -50,8 +50,8 @@ public:
                               "coordinate '" + std::string(tokens[i].text) + "' is not a finite number");
                     else if (std::abs(value) > kLargestMagnitude)
                         error(tokens[i].span, "coordinate '" + std::string(tokens[i].text) +
-                                                  "' lies beyond +-1e100 (the renderer squares and cubes " +
-                                                  "lengths in double, which overflows beyond that)");
+                                                  "' lies beyond +-1e30 (the renderer keeps bounding boxes " +
+                                                  "in float and squares and cubes lengths)");
                 }
             } else if (keyword == "f") {
                 if (tokens.size() < 3) error(keyword_span_, "a face needs at least three vertices");
@@ -277,8 +277,8 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
             std::snprintf(reach_text, sizeof reach_text, "%.3g", reach);
             diagnostics.report(Severity::Error, mesh.named_at,
                                "this mesh, scaled and moved, reaches coordinates up to " + std::string(reach_text) +
-                                   ", beyond +-1e100 (the renderer squares and cubes " +
-                                   "lengths in double, which overflows beyond that)");
+                                   ", beyond +-1e30 (the renderer keeps bounding boxes in float " +
+                                   "and squares and cubes lengths)");
             ok = false;
         }
     }

@@ -333,8 +333,8 @@ bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fiel
 bool Validator::check_number(double number, Span span, const KeySpec& key) {
     if (std::abs(number) > kLargestMagnitude) {
         diagnostics_.error(file_, span,
-                           "'" + std::string(key.name) + "' must lie between -1e100 and 1e100 (the renderer squares " +
-                               "and cubes lengths in double, which overflows beyond that), found " +
+                           "'" + std::string(key.name) + "' must lie between -1e30 and 1e30 (the renderer keeps " +
+                               "bounding boxes in float and squares and cubes lengths), found " +
                                format_number(number));
         return false;
     }
@@ -353,7 +353,7 @@ bool Validator::check_number(double number, Span span, const KeySpec& key) {
         rule = "must be between " + format_number(key.min) + " and " + format_number(key.max);
     if (key.min == kSmallestSize)  // a size: not positive, or too small to square
         rule = number <= 0 ? "must be greater than 0"
-                           : "must be at least 1e-100 (smaller sizes underflow to zero when squared)";
+                           : "must be at least 1e-30 (the smallest size the renderer is tested with)";
     diagnostics_.error(file_, span, name + " " + rule + ", found " + format_number(number));
     return false;
 }

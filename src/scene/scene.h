@@ -16,10 +16,11 @@ using dvec3 = glm::dvec3;
 
 // Every number in a scene (and every coordinate of its mesh files) lies within
 // +-kLargestMagnitude, and every size (radius, scale) is at least kSmallestSize: the renderer
-// squares lengths and, in the watertight triangle test's error bound, cubes them, in double;
-// beyond these, results overflow or underflow (docs/robustness.md).
-constexpr double kLargestMagnitude = 1e100;
-constexpr double kSmallestSize = 1e-100;
+// keeps bounding boxes in float (which ends at 3.4e38) and squares and cubes lengths (the
+// watertight triangle test's error bound); this is the range it is tested over
+// (docs/robustness.md).
+constexpr double kLargestMagnitude = 1e30;
+constexpr double kSmallestSize = 1e-30;
 
 struct Material {
     std::string name;  // empty for a material written inline in a shape
