@@ -1,6 +1,6 @@
-// Shared by the hard cases of ../shared/spec/hard-cases.md (kept in the repository as
-// tests/hard_cases/README.md's summary): a mesh behind its BVH and tested triangle by
-// triangle, the three ways of aiming a ray, and the figures each case reports.
+// Shared by the hard cases of ../shared/spec/hard-cases.md (each case, its criterion and its
+// figures: docs/robustness.md): a mesh behind its BVH and tested triangle by triangle, the
+// three ways of aiming a ray, and the figures each case reports.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -9,6 +9,7 @@
 #include <random>
 #include <set>
 
+#include "../common/flat_grid.h"
 #include "hard_cases.h"
 
 namespace tracer::hard_cases {
@@ -136,20 +137,6 @@ TEST(HardCases, A1_BunnyAxisAlignedRaysThroughEveryVertexEnterFirst) {
     EXPECT_EQ(rays + excluded, 5517);
     EXPECT_EQ(leaks, 0);
     EXPECT_EQ(disagreements, 0);
-}
-
-// A3: 64 x 64 unit squares in z = 0, each split along its diagonal (8,192 triangles).
-TriangleMesh flat_grid() {
-    TriangleMesh grid;
-    for (int j = 0; j <= 64; ++j)
-        for (int i = 0; i <= 64; ++i) grid.positions.push_back({double(i), double(j), 0.0});
-    auto at = [](int i, int j) { return uint32_t(j * 65 + i); };
-    for (int j = 0; j < 64; ++j)
-        for (int i = 0; i < 64; ++i) {
-            grid.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            grid.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    return grid;
 }
 
 // A3 (a): straight down through every half-integer point, 12,545 of them on grid lines: every

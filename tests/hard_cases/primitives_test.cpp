@@ -3,6 +3,7 @@
 // checked against the exact geometry worked out in long double.
 #include <random>
 
+#include "../common/flat_grid.h"
 #include "hard_cases.h"
 #include "render/spawn.h"
 #include "render/whitted.h"
@@ -197,16 +198,7 @@ TEST(HardCases, D1_GrazingAndParallelRaysOnPlanes) {
     EXPECT_EQ(wrong, 0);
 
     // The grid: 64 x 64 unit squares in z = 0, from (0.5, 32.5, h) along (cos a, 0, -sin a).
-    TriangleMesh grid;
-    for (int j = 0; j <= 64; ++j)
-        for (int i = 0; i <= 64; ++i) grid.positions.push_back({double(i), double(j), 0.0});
-    for (int j = 0; j < 64; ++j)
-        for (int i = 0; i < 64; ++i) {
-            const uint32_t a = uint32_t(j * 65 + i);
-            grid.triangles.push_back({a, a + 1, a + 66});
-            grid.triangles.push_back({a, a + 66, a + 65});
-        }
-    const MeshUnderTest mesh(grid);
+    const MeshUnderTest mesh(flat_grid());
     int grid_wrong = 0;
     for (Real h : {Real(1), Real(1e-3)}) {
         for (int k = 1; k <= 7; ++k) {

@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "../common/flat_grid.h"
 #include "io/obj_mesh.h"
 #include "render/mesh_accel.h"
 #include "render/world.h"
@@ -132,15 +133,7 @@ TEST(Bvh, EveryAcceleratorAgreesWithBruteForceOnTinyMeshes) {
 // the triangle test: the watertight one lets none through, Moller-Trumbore lets 24 rays through
 // exact grid vertices slip between triangles.)
 TEST(Bvh, FlatGridTraversalLosesNoHitOfTheTriangleTest) {
-    TriangleMesh grid;
-    for (int j = 0; j <= 64; ++j)
-        for (int i = 0; i <= 64; ++i) grid.positions.push_back({double(i), double(j), 0.0});
-    auto at = [](int i, int j) { return uint32_t(j * 65 + i); };
-    for (int j = 0; j < 64; ++j)
-        for (int i = 0; i < 64; ++i) {
-            grid.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            grid.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
+    const TriangleMesh grid = flat_grid();
     const MeshAccel brute = accel(grid, std::nullopt, 1);
     for (BvhBuild build : {BvhBuild::Median, BvhBuild::Sah}) {
         const MeshAccel tree = accel(grid, build, 3);
