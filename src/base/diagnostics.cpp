@@ -2,11 +2,20 @@
 
 #include <algorithm>
 #include <climits>
+#include <cstdio>
 #include <ostream>
 #include <sstream>
 #include <tuple>
 
 namespace tracer {
+
+// Lines longer than this are shown as a window around the column.
+static constexpr int kLongestShownLine = 160;
+
+// True for the bytes that continue a UTF-8 sequence (a window never starts or ends in one).
+static bool continues_utf8(char c) {
+    return (static_cast<unsigned char>(c) & 0xC0) == 0x80;
+}
 
 Location Diagnostics::locate(const SourceFile& file, Span span) {
     LineCol start = file.locate(span.begin);
@@ -14,9 +23,22 @@ Location Diagnostics::locate(const SourceFile& file, Span span) {
     location.path = file.path();
     location.line = start.line;
     location.column = start.column;
-    location.line_text = std::string(file.line_text(start.line));
-    // Underline the token, but never past the end of its line.
-    int available = int(location.line_text.size()) - (start.column - 1);
+    std::string_view line = file.line_text(start.line);
+    // A window of a very long line (a minified or binary file): 60 bytes before the column,
+    // 100 after, cut at character boundaries.
+    if (int(line.size()) > kLongestShownLine) {
+        size_t from = size_t(std::max(start.column - 1 - 60, 0));
+        while (from > 0 && continues_utf8(line[from])) --from;
+        size_t to = std::min(line.size(), size_t(start.column - 1) + 100);
+        while (to < line.size() && continues_utf8(line[to])) ++to;
+        location.text_column = int(from) + 1;
+        line = line.substr(from, to - from);
+    }
+    location.line_text = std::string(line);
+    for (char& c : location.line_text)  // binary data is not sent to the terminal
+        if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7F) c = '?';
+    // Underline the token, but never past the end of the text shown.
+    int available = int(location.line_text.size()) - (start.column - location.text_column);
     location.length = std::clamp(int(span.end) - int(span.begin), 1, std::max(available, 1));
     return location;
 }
@@ -27,22 +49,31 @@ Location Diagnostics::whole_file(const std::string& path) {
     return location;
 }
 
+// Messages longer than this are cut (they quote their tokens with in_quotes(); this is a backstop).
+static constexpr size_t kLongestMessage = 1000;
+
 Diagnostic* Diagnostics::report(Severity severity, Location location, std::string message) {
     if (severity == Severity::Error) {
         if (saturated()) return nullptr;
         ++errors_;
     } else if (severity == Severity::Warning) {
-        ++warnings_;
+        if (++warnings_ > kMaxWarnings) return nullptr;
     }
+    if (message.size() > kLongestMessage) message = message.substr(0, kLongestMessage) + "...";
     list_.push_back({severity, std::move(location), std::move(message), {}});
     return &list_.back();
 }
 
 Diagnostic* Diagnostics::error(const SourceFile& file, Span span, std::string message) {
+    if (saturated()) return nullptr;  // before locating: that copies the line
     return report(Severity::Error, locate(file, span), std::move(message));
 }
 
 Diagnostic* Diagnostics::warning(const SourceFile& file, Span span, std::string message) {
+    if (warnings_ >= kMaxWarnings) {
+        ++warnings_;
+        return nullptr;
+    }
     return report(Severity::Warning, locate(file, span), std::move(message));
 }
 
@@ -50,11 +81,35 @@ void Diagnostics::note(Diagnostic* parent, const SourceFile& file, Span span, st
     if (parent) parent->notes.push_back({Severity::Note, locate(file, span), std::move(message), {}});
 }
 
+std::string in_quotes(std::string_view text) {
+    constexpr size_t kLongest = 40;  // characters
+    std::string out = "'";
+    size_t characters = 0;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const unsigned char c = static_cast<unsigned char>(text[i]);
+        if (!continues_utf8(char(c)) && ++characters > kLongest) {
+            out += "...";
+            break;
+        }
+        if (c < 0x20 || c == 0x7F) {
+            char escaped[8];
+            std::snprintf(escaped, sizeof escaped, "\\x%02X", c);
+            out += escaped;
+        } else {
+            out += char(c);
+        }
+    }
+    return out + "'";
+}
+
 static const char* severity_name(Severity severity) {
     switch (severity) {
-        case Severity::Error: return "error";
-        case Severity::Warning: return "warning";
-        case Severity::Note: return "note";
+        case Severity::Error:
+            return "error";
+        case Severity::Warning:
+            return "warning";
+        case Severity::Note:
+            return "note";
     }
     return "error";
 }
@@ -68,7 +123,7 @@ static void format_one(std::ostream& out, const Diagnostic& d) {
     out << at.line_text << '\n';
     // Keep tabs in the caret line so the caret lines up under tab-indented text.
     std::string pad;
-    for (int i = 0; i < at.column - 1 && i < int(at.line_text.size()); ++i)
+    for (int i = 0; i < at.column - at.text_column && i < int(at.line_text.size()); ++i)
         pad += at.line_text[i] == '\t' ? '\t' : ' ';
     out << pad << '^' << std::string(std::max(at.length - 1, 0), '~') << '\n';
 }
@@ -96,6 +151,9 @@ void Diagnostics::print(std::ostream& out) const {
     std::stable_sort(ordered.begin(), ordered.end(),
                      [&](const Diagnostic* a, const Diagnostic* b) { return key(a) < key(b); });
     for (const Diagnostic* d : ordered) out << format_diagnostic(*d);
+    if (warnings_ > kMaxWarnings)
+        out << "warning: " << warnings_ - kMaxWarnings << " more warning" << (warnings_ - kMaxWarnings == 1 ? "" : "s")
+            << " not shown\n";
     if (saturated())
         out << "error: stopped after " << kMaxErrors << " errors; fix these and run again to see any others\n";
 }

@@ -9,6 +9,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "base/source.h"
@@ -23,7 +24,8 @@ struct Location {
     int line = 0;  // 0: the message concerns the whole file
     int column = 0;
     int length = 1;
-    std::string line_text;
+    std::string line_text;  // the line, or on a very long line a window of it around the column
+    int text_column = 1;    // the column at which line_text starts (1 unless windowed)
 };
 
 struct Diagnostic {
@@ -36,14 +38,15 @@ struct Diagnostic {
 class Diagnostics {
 public:
     static constexpr int kMaxErrors = 20;
+    static constexpr int kMaxWarnings = 20;  // more are counted, not kept
 
     // Resolves `span` in `file` into a printable location.
     static Location locate(const SourceFile& file, Span span);
     // A location for a message about a whole file.
     static Location whole_file(const std::string& path);
 
-    // Records a diagnostic; errors past the limit are dropped. Returns the stored one (or
-    // nullptr when dropped) so notes can be attached.
+    // Records a diagnostic; errors and warnings past their limits are counted and dropped.
+    // Returns the stored one (or nullptr when dropped) so notes can be attached.
     Diagnostic* report(Severity severity, Location location, std::string message);
     Diagnostic* error(const SourceFile& file, Span span, std::string message);
     Diagnostic* warning(const SourceFile& file, Span span, std::string message);
@@ -57,7 +60,7 @@ public:
     bool saturated() const { return errors_ >= kMaxErrors; }
     const std::deque<Diagnostic>& all() const { return list_; }
 
-    // Prints every diagnostic in the order reported, then a limit notice if it was hit.
+    // Prints every diagnostic kept, file by file in line order, then notices of any limit hit.
     void print(std::ostream& out) const;
 
 private:
@@ -65,6 +68,10 @@ private:
     int errors_ = 0;
     int warnings_ = 0;
 };
+
+// `text` in single quotes for a message: at most 40 characters (then "..."), control bytes
+// shown as \xNN, so neither a megabyte token nor binary data reaches the terminal whole.
+std::string in_quotes(std::string_view text);
 
 // Formats one diagnostic (and its notes) exactly as `print` does.
 std::string format_diagnostic(const Diagnostic& diagnostic);

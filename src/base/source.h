@@ -23,7 +23,8 @@ struct LineCol {
 
 class SourceFile {
 public:
-    // Wraps text read from `path` (the path is only used in messages).
+    // Wraps text read from `path` (the path is only used in messages), with lone carriage
+    // returns made line feeds and a UTF-8 byte-order mark made spaces (offsets unchanged).
     SourceFile(std::string path, std::string text);
 
     const std::string& path() const { return path_; }

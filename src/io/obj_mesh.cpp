@@ -1,159 +1,41 @@
 #include "io/obj_mesh.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
-
-#include <tiny_obj_loader.h>  // TINYOBJLOADER_USE_DOUBLE comes with the CMake target
-static_assert(sizeof(tinyobj::real_t) == sizeof(double), "link the double-precision tinyobjloader");
 
 #include <glm/geometric.hpp>
 
+#include "base/input_file.h"
+#include "io/obj_reader.h"
+#include "io/polygon.h"
+
 namespace tracer {
-namespace {
-
-// tinyobjloader reads "nan" and "inf" as 0 and keeps out-of-range indices, so `v` and `f`
-// statements are checked here first, where the line and column are still known.
-class ObjChecker {
-public:
-    ObjChecker(const SourceFile& file, Diagnostics& diagnostics) : file_(file), diagnostics_(diagnostics) {}
-
-    // True if every vertex is finite and every face index names an existing vertex.
-    bool check() {
-        const std::string_view text = file_.text();
-        size_t vertex_total = 0, normal_total = 0;
-        for_each_statement(text, [&](std::string_view keyword, std::vector<Token>&) {
-            vertex_total += keyword == "v";
-            normal_total += keyword == "vn";
-        });
-        size_t vertices_so_far = 0, normals_so_far = 0;
-        for_each_statement(text, [&](std::string_view keyword, std::vector<Token>& tokens) {
-            if (keyword == "v" || keyword == "vn") {
-                (keyword == "v" ? vertices_so_far : normals_so_far) += 1;
-                for (size_t i = 0; i < 3; ++i) {
-                    if (i >= tokens.size()) {
-                        error(tokens.empty() ? keyword_span_ : tokens.back().span,
-                              "'" + std::string(keyword) + "' needs three coordinates");
-                        return;
-                    }
-                    double value = 0;
-                    auto [end, status] =
-                        std::from_chars(tokens[i].text.data(), tokens[i].text.data() + tokens[i].text.size(), value);
-                    bool parsed = status == std::errc() && end == tokens[i].text.data() + tokens[i].text.size();
-                    if (!parsed || !std::isfinite(value))
-                        error(tokens[i].span,
-                              "coordinate '" + std::string(tokens[i].text) + "' is not a finite number");
-                    else if (std::abs(value) > kLargestMagnitude)
-                        error(tokens[i].span, "coordinate '" + std::string(tokens[i].text) +
-                                                  "' lies beyond +-1e30 (the renderer keeps bounding boxes " +
-                                                  "in float and squares and cubes lengths)");
-                }
-            } else if (keyword == "f") {
-                if (tokens.size() < 3) error(keyword_span_, "a face needs at least three vertices");
-                for (const Token& token : tokens) {
-                    // v, v/vt, v/vt/vn or v//vn: check the position and normal indices.
-                    std::string_view corner = token.text;
-                    size_t slash = corner.find('/');
-                    check_index(token, corner.substr(0, slash), vertices_so_far, vertex_total, "vertex", "vertices");
-                    size_t second = slash == std::string_view::npos ? slash : corner.find('/', slash + 1);
-                    if (second != std::string_view::npos)
-                        check_index(token, corner.substr(second + 1), normals_so_far, normal_total, "normal",
-                                    "normals");
-                }
-            }
-        });
-        return ok_;
-    }
-
-private:
-    struct Token {
-        std::string_view text;
-        Span span;
-    };
-
-    template <typename Visit>
-    void for_each_statement(std::string_view text, Visit visit) {
-        size_t pos = 0;
-        while (pos < text.size() && !diagnostics_.saturated()) {
-            size_t end = text.find('\n', pos);
-            if (end == std::string_view::npos) end = text.size();
-            std::vector<Token> tokens;
-            size_t i = pos;
-            while (i < end && text[i] != '#') {
-                while (i < end && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) ++i;
-                size_t start = i;
-                while (i < end && text[i] != ' ' && text[i] != '\t' && text[i] != '\r' && text[i] != '#') ++i;
-                if (i > start) tokens.push_back({text.substr(start, i - start), {uint32_t(start), uint32_t(i)}});
-            }
-            if (!tokens.empty()) {
-                std::string_view keyword = tokens.front().text;
-                keyword_span_ = tokens.front().span;
-                tokens.erase(tokens.begin());
-                visit(keyword, tokens);
-            }
-            pos = end + 1;
-        }
-    }
-
-    void check_index(const Token& token, std::string_view digits, size_t so_far, size_t total, const char* what,
-                     const char* plural) {
-        if (digits.empty()) return;  // "v//vn" has no texture index; absent normal index
-        long index = 0;
-        auto [end, status] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
-        if (status != std::errc() || end != digits.data() + digits.size()) {
-            error(token.span, "'" + std::string(token.text) + "' is not a valid face corner");
-            return;
-        }
-        long resolved = index < 0 ? long(so_far) + index + 1 : index;  // negative: relative to here
-        if (index == 0 || resolved < 1 || resolved > long(total))
-            error(token.span, std::string(what) + " index " + std::to_string(index) +
-                                  " is out of range (the file has " + std::to_string(total) + " " +
-                                  (total == 1 ? what : plural) + ")");
-    }
-
-    void error(Span span, std::string message) {
-        diagnostics_.error(file_, span, std::move(message));
-        ok_ = false;
-    }
-
-    const SourceFile& file_;
-    Diagnostics& diagnostics_;
-    Span keyword_span_;
-    bool ok_ = true;
-};
-
-}  // namespace
 
 // Which triangles to keep: every one with an area, and a zero-area one only if its three
 // corners are distinct points and each of its edges belongs to another triangle too. Such a
 // sliver closes a T-junction of a closed surface (a vertex in the middle of another triangle's
 // edge): the watertight triangle test needs it there, or rays slip through the crack that
 // rounding opens. Any other zero-area triangle is a line or a point: nothing to hit.
-template <typename Vertices>
 static std::vector<bool> triangles_to_keep(const std::vector<glm::dvec3>& positions,
-                                           const std::vector<const tinyobj::index_t*>& corners, Vertices vertices) {
-    std::vector<bool> keep(corners.size());
+                                           const std::vector<std::array<uint32_t, 3>>& triangles) {
+    std::vector<bool> keep(triangles.size());
     bool any_degenerate = false;
-    for (size_t t = 0; t < corners.size(); ++t) {
-        const auto v = vertices(corners[t]);
+    for (size_t t = 0; t < triangles.size(); ++t) {
+        const auto& v = triangles[t];
         const glm::dvec3 cross = glm::cross(positions[v[1]] - positions[v[0]], positions[v[2]] - positions[v[0]]);
         keep[t] = glm::dot(cross, cross) > 0;
         any_degenerate = any_degenerate || !keep[t];
     }
     if (!any_degenerate) return keep;
     std::map<std::pair<uint32_t, uint32_t>, int> edge_uses;
-    for (const auto* c : corners) {
-        const auto v = vertices(c);
+    for (const auto& v : triangles)
         for (int k = 0; k < 3; ++k) ++edge_uses[std::minmax(v[k], v[(k + 1) % 3])];
-    }
-    for (size_t t = 0; t < corners.size(); ++t) {
+    for (size_t t = 0; t < triangles.size(); ++t) {
         if (keep[t]) continue;
-        const auto v = vertices(corners[t]);
+        const auto& v = triangles[t];
         const bool distinct = positions[v[0]] != positions[v[1]] && positions[v[1]] != positions[v[2]] &&
                               positions[v[0]] != positions[v[2]];
         bool edges_shared = true;
@@ -168,65 +50,76 @@ static void note_where_used(const Mesh& mesh, Diagnostics& diagnostics) {
     if (mesh.named_at.line > 0) diagnostics.report(Severity::Note, mesh.named_at, "the mesh file is used here");
 }
 
+// The triangles of every face, as corner numbers into `obj`'s corner arrays; counts the
+// faces that could not be triangulated whole.
+static std::vector<std::array<uint32_t, 3>> triangulate_faces(const ObjContents& obj, size_t& broken) {
+    std::vector<std::array<uint32_t, 3>> corners;
+    corners.reserve(obj.corner_vertex.size());
+    std::vector<glm::dvec3> outline;
+    std::vector<std::array<uint32_t, 3>> pieces;
+    for (size_t face = 0; face + 1 < obj.face_starts.size(); ++face) {
+        const uint32_t first = obj.face_starts[face], end = obj.face_starts[face + 1];
+        if (end - first == 3) {
+            corners.push_back({first, first + 1, first + 2});
+            continue;
+        }
+        outline.clear();
+        pieces.clear();
+        for (uint32_t c = first; c < end; ++c) outline.push_back(obj.positions[obj.corner_vertex[c]]);
+        broken += !triangulate_polygon(outline, pieces);
+        for (const auto& piece : pieces) corners.push_back({first + piece[0], first + piece[1], first + piece[2]});
+    }
+    return corners;
+}
+
 std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics) {
-    // Step 1: read the text and check what tinyobjloader would let through.
-    std::ifstream in(mesh.path, std::ios::binary);
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (!in) {
-        diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path), "cannot read the mesh file");
+    // Step 1: read and check the text (a regular file within the size limit).
+    InputFile input = read_input_file(mesh.path, kMaxMeshFileBytes);
+    if (!input.problem.empty()) {
+        diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path),
+                           "cannot read the mesh file: " + input.problem);
+        note_where_used(mesh, diagnostics);
         return std::nullopt;
     }
-    const SourceFile file(mesh.path, buffer.str());
-    if (!ObjChecker(file, diagnostics).check()) {
+    const SourceFile file(mesh.path, std::move(input.text));
+    std::optional<ObjContents> obj = read_obj(file, diagnostics);
+    if (!obj) {
         note_where_used(mesh, diagnostics);
         return std::nullopt;
     }
 
-    // Step 2: parse and triangulate.
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromString(std::string(file.text()), "", config)) {
-        std::string message = reader.Error();
-        while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
-        diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path), message);
-        note_where_used(mesh, diagnostics);
-        return std::nullopt;
-    }
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
-
-    // Step 3: the vertices and triangles, dropping zero-area ones unless they close a gap.
+    // Step 2: triangles, dropping zero-area ones unless they close a gap.
+    size_t broken = 0;
+    const std::vector<std::array<uint32_t, 3>> corners = triangulate_faces(*obj, broken);
+    std::vector<std::array<uint32_t, 3>> triangles(corners.size());
+    for (size_t t = 0; t < corners.size(); ++t)
+        for (int k = 0; k < 3; ++k) triangles[t][k] = obj->corner_vertex[corners[t][k]];
+    const std::vector<bool> keep = triangles_to_keep(obj->positions, triangles);
     TriangleMesh out;
-    for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
-        out.positions.push_back({attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
-    std::vector<const tinyobj::index_t*> corners;  // per triangle: its first corner
-    for (const tinyobj::shape_t& shape : reader.GetShapes())
-        for (size_t i = 0; i + 2 < shape.mesh.indices.size(); i += 3) corners.push_back(&shape.mesh.indices[i]);
-    auto vertices = [](const tinyobj::index_t* c) {
-        return std::array<uint32_t, 3>{uint32_t(c[0].vertex_index), uint32_t(c[1].vertex_index),
-                                       uint32_t(c[2].vertex_index)};
-    };
-    const std::vector<bool> keep = triangles_to_keep(out.positions, corners, vertices);
-    bool file_normals = !attrib.normals.empty();
+    bool file_normals = !obj->normals.empty();
     size_t degenerate = 0;
     for (size_t t = 0; t < corners.size(); ++t) {
         if (!keep[t]) {
             ++degenerate;
             continue;
         }
-        const tinyobj::index_t* c = corners[t];
-        out.triangles.push_back(vertices(c));
-        file_normals = file_normals && c[0].normal_index >= 0 && c[1].normal_index >= 0 && c[2].normal_index >= 0;
-        if (file_normals)
-            out.normal_ids.push_back(
-                {uint32_t(c[0].normal_index), uint32_t(c[1].normal_index), uint32_t(c[2].normal_index)});
+        out.triangles.push_back(triangles[t]);
+        const auto& c = corners[t];
+        const int32_t n0 = obj->corner_normal[c[0]], n1 = obj->corner_normal[c[1]], n2 = obj->corner_normal[c[2]];
+        file_normals = file_normals && n0 >= 0 && n1 >= 0 && n2 >= 0;
+        if (file_normals) out.normal_ids.push_back({uint32_t(n0), uint32_t(n1), uint32_t(n2)});
     }
-    if (degenerate > 0)
-        diagnostics.report(Severity::Warning, Diagnostics::whole_file(mesh.path),
-                           std::to_string(degenerate) + " degenerate (zero-area) triangle" +
-                               (degenerate == 1 ? "" : "s") + " dropped");
+    auto warn = [&](size_t count, const std::string& what) {
+        if (count > 0)
+            diagnostics.report(Severity::Warning, Diagnostics::whole_file(mesh.path), std::to_string(count) + what);
+    };
+    warn(degenerate,
+         degenerate == 1 ? " degenerate (zero-area) triangle dropped" : " degenerate (zero-area) triangles dropped");
+    warn(broken, broken == 1 ? " self-intersecting polygon could only be triangulated in part"
+                             : " self-intersecting polygons could only be triangulated in part");
+    warn(obj->material_statements,
+         std::string(obj->material_statements == 1 ? " usemtl/mtllib line" : " usemtl/mtllib lines") +
+             " ignored: a mesh takes its material from its mesh block");
     if (out.triangles.empty()) {
         diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path),
                            "the mesh has no triangles (with non-zero area)");
@@ -234,13 +127,12 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
         return std::nullopt;
     }
 
-    // Step 4: the file's normals, when every triangle has them.
-    if (file_normals) {
-        for (size_t i = 0; i + 2 < attrib.normals.size(); i += 3)
-            out.normals.push_back({attrib.normals[i], attrib.normals[i + 1], attrib.normals[i + 2]});
-    } else {
+    // Step 3: the positions, and the file's normals when every triangle has them.
+    out.positions = std::move(obj->positions);
+    if (file_normals)
+        out.normals = std::move(obj->normals);
+    else
         out.normal_ids.clear();
-    }
     return out;
 }
 
@@ -263,15 +155,16 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
     if (!ok) return std::nullopt;
     // Placed, no coordinate may leave the renderer's range either: a bound on each block's
     // placed coordinates (scaled, turned, moved) from its file's largest coordinate.
+    std::vector<double> largest(meshes.files.size(), 0.0);
+    for (size_t f = 0; f < meshes.files.size(); ++f)
+        for (const glm::dvec3& p : meshes.files[f].positions)
+            largest[f] = std::max({largest[f], std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     for (size_t block = 0; block < scene.meshes.size(); ++block) {
         const Mesh& mesh = scene.meshes[block];
-        double largest = 0;
-        for (const glm::dvec3& p : meshes.files[meshes.file_of_block[block]].positions)
-            largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
         const double scale = std::max({mesh.scale.x, mesh.scale.y, mesh.scale.z});
         const double translate =
             std::max({std::abs(mesh.translate.x), std::abs(mesh.translate.y), std::abs(mesh.translate.z)});
-        const double reach = std::sqrt(3.0) * scale * largest + translate;
+        const double reach = std::sqrt(3.0) * scale * largest[meshes.file_of_block[block]] + translate;
         if (!(reach <= kLargestMagnitude)) {
             char reach_text[32];
             std::snprintf(reach_text, sizeof reach_text, "%.3g", reach);

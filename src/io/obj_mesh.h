@@ -1,6 +1,6 @@
-// Triangle meshes from OBJ files (read by tinyobjloader), in the file's own coordinates:
-// polygons triangulated, zero-area triangles dropped (with a warning), normals kept as the
-// file gives them when every face has them. Placing a mesh is the renderer's work.
+// Triangle meshes from OBJ files, in the file's own coordinates: polygons triangulated
+// (io/polygon.h), zero-area triangles dropped (with a warning), normals kept as the file gives
+// them when every face has them. Placing a mesh is the renderer's work.
 #pragma once
 
 #include <optional>

@@ -30,7 +30,7 @@ std::string describe(TokenKind kind) {
 
 std::string describe(const Token& token) {
     if (token.kind == TokenKind::End) return "end of file";
-    return "'" + std::string(token.text) + "'";
+    return in_quotes(token.text);
 }
 
 Lexer::Lexer(const SourceFile& file, Diagnostics& diagnostics)
@@ -95,7 +95,7 @@ Token Lexer::next() {
     ++pos_;
     while (pos_ < text_.size() && (static_cast<unsigned char>(text_[pos_]) & 0xC0) == 0x80) ++pos_;
     Token bad = make(TokenKind::Error, begin);
-    report(bad.span, "unexpected character '" + std::string(bad.text) + "'");
+    report(bad.span, "unexpected character " + in_quotes(bad.text));
     return bad;
 }
 
@@ -132,7 +132,7 @@ Token Lexer::lex_number(uint32_t begin) {
     Token token = make(TokenKind::Number, begin);
     if (!ok || glued) {
         token.kind = TokenKind::Error;
-        report(token.span, "malformed number '" + std::string(token.text) + "'");
+        report(token.span, "malformed number " + in_quotes(token.text));
         return token;
     }
     std::string_view digits_text = token.text;
@@ -144,7 +144,7 @@ Token Lexer::lex_number(uint32_t begin) {
     } else if (status != std::errc() || end != digits_text.data() + digits_text.size() ||
                !std::isfinite(token.number)) {
         token.kind = TokenKind::Error;
-        report(token.span, "number '" + std::string(token.text) + "' is out of range (it would be infinite)");
+        report(token.span, "number " + in_quotes(token.text) + " is out of range (it would be infinite)");
     }
     return token;
 }

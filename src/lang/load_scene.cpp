@@ -1,11 +1,6 @@
 #include "lang/load_scene.h"
 
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
+#include "base/input_file.h"
 #include "lang/parser.h"
 #include "lang/validate.h"
 
@@ -22,23 +17,12 @@ LoadResult load_scene_text(const std::string& path, std::string text, bool fragm
 }
 
 LoadResult load_scene(const std::string& path) {
-    std::error_code error;
-    std::string problem;
-    if (std::filesystem::is_directory(path, error)) {
-        problem = "it is a directory";
-    } else {
-        std::ifstream in(path, std::ios::binary);
-        if (in) {
-            std::ostringstream text;
-            text << in.rdbuf();
-            if (!in.bad()) return load_scene_text(path, text.str());
-        }
-        problem = std::strerror(errno);
-    }
+    InputFile input = read_input_file(path, kMaxSceneFileBytes);
+    if (input.problem.empty()) return load_scene_text(path, std::move(input.text));
     LoadResult result;
     result.unreadable = true;
     result.diagnostics.report(Severity::Error, Diagnostics::whole_file(path),
-                              "cannot read the scene file: " + problem);
+                              "cannot read the scene file: " + input.problem);
     return result;
 }
 

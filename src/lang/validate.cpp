@@ -4,13 +4,13 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <mutex>
 
 #include <glm/geometric.hpp>
 
+#include "base/input_file.h"
 #include "lang/parser.h"
 #include "lang/schema.h"
 #include "lang/suggest.h"
@@ -30,7 +30,7 @@ std::string describe_found(const Value& value) {
         case Value::Kind::String:
             return "a string";
         case Value::Kind::Identifier:
-            return "'" + value.text + "'";
+            return in_quotes(value.text);
         case Value::Kind::Block:
             return "a block { ... }";
     }
@@ -161,7 +161,7 @@ std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
             for (const BlockSpec* s : all_block_specs())
                 if (s->top_level) kinds.push_back(s->kind);
             diagnostics_.error(file_, block.kind_span,
-                               "unknown block '" + block.kind + "'" + did_you_mean(block.kind, kinds));
+                               "unknown block " + in_quotes(block.kind) + did_you_mean(block.kind, kinds));
             continue;
         }
         if (!check_block_header(block, *spec)) continue;
@@ -225,7 +225,7 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
             suggested.push_back(closest_match(entry.key, names));
             diagnostics_.error(
                 file_, entry.key_span,
-                "unknown key '" + entry.key + "' in " + std::string(spec.kind) + did_you_mean(entry.key, names));
+                "unknown key " + in_quotes(entry.key) + " in " + std::string(spec.kind) + did_you_mean(entry.key, names));
             ok = false;
             continue;
         }
@@ -401,7 +401,7 @@ bool Validator::check_material_name(const Value& value) {
         std::vector<std::string_view> names;
         for (const auto& [name, material] : named_) names.push_back(name);
         diagnostics_.error(file_, value.span,
-                           "undefined material '" + value.text + "'" + did_you_mean(value.text, names));
+                           "undefined material " + in_quotes(value.text) + did_you_mean(value.text, names));
         return false;
     }
     found->second.used = true;
@@ -475,14 +475,7 @@ void Validator::build_mesh(const Fields& fields) {
     if (path.is_relative()) path = scene_dir_ / path;
     mesh.path = path.lexically_normal().string();
     mesh.named_at = Diagnostics::locate(file_, fields.value_span("file"));
-    std::error_code error;
-    std::string problem;
-    if (!fs::exists(path, error))
-        problem = "no such file";
-    else if (fs::is_directory(path, error))
-        problem = "it is a directory";
-    else if (!std::ifstream(path).good())
-        problem = "it cannot be opened for reading";
+    const std::string problem = input_file_problem(mesh.path, kMaxMeshFileBytes);  // looks, never opens
     if (!problem.empty())
         diagnostics_.error(file_, fields.value_span("file"), "cannot read mesh file '" + mesh.path + "': " + problem);
 

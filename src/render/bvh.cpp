@@ -1,5 +1,7 @@
 #include "render/bvh.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <future>
 
@@ -193,7 +195,10 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
     const int bin_count = int(std::min<uint32_t>(count, kSahBins));
     const glm::vec3 extent = range.centres.upper - range.centres.lower;
     v4f factor = {0, 0, 0, 0};
-    for (int axis = 0; axis < 3; ++axis) factor[axis] = extent[axis] > 0 ? float(bin_count) / extent[axis] : 0.0f;
+    for (int axis = 0; axis < 3; ++axis) {
+        const float scale = float(bin_count) / extent[axis];
+        factor[axis] = extent[axis] > 0 && std::isfinite(scale) ? scale : 0.0f;  // also a NaN or infinite extent
+    }
     const v4f origin = {range.centres.lower.x, range.centres.lower.y, range.centres.lower.z, 0};
 
     // Step 1: bins (boxes, centres and counts) for every axis, four lanes at a time. Only the
@@ -211,7 +216,8 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
             const v4f at = (centre - origin) * factor;
             uint32_t saved = 0;
             for (int axis = 0; axis < 3; ++axis) {
-                const int bin = std::min(bin_count - 1, int(at[axis]));
+                // Clamped as floats first: int() of a NaN or out-of-range float is undefined.
+                const int bin = int(std::min(std::max(0.0f, at[axis]), float(bin_count - 1)));
                 bins[axis][bin].add(lower, upper, centre);
                 saved |= uint32_t(bin) << (8 * axis);
             }
