@@ -14,7 +14,12 @@ std::optional<LoadedScene> load_scene_with_meshes(const std::string& path,
     std::optional<SceneMeshes> meshes;
     if (loaded.scene) {
         if (adjust) adjust(*loaded.scene);
-        meshes = load_meshes(*loaded.scene, loaded.diagnostics);
+        const std::string problem = render_settings_problem(loaded.scene->render);
+        if (problem.empty())
+            meshes = load_meshes(*loaded.scene, loaded.diagnostics);
+        else
+            loaded.diagnostics.report(Severity::Error, Diagnostics::whole_file(path),
+                                      "with the command line's overrides, " + problem);
     }
     loaded.diagnostics.print(errors);
     if (unreadable) *unreadable = loaded.unreadable;

@@ -1,35 +1,45 @@
 // tracer: render a scene file, check it, or print it as resolved JSON.
 // Exit codes: 0 success; 1 the scene has errors; 2 bad command line; 3 the scene file cannot
-// be read or the image cannot be written; 130 interrupted (Ctrl-C). Nothing is written to the
-// output path unless the render completed.
+// be read, the image cannot be written or memory ran out; 130 interrupted (Ctrl-C, SIGTERM).
+// Nothing is written to the output path unless the render completed, and then atomically.
+
+#include <unistd.h>
 
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <new>
 
-#include "app/progress.h"
-#include "render/render_stats.h"
-#include "lang/reference_doc.h"
-#include "scene/scene_json.h"
-#include "lang/schema.h"
-#include "io/image_file.h"
 #include "app/load_files.h"
+#include "app/progress.h"
+#include "base/output_file.h"
+#include "io/image_file.h"
+#include "lang/reference_doc.h"
+#include "lang/schema.h"
+#include "render/render_stats.h"
 #include "render/renderer.h"
+#include "scene/scene_json.h"
 
 namespace {
 
 enum ExitCode { kOk = 0, kSceneError = 1, kUsageError = 2, kIoError = 3, kInterrupted = 130 };
 
 std::atomic<bool> g_interrupted{false};
+std::atomic<bool> g_rendering{false};
 
-extern "C" void on_interrupt(int) { g_interrupted = true; }
+// Before the render nothing has been written: stop at once. During it: ask the render to stop
+// (it then writes nothing). Async-signal-safe: an atomic store or _exit only.
+extern "C" void on_interrupt(int) {
+    if (!g_rendering) ::_exit(kInterrupted);
+    g_interrupted = true;
+}
 
 struct Options {
     std::string scene;
@@ -52,16 +62,41 @@ struct Options {
 // printing every diagnostic; nullopt on errors (with `exit_code` set).
 std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) {
     bool unreadable = false;
-    auto loaded = tracer::load_scene_with_meshes(options.scene, [&](tracer::SceneDescription& scene) {
-        tracer::RenderSettings& render = scene.render;
-        if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
-        if (options.leaf_size > 0) render.leaf_size = options.leaf_size;
-        if (options.width > 0) render.width = options.width;
-        if (options.height > 0) render.height = options.height;
-        if (options.samples > 0) render.samples = options.samples;
-    }, std::cerr, &unreadable);
+    auto loaded = tracer::load_scene_with_meshes(
+        options.scene,
+        [&](tracer::SceneDescription& scene) {
+            tracer::RenderSettings& render = scene.render;
+            if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
+            if (options.leaf_size > 0) render.leaf_size = options.leaf_size;
+            if (options.width > 0) render.width = options.width;
+            if (options.height > 0) render.height = options.height;
+            if (options.samples > 0) render.samples = options.samples;
+        },
+        std::cerr, &unreadable);
     if (!loaded) exit_code = unreadable ? kIoError : kSceneError;
     return loaded;
+}
+
+// JSON text even when a path in it is not UTF-8 (such bytes become U+FFFD, not an abort).
+std::string json_text(const nlohmann::json& value) {
+    return value.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+// Why the paths the render will write clash with its inputs or with each other, or nullopt:
+// an output must never replace the scene, a mesh or the other output.
+std::optional<std::string> output_clash(const Options& options, const tracer::SceneDescription& scene) {
+    std::vector<std::pair<std::string, std::string>> inputs = {{options.scene, "the scene file"}};
+    for (const tracer::Mesh& mesh : scene.meshes) inputs.push_back({mesh.path, "a mesh file"});
+    for (const auto& [output, what] :
+         {std::pair{options.output, "-o"}, std::pair{options.stats_json, "--stats-json"}}) {
+        if (output.empty()) continue;
+        for (const auto& [input, kind] : inputs)
+            if (tracer::same_file(output, input))
+                return std::string(what) + " '" + output + "' is " + kind + "; choose another output path";
+    }
+    if (!options.stats_json.empty() && tracer::same_file(options.output, options.stats_json))
+        return "--stats-json and -o name the same file '" + options.output + "'";
+    return std::nullopt;
 }
 
 std::string millions(uint64_t count) {
@@ -76,15 +111,22 @@ int render_to_file(const Options& options) {
         std::cerr << "tracer: error: " << *problem << '\n';
         return kIoError;
     }
+    if (!options.stats_json.empty())
+        if (auto problem = tracer::output_path_problem(options.stats_json)) {
+            std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
+            return kIoError;
+        }
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
     const tracer::SceneDescription& scene = loaded->scene;
+    if (auto clash = output_clash(options, scene)) {
+        std::cerr << "tracer: error: " << *clash << '\n';
+        return kUsageError;
+    }
     const tracer::World world(loaded->scene, loaded->meshes, options.threads);
 
-    // Step 2: render, stoppable with Ctrl-C.
-    std::signal(SIGINT, on_interrupt);
-    std::signal(SIGTERM, on_interrupt);
+    // Step 2: render, stoppable with Ctrl-C (or a SIGTERM, even one that came while loading).
     tracer::ProgressLine progress(!options.quiet);
     tracer::RenderOptions render_options;
     render_options.threads = options.threads;
@@ -92,9 +134,10 @@ int render_to_file(const Options& options) {
     render_options.progress = [&](double fraction) { progress.update(fraction); };
     tracer::Image image;
     tracer::RenderStats stats;
+    g_rendering = true;
     bool complete = tracer::render(world, scene, render_options, image, stats);
     progress.finish();
-    if (!complete) {
+    if (!complete || g_interrupted) {
         std::cerr << "tracer: interrupted; nothing written\n";
         return kInterrupted;
     }
@@ -106,14 +149,11 @@ int render_to_file(const Options& options) {
     }
     const auto figures = tracer::render_stats_json(world, scene, stats);
     if (options.stats) std::cerr << tracer::render_stats_text(figures);
-    if (!options.stats_json.empty()) {
-        std::ofstream out(options.stats_json);
-        out << figures.dump(2) << '\n';
-        if (!out) {
-            std::cerr << "tracer: error: cannot write '" << options.stats_json << "'\n";
+    if (!options.stats_json.empty())
+        if (auto problem = tracer::write_file_atomically(options.stats_json, json_text(figures) + '\n')) {
+            std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
             return kIoError;
         }
-    }
     if (!options.quiet) {
         const tracer::RayCounts& rays = stats.rays;
         std::fprintf(stderr,
@@ -132,9 +172,9 @@ int check_only(const Options& options) {
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
     const tracer::SceneDescription& scene = loaded->scene;
-    std::cout << options.scene << ": ok (" << scene.spheres.size() << " spheres, " << scene.planes.size()
-              << " planes, " << scene.meshes.size() << " meshes, " << scene.lights.size() << " lights, "
-              << scene.materials.size() << " materials)\n";
+    std::cout << options.scene << ": ok (" << scene.spheres.size() << " spheres, " << scene.planes.size() << " planes, "
+              << scene.meshes.size() << " meshes, " << scene.lights.size() << " lights, " << scene.materials.size()
+              << " materials)\n";
     return kOk;
 }
 
@@ -142,7 +182,7 @@ int dump_json(const Options& options) {
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
-    std::cout << tracer::scene_to_json(loaded->scene).dump(2) << '\n';
+    std::cout << json_text(tracer::scene_to_json(loaded->scene)) << '\n';
     return kOk;
 }
 
@@ -155,14 +195,13 @@ const CLI::Validator perfect_square(
     },
     "N*N");
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     Options options;
     CLI::App app{"tracer: renders scene files with Whitted ray tracing and Phong shading.", "tracer"};
     app.set_version_flag("--version", std::string("tracer ") + TRACER_VERSION);
     app.add_option("scene", options.scene, "The scene file (.scn)");
-    app.add_option("-o,--output", options.output, "The image to write; the format follows the extension (.png, .exr, ...)");
+    app.add_option("-o,--output", options.output,
+                   "The image to write; the format follows the extension (.png, .exr, ...)");
     app.add_option("--threads", options.threads, "Render threads (default: every core)")->check(CLI::Range(1, 1024));
     app.add_flag("-q,--quiet", options.quiet, "No progress indicator and no summary line");
     const auto& accel_names = tracer::find_block_spec("render")->find_key("accel")->choices;  // the table's
@@ -178,9 +217,10 @@ int main(int argc, char** argv) {
     app.add_flag("--check", options.check, "Only check the scene; report every problem found");
     app.add_flag("--dump-json", options.dump_json, "Print the resolved scene description as JSON on stdout");
     app.add_flag("--reference", options.reference, "Print the scene language reference (Markdown) on stdout");
-    app.footer("Exit codes: 0 success, 1 scene errors, 2 bad command line, 3 cannot read the scene or write "
-               "the image, 130 interrupted.\nExamples:\n  tracer scenes/task2.scn -o out.png\n"
-               "  tracer --check scenes/task2.scn");
+    app.footer(
+        "Exit codes: 0 success, 1 scene errors, 2 bad command line, 3 cannot read the scene or write "
+        "the image, 130 interrupted.\nExamples:\n  tracer scenes/task2.scn -o out.png\n"
+        "  tracer --check scenes/task2.scn");
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -206,4 +246,22 @@ int main(int argc, char** argv) {
     if (options.dump_json) return dump_json(options);
     if (options.output.empty()) return usage_error("no output image given (-o out.png)");
     return render_to_file(options);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+    // Whatever escapes (memory exhausted, a thread that could not start) ends with a message
+    // and exit code 3, never std::terminate's abort.
+    try {
+        return run(argc, argv);
+    } catch (const std::bad_alloc&) {
+        std::cerr << "tracer: error: out of memory (the scene, its meshes or the image need more memory than "
+                     "this machine can give)\n";
+    } catch (const std::exception& e) {
+        std::cerr << "tracer: error: " << e.what() << '\n';
+    }
+    return kIoError;
 }

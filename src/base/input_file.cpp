@@ -22,8 +22,7 @@ std::string describe_bytes(uint64_t bytes) {
     return text;
 }
 
-// strerror's text, lower-cased to read as the rest of a message ("no such file or directory").
-static std::string reason(int error) {
+std::string errno_text(int error) {
     std::string text = std::strerror(error);
     if (!text.empty() && text[0] >= 'A' && text[0] <= 'Z') text[0] = char(text[0] - 'A' + 'a');
     return text;
@@ -48,9 +47,9 @@ static std::string refusal(const struct stat& info, uint64_t max_bytes) {
 
 std::string input_file_problem(const std::string& path, uint64_t max_bytes) {
     struct stat info {};
-    if (::stat(path.c_str(), &info) != 0) return reason(errno);
+    if (::stat(path.c_str(), &info) != 0) return errno_text(errno);
     std::string problem = refusal(info, max_bytes);
-    if (problem.empty() && ::access(path.c_str(), R_OK) != 0) problem = reason(errno);
+    if (problem.empty() && ::access(path.c_str(), R_OK) != 0) problem = errno_text(errno);
     return problem;
 }
 
@@ -60,11 +59,11 @@ InputFile read_input_file(const std::string& path, uint64_t max_bytes) {
     // what was opened, not at the path, so nothing can be swapped in between.
     const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
     if (fd < 0) {
-        result.problem = reason(errno);
+        result.problem = errno_text(errno);
         return result;
     }
     struct stat info {};
-    result.problem = ::fstat(fd, &info) != 0 ? reason(errno) : refusal(info, max_bytes);
+    result.problem = ::fstat(fd, &info) != 0 ? errno_text(errno) : refusal(info, max_bytes);
     if (!result.problem.empty()) {
         ::close(fd);
         return result;
@@ -81,7 +80,7 @@ InputFile read_input_file(const std::string& path, uint64_t max_bytes) {
         const ssize_t got = ::read(fd, result.text.data() + filled, result.text.size() - filled);
         if (got < 0 && errno == EINTR) continue;
         if (got < 0) {
-            result.problem = reason(errno);
+            result.problem = errno_text(errno);
             break;
         }
         if (got == 0) break;

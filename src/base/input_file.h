@@ -26,6 +26,9 @@ InputFile read_input_file(const std::string& path, uint64_t max_bytes);
 // blocking); empty if it looks readable. The same reasons as read_input_file gives.
 std::string input_file_problem(const std::string& path, uint64_t max_bytes);
 
+// strerror's text, lower-cased to read as the rest of a message ("no such file or directory").
+std::string errno_text(int error);
+
 // A byte count for messages: "312 bytes", "4.2 MB", "1.5 GB".
 std::string describe_bytes(uint64_t bytes);
 

@@ -1,7 +1,5 @@
 #include "io/image_file.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -9,7 +7,10 @@
 #include <system_error>
 #include <vector>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+
+#include "base/output_file.h"
 
 namespace tracer {
 namespace fs = std::filesystem;
@@ -25,19 +26,24 @@ static bool is_float_format(const std::string& path) {
     return extension == ".exr" || extension == ".hdr" || extension == ".pfm";
 }
 
-std::optional<std::string> check_output_path(const std::string& path) {
+// OpenImageIO writers that can write into memory (ImageOutput's "ioproxy"): the only kind
+// tracer uses, so that every byte reaches the disk through one checked, atomic write.
+static std::unique_ptr<OIIO::ImageOutput> memory_writer(const std::string& path) {
     auto output = OIIO::ImageOutput::create(path);
-    if (!output)
-        return "cannot write '" + path + "': unknown image format (use an extension such as .png, .exr, .jpg, .tif)";
-    fs::path folder = fs::absolute(fs::path(path)).parent_path();
-    std::error_code error;
-    if (!fs::is_directory(folder, error)) return "cannot write '" + path + "': no such folder '" + folder.string() + "'";
-    if (fs::is_directory(path, error)) return "cannot write '" + path + "': it is a directory";
+    if (output && !output->supports("ioproxy")) output.reset();
+    return output;
+}
+
+std::optional<std::string> check_output_path(const std::string& path) {
+    if (!memory_writer(path))
+        return "cannot write '" + path +
+               "': unknown image format (use an extension such as .png, .exr, .jpg, .tif, .bmp, .hdr)";
+    if (auto problem = output_path_problem(path)) return "cannot write '" + path + "': " + *problem;
     return std::nullopt;
 }
 
 std::optional<std::string> write_image(const std::string& path, const Image& image) {
-    auto output = OIIO::ImageOutput::create(path);
+    auto output = memory_writer(path);
     if (!output) return "cannot write '" + path + "': unknown image format";
 
     // Step 1: pixels in the file's type.
@@ -50,25 +56,19 @@ std::optional<std::string> write_image(const std::string& path, const Image& ima
     else
         std::transform(image.rgb.begin(), image.rgb.end(), std::back_inserter(bytes), to_8bit);
 
-    // Step 2: write beside the target, then rename over it (atomic on one file system).
-    const fs::path target(path);
-    const fs::path temporary =
-        target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()));
-    bool ok = output->open(temporary.string(), spec) &&
-              output->write_image(as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8,
-                                  as_float ? static_cast<const void*>(floats.data()) : bytes.data()) &&
-              output->close();
-    std::error_code error;
+    // Step 2: the encoded file in memory, then on disk in one atomic write.
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput memory(encoded);
+    const bool ok = output->set_ioproxy(&memory) && output->open(path, spec, OIIO::ImageOutput::Create) &&
+                    output->write_image(as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8,
+                                        as_float ? static_cast<const void*>(floats.data()) : bytes.data()) &&
+                    output->close();
     if (!ok) {
-        std::string message = output->geterror();
-        fs::remove(temporary, error);
-        return "cannot write '" + path + "': " + (message.empty() ? "write failed" : message);
+        const std::string message = output->geterror();
+        return "cannot write '" + path + "': " + (message.empty() ? "encoding the image failed" : message);
     }
-    fs::rename(temporary, target, error);
-    if (error) {
-        fs::remove(temporary, error);
-        return "cannot write '" + path + "': " + error.message();
-    }
+    const std::string_view file(reinterpret_cast<const char*>(encoded.data()), encoded.size());
+    if (auto problem = write_file_atomically(path, file)) return "cannot write '" + path + "': " + *problem;
     return std::nullopt;
 }
 

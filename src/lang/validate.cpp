@@ -433,11 +433,8 @@ void Validator::build_render(const Block& block, const Fields& fields) {
     accelerator_from_name(fields.text("accel"), render.accel);
     render.leaf_size = fields.integer("leaf_size");
 
-    constexpr long long kMaxPixels = 8192LL * 8192LL;
-    if (1LL * render.width * render.height > kMaxPixels)
-        diagnostics_.error(file_, block.kind_span,
-                           "the image would have " + std::to_string(1LL * render.width * render.height) +
-                               " pixels; the limit is " + std::to_string(kMaxPixels) + " (8192 x 8192)");
+    if (const std::string problem = render_settings_problem(render); !problem.empty())
+        diagnostics_.error(file_, block.kind_span, problem);
     int root = int(std::lround(std::sqrt(double(render.samples))));
     if (root * root != render.samples) {
         int lower = int(std::floor(std::sqrt(double(render.samples))));

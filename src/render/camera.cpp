@@ -8,10 +8,22 @@
 
 namespace tracer {
 
+// normalize(v), also when v's squared length would underflow or overflow (an eye 1e-200 from
+// its lookat); bit for bit glm::normalize otherwise.
+static glm::dvec3 unit(const glm::dvec3& v) {
+    const double squared = glm::dot(v, v);
+    if (squared > 1e-290 && squared < 1e290) return glm::normalize(v);
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    return glm::normalize(v / largest);
+}
+
+// The image plane sits at distance 1 whatever the scene's `focal`: the rays through it are
+// the same for any distance (only their directions count), so a focal of 1e-300 or 1e300
+// gives the same image as 1 instead of underflowing or overflowing.
 PinholeCamera::PinholeCamera(const Camera& camera, int width, int height)
-    : eye_(camera.eye), focal_(camera.focal), width_(width), height_(height) {
-    w_ = glm::normalize(Vec3(camera.eye - camera.lookat));
-    u_ = glm::normalize(glm::cross(Vec3(camera.up), w_));
+    : eye_(camera.eye), focal_(1), width_(width), height_(height) {
+    w_ = Vec3(unit(camera.eye - camera.lookat));
+    u_ = Vec3(unit(glm::cross(glm::dvec3(camera.up), glm::dvec3(w_))));
     v_ = glm::cross(w_, u_);
     plane_height_ = 2 * focal_ * std::tan(glm::radians(Real(camera.fovy_degrees)) / 2);
     plane_width_ = plane_height_ * Real(width) / Real(height);

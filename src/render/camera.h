@@ -1,5 +1,5 @@
 // The pinhole camera of conventions.md: w = normalize(eye - lookat), u = normalize(up x w),
-// v = w x u; an image plane at distance `focal` whose height is 2 f tan(fovy / 2).
+// v = w x u; an image plane at distance 1 (the scene's focal does not change the rays) whose height is 2 tan(fovy / 2).
 #pragma once
 
 #include "render/types.h"

@@ -16,6 +16,13 @@ const char* accelerator_name(Accelerator accelerator) {
     return "sah";
 }
 
+std::string render_settings_problem(const RenderSettings& render) {
+    const long long pixels = 1LL * render.width * render.height;
+    if (pixels <= kMaxPixels) return "";
+    return "the image would have " + std::to_string(pixels) + " pixels; the limit is " + std::to_string(kMaxPixels) +
+           " (8192 x 8192)";
+}
+
 bool accelerator_from_name(std::string_view name, Accelerator& out) {
     for (Accelerator a : {Accelerator::None, Accelerator::Box, Accelerator::Median, Accelerator::Sah})
         if (name == accelerator_name(a)) {

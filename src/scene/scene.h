@@ -58,6 +58,13 @@ struct RenderSettings {
     int leaf_size = 3;  // most triangles in a BVH leaf (median; sah may make smaller leaves)
 };
 
+// The largest image, in pixels (8192 x 8192: 1.6 GB of pixel data in double precision).
+constexpr long long kMaxPixels = 8192LL * 8192LL;
+
+// Why these settings cannot be rendered (an image beyond kMaxPixels), or empty: the one rule
+// for settings from a scene and from the command line alike.
+std::string render_settings_problem(const RenderSettings& render);
+
 struct Sphere {
     dvec3 center{0.0};
     double radius = 1.0;
