@@ -9,7 +9,7 @@ SourceFile::SourceFile(std::string path, std::string text) : path_(std::move(pat
     // feeds, a UTF-8 byte-order mark becomes spaces.
     for (size_t i = 0; i < text_.size(); ++i)
         if (text_[i] == '\r' && (i + 1 == text_.size() || text_[i + 1] != '\n')) text_[i] = '\n';
-    if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) text_.replace(0, 3, "   ");
+    if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) text_[0] = text_[1] = text_[2] = ' ';
     line_starts_.push_back(0);
     for (uint32_t i = 0; i < text_.size(); ++i)
         if (text_[i] == '\n') line_starts_.push_back(i + 1);

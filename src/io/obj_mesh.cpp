@@ -73,7 +73,6 @@ static std::vector<std::array<uint32_t, 3>> triangulate_faces(const ObjContents&
 }
 
 std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics) {
-    // Step 1: read and check the text (a regular file within the size limit).
     InputFile input = read_input_file(mesh.path, kMaxMeshFileBytes);
     if (!input.problem.empty()) {
         diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path),
@@ -81,12 +80,16 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
         note_where_used(mesh, diagnostics);
         return std::nullopt;
     }
-    const SourceFile file(mesh.path, std::move(input.text));
+    auto loaded = mesh_from_obj_text(mesh.path, std::move(input.text), diagnostics);
+    if (!loaded) note_where_used(mesh, diagnostics);
+    return loaded;
+}
+
+std::optional<TriangleMesh> mesh_from_obj_text(const std::string& path, std::string text, Diagnostics& diagnostics) {
+    // Step 1: read and check the statements.
+    const SourceFile file(path, std::move(text));
     std::optional<ObjContents> obj = read_obj(file, diagnostics);
-    if (!obj) {
-        note_where_used(mesh, diagnostics);
-        return std::nullopt;
-    }
+    if (!obj) return std::nullopt;
 
     // Step 2: triangles, dropping zero-area ones unless they close a gap.
     size_t broken = 0;
@@ -111,7 +114,7 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
     }
     auto warn = [&](size_t count, const std::string& what) {
         if (count > 0)
-            diagnostics.report(Severity::Warning, Diagnostics::whole_file(mesh.path), std::to_string(count) + what);
+            diagnostics.report(Severity::Warning, Diagnostics::whole_file(path), std::to_string(count) + what);
     };
     warn(degenerate,
          degenerate == 1 ? " degenerate (zero-area) triangle dropped" : " degenerate (zero-area) triangles dropped");
@@ -121,9 +124,8 @@ std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics
          std::string(obj->material_statements == 1 ? " usemtl/mtllib line" : " usemtl/mtllib lines") +
              " ignored: a mesh takes its material from its mesh block");
     if (out.triangles.empty()) {
-        diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path),
+        diagnostics.report(Severity::Error, Diagnostics::whole_file(path),
                            "the mesh has no triangles (with non-zero area)");
-        note_where_used(mesh, diagnostics);
         return std::nullopt;
     }
 

@@ -14,6 +14,10 @@ namespace tracer {
 // Reads the OBJ file of one mesh block; bad files are reported as `obj-file:line:col: error: ...`.
 std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics);
 
+// The mesh of OBJ text held in memory (`path` names it in messages); what load_mesh does once
+// it has read the file.
+std::optional<TriangleMesh> mesh_from_obj_text(const std::string& path, std::string text, Diagnostics& diagnostics);
+
 // Reads the file of every mesh block, each file once however many blocks name it (every bad
 // file is reported in one run).
 std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostics& diagnostics);

@@ -1,0 +1,23 @@
+// Fuzz target: the scene front end (lex, parse, validate), its messages, the JSON dump, and
+// a tiny render of what it accepts (mesh blocks left out: their paths would read real files).
+#include <cstddef>
+#include <cstdint>
+#include <sstream>
+#include <string>
+
+#include "fuzz/render_small.h"
+#include "lang/load_scene.h"
+#include "scene/scene_json.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    using namespace tracer;
+    LoadResult loaded = load_scene_text("fuzz.scn", std::string(reinterpret_cast<const char*>(data), size));
+    std::ostringstream messages;
+    loaded.diagnostics.print(messages);
+    if (!loaded.scene) return 0;
+    std::ostringstream json;
+    json << scene_to_json(*loaded.scene).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+    loaded.scene->meshes.clear();
+    render_small(*loaded.scene, {});
+    return 0;
+}
