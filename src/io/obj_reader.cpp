@@ -111,6 +111,18 @@ private:
     // `f v v v ...`, each corner v, v/vt, v/vt/vn or v//vn (texture indices: form only).
     void read_face() {
         if (tokens_.size() < 3) error(keyword_span_, "a face needs at least three vertices");
+        if (tokens_.size() > kMaxFaceCorners) {
+            error(keyword_span_, "this face has " + std::to_string(tokens_.size()) + " corners; the limit is " +
+                                     std::to_string(kMaxFaceCorners));
+            return;
+        }
+        if (tokens_.size() >= 5) polygon_work_ += double(tokens_.size()) * double(tokens_.size());
+        if (polygon_work_ > kMaxPolygonWork && !work_reported_) {
+            work_reported_ = true;
+            error(keyword_span_, "the faces of 5 or more corners up to this one are too large in all to triangulate "
+                                 "(the sum of their squared corner counts passes 2e10); split them into smaller faces");
+            return;
+        }
         for (const Token& token : tokens_) {
             const std::string_view corner = token.text;
             const size_t slash = corner.find('/');
@@ -167,6 +179,8 @@ private:
     std::vector<Token> tokens_;
     Span keyword_span_;
     size_t vertex_total_ = 0, normal_total_ = 0;
+    double polygon_work_ = 0;  // corner pairs of the faces of 5 or more corners so far
+    bool work_reported_ = false;
     bool ok_ = true;
 };
 

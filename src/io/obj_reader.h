@@ -19,6 +19,13 @@
 
 namespace tracer {
 
+// Polygons are triangulated by Earcut, whose work grows with the square of a polygon's corners
+// when it is self-intersecting (~1e-9 s per corner pair measured): a face may have at most
+// kMaxFaceCorners corners, and the faces of 5 or more corners at most kMaxPolygonWork corner
+// pairs (n * n summed) in all, so no file can keep the triangulation busy for more than ~30 s.
+inline constexpr size_t kMaxFaceCorners = 100000;
+inline constexpr double kMaxPolygonWork = 2e10;
+
 // The polygons of an OBJ file with their indices resolved (0-based, every one in range).
 struct ObjContents {
     std::vector<glm::dvec3> positions;

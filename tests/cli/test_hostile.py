@@ -1,0 +1,344 @@
+#!/usr/bin/env python3
+"""Hostile input: every class of the hostile-input issue, with the exit code, the message and
+the fate of every file asserted. No crash, no hang, no memory blow-up, no lost file.
+
+    test_hostile.py --tracer build/release/tracer
+
+Time limits here only catch hangs (each is generous); speed is measured by benchmarks.
+"""
+
+import argparse
+import math
+import os
+import pathlib
+import resource
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+BUNNY = ROOT / "scenes" / "meshes" / "bunny.obj"
+TRACER = ""
+HANG = 60  # seconds: far beyond what any case here needs; reaching it means a hang
+
+CAMERA = "camera { eye (0, 0, 7) lookat (0, 0, 0) }\n"
+SMALL_SCENE = (
+    CAMERA + "render { width 64 height 48 }\n"
+    "sphere { center (0, 0, 0) radius 1 material { ka 0.1 kd (1, 0.5, 0.25) ks 0.5 n 20 } }\n"
+    "light { position (2, 3, 4) color 2 }\n"
+)
+TRIANGLE = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+
+
+def run(*args, limits=None, **kwargs):
+    """Runs tracer; `limits` are (resource, value) pairs set in the child only."""
+
+    def set_limits():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a file-size limit gives EFBIG, not a kill
+        for which, value in limits or []:
+            resource.setrlimit(which, (value, value))
+
+    return subprocess.run([TRACER, *map(str, args)], capture_output=True, timeout=HANG, preexec_fn=set_limits, **kwargs)
+
+
+def peak_memory_mb(*args):
+    """Runs tracer in a fresh Python process and returns (exit code, its peak resident MB)."""
+    code = (
+        "import resource, subprocess, sys\n"
+        "r = subprocess.run(sys.argv[1:], capture_output=True)\n"
+        "print(r.returncode, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss // 1024)\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code, TRACER, *map(str, args)], capture_output=True, text=True, timeout=HANG
+    )
+    code, megabytes = out.stdout.split()
+    return int(code), int(megabytes)
+
+
+def sanitized():
+    """True for an AddressSanitizer build (address-space limits do not apply to it)."""
+    ldd = subprocess.run(["ldd", TRACER], capture_output=True, text=True)
+    return "libasan" in ldd.stdout
+
+
+class Hostile(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.tmp = pathlib.Path(self.dir.name)
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def write(self, name, content):
+        path = self.tmp / name
+        (path.write_bytes if isinstance(content, bytes) else path.write_text)(content)
+        return path
+
+    def mesh_scene(self, obj_name, extra=""):
+        return self.write(
+            "s.scn",
+            CAMERA + f'mesh {{ file "{obj_name}" {extra} material {{ kd 1 }} }}\n' "light { position (0, 3, 3) }\n",
+        )
+
+    def files(self):
+        return sorted(p.name for p in self.tmp.iterdir())
+
+    def assertError(self, result, code, *fragments):
+        stderr = result.stderr.decode(errors="replace")
+        self.assertEqual(result.returncode, code, stderr)
+        for fragment in fragments:
+            self.assertIn(fragment, stderr)
+        return stderr
+
+
+class CrashesOnSmallFiles(Hostile):
+    def test_line_ends_cr_only_crlf_and_mixed_read_the_same_faces(self):
+        # Classic Mac line ends once hid face lines from the checker (out-of-range indices).
+        self.write("m.obj", b"_\rf 1 3 1")
+        self.assertError(
+            run("--check", self.mesh_scene("m.obj")),
+            1,
+            "m.obj:2:3: error: vertex index 1 is out of range (the file has 0 vertices)",
+        )
+        for name, ending in [("cr", "\r"), ("crlf", "\r\n"), ("lf", "\n")]:
+            self.write(f"{name}.obj", TRIANGLE.replace("\n", ending).encode())
+            result = run("--check", self.mesh_scene(f"{name}.obj"))
+            self.assertEqual(result.returncode, 0, result.stderr)
+
+    def test_coordinates_beyond_float_range_are_refused(self):
+        self.write("far.obj", "v 1e39 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n")
+        self.assertError(run("--check", self.mesh_scene("far.obj")), 1, "far.obj:1:3: error: coordinate '1e39'")
+        self.write("t.obj", TRIANGLE)
+        self.assertError(run("--check", self.mesh_scene("t.obj", "scale 1e300")), 1, "must lie between")
+        self.assertError(run("--check", self.mesh_scene("t.obj", "translate (1e308, 0, 0)")), 1, "must lie between")
+        self.assertError(
+            run("--check", self.mesh_scene("t.obj", "scale 1e29 translate (1e30, 0, 0)")),
+            1,
+            "reaches coordinates up to",
+        )
+
+    def test_numbers_that_overflow_a_parser(self):
+        self.write("e.obj", "v 0 0 1e2147483648\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+        self.assertError(run("--check", self.mesh_scene("e.obj")), 1, "is not a finite number")
+        self.write("vt.obj", TRIANGLE + "vt 1e2147483648 0\n")  # texture coordinates: not read
+        self.assertEqual(run("--check", self.mesh_scene("vt.obj")).returncode, 0)
+        self.write("i.obj", TRIANGLE + "f 1 2 99999999999999999999\n")
+        self.assertError(run("--check", self.mesh_scene("i.obj")), 1, "is not a valid face corner")
+
+    def test_binary_file_as_mesh(self):
+        self.write("b.obj", bytes(range(256)) * 64)
+        stderr = self.assertError(run("--check", self.mesh_scene("b.obj")), 1, "NUL byte")
+        self.assertLess(len(stderr), 2000)
+        self.assertNotIn("\x00", stderr)
+
+    def test_dump_json_of_a_path_that_is_not_utf8(self):
+        folder = self.tmp / os.fsdecode(b"caf\xe9")
+        folder.mkdir()
+        (folder / "t.obj").write_text(TRIANGLE)
+        scene = folder / "s.scn"
+        scene.write_text(CAMERA + 'mesh { file "t.obj" material { kd 1 } }\n')
+        result = run("--dump-json", scene)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("caf\ufffd", result.stdout.decode())
+
+
+class Hangs(Hostile):
+    def test_a_megabyte_of_nul_bytes(self):
+        stderr = self.assertError(run("--check", self.write("z.scn", bytes(1 << 20))), 1, "stopped after 20 errors")
+        self.assertLess(len(stderr), 20000)
+
+    def test_fifo_and_devices_as_inputs(self):
+        fifo = self.tmp / "pipe.obj"
+        os.mkfifo(fifo)
+        self.assertError(run("--check", self.mesh_scene("pipe.obj")), 1, "it is a FIFO, not a regular file")
+        self.assertError(run("--check", fifo), 3, "it is a FIFO, not a regular file")
+        self.assertError(run("--check", self.mesh_scene("/dev/zero")), 1, "it is a character device")
+        self.assertError(run("--check", "/dev/zero"), 3, "it is a character device")
+        self.assertError(run("--check", self.tmp), 3, "it is a directory")
+
+    def test_faces_with_many_corners(self):
+        n = 100_000
+        star = [
+            f"v {math.cos(2 * math.pi * i / n) * (1 if i % 2 else 0.9):.6f} "
+            f"{math.sin(2 * math.pi * i / n) * (1 if i % 2 else 0.9):.6f} 0"
+            for i in range(n)
+        ]
+        face = "f " + " ".join(str(i + 1) for i in range(n))
+        self.write("star.obj", "\n".join(star) + "\n" + face + "\n")
+        result = run("--check", self.mesh_scene("star.obj"))
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.write("huge.obj", "\n".join(star + star[:5]) + "\nf " + " ".join(str(i + 1) for i in range(n + 5)))
+        self.assertError(run("--check", self.mesh_scene("huge.obj")), 1, "corners; the limit is 100000")
+        self.write("many.obj", "\n".join(star) + "\n" + (face + "\n") * 3)
+        self.assertError(run("--check", self.mesh_scene("many.obj")), 1, "too large in all to triangulate")
+
+
+class Memory(Hostile):
+    def test_oversized_and_endless_inputs(self):
+        big = self.tmp / "big.obj"
+        with open(big, "wb") as f:
+            f.truncate((1 << 30) + 1)  # sparse: takes no disk space
+        self.assertError(run("--check", self.mesh_scene("big.obj")), 1, "the limit is 1.1 GB")
+        os.truncate(big, (256 << 20) + 1)
+        self.assertError(run("--check", big), 3, "the limit is 268.4 MB")
+
+    def test_many_warnings_are_capped(self):
+        materials = " ".join(f"material m{i} {{ kd 1 }}" for i in range(20000))
+        scene = self.write("m.scn", CAMERA + materials + "\n")
+        result = run("--check", scene)
+        self.assertEqual(result.returncode, 0)
+        self.assertIn(b"warning: 19980 more warnings not shown", result.stderr)
+        self.assertLess(len(result.stderr), 200_000)
+        code, megabytes = peak_memory_mb("--check", scene)
+        self.assertEqual(code, 0)
+        self.assertLess(megabytes, 500)
+
+    def test_one_mesh_file_named_twenty_thousand_times(self):
+        blocks = "".join(
+            f'mesh {{ file "{BUNNY}" translate ({i % 100}, {i // 100}, 0) material {{ kd 1 }} }}\n'
+            for i in range(20000)
+        )
+        scene = self.write("b.scn", CAMERA + blocks + "light { position (0, 3, 3) }\n")
+        code, megabytes = peak_memory_mb(scene, "-o", self.tmp / "b.png", "--width", "32", "--height", "24", "-q")
+        self.assertEqual(code, 0)
+        self.assertLess(megabytes, 1000)
+
+    def test_command_line_sizes_meet_the_pixel_cap(self):
+        scene = self.write("s.scn", SMALL_SCENE)
+        self.assertError(
+            run(scene, "-o", self.tmp / "o.png", "--width", "16384", "--height", "16384"), 1, "the limit is 67108864"
+        )
+        self.assertEqual(self.files(), ["s.scn"])
+
+    def test_out_of_memory_is_a_message_and_exit_3(self):
+        if sanitized():
+            self.skipTest("AddressSanitizer reserves its own address space; limits do not apply")
+        scene = self.write("s.scn", SMALL_SCENE.replace("width 64 height 48", "width 8192 height 8192"))
+        out = self.write("o.png", b"previous")
+        result = run(scene, "-o", out, "-q", limits=[(resource.RLIMIT_AS, 600 << 20)])
+        self.assertError(result, 3, "tracer: error: out of memory")
+        self.assertEqual(out.read_bytes(), b"previous")
+        self.assertEqual(self.files(), ["o.png", "s.scn"])
+
+
+class Files(Hostile):
+    def test_a_full_disk_keeps_the_old_output(self):
+        scene = self.write("s.scn", SMALL_SCENE)
+        for extension in ["png", "bmp", "jpg", "exr", "tif"]:
+            out = self.write(f"o.{extension}", b"previous")
+            result = run(scene, "-o", out, "-q", limits=[(resource.RLIMIT_FSIZE, 200)])
+            self.assertError(result, 3, f"cannot write '{out}': file too large")
+            self.assertEqual(out.read_bytes(), b"previous", extension)
+            self.assertNotIn(".o.", result.stderr.decode())  # the temporary file is not named
+        self.assertEqual(self.files(), ["o.bmp", "o.exr", "o.jpg", "o.png", "o.tif", "s.scn"])
+
+    def test_outputs_never_replace_an_input(self):
+        scene = self.write("s.png", SMALL_SCENE)  # a scene file with an image's name
+        self.assertError(run(scene, "-o", scene), 2, "is the scene file")
+        self.assertError(run(scene, "-o", self.tmp / "." / "s.png"), 2, "is the scene file")
+        self.assertEqual(scene.read_text(), SMALL_SCENE)
+        out = self.tmp / "o.png"
+        self.assertError(run(scene, "-o", out, "--stats-json", scene), 2, "is the scene file")
+        self.assertError(run(scene, "-o", out, "--stats-json", out), 2, "name the same file")
+        self.write("m.png", TRIANGLE)  # a mesh file with an image's name
+        mesh_scene = self.mesh_scene("m.png")
+        self.assertError(run(mesh_scene, "-o", self.tmp / "m.png"), 2, "is a mesh file")
+        self.assertEqual((self.tmp / "m.png").read_text(), TRIANGLE)
+        self.assertEqual(self.files(), ["m.png", "s.png", "s.scn"])
+
+    def test_output_paths_checked_before_rendering(self):
+        scene = self.write("s.scn", SMALL_SCENE.replace("width 64 height 48", "width 4096 height 4096 samples 64"))
+        started = time.monotonic()
+        self.assertError(run(scene, "-o", self.tmp / "no" / "o.png"), 3, "no such folder")
+        self.assertError(
+            run(scene, "-o", self.tmp / "o.png", "--stats-json", self.tmp / "no" / "s.json"), 3, "no such folder"
+        )
+        (self.tmp / "d.png").mkdir()
+        self.assertError(run(scene, "-o", self.tmp / "d.png"), 3, "it is a directory")
+        self.assertLess(time.monotonic() - started, HANG)  # the 4096 x 4096 x 64 render never ran
+        if os.geteuid() != 0:  # root may write anywhere
+            locked = self.tmp / "locked"
+            locked.mkdir(mode=0o555)
+            stderr = self.assertError(run(scene, "-o", locked / "o.png"), 3, "cannot write in")
+            self.assertNotIn(".tmp", stderr)
+        self.assertEqual(self.files(), ["d.png", "s.scn"])
+
+    def test_stats_json_is_written_whole(self):
+        scene = self.write("s.scn", SMALL_SCENE)
+        stats = self.write("s.json", b"previous")
+        result = run(scene, "-o", self.tmp / "o.png", "-q", "--stats-json", stats)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn('"rays"', stats.read_text())
+
+
+class Messages(Hostile):
+    def test_byte_order_mark_and_cr_only_scenes_are_read(self):
+        bom = self.write("bom.scn", b"\xef\xbb\xbf" + SMALL_SCENE.encode())
+        self.assertEqual(run("--check", bom).returncode, 0)
+        cr = self.write("cr.scn", SMALL_SCENE.replace("\n", "\r").replace("radius 1", "radius -1").encode())
+        self.assertError(run("--check", cr), 1, "cr.scn:3:")
+
+    def test_a_megabyte_token_is_shown_cut(self):
+        stderr = self.assertError(run("--check", self.write("t.scn", "x" * 1_000_000 + "\n")), 1, "...")
+        self.assertLess(len(stderr), 2000)
+
+    def test_extreme_focal_gives_the_same_image(self):
+        images = []
+        for focal in ["1", "1e-300", "1e30", "0.001"]:
+            scene = self.write("f.scn", SMALL_SCENE.replace("lookat (0, 0, 0)", f"lookat (0, 0, 0) focal {focal}"))
+            out = self.tmp / f"f{len(images)}.png"
+            result = run(scene, "-o", out, "-q")
+            self.assertEqual(result.returncode, 0, result.stderr)
+            images.append(out.read_bytes())
+        self.assertEqual(len(set(images)), 1)
+        scene = self.write("f.scn", SMALL_SCENE.replace("lookat (0, 0, 0)", "lookat (0, 0, 0) focal 1e200"))
+        self.assertError(run("--check", scene), 1, "'focal' must lie between -1e30 and 1e30")
+
+    def test_eye_and_lookat_far_apart_or_very_close(self):
+        far = self.write(
+            "far.scn", SMALL_SCENE.replace("eye (0, 0, 7) lookat (0, 0, 0)", "eye (0, 0, 1e30) lookat (0, 0, -1e30)")
+        )
+        self.assertEqual(run("--check", far).returncode, 0)
+        near = self.write(
+            "near.scn",
+            SMALL_SCENE.replace("eye (0, 0, 7) lookat (0, 0, 0)", "eye (0, 0, 7) lookat (0, 0, 6.999999999999999)"),
+        )
+        self.assertEqual(run(near, "-o", self.tmp / "n.png", "-q").returncode, 0)
+        reference = self.tmp / "r.png"
+        run(self.write("r.scn", SMALL_SCENE), "-o", reference, "-q")
+        self.assertEqual((self.tmp / "n.png").read_bytes(), reference.read_bytes())
+
+    def test_sigterm_while_loading_exits_130_and_writes_nothing(self):
+        # A mesh of 320,000 triangles takes a good second to load and build.
+        n = 400
+        rows = [f"v {x} {y} 0" for y in range(n + 1) for x in range(n + 1)]
+        faces = [
+            f"f {y * (n + 1) + x + 1} {y * (n + 1) + x + 2} {(y + 1) * (n + 1) + x + 2} {(y + 1) * (n + 1) + x + 1}"
+            for y in range(n)
+            for x in range(n)
+        ]
+        self.write("grid.obj", "\n".join(rows + faces) + "\n")
+        scene = self.mesh_scene("grid.obj", "scale 0.001")
+        out = self.tmp / "o.png"
+        process = subprocess.Popen([TRACER, scene, "-o", out, "--threads", "1"], stderr=subprocess.PIPE)
+        time.sleep(0.5)  # past start-up (signals before main() kill as usual), still loading
+        process.send_signal(signal.SIGTERM)
+        _, stderr = process.communicate(timeout=HANG)
+        self.assertEqual(process.returncode, 130, stderr)
+        self.assertEqual(self.files(), ["grid.obj", "s.scn"])
+
+
+def main():
+    global TRACER
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--tracer", required=True)
+    args, rest = parser.parse_known_args()
+    TRACER = str(pathlib.Path(args.tracer).resolve())
+    unittest.main(argv=[sys.argv[0], *rest])
+
+
+if __name__ == "__main__":
+    main()
