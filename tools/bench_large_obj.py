@@ -14,11 +14,9 @@ import argparse
 import datetime
 import math
 import pathlib
-import resource
 import statistics
 import subprocess
 import sys
-import time
 
 from bench_bvh import machine
 
