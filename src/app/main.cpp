@@ -156,12 +156,13 @@ int render_to_file(const Options& options) {
         }
     if (!options.quiet) {
         const tracer::RayCounts& rays = stats.rays;
+        const std::string refraction = rays.refraction ? ", " + millions(rays.refraction) + " refraction" : "";
         std::fprintf(stderr,
-                     "%s: %dx%d, %d spp, %d threads, %.3f s, %srays (%s primary, %s shadow, %s reflection), "
+                     "%s: %dx%d, %d spp, %d threads, %.3f s, %srays (%s primary, %s shadow, %s reflection%s), "
                      "%.1f Mrays/s\n",
                      options.output.c_str(), image.width, image.height, scene.render.samples, stats.threads,
                      stats.seconds, millions(rays.total()).c_str(), millions(rays.primary).c_str(),
-                     millions(rays.shadow).c_str(), millions(rays.reflection).c_str(),
+                     millions(rays.shadow).c_str(), millions(rays.reflection).c_str(), refraction.c_str(),
                      double(rays.total()) / stats.seconds / 1e6);
     }
     return kOk;

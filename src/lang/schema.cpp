@@ -97,6 +97,12 @@ const BlockSpec kMaterial{
         ranged(key("ks", ValueType::Triple, "0", "Specular colour."), 0, kInf),
         ranged(key("km", ValueType::Triple, "0", "Mirror reflectance."), 0, kInf),
         ranged(key("n", ValueType::Number, "1", "Phong exponent of the specular highlight."), 0, kInf),
+        ranged(key("kt", ValueType::Triple, "0",
+                   "Transmittance: weight of the refracted ray (Snell's law; on total internal "
+                   "reflection it goes to the reflected ray)."), 0, kInf),
+        ranged(key("ior", ValueType::Number, "1",
+                   "Index of refraction inside the surface (outside is 1): 1.5 for glass, 1.33 for water."),
+               0, kInf, true),
     },
     "material shiny_green {\n  ka 0.1\n  kd (0.2, 1.0, 0.2)\n  ks 1\n  n 100\n}\n"
     "sphere {\n  center (0, 0, 0)\n  radius 1\n  material shiny_green\n}\n",

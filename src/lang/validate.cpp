@@ -223,9 +223,9 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
             std::vector<std::string_view> names;
             for (const KeySpec& k : spec.keys) names.push_back(k.name);
             suggested.push_back(closest_match(entry.key, names));
-            diagnostics_.error(
-                file_, entry.key_span,
-                "unknown key " + in_quotes(entry.key) + " in " + std::string(spec.kind) + did_you_mean(entry.key, names));
+            diagnostics_.error(file_, entry.key_span,
+                               "unknown key " + in_quotes(entry.key) + " in " + std::string(spec.kind) +
+                                   did_you_mean(entry.key, names));
             ok = false;
             continue;
         }
@@ -381,6 +381,8 @@ Material Validator::build_material(const Fields& fields, std::string name) {
     material.ks = fields.triple("ks");
     material.km = fields.triple("km");
     material.n = fields.number("n");
+    material.kt = fields.triple("kt");
+    material.ior = fields.number("ior");
     return material;
 }
 

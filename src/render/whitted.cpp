@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -13,6 +15,7 @@ RayCounts& RayCounts::operator+=(const RayCounts& other) {
     primary += other.primary;
     shadow += other.shadow;
     reflection += other.reflection;
+    refraction += other.refraction;
     traversal += other.traversal;
     return *this;
 }
@@ -47,35 +50,95 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
     return sum;
 }
 
-// trace() for a ray that may meet a surface. The recursion colour = local + km *
+// The refracted direction of unit `direction` through a surface whose unit `normal` faces it,
+// for eta = n_from / n_to (Snell's law); nullopt on total internal reflection.
+static std::optional<Vec3> refracted(const Vec3& direction, const Vec3& normal, Real eta) {
+    const Real cos_in = -glm::dot(direction, normal);
+    const Real sin2_out = eta * eta * std::max(Real(0), 1 - cos_in * cos_in);
+    if (sin2_out > 1) return std::nullopt;
+    return glm::normalize(eta * direction + (eta * cos_in - std::sqrt(1 - sin2_out)) * normal);
+}
+
+// A refracted ray waiting to be traced, with the product of the weights that lead to it.
+struct Branch {
+    Ray ray;
+    Interval range;
+    Color weight;
+    int depth;
+};
+
+// Refraction makes the ray tree branch: a transmitting surface sends a second, refracted ray.
+// Branches wait on a stack (one per thread, kept between rays), traced depth first; a branch
+// is dropped if its weight is under kSmallestBranchWeight in every channel (it could change no
+// 8-bit pixel by more than a sixteenth of a level) or once a primary ray has spawned
+// kMostBranches (pathological scenes, km + kt >= 1 everywhere, would otherwise grow as
+// 2^max_depth).
+constexpr double kSmallestBranchWeight = 1.0 / 4096;
+constexpr int kMostBranches = 4096;
+
+// trace() for a ray that may meet a surface. Along a path, colour = local + km *
 // trace(reflected) has a single child, so it runs as a loop: `weight` is the product of the
 // km of the mirrors passed so far. This keeps any max_depth off the call stack and stops as
-// soon as a surface reflects nothing.
+// soon as a surface reflects nothing. Refracted rays are further paths (Branch) of their own.
 [[gnu::noinline]] static Color trace_surfaces(const World& world, const RenderSettings& settings, Ray ray,
                                               RayCounts& counts) {
     Color color(0.0);
-    Color weight(1.0);
-    Interval range = kPrimaryRange;
-    for (int depth = 0;; ++depth) {
-        // Step 1: the nearest surface, or the background.
-        const auto hit = world.intersect(ray, range, counts.traversal);
-        if (!hit) return color + weight * settings.background;
+    thread_local std::vector<Branch> pending;
+    pending.clear();
+    int spawned = 0;
+    Branch path{ray, kPrimaryRange, Color(1.0), 0};
+    for (;;) {
+        Color weight = path.weight;
+        Interval range = path.range;
+        ray = path.ray;
+        for (int depth = path.depth;; ++depth) {
+            // Step 1: the nearest surface, or the background.
+            const auto hit = world.intersect(ray, range, counts.traversal);
+            if (!hit) {
+                color += weight * settings.background;
+                break;
+            }
 
-        // Step 2: local Phong shading with the normal facing the incoming ray.
-        const Material& material = world.materials()[size_t(hit->material)];
-        const Vec3 normal = glm::dot(hit->normal, ray.direction) > 0 ? -hit->normal : hit->normal;
-        const Vec3 to_viewer = -ray.direction;
-        const SpawnPoint spawn(*hit);
-        color +=
-            weight * (material.ka + direct_light(world, settings, material, *hit, spawn, normal, to_viewer, counts));
+            // Step 2: local Phong shading with the normal facing the incoming ray.
+            const Material& material = world.materials()[size_t(hit->material)];
+            const Vec3 normal = glm::dot(hit->normal, ray.direction) > 0 ? -hit->normal : hit->normal;
+            const Vec3 to_viewer = -ray.direction;
+            const SpawnPoint spawn(*hit);
+            color += weight *
+                     (material.ka + direct_light(world, settings, material, *hit, spawn, normal, to_viewer, counts));
+            if (depth == settings.max_depth) break;
 
-        // Step 3: continue along the mirror direction D - 2(D.N)N.
-        weight *= material.km;
-        if (depth == settings.max_depth || weight == Color(0.0)) return color;
-        ++counts.reflection;
-        const SpawnedRay reflected = spawn.ray(ray.direction - 2 * glm::dot(ray.direction, normal) * normal);
-        ray = reflected.ray;
-        range = reflected.range;
+            // Step 3: the refracted ray, entering if the ray meets the front of the surface (its
+            // geometric normal faces the ray); on total internal reflection, kt joins km.
+            Color reflect = material.km;
+            if (material.kt != Color(0.0)) {
+                const bool entering = glm::dot(hit->geometric_normal, ray.direction) < 0;
+                const Real eta = Real(entering ? 1 / material.ior : material.ior);
+                const Color branch_weight = weight * material.kt;
+                if (const auto direction = refracted(ray.direction, normal, eta)) {
+                    const bool visible =
+                        std::max({branch_weight.r, branch_weight.g, branch_weight.b}) >= kSmallestBranchWeight;
+                    if (visible && spawned < kMostBranches) {
+                        ++counts.refraction, ++spawned;
+                        const SpawnedRay next = spawn.ray(*direction);
+                        pending.push_back({next.ray, next.range, branch_weight, depth + 1});
+                    }
+                } else {
+                    reflect += material.kt;
+                }
+            }
+
+            // Step 4: continue along the mirror direction D - 2(D.N)N.
+            weight *= reflect;
+            if (weight == Color(0.0)) break;
+            ++counts.reflection;
+            const SpawnedRay reflected = spawn.ray(ray.direction - 2 * glm::dot(ray.direction, normal) * normal);
+            ray = reflected.ray;
+            range = reflected.range;
+        }
+        if (pending.empty()) return color;
+        path = pending.back();
+        pending.pop_back();
     }
 }
 

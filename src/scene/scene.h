@@ -29,6 +29,8 @@ struct Material {
     dvec3 ks{0.0};     // specular
     dvec3 km{0.0};     // mirror reflection
     double n = 1.0;    // specular (Phong) exponent
+    dvec3 kt{0.0};     // transmission (refraction)
+    double ior = 1.0;  // index of refraction of the inside (the side the normal points away from)
 };
 
 struct Camera {

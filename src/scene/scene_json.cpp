@@ -10,7 +10,7 @@ Json vec(const dvec3& v) { return Json::array({v.x, v.y, v.z}); }
 Json material_json(const SceneDescription& scene, int index) {
     const Material& m = scene.materials.at(size_t(index));
     return Json{{"name", m.name}, {"ka", vec(m.ka)}, {"kd", vec(m.kd)}, {"ks", vec(m.ks)},
-                {"km", vec(m.km)}, {"n", m.n}};
+                {"km", vec(m.km)}, {"n", m.n}, {"kt", vec(m.kt)}, {"ior", m.ior}};
 }
 
 }  // namespace

@@ -324,7 +324,14 @@ class Messages(Hostile):
         scene = self.mesh_scene("grid.obj", "scale 0.001")
         out = self.tmp / "o.png"
         process = subprocess.Popen([TRACER, scene, "-o", out, "--threads", "1"], stderr=subprocess.PIPE)
-        time.sleep(0.5)  # past start-up (signals before main() kill as usual), still loading
+        # Wait until tracer's handler is installed (a signal before main() kills as usual),
+        # which happens just before it starts loading.
+        status = pathlib.Path(f"/proc/{process.pid}/status")
+        while process.poll() is None:
+            caught = next(line for line in status.read_text().splitlines() if line.startswith("SigCgt:"))
+            if int(caught.split()[1], 16) & (1 << (signal.SIGTERM - 1)):
+                break
+            time.sleep(0.005)
         process.send_signal(signal.SIGTERM)
         _, stderr = process.communicate(timeout=HANG)
         self.assertEqual(process.returncode, 130, stderr)

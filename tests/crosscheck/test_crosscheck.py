@@ -47,6 +47,13 @@ def test_an_invalid_scene_exits_3_with_tracers_diagnostic(tracer_bin, tmp_path):
     assert not (tmp_path / "out").exists()
 
 
+def test_a_refracting_scene_is_refused_not_compared(tracer_bin, tmp_path):
+    result = run_tool("crosscheck", ROOT / "scenes" / "glass.scn", "--out", tmp_path / "out")
+    assert result.returncode != 0
+    assert "crosscheck: error: the scene refracts" in result.stderr
+    assert not (tmp_path / "out").exists()
+
+
 def test_missing_mitsuba_exits_4_with_a_clear_message(tracer_bin, tmp_path):
     hidden = tmp_path / "hide"
     (hidden / "mitsuba").mkdir(parents=True)

@@ -145,6 +145,12 @@ TEST(Bunnies, MatchesTheCommittedGoldenImage) {
     expect_matches_golden(render_scene("bunnies"), "bunnies");
 }
 
+// Refraction: two glass balls in task2's room (a regression guard; the rules themselves are
+// checked by hand in refraction_test.cpp).
+TEST(Glass, MatchesTheCommittedGoldenImage) {
+    expect_matches_golden(render_scene("glass"), "glass");
+}
+
 TEST(BunnyRoom, BunnyStandsOnTheFloorClearOfEverySphere) {
     LoadResult loaded = load_scene((kScenes / "bunny_room.scn").string());
     ASSERT_TRUE(loaded.scene);
