@@ -76,15 +76,24 @@ struct Branch {
 constexpr double kSmallestBranchWeight = 1.0 / 4096;
 constexpr int kMostBranches = 4096;
 
+// The calling thread's branch stack, empty (kept between rays: no allocation per ray). Out of
+// the way of rays that never refract, which then never touch it.
+static std::vector<Branch>& branch_stack() {
+    thread_local std::vector<Branch> stack;
+    stack.clear();
+    return stack;
+}
+
 // trace() for a ray that may meet a surface. Along a path, colour = local + km *
 // trace(reflected) has a single child, so it runs as a loop: `weight` is the product of the
 // km of the mirrors passed so far. This keeps any max_depth off the call stack and stops as
 // soon as a surface reflects nothing. Refracted rays are further paths (Branch) of their own.
+// Compiled twice: without refraction (kRefracts false) it is the single-path loop alone.
+template <bool kRefracts>
 [[gnu::noinline]] static Color trace_surfaces(const World& world, const RenderSettings& settings, Ray ray,
                                               RayCounts& counts) {
     Color color(0.0);
-    thread_local std::vector<Branch> pending;
-    pending.clear();
+    std::vector<Branch>* pending = nullptr;  // this thread's stack, once a branch is made
     int spawned = 0;
     Branch path{ray, kPrimaryRange, Color(1.0), 0};
     for (;;) {
@@ -111,7 +120,7 @@ constexpr int kMostBranches = 4096;
             // Step 3: the refracted ray, entering if the ray meets the front of the surface (its
             // geometric normal faces the ray); on total internal reflection, kt joins km.
             Color reflect = material.km;
-            if (material.kt != Color(0.0)) {
+            if (kRefracts && material.kt != Color(0.0)) {
                 const bool entering = glm::dot(hit->geometric_normal, ray.direction) < 0;
                 const Real eta = Real(entering ? 1 / material.ior : material.ior);
                 const Color branch_weight = weight * material.kt;
@@ -121,7 +130,8 @@ constexpr int kMostBranches = 4096;
                     if (visible && spawned < kMostBranches) {
                         ++counts.refraction, ++spawned;
                         const SpawnedRay next = spawn.ray(*direction);
-                        pending.push_back({next.ray, next.range, branch_weight, depth + 1});
+                        if (!pending) pending = &branch_stack();
+                        pending->push_back({next.ray, next.range, branch_weight, depth + 1});
                     }
                 } else {
                     reflect += material.kt;
@@ -136,9 +146,9 @@ constexpr int kMostBranches = 4096;
             ray = reflected.ray;
             range = reflected.range;
         }
-        if (pending.empty()) return color;
-        path = pending.back();
-        pending.pop_back();
+        if (!kRefracts || !pending || pending->empty()) return color;
+        path = pending->back();
+        pending->pop_back();
     }
 }
 
@@ -148,7 +158,8 @@ constexpr int kMostBranches = 4096;
 Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCounts& counts) {
     ++counts.primary;
     if (!world.may_hit(ray)) return settings.background;
-    return trace_surfaces(world, settings, ray, counts);
+    return world.refracts() ? trace_surfaces<true>(world, settings, ray, counts)
+                            : trace_surfaces<false>(world, settings, ray, counts);
 }
 
 }  // namespace tracer

@@ -56,6 +56,7 @@ Real half_diagonal(const Bounds& box) {
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared)
     : materials_(scene.materials), lights_(scene.lights) {
+    for (const Material& material : materials_) refracts_ = refracts_ || material.kt != dvec3(0.0);
     const SearchSettings settings = search_settings(scene.render, threads);
     // Step 1: spheres and planes.
     for (const Sphere& s : scene.spheres) {

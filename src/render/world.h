@@ -97,6 +97,8 @@ public:
     bool may_hit(const Ray& ray) const;
 
     const std::vector<Material>& materials() const { return materials_; }
+    // True if some material transmits (kt > 0): only then can the ray tree branch.
+    bool refracts() const { return refracts_; }
     const std::vector<Light>& lights() const { return lights_; }
     const std::vector<Object>& objects() const { return objects_; }
     const std::vector<MeshAccel>& meshes() const { return meshes_; }
@@ -154,6 +156,7 @@ private:
     double top_build_seconds_ = 0;
     Vec3 sphere_centre_{0};  // around every bounded object, for may_hit
     Real sphere_radius2_ = -1;
+    bool refracts_ = false;
     std::vector<Material> materials_;
     std::vector<Light> lights_;
 };
