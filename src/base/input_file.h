@@ -8,8 +8,8 @@
 
 namespace tracer {
 
-// The largest scene file read (a generated scene of a million spheres is ~60 MB).
-inline constexpr uint64_t kMaxSceneFileBytes = uint64_t(256) << 20;
+// The largest scene file read (a million spheres is ~68 MB; memory grows ~16x the file).
+inline constexpr uint64_t kMaxSceneFileBytes = uint64_t(128) << 20;
 // The largest OBJ file read (~25 million triangles; memory grows ~8x the file size).
 inline constexpr uint64_t kMaxMeshFileBytes = uint64_t(1) << 30;
 

@@ -68,6 +68,7 @@ private:
                 const size_t start = i;
                 while (i < end && !is_blank(text[i]) && text[i] != '#') ++i;
                 if (i > start) tokens_.push_back({text.substr(start, i - start), {uint32_t(start), uint32_t(i)}});
+                if (tokens_.size() > kMaxFaceCorners + 1) break;  // more is refused anyway: bound the memory
             }
             if (!tokens_.empty()) {
                 keyword_span_ = tokens_.front().span;
@@ -112,15 +113,15 @@ private:
     void read_face() {
         if (tokens_.size() < 3) error(keyword_span_, "a face needs at least three vertices");
         if (tokens_.size() > kMaxFaceCorners) {
-            error(keyword_span_, "this face has " + std::to_string(tokens_.size()) + " corners; the limit is " +
-                                     std::to_string(kMaxFaceCorners));
+            error(keyword_span_, "this face has more than " + std::to_string(kMaxFaceCorners) + " corners (the limit)");
             return;
         }
         if (tokens_.size() >= 5) polygon_work_ += double(tokens_.size()) * double(tokens_.size());
         if (polygon_work_ > kMaxPolygonWork && !work_reported_) {
             work_reported_ = true;
-            error(keyword_span_, "the faces of 5 or more corners up to this one are too large in all to triangulate "
-                                 "(the sum of their squared corner counts passes 2e10); split them into smaller faces");
+            error(keyword_span_,
+                  "the faces of 5 or more corners up to this one are too large in all to triangulate "
+                  "(the sum of their squared corner counts passes 2e10); split them into smaller faces");
             return;
         }
         for (const Token& token : tokens_) {
