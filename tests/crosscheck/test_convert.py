@@ -156,3 +156,11 @@ def test_file_normals_count_only_when_every_face_names_them(tmp_path):
         path = tmp_path / f"case{index}.obj"
         path.write_text(text)
         assert mitsuba_render.obj_normals_used(path) == expected, text
+
+
+def test_refraction_is_carried_over_only_where_a_material_transmits(dump, tmp_path):
+    glass = dump(ROOT / "scenes" / "glass.scn")
+    assert convert.refracts(glass) and not convert.refracts(dump(ROOT / "scenes" / "task2.scn"))
+    xml = convert.to_mitsuba_xml(glass)
+    assert '<boolean name="refracts" value="true"' in xml
+    assert '<float name="ior" value="1.5"' in xml and '<rgb name="kt" value="0.6, 0.9, 0.7"' in xml

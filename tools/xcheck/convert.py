@@ -134,6 +134,13 @@ def _material_key(material):
     return (material["name"], repr(sorted(material.items())))
 
 
+def refracts(scene):
+    """True if some shape's material transmits (kt > 0): the integrator then branches."""
+    return any(
+        any(shape["material"].get("kt", [0, 0, 0])) for kind in ("spheres", "planes", "meshes") for shape in scene[kind]
+    )
+
+
 def to_mitsuba_xml(scene):
     """The Mitsuba 3 XML text for a scene description (a dict from `tracer --dump-json`)."""
     render, camera = scene["render"], scene["camera"]
@@ -156,6 +163,7 @@ def to_mitsuba_xml(scene):
     out.leaf("integer", name="max_depth", value=render["max_depth"])
     out.leaf("boolean", name="shadows", value="true" if render["shadows"] else "false")
     out.leaf("rgb", name="background", value=_numbers(render["background"]))
+    out.leaf("boolean", name="refracts", value="true" if refracts(scene) else "false")
     out.close("integrator")
 
     # Step 2: the camera: vertical field of view; pixel centres (or the centres of an N x N
@@ -197,9 +205,10 @@ def to_mitsuba_xml(scene):
                 continue
             ids[key] = f"material{len(ids)}-{material['name']}"
             out.open("bsdf", type=PHONG_PLUGIN, id=ids[key])
-            for name in ("ka", "kd", "ks", "km"):
-                out.leaf("rgb", name=name, value=_numbers(material[name]))
+            for name in ("ka", "kd", "ks", "km", "kt"):
+                out.leaf("rgb", name=name, value=_numbers(material.get(name, [0, 0, 0])))
             out.leaf("float", name="n", value=repr(float(material["n"])))
+            out.leaf("float", name="ior", value=repr(float(material.get("ior", 1.0))))
             out.close("bsdf")
 
     # Step 4: shapes.

@@ -11,7 +11,7 @@ import json
 import pathlib
 import sys
 
-from . import ToolError, run_reporting_errors, tracer_cli
+from . import run_reporting_errors, tracer_cli
 
 DEFAULT_MAX_OVER_2 = 0.1  # percent of pixels more than 2 levels apart: the project's target
 
@@ -62,22 +62,11 @@ def failures(comparison, args):
             if limit is not None and value > limit]
 
 
-def refract_unchecked(scene):
-    """Refuses a scene with refraction: the Mitsuba plugins do not transmit yet, so the two
-    images would differ by design, not by a bug."""
-    for kind in ("spheres", "planes", "meshes"):
-        for shape in scene[kind]:
-            if any(shape["material"].get("kt", [0, 0, 0])):
-                raise ToolError("the scene refracts (a material with kt), which the Mitsuba plugins do not "
-                                "model yet: no cross-check is possible")
-
-
 def crosscheck(args):
     """Runs the whole check; returns the exit code."""
     # Step 1: the scene as tracer resolves it, with the requested size and samples.
     extra = resolution_args(args)
     scene = tracer_cli.dump_json(args.scene, extra)
-    refract_unchecked(scene)
     out = args.out or tracer_cli.ROOT / "out" / "crosscheck" / args.scene.stem
     out.mkdir(parents=True, exist_ok=True)
 

@@ -27,6 +27,8 @@ class PhongBSDF(mi.BSDF):
         self.kd = _color(props, "kd")
         self.ks = _color(props, "ks")
         self.km = _color(props, "km")
+        self.kt = _color(props, "kt") if "kt" in props else mi.Color3f(0.0)
+        self.ior = mi.Float(props.get("ior", 1.0))
         self.n = mi.Float(props.get("n"))
         two_sided = mi.BSDFFlags.FrontSide | mi.BSDFFlags.BackSide
         self.m_components = [
@@ -61,18 +63,20 @@ class PhongBSDF(mi.BSDF):
         return self.eval(ctx, si, wo, active), mi.Float(0.0)
 
     def has_attribute(self, name, active=True):
-        return name == "ka"
+        return name in ("ka", "kt", "ior")
 
     def eval_attribute_3(self, name, si, active=True):
-        if name != "ka":
+        # "ior" comes as a colour of three equal channels (attributes are colours or floats).
+        values = {"ka": self.ka, "kt": self.kt, "ior": mi.Color3f(self.ior)}
+        if name not in values:
             raise ValueError(f"{PHONG_PLUGIN} has no attribute '{name}'")
-        return dr.select(active, mi.Color3f(self.ka), 0.0)
+        return dr.select(active, mi.Color3f(values[name]), 0.0)
 
     def traverse(self, callback):
         pass
 
     def to_string(self):
-        return f"PhongBSDF[ka={self.ka}, kd={self.kd}, ks={self.ks}, km={self.km}, n={self.n}]"
+        return f"PhongBSDF[ka={self.ka}, kd={self.kd}, ks={self.ks}, km={self.km}, kt={self.kt}, n={self.n}]"
 
 
 # tracer's spawn rule (docs/robustness.md) in float32: a ray leaving a surface starts off it
@@ -104,24 +108,44 @@ def _spawn_ray_to(si, target):
     return ray
 
 
+# tracer's rule for refracted branches (src/render/whitted.cpp): dropped under this weight.
+SMALLEST_BRANCH_WEIGHT = 1.0 / 4096
+
+
+def _refracted(direction, normal, eta):
+    """Snell's law for a unit direction and a unit normal facing it, eta = n_from / n_to:
+    (refracted direction, total internal reflection mask)."""
+    cos_in = -dr.dot(direction, normal)
+    sin2_out = eta * eta * dr.maximum(0.0, 1.0 - cos_in * cos_in)
+    tir = sin2_out > 1.0
+    out = eta * direction + (eta * cos_in - dr.sqrt(dr.maximum(0.0, 1.0 - sin2_out))) * normal
+    return dr.normalize(out), tir
+
+
 class WhittedIntegrator(mi.SamplingIntegrator):
     """Whitted recursion of conventions.md: colour = ka + sum over unblocked point lights of
-    light colour * Phong (no fall-off) + km * trace(mirror ray), for levels 0..max_depth;
-    misses return the background; the level after max_depth returns black."""
+    light colour * Phong (no fall-off) + km * trace(mirror ray) [+ kt * trace(refracted ray),
+    tracer's refraction], for levels 0..max_depth; misses return the background; the level
+    after max_depth returns black. Unrolled in Python: with `refracts` every level also opens
+    a refracted path, 2^(max_depth + 1) path segments in one kernel."""
 
     def __init__(self, props):
         mi.SamplingIntegrator.__init__(self, props)
         self.max_depth = props.get("max_depth", 4)
         self.shadows = props.get("shadows", True)
+        self.refracts = props.get("refracts", False)
         self.background = _color(props, "background") if "background" in props else mi.Color3f(0.0)
 
     def sample(self, scene, sampler, ray, medium=None, active=True):
-        ray = mi.Ray3f(ray)
-        active = mi.Bool(active)
+        color = self._path(scene, mi.Ray3f(ray), mi.Color3f(1.0), 0, mi.Bool(active))
+        return color, mi.Bool(True), []
+
+    def _path(self, scene, ray, weight, first_depth, active):
+        """The colour along one path from level first_depth: hits shaded, mirror bounces
+        followed; each refraction opens a path of its own (recursion, unrolled)."""
         color = mi.Color3f(0.0)
-        weight = mi.Color3f(1.0)
         ctx = mi.BSDFContext()
-        for depth in range(self.max_depth + 1):  # unrolled: one kernel for the whole recursion
+        for depth in range(first_depth, self.max_depth + 1):
             # Step 1: the nearest surface, or the background.
             si = scene.ray_intersect(ray, active)
             missed = active & ~si.is_valid()
@@ -143,22 +167,38 @@ class WhittedIntegrator(mi.SamplingIntegrator):
                 if self.shadows:
                     lit &= ~scene.ray_test(_spawn_ray_to(si, ds.p), lit)
                 color += dr.select(lit, weight * term, 0.0)
-
-            # Step 3: continue along the mirror direction, weighted by km.
             if depth == self.max_depth:
                 break
-            bs, km = bsdf.sample(ctx, si, 0.0, mi.Point2f(0.0), active)
-            weight *= dr.select(active, km, 0.0)
+
+            # Step 3: the refracted path (entering when the geometric normal faces the ray);
+            # on total internal reflection kt joins km.
+            bs, reflect = bsdf.sample(ctx, si, 0.0, mi.Point2f(0.0), active)
+            if self.refracts:
+                kt = bsdf.eval_attribute_3("kt", si, active)
+                ior = bsdf.eval_attribute_3("ior", si, active).x
+                entering = dr.dot(si.n, ray.d) < 0.0
+                eta = dr.select(entering, 1.0 / ior, ior)
+                shading = mi.Vector3f(si.sh_frame.n)
+                normal = dr.select(dr.dot(shading, ray.d) > 0.0, -shading, shading)
+                direction, tir = _refracted(ray.d, normal, eta)
+                transmits = active & dr.any(kt != 0.0)
+                reflect += dr.select(transmits & tir, kt, 0.0)
+                branch = weight * kt
+                opens = transmits & ~tir & (dr.max(branch) >= SMALLEST_BRANCH_WEIGHT)
+                if dr.any(opens):
+                    color += self._path(scene, _spawn_ray(si, direction), branch, depth + 1, opens)
+
+            # Step 4: continue along the mirror direction.
+            weight *= dr.select(active, reflect, 0.0)
             active &= dr.any(weight != 0.0)
-            direction = si.to_world(bs.wo)
-            ray = _spawn_ray(si, direction)
-        return color, mi.Bool(True), []
+            ray = _spawn_ray(si, si.to_world(bs.wo))
+        return color
 
     def aov_names(self):
         return []
 
     def to_string(self):
-        return f"WhittedIntegrator[max_depth={self.max_depth}, shadows={self.shadows}]"
+        return f"WhittedIntegrator[max_depth={self.max_depth}, shadows={self.shadows}, refracts={self.refracts}]"
 
 
 def register():
