@@ -127,6 +127,7 @@ private:
         for (const Token& token : tokens_) {
             const std::string_view corner = token.text;
             const size_t slash = corner.find('/');
+            if (slash == 0) error(token.span, in_quotes(token.text) + " has no vertex index");
             const long vertex =
                 index(token, corner.substr(0, slash), out_.positions.size(), vertex_total_, "vertex", "vertices");
             long normal = -1;
@@ -143,15 +144,11 @@ private:
         out_.face_starts.push_back(uint32_t(out_.corner_vertex.size()));
     }
 
-    // One index of a face corner, 0-based, or -1 if absent or wrong (reported). `what` null:
-    // only its form is checked (the texture index).
+    // One index of a face corner, 0-based, or -1 if absent or wrong (reported; an absent one
+    // is read_face's to judge). `what` null: only its form is checked (the texture index).
     long index(const Token& token, std::string_view digits, size_t so_far, size_t total, const char* what,
                const char* plural) {
-        if (digits.empty()) {
-            if (what && std::string_view(what) == "vertex")
-                error(token.span, in_quotes(token.text) + " has no vertex index");
-            return -1;
-        }
+        if (digits.empty()) return -1;
         long number = 0;
         auto [end, status] = std::from_chars(digits.data(), digits.data() + digits.size(), number);
         if (status != std::errc() || end != digits.data() + digits.size() || number < INT_MIN || number > INT_MAX) {

@@ -24,6 +24,21 @@ SceneDescription glass_sphere(double ior, int max_depth = 4) {
     return scene;
 }
 
+// Glass filling z < 0 (the plane z = 0, normal up, out of the glass) and a small marker
+// sphere of ambient 1 (seen as 1.0 when a ray reaches it, else 0): where the marker sits
+// tells which way the rays went.
+SceneDescription glass_floor_with_marker(double kt, Vec3 marker_centre, double marker_radius) {
+    SceneDescription scene;
+    Material glass, marker;
+    glass.kt = dvec3(kt), glass.ior = 1.5;
+    marker.ka = dvec3(1.0);
+    scene.materials = {glass, marker};
+    scene.planes = {{{0, 0, 0}, {0, 0, 1}, 0}};
+    scene.spheres = {{dvec3(marker_centre), marker_radius, 1}};
+    scene.render.shadows = false;
+    return scene;
+}
+
 TEST(Refraction, IndexOneLetsTheRayThroughUnbent) {
     SceneDescription scene = glass_sphere(1.0);
     World world(scene);
@@ -37,19 +52,11 @@ TEST(Refraction, IndexOneLetsTheRayThroughUnbent) {
 }
 
 TEST(Refraction, SnellsLawThroughAFlatInterface) {
-    // A glass floor (ior 1.5) under a ray at 45 degrees; below it a diffuse wall z = -10 lit
-    // head-on, marked by where the refracted ray lands: sin(out) = sin(45) / 1.5.
-    SceneDescription scene;
-    Material glass, wall;
-    glass.kt = dvec3(1.0), glass.ior = 1.5;
-    wall.ka = dvec3(1.0);
-    scene.materials = {glass, wall};
-    scene.planes = {{{0, 0, 0}, {0, 0, 1}, 0}};
-    // The wall is a thin sphere cap we can locate: a tiny sphere where Snell's law says.
+    // A ray at 45 degrees into the glass floor (ior 1.5); a marker 10 below the surface where
+    // Snell's law says the refracted ray passes: sin(out) = sin(45) / 1.5.
     const double sin_out = std::sin(M_PI / 4) / 1.5;
     const double tan_out = sin_out / std::sqrt(1 - sin_out * sin_out);
-    scene.spheres = {{{10 * tan_out, 0, -10}, 0.01, 1}};
-    scene.render.shadows = false;
+    SceneDescription scene = glass_floor_with_marker(1.0, {10 * tan_out, 0, -10}, 0.01);
     World world(scene);
     RayCounts counts;
     const Ray ray{{-1, 0, 1}, glm::normalize(Vec3(1, 0, -1))};           // reaches the floor at the origin
@@ -66,15 +73,9 @@ TEST(Refraction, TotalInternalReflectionSendsTheWeightAlongTheMirrorRay) {
     // From inside a glass slab (the ray starts below the plane, whose normal points up, out of
     // the glass), at 60 degrees from the normal: sin 60 * 1.5 > 1, so nothing leaves; the
     // whole kt goes to the reflected ray, which finds a marker at the mirror position.
-    SceneDescription scene;
-    Material glass, marker;
-    glass.kt = dvec3(0.75), glass.ior = 1.5;
-    marker.ka = dvec3(1.0);
-    scene.materials = {glass, marker};
-    scene.planes = {{{0, 0, 0}, {0, 0, 1}, 0}};
     const Vec3 in = glm::normalize(Vec3(std::sin(M_PI / 3), 0, std::cos(M_PI / 3)));
-    scene.spheres = {{{2 * in.x, 0, -2 * in.z}, 0.05, 1}};  // the reflected ray's way, distance 2
-    scene.render.shadows = false;
+    // The marker on the reflected ray's way, distance 2.
+    SceneDescription scene = glass_floor_with_marker(0.75, {2 * in.x, 0, -2 * in.z}, 0.05);
     World world(scene);
     RayCounts counts;
     const Color c = trace(world, scene.render, {-in, in}, counts);  // starts 1 below, hits the origin
