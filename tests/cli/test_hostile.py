@@ -311,6 +311,21 @@ class Messages(Hostile):
         run(self.write("r.scn", SMALL_SCENE), "-o", reference, "-q")
         self.assertEqual((self.tmp / "n.png").read_bytes(), reference.read_bytes())
 
+    def test_extreme_refraction_terminates_and_bad_ior_is_refused(self):
+        # Weights of 1e30 in every branch, indices of 1e-30 and 1e30, 50 levels: the branch
+        # budget keeps the ray tree finite; an index of 0 has no meaning.
+        evil = self.write(
+            "glass.scn",
+            CAMERA + "render { width 64 height 48 max_depth 50 }\n"
+            "sphere { center (0, 0, 0) radius 1 material { kt 1e30 km 1e30 ior 1e-30 } }\n"
+            "sphere { center (0, 0, -3) radius 1 material { kt 1e30 ior 1e30 } }\n"
+            "light { position (2, 3, 4) }\n",
+        )
+        result = run(evil, "-o", self.tmp / "g.png", "-q")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        bad = self.write("ior.scn", CAMERA + "sphere { center (0, 0, 0) radius 1 material { ior 0 } }\n")
+        self.assertError(run("--check", bad), 1, "'ior' must be greater than 0, found 0")
+
     def test_sigterm_while_loading_exits_130_and_writes_nothing(self):
         # A mesh of 320,000 triangles takes a good second to load and build.
         n = 400
