@@ -1,9 +1,0 @@
-#!/usr/bin/env bash
-# The ctest entry of the cross-check tests: pytest in the project's .venv (made by
-# tools/bootstrap --python, which tools/test runs). Without .venv it reports a skip (77).
-root="$(cd "$(dirname "$0")/../.." && pwd)"
-if [ ! -x "$root/.venv/bin/python" ]; then
-  echo "SKIPPED: no $root/.venv: run tools/bootstrap --python to make it (Mitsuba 3, NumPy, FLIP, pytest)"
-  exit 77
-fi
-exec "$root/.venv/bin/python" -m pytest -q -p no:cacheprovider "$root/tests/crosscheck" "$@"

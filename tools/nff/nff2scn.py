@@ -1,0 +1,123 @@
+"""tools/nff2scn: converts an NFF file (Eric Haines' Neutral File Format) into a tracer scene.
+
+    tools/nff2scn balls.nff -o scenes/spd/balls.scn
+
+writes balls.scn and, beside it, the folder balls_meshes/ with the OBJ files it names (polygons
+by material, one unit cone per radius ratio). The rules are in nff/convert.py. Errors are
+`file:line:col: error: ...` with the line and a caret, exit status 1; nothing is written then.
+"""
+
+import argparse
+import os
+import pathlib
+import shutil
+import stat
+import sys
+import tempfile
+import time
+
+from . import convert, reader
+
+MAX_INPUT_BYTES = 1 << 30
+
+
+def _read_input(path):
+    """The file's text; a SystemExit with a message if it is not a readable regular file."""
+    try:
+        with open(path, "rb", opener=lambda p, flags: os.open(p, flags | os.O_NONBLOCK)) as file:
+            info = os.fstat(file.fileno())
+            if not stat.S_ISREG(info.st_mode):
+                raise SystemExit(f"{path}: error: not a regular file")
+            if info.st_size > MAX_INPUT_BYTES:
+                raise SystemExit(f"{path}: error: {info.st_size:,} bytes, more than the {MAX_INPUT_BYTES:,} allowed")
+            data = file.read(MAX_INPUT_BYTES + 1)
+    except OSError as error:
+        raise SystemExit(f"{path}: error: cannot read it: {error.strerror}") from None
+    return data.decode("latin-1")  # NFF is ASCII; any other byte is then reported as a bad word
+
+
+def _umask():
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _write_outputs(scn_path, meshes_name, converted):
+    """Writes the OBJ folder and the .scn, each replaced as a whole (a failure leaves the old ones)."""
+    folder = scn_path.parent / meshes_name
+    staging = pathlib.Path(tempfile.mkdtemp(prefix=f".{meshes_name}.", dir=scn_path.parent))
+    try:
+        staging.chmod(0o777 & ~_umask())  # mkdtemp makes it private
+        for name, text in converted.meshes.items():
+            (staging / name).write_text(text)
+        old = None
+        if folder.exists():
+            old = folder.with_name(f".{meshes_name}.old.{os.getpid()}")
+            folder.rename(old)
+        staging.rename(folder)
+        if old is not None:
+            shutil.rmtree(old)
+    finally:
+        if staging.exists():
+            shutil.rmtree(staging)
+    descriptor, temporary = tempfile.mkstemp(prefix=f".{scn_path.name}.", dir=scn_path.parent)
+    try:
+        os.chmod(descriptor, 0o666 & ~_umask())
+        with os.fdopen(descriptor, "w") as file:
+            file.write(converted.scn)
+            file.flush()
+            os.fsync(file.fileno())
+        os.replace(temporary, scn_path)
+    except BaseException:
+        os.unlink(temporary)
+        raise
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="tools/nff2scn", description=__doc__.split("\n")[0])
+    parser.add_argument("nff", type=pathlib.Path, help="the NFF file")
+    parser.add_argument("-o", "--output", type=pathlib.Path, required=True, help="the .scn file to write")
+    parser.add_argument(
+        "--corner-rays",
+        action="store_true",
+        help="render (N+1) x (N+1) rays through the pixel corners (upstream's testing procedure; "
+        "average 2 x 2 blocks for the N x N image)",
+    )
+    parser.add_argument(
+        "--max-error-pixels", type=float, default=0.1, help="largest outline error of a tessellated cone (pixels)"
+    )
+    args = parser.parse_args(argv)
+    if args.output.suffix != ".scn":
+        parser.error(f"the output must end in .scn: {args.output}")
+    if not 0 < args.max_error_pixels <= 100:
+        parser.error("--max-error-pixels must be in (0, 100]")
+    if not args.output.parent.is_dir():
+        parser.error(f"the output's folder does not exist: {args.output.parent}")
+
+    started = time.perf_counter()
+    text = _read_input(args.nff)
+    try:
+        scene = reader.read_nff(args.nff, text)
+    except reader.NffError as error:
+        print(error, file=sys.stderr)
+        return 1
+    meshes_name = f"{args.output.stem}_meshes"
+    converted = convert.convert(scene, meshes_name, args.corner_rays, args.max_error_pixels)
+    for message in scene.warnings:
+        print(message, file=sys.stderr)
+    for word, message in converted.summary["warnings"]:
+        print(scene.source.diagnostic("warning", word, message), file=sys.stderr)
+    _write_outputs(args.output, meshes_name, converted)
+    summary = converted.summary
+    print(
+        f"{args.output}: {summary['spheres']} spheres, {summary['polygons']} polygons "
+        f"({summary['triangles']} triangles), {summary['cones']} cones "
+        f"(sides by radius ratio: {summary['cone_sides'] or 'none'}), {summary['lights']} lights, "
+        f"{summary['materials']} materials; {time.perf_counter() - started:.2f} s",
+        file=sys.stderr,
+    )
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

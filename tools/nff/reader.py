@@ -1,0 +1,333 @@
+"""Reads an NFF file into entities, checking every number; errors carry file:line:col.
+
+NFF is a stream of whitespace-separated words: an entity's numbers may run on over several lines
+(upstream's generators write `c` on one line or three). `#` starts a comment to the end of the line.
+"""
+
+import dataclasses
+import math
+
+MAX_POLYGON_CORNERS = 100_000  # as tracer's OBJ reader
+MAX_ERRORS = 20
+
+
+class NffError(Exception):
+    """Errors in an NFF file, each already formatted `file:line:col: error: ...` with its line and a caret."""
+
+    def __init__(self, messages):
+        super().__init__("\n".join(messages))
+        self.messages = messages
+
+
+@dataclasses.dataclass
+class Word:
+    text: str
+    line: int  # 1-based
+    column: int  # 1-based, in characters
+
+
+@dataclasses.dataclass
+class View:
+    eye: tuple
+    lookat: tuple
+    up: tuple
+    angle: float
+    hither: float
+    resolution: tuple
+    word: Word
+
+
+@dataclasses.dataclass
+class Light:
+    position: tuple
+    color: tuple | None  # None: not given (NFF leaves the intensity to the program)
+    word: Word
+
+
+@dataclasses.dataclass
+class Fill:
+    """An `f` line: colour, Kd, Ks (highlight and mirror weight), Phong power, T, index of refraction."""
+
+    color: tuple
+    kd: float
+    ks: float
+    shine: float
+    t: float
+    ior: float
+
+
+@dataclasses.dataclass
+class Sphere:
+    center: tuple
+    radius: float
+    fill: Fill
+    word: Word
+
+
+@dataclasses.dataclass
+class Cone:
+    base: tuple
+    base_radius: float
+    apex: tuple
+    apex_radius: float
+    fill: Fill
+    word: Word
+
+
+@dataclasses.dataclass
+class Polygon:
+    points: list
+    normals: list | None  # per corner for a `pp` patch
+    fill: Fill
+    word: Word
+
+
+@dataclasses.dataclass
+class Scene:
+    path: str
+    view: View | None = None
+    background: tuple = (0.0, 0.0, 0.0)
+    lights: list = dataclasses.field(default_factory=list)
+    spheres: list = dataclasses.field(default_factory=list)
+    cones: list = dataclasses.field(default_factory=list)
+    polygons: list = dataclasses.field(default_factory=list)
+    warnings: list = dataclasses.field(default_factory=list)
+    source: object = None  # the _Source: source.diagnostic(kind, word, message) formats a message at a word
+
+
+def _split_words(text):
+    """Every word of the text with its line and column; comments dropped."""
+    words = []
+    for number, line in enumerate(text.splitlines(), start=1):
+        code = line.split("#", 1)[0]
+        column = 0
+        for piece in code.split():
+            column = code.index(piece, column)
+            words.append(Word(piece, number, column + 1))
+            column += len(piece)
+    return words
+
+
+class _Source:
+    """The file's words with a cursor, and the formatting of diagnostics at a word."""
+
+    def __init__(self, path, text):
+        self.path = path
+        self.lines = text.splitlines()
+        self.words = _split_words(text)
+        self.next = 0
+
+    def diagnostic(self, kind, word, message):
+        if word is None:  # the end of the file
+            line = len(self.lines) or 1
+            column = len(self.lines[-1]) + 1 if self.lines else 1
+        else:
+            line, column = word.line, word.column
+        source = self.lines[line - 1] if line <= len(self.lines) else ""
+        shown = "".join(c if c.isprintable() else "?" for c in source[:200])
+        caret = " " * min(column - 1, len(shown)) + "^"
+        return f"{self.path}:{line}:{column}: {kind}: {message}\n  {shown}\n  {caret}"
+
+    def at_end(self):
+        return self.next >= len(self.words)
+
+    def peek(self):
+        return None if self.at_end() else self.words[self.next]
+
+    def take(self):
+        word = self.peek()
+        self.next += 1
+        return word
+
+
+class _Abandon(Exception):
+    """Stops reading an entity whose words are wrong (the error is already recorded)."""
+
+
+class _Reader:
+    def __init__(self, path, text):
+        self.source = _Source(path, text)
+        self.scene = Scene(path, source=self.source)
+        self.errors = []
+        self.fill = None
+
+    # --- words -------------------------------------------------------------------------
+    def error(self, word, message):
+        self.errors.append(self.source.diagnostic("error", word, message))
+        raise _Abandon
+
+    def warning(self, word, message):
+        self.scene.warnings.append(self.source.diagnostic("warning", word, message))
+
+    def number(self, what):
+        word = self.source.take()
+        if word is None:
+            self.error(None, f"expected {what}, found the end of the file")
+        try:
+            value = float(word.text)
+        except ValueError:
+            self.error(word, f"expected {what}, found '{word.text}'")
+        if not math.isfinite(value) or abs(value) > 1e30:
+            self.error(word, f"{what} must be a finite number within ±1e30, found '{word.text}'")
+        return value
+
+    def vector(self, what):
+        return tuple(self.number(f"{what} ({axis})") for axis in "xyz")
+
+    def count(self, what, least, most):
+        word = self.source.peek()
+        value = self.number(what)
+        if value != int(value) or not least <= value <= most:
+            self.error(word, f"{what} must be a whole number from {least} to {most:,}, found '{word.text}'")
+        return int(value)
+
+    def keyword(self, expected):
+        word = self.source.take()
+        if word is None:
+            self.error(None, f"expected '{expected}', found the end of the file")
+        if word.text != expected:
+            self.error(word, f"expected '{expected}', found '{word.text}'")
+
+    # --- entities ----------------------------------------------------------------------
+    def read(self):
+        handlers = {
+            "v": self.view,
+            "b": self.background,
+            "l": self.light,
+            "f": self.fill_line,
+            "c": self.cone,
+            "s": self.sphere,
+            "p": self.polygon,
+            "pp": self.polygon,
+        }
+        while not self.source.at_end() and len(self.errors) < MAX_ERRORS:
+            word = self.source.take()
+            handler = handlers.get(word.text)
+            try:
+                if handler is None:
+                    self.error(word, f"unknown NFF entity '{word.text}' (expected one of v, b, l, f, c, s, p, pp)")
+                handler(word)
+            except _Abandon:
+                self.skip_to_entity()
+        if self.scene.view is None and not self.errors:
+            self.errors.append(self.source.diagnostic("error", None, "no view ('v' entity): NFF requires one"))
+        if self.errors:
+            if len(self.errors) >= MAX_ERRORS:
+                self.errors.append(f"{self.source.path}: note: stopped after {MAX_ERRORS} errors")
+            raise NffError(self.errors)
+        return self.scene
+
+    def skip_to_entity(self):
+        """After an error, resumes at the next word that starts a line and names an entity."""
+        entities = {"v", "b", "l", "f", "c", "s", "p", "pp"}
+        while not self.source.at_end():
+            word = self.source.peek()
+            if word.column == 1 and word.text in entities:
+                return
+            self.source.take()
+
+    def view(self, word):
+        if self.scene.view is not None:
+            self.error(word, "a second view: NFF has one 'v' per file")
+        fields = {}
+        for name, read in (
+            ("from", lambda: self.vector("the eye position")),
+            ("at", lambda: self.vector("the point looked at")),
+            ("up", lambda: self.vector("the up vector")),
+            ("angle", lambda: self.number("the view angle in degrees")),
+            ("hither", lambda: self.number("the hither distance")),
+            ("resolution", lambda: (self.count("the width", 2, 16384), self.count("the height", 2, 16384))),
+        ):
+            self.keyword(name)
+            fields[name] = read()
+        if not 0 < fields["angle"] < 180:
+            self.error(word, f"the view angle must be between 0 and 180 degrees, found {fields['angle']:g}")
+        self.scene.view = View(
+            fields["from"], fields["at"], fields["up"], fields["angle"], fields["hither"], fields["resolution"], word
+        )
+
+    def colour(self, what):
+        word = self.source.peek()
+        value = tuple(self.number(f"{what} ({channel})") for channel in ("red", "green", "blue"))
+        if min(value) < 0:
+            self.error(word, f"{what} must not be negative")
+        return value
+
+    def background(self, word):
+        self.scene.background = self.colour("the background colour")
+
+    def light(self, word):
+        position = self.vector("the light position")
+        color = None
+        following = self.source.peek()
+        if following is not None and following.line == word.line and self._is_number(following.text):
+            color = self.colour("the light colour")
+        self.scene.lights.append(Light(position, color, word))
+
+    @staticmethod
+    def _is_number(text):
+        try:
+            float(text)
+        except ValueError:
+            return False
+        return True
+
+    def fill_line(self, word):
+        color = self.colour("the colour")
+        names = ("Kd", "Ks", "the Phong power", "T (transmittance)")
+        kd, ks, shine, t = (self.number(name) for name in names)
+        ior = self.number("the index of refraction")
+        for name, value in zip(names, (kd, ks, shine, t), strict=True):
+            if value < 0:
+                self.error(word, f"{name} must not be negative, found {value:g}")
+        if t > 0 and ior <= 0:
+            self.error(word, f"a transmitting surface (T {t:g}) needs an index of refraction > 0, found {ior:g}")
+        self.fill = Fill(color, kd, ks, shine, t, ior)
+
+    def current_fill(self, word):
+        if self.fill is None:
+            self.error(word, "a shape before any 'f' line: its surface is not defined")
+        return self.fill
+
+    def sphere(self, word):
+        fill = self.current_fill(word)
+        center = self.vector("the sphere's centre")
+        radius_word = self.source.peek()
+        radius = self.number("the sphere's radius")
+        if radius == 0:
+            self.error(radius_word, "a sphere of radius 0")
+        if radius < 0:
+            self.warning(radius_word, "negative radius (inside visible only): drawn two-sided like every shape")
+        self.scene.spheres.append(Sphere(center, abs(radius), fill, word))
+
+    def cone(self, word):
+        fill = self.current_fill(word)
+        base = self.vector("the base centre")
+        base_radius = self.number("the base radius")
+        apex = self.vector("the apex centre")
+        radius_word = self.source.peek()
+        apex_radius = self.number("the apex radius")
+        if base == apex:
+            self.error(word, "the base and apex of a cone are the same point")
+        if base_radius < 0 and apex_radius < 0:
+            self.warning(word, "negative radii (inside visible only): drawn two-sided like every shape")
+            base_radius, apex_radius = -base_radius, -apex_radius
+        if base_radius < 0 or apex_radius < 0 or base_radius == apex_radius == 0:
+            self.error(radius_word, "a cone's radii must both be positive (or both negative), one may be 0")
+        self.scene.cones.append(Cone(base, base_radius, apex, apex_radius, fill, word))
+
+    def polygon(self, word):
+        fill = self.current_fill(word)
+        patch = word.text == "pp"
+        corners = self.count("the number of corners", 3, MAX_POLYGON_CORNERS)
+        points, normals = [], [] if patch else None
+        for index in range(corners):
+            points.append(self.vector(f"corner {index + 1}"))
+            if patch:
+                normals.append(self.vector(f"the normal at corner {index + 1}"))
+        self.scene.polygons.append(Polygon(points, normals, fill, word))
+
+
+def read_nff(path, text):
+    """The Scene in NFF `text` (read from `path`, named in diagnostics); raises NffError."""
+    return _Reader(str(path), text).read()
