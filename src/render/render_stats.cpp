@@ -27,9 +27,8 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
     out["accel"] = accelerator_name(scene.render.accel);
     out["leaf_size"] = scene.render.leaf_size;
     out["render_seconds"] = stats.seconds;
-    out["rays"] = {
-        {"primary", rays.primary}, {"shadow", rays.shadow}, {"reflection", rays.reflection},
-        {"refraction", rays.refraction}, {"total", rays.total()}};
+    out["rays"] = {{"primary", rays.primary},       {"primary_hits", rays.primary_hits}, {"shadow", rays.shadow},
+                   {"reflection", rays.reflection}, {"refraction", rays.refraction},     {"total", rays.total()}};
     const double total = double(std::max<uint64_t>(rays.total(), 1));
     const SearchCounts& work = rays.traversal;
     out["box_tests_per_ray"] = double(work.objects.box_tests + work.triangles.box_tests) / total;
@@ -121,16 +120,17 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
         out += line;
     }
     const auto& rays = s["rays"];
-    std::snprintf(line, sizeof line,
-                  "rays: %llu primary, %llu shadow, %llu reflection, %llu refraction; per ray %.2f object box tests, %.2f object "
-                  "tests, %.2f mesh box tests, %.2f triangle tests; %.3f s, %.1f Mrays/s\n",
-                  (unsigned long long)rays["primary"].get<uint64_t>(),
-                  (unsigned long long)rays["shadow"].get<uint64_t>(),
-                  (unsigned long long)rays["reflection"].get<uint64_t>(),
-                  (unsigned long long)rays["refraction"].get<uint64_t>(), s["object_box_tests_per_ray"].get<double>(),
-                  s["object_tests_per_ray"].get<double>(), s["mesh_box_tests_per_ray"].get<double>(),
-                  s["triangle_tests_per_ray"].get<double>(), s["render_seconds"].get<double>(),
-                  s["mrays_per_second"].get<double>());
+    std::snprintf(
+        line, sizeof line,
+        "rays: %llu primary (%llu hit), %llu shadow, %llu reflection, %llu refraction; per ray %.2f object box tests, "
+        "%.2f object "
+        "tests, %.2f mesh box tests, %.2f triangle tests; %.3f s, %.1f Mrays/s\n",
+        (unsigned long long)rays["primary"].get<uint64_t>(), (unsigned long long)rays["primary_hits"].get<uint64_t>(),
+        (unsigned long long)rays["shadow"].get<uint64_t>(), (unsigned long long)rays["reflection"].get<uint64_t>(),
+        (unsigned long long)rays["refraction"].get<uint64_t>(), s["object_box_tests_per_ray"].get<double>(),
+        s["object_tests_per_ray"].get<double>(), s["mesh_box_tests_per_ray"].get<double>(),
+        s["triangle_tests_per_ray"].get<double>(), s["render_seconds"].get<double>(),
+        s["mrays_per_second"].get<double>());
     return out + line;
 }
 

@@ -16,6 +16,7 @@ RayCounts& RayCounts::operator+=(const RayCounts& other) {
     shadow += other.shadow;
     reflection += other.reflection;
     refraction += other.refraction;
+    primary_hits += other.primary_hits;
     traversal += other.traversal;
     return *this;
 }
@@ -107,6 +108,7 @@ template <bool kRefracts>
                 color += weight * settings.background;
                 break;
             }
+            if (depth == 0) ++counts.primary_hits;
 
             // Step 2: local Phong shading with the normal facing the incoming ray.
             const Material& material = world.materials()[size_t(hit->material)];

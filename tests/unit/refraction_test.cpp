@@ -47,8 +47,9 @@ TEST(Refraction, IndexOneLetsTheRayThroughUnbent) {
     EXPECT_NEAR(c.r, 0.2, 1e-12);
     EXPECT_NEAR(c.g, 0.4, 1e-12);
     EXPECT_NEAR(c.b, 0.6, 1e-12);
-    EXPECT_EQ(counts.refraction, 2u);  // in, then out
-    EXPECT_EQ(counts.reflection, 0u);  // km 0: no reflected ray is traced
+    EXPECT_EQ(counts.refraction, 2u);    // in, then out
+    EXPECT_EQ(counts.primary_hits, 1u);  // the refracted paths are not primary rays
+    EXPECT_EQ(counts.reflection, 0u);    // km 0: no reflected ray is traced
 }
 
 TEST(Refraction, SnellsLawThroughAFlatInterface) {

@@ -37,6 +37,7 @@ TEST(Whitted, PhongTermsAddUpWithLightColourOnDiffuseAndSpecularOnly) {
     EXPECT_NEAR(c.g, 0.1 + 1.0 * (0.4 + 0.5), 1e-12);
     EXPECT_NEAR(c.b, 0.1 + 0.25 * (0.6 + 0.5), 1e-12);
     EXPECT_EQ(counts.primary, 1u);
+    EXPECT_EQ(counts.primary_hits, 1u);
     EXPECT_EQ(counts.shadow, 1u);
 }
 
@@ -138,6 +139,7 @@ TEST(Whitted, MayHitNeverRulesOutARayThatHits) {
     RayCounts counts;
     EXPECT_EQ(trace(world, scene.render, {{5, 5, 5}, {1, 0, 0}}, counts), scene.render.background);
     EXPECT_EQ(counts.primary, 1u);
+    EXPECT_EQ(counts.primary_hits, 0u);
     // A plane is unbounded: nothing is ruled out.
     scene.planes = {{{0, -100, 0}, {0, 1, 0}, 0}};
     EXPECT_TRUE(World(scene).may_hit({{5, 5, 5}, {1, 0, 0}}));

@@ -73,6 +73,23 @@ def _write_outputs(scn_path, meshes_name, converted):
         raise
 
 
+def convert_file(nff_path, scn_path, corner_rays=False, max_error_pixels=0.1):
+    """Converts an NFF file, writing scn_path and its meshes folder; prints warnings on stderr.
+
+    Returns the conversion's summary (counts, and `seconds`: reading, converting and writing);
+    raises reader.NffError (nothing written) or SystemExit for a file it cannot read."""
+    started = time.perf_counter()
+    scene = reader.read_nff(nff_path, _read_input(nff_path))
+    meshes_name = f"{pathlib.Path(scn_path).stem}_meshes"
+    converted = convert.convert(scene, meshes_name, corner_rays, max_error_pixels)
+    for message in scene.warnings:
+        print(message, file=sys.stderr)
+    for word, message in converted.summary["warnings"]:
+        print(scene.source.diagnostic("warning", word, message), file=sys.stderr)
+    _write_outputs(pathlib.Path(scn_path), meshes_name, converted)
+    return {**converted.summary, "seconds": time.perf_counter() - started}
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="tools/nff2scn", description=__doc__.split("\n")[0])
     parser.add_argument("nff", type=pathlib.Path, help="the NFF file")
@@ -94,26 +111,16 @@ def main(argv=None):
     if not args.output.parent.is_dir():
         parser.error(f"the output's folder does not exist: {args.output.parent}")
 
-    started = time.perf_counter()
-    text = _read_input(args.nff)
     try:
-        scene = reader.read_nff(args.nff, text)
+        summary = convert_file(args.nff, args.output, args.corner_rays, args.max_error_pixels)
     except reader.NffError as error:
         print(error, file=sys.stderr)
         return 1
-    meshes_name = f"{args.output.stem}_meshes"
-    converted = convert.convert(scene, meshes_name, args.corner_rays, args.max_error_pixels)
-    for message in scene.warnings:
-        print(message, file=sys.stderr)
-    for word, message in converted.summary["warnings"]:
-        print(scene.source.diagnostic("warning", word, message), file=sys.stderr)
-    _write_outputs(args.output, meshes_name, converted)
-    summary = converted.summary
     print(
         f"{args.output}: {summary['spheres']} spheres, {summary['polygons']} polygons "
         f"({summary['triangles']} triangles), {summary['cones']} cones "
         f"(sides by radius ratio: {summary['cone_sides'] or 'none'}), {summary['lights']} lights, "
-        f"{summary['materials']} materials; {time.perf_counter() - started:.2f} s",
+        f"{summary['materials']} materials; {summary['seconds']:.2f} s",
         file=sys.stderr,
     )
     return 0

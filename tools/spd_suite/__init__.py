@@ -1,0 +1,1 @@
+"""The SPD suite (Eric Haines' Standard Procedural Databases) through tracer: tools/spd."""
