@@ -123,8 +123,7 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
     std::snprintf(
         line, sizeof line,
         "rays: %llu primary (%llu hit), %llu shadow, %llu reflection, %llu refraction; per ray %.2f object box tests, "
-        "%.2f object "
-        "tests, %.2f mesh box tests, %.2f triangle tests; %.3f s, %.1f Mrays/s\n",
+        "%.2f object tests, %.2f mesh box tests, %.2f triangle tests; %.3f s, %.1f Mrays/s\n",
         (unsigned long long)rays["primary"].get<uint64_t>(), (unsigned long long)rays["primary_hits"].get<uint64_t>(),
         (unsigned long long)rays["shadow"].get<uint64_t>(), (unsigned long long)rays["reflection"].get<uint64_t>(),
         (unsigned long long)rays["refraction"].get<uint64_t>(), s["object_box_tests_per_ray"].get<double>(),
