@@ -62,11 +62,13 @@ int pixels_differing(const Bytes& a, const Bytes& b, int levels) {
 const fs::path kScenes = fs::path(TRACER_SOURCE_DIR) / "scenes";
 const fs::path kGolden = fs::path(TRACER_SOURCE_DIR) / "tests" / "golden";
 
-// Renders a scene file with its meshes, as `tracer` does; writes the golden image on request.
-Bytes render_scene(const std::string& name, const RenderOptions& options = {}) {
+// Renders a scene file with its meshes, as `tracer` does (`size`: a square image of that many
+// pixels a side instead of the scene's); writes the golden image on request.
+Bytes render_scene(const std::string& name, const RenderOptions& options = {}, int size = 0) {
     LoadResult loaded = load_scene((kScenes / (name + ".scn")).string());
     EXPECT_TRUE(loaded.scene) << name;
     if (!loaded.scene) return {};
+    if (size > 0) loaded.scene->render.width = loaded.scene->render.height = size;
     auto meshes = load_meshes(*loaded.scene, loaded.diagnostics);
     EXPECT_TRUE(meshes) << name;
     if (!meshes) return {};
@@ -150,6 +152,17 @@ TEST(Bunnies, MatchesTheCommittedGoldenImage) {
 TEST(Glass, MatchesTheCommittedGoldenImage) {
     expect_matches_golden(render_scene("glass"), "glass");
 }
+
+// The seven SPD scenes as tools/nff2scn converts them (scenes/spd/), at 128 x 128: the
+// importer's output, instancing of the cones, refraction in gears and mount.
+class Spd : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Spd, MatchesTheCommittedGoldenImage) {
+    const std::string name = std::string("spd/") + GetParam();
+    expect_matches_golden(render_scene(name, {}, 128), name);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, Spd, ::testing::Values("balls", "gears", "mount", "rings", "teapot", "tetra", "tree"));
 
 TEST(BunnyRoom, BunnyStandsOnTheFloorClearOfEverySphere) {
     LoadResult loaded = load_scene((kScenes / "bunny_room.scn").string());
