@@ -5,6 +5,7 @@ import os
 import pathlib
 import subprocess
 import sys
+import tempfile
 
 import numpy as np
 import pytest
@@ -12,7 +13,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 
-from nff import convert, geometry, reader  # noqa: E402
+from nff import convert, geometry, nff2scn, reader  # noqa: E402
 
 VIEW = """v
 from 0 0 0
@@ -43,9 +44,20 @@ def run_nff2scn(tmp_path, text, *options, name="scene"):
     return done, output
 
 
+class Converted:
+    """What nff2scn wrote for an NFF text: the .scn text and the OBJ files by name."""
+
+    def __init__(self, text, corner_rays=False):
+        with tempfile.TemporaryDirectory() as folder:
+            source, output = pathlib.Path(folder) / "test.nff", pathlib.Path(folder) / "test.scn"
+            source.write_text(text)
+            self.summary = nff2scn.convert_file(source, output, corner_rays)
+            self.scn = output.read_text()
+            self.meshes = {path.name: path.read_text() for path in (output.parent / "test_meshes").iterdir()}
+
+
 def convert_text(text, corner_rays=False):
-    scene = reader.read_nff("test.nff", text)
-    return scene, convert.convert(scene, "test_meshes", corner_rays)
+    return None, Converted(text, corner_rays)
 
 
 def block_lines(scn, kind):
@@ -145,9 +157,32 @@ def test_cone_is_an_instance_of_a_unit_frustum():
     meshes = block_lines(converted.scn, "mesh")
     assert len(meshes) == 2 and len(converted.meshes) == 1  # one unit mesh for both (same ratio)
     (name,) = converted.meshes
-    assert name.startswith("cone-0.5-")
+    assert name == "cone-0.5.obj"
     assert "scale (0.5, 0.5, 2)" in meshes[0] and "translate (0, -1, -5)" in meshes[0]
     assert "axis (-1, 0, 0) angle 90" in meshes[0]  # +z turned onto +y
+
+
+def test_cones_past_the_unit_mesh_limit_are_tessellated_in_place(monkeypatch):
+    monkeypatch.setattr(convert, "MAX_CONE_MESHES", 1)
+    text = VIEW + "f 1 1 1 1 0 1 0 0\nc 0 -1 -5 0.5 0 1 -5 0.25\nc 1 -1 -5 0.5 1 1 -5 0.1\n"
+    _, converted = convert_text(text)
+    assert sorted(converted.meshes) == ["cone-0.5.obj", "polygons-m0.obj"]
+    vertices, normals, faces = obj_arrays(converted.meshes["polygons-m0.obj"])
+    # The second cone (ratio 0.2) in world space: its base ring around (1, -1, -5), radius >= 0.5.
+    base = vertices[np.isclose(vertices[:, 1], -1)]
+    assert len(base) >= geometry.LEAST_SIDES
+    assert np.hypot(base[:, 0] - 1, base[:, 2] + 5) == pytest.approx(0.5, rel=0.02)
+    assert np.allclose(np.linalg.norm(normals, axis=1), 1)
+
+
+def test_too_many_materials_is_an_error_at_the_shape(tmp_path, monkeypatch):
+    monkeypatch.setattr(convert, "MAX_MATERIALS", 1)
+    source = tmp_path / "scene.nff"
+    source.write_text(VIEW + "f 1 1 1 1 0 1 0 0\ns 0 0 -5 1\nf 1 0 0 1 0 1 0 0\ns 1 0 -5 1\n")
+    with pytest.raises(reader.NffError) as error:
+        nff2scn.convert_file(source, tmp_path / "scene.scn")
+    assert ":11:1: error: more than 1 different surfaces" in str(error.value)
+    assert [path.name for path in tmp_path.iterdir()] == ["scene.nff"]  # no output, no staging left
 
 
 @pytest.mark.parametrize("ratio", [1.0, 0.5, 0.0])
@@ -196,7 +231,8 @@ def test_frame_to_axis_turns_z_onto_any_direction():
         (VIEW + "f 1 1 1 1 0 1 0 0\np 2\n0 0 0\n1 0 0\n", "9:3", "from 3 to 100,000"),
         (VIEW + "f 1 1 1 1 0 1 0 0\np 3\n0 0 0\n1 0 0\n", "11:6", "found the end of the file"),
         (VIEW + "f 1 1 1 1 0 1 0.5 0\n", "8:1", "needs an index of refraction > 0"),
-        ("f 1 1 1 1 0 1 0 0\ns 0 0 -5 1\n", "2:11", "no view"),
+        ("f 1 1 1 1 0 1 0 0\ns 0 0 -5 1\n", "2:1", "a shape before the view"),
+        ("b 0 0 0\n", "1:8", "no view"),
         (VIEW.replace("angle 40", "angle 180"), "1:1", "between 0 and 180 degrees"),
         (VIEW.replace("11 11", "1 11"), "7:12", "from 2 to 16,384"),
         (VIEW + "f 1 1 1 1 0 1 0 0\nc 0 0 0 1 0 0 0 1\n", "9:1", "the same point"),
@@ -210,6 +246,14 @@ def test_errors_name_file_line_and_column(tmp_path, text, where, message):
     assert message in first
     assert "^" in done.stderr.splitlines()[2]
     assert not output.exists() and not (tmp_path / "scene_meshes").exists()
+
+
+def test_lone_carriage_returns_end_lines_and_long_lines_are_windowed(tmp_path):
+    text = (VIEW + "f 1 1 1 1 0 1 0 0\n").replace("\n", "\r") + "s 0 0 -5 1" + " " * 5000 + "x\r"
+    done, _ = run_nff2scn(tmp_path, text)
+    first, shown, caret = done.stderr.splitlines()[:3]
+    assert first.startswith(f"{tmp_path / 'scene.nff'}:9:5011: error: unknown NFF entity 'x'"), first
+    assert len(shown) < 200 and shown[len(caret) - 1] == "x"
 
 
 def test_errors_are_capped_and_each_reported(tmp_path):

@@ -1,4 +1,6 @@
-"""NFF scene (nff.reader.Scene) to tracer's language: the .scn text and the OBJ files it names.
+"""NFF to tracer's language, streamed: shapes are written as the reader meets them, so memory
+holds the materials and a bounded buffer, not the scene. The output is a .scn and the OBJ files
+it names, written into a staging folder that nff2scn publishes only when all went well.
 
 The rules, each a choice NFF leaves open (docs/spd.md gives the reasons):
 - camera: NFF's angle spans the centres of the outer pixel rows; tracer's fovy spans the image
@@ -14,22 +16,22 @@ The rules, each a choice NFF leaves open (docs/spd.md gives the reasons):
   own corners and flat normal (patches keep their corner normals), wound like the polygon.
 - cones and cylinders: one unit frustum OBJ per apex/base radius ratio, placed by scale, rotate
   and translate (instances), with enough sides that the outline is within `max_error_pixels`
-  of the true cone for every cone in front of the eye.
+  of the true cone for every cone in front of the eye. Past MAX_CONE_MESHES different ratios, a
+  cone is tessellated in place into its material's OBJ instead.
 """
 
 import dataclasses
 import math
+import shutil
 
 import numpy as np
 
 from . import geometry
+from .reader import TooManyMaterials
 
-
-@dataclasses.dataclass
-class Converted:
-    scn: str
-    meshes: dict  # file name (inside the meshes folder) -> OBJ text
-    summary: dict
+MAX_MATERIALS = 65_536  # different `f` lines: each may become an OBJ file of its own
+MAX_CONE_MESHES = 1_024  # different cone radius ratios given a unit mesh of their own
+BUFFERED_LINES = 200_000  # OBJ lines held before they are appended to their files
 
 
 def _num(value):
@@ -80,30 +82,146 @@ def _material_text(name, fill, ambient):
     return f"material {name} {{ {'  '.join(keys)} }}"
 
 
-class _Writer:
-    def __init__(self, scene, meshes_folder, corner_rays, max_error_pixels):
-        self.scene = scene
-        self.folder = meshes_folder
-        self.camera = _Camera(scene.view, corner_rays)
-        self.max_error_pixels = max_error_pixels
-        self.warnings = []
-        self.materials = {}  # Fill values -> (name, Fill)
-        self.meshes = {}
+@dataclasses.dataclass
+class _ObjFile:
+    """An OBJ file being appended to: counts so far, and lines not yet written."""
 
-    def material(self, fill):
+    vertices: int = 0
+    normals: int = 0
+    pending: list = dataclasses.field(default_factory=list)
+
+
+class Writer:
+    """The reader's shape sink: writes shape blocks to staging/shapes.part and triangles to
+    staging/MESHES/*.obj as they come; finish() writes the .scn around them."""
+
+    def __init__(self, staging, meshes_folder, corner_rays=False, max_error_pixels=0.1):
+        self.staging = staging
+        self.folder = meshes_folder
+        (staging / meshes_folder).mkdir()
+        self.shapes = open(staging / "shapes.part", "w")  # noqa: SIM115  (closed by finish)
+        self.corner_rays = corner_rays
+        self.max_error_pixels = max_error_pixels
+        self.camera = None
+        self.materials = {}  # Fill values -> (name, Fill)
+        self.objs = {}  # file name -> _ObjFile
+        self.buffered = 0
+        self.cone_sides = {}  # radius ratio -> most sides any of its cones needs
+        self.warnings = []
+        self.counts = {"spheres": 0, "polygons": 0, "triangles": 0, "cones": 0}
+
+    def material(self, fill, word):
         key = dataclasses.astuple(fill)
         if key not in self.materials:
+            if len(self.materials) >= MAX_MATERIALS:
+                raise TooManyMaterials(word, f"more than {MAX_MATERIALS:,} different surfaces ('f' lines)")
             self.materials[key] = (f"m{len(self.materials)}", fill)
         return self.materials[key][0]
 
-    def write(self):
-        scene, camera = self.scene, self.camera
+    # --- shapes, as the reader meets them ---------------------------------------------
+    def sphere(self, scene, sphere):
+        name = self.material(sphere.fill, sphere.word)
+        self.shapes.write(f"sphere {{ center {_vec(sphere.center)}  radius {_num(sphere.radius)}  material {name} }}\n")
+        self.counts["spheres"] += 1
+
+    def polygon(self, scene, polygon):
+        name = self.material(polygon.fill, polygon.word)
+        normal = geometry.polygon_normal(polygon.points)
+        if normal is None:
+            self.warnings.append((polygon.word, "a polygon without area (its corners are in a line): left out"))
+            return
+        triangles = geometry.triangulate(polygon.points, normal)
+        if len(triangles) < len(polygon.points) - 2:
+            self.warnings.append((polygon.word, "a polygon whose outline crosses itself: partly left out"))
+        points = np.asarray(polygon.points, dtype=np.float64)
+        if polygon.normals is None:
+            normals, corner_normal = normal[None, :], np.zeros(len(points), dtype=np.int64)
+        else:
+            given = np.asarray(polygon.normals, dtype=np.float64)
+            length = np.linalg.norm(given, axis=1, keepdims=True)
+            normals = np.where(length > 0, given / np.where(length > 0, length, 1), normal)
+            corner_normal = np.arange(len(points))
+        faces = np.column_stack(
+            [
+                triangles[:, 0],
+                corner_normal[triangles[:, 0]],
+                triangles[:, 1],
+                corner_normal[triangles[:, 1]],
+                triangles[:, 2],
+                corner_normal[triangles[:, 2]],
+            ]
+        )
+        self.append(f"polygons-{name}.obj", points, normals, faces)
+        self.counts["polygons"] += 1
+        self.counts["triangles"] += len(triangles)
+
+    def cone(self, scene, cone):
+        name = self.material(cone.fill, cone.word)
+        if self.camera is None:
+            self.camera = _Camera(scene.view, self.corner_rays)
+        base, apex = np.array(cone.base, dtype=np.float64), np.array(cone.apex, dtype=np.float64)
+        r_base, r_apex = cone.base_radius, cone.apex_radius
+        if r_apex > r_base:  # the unit frustum narrows towards +z
+            base, apex, r_base, r_apex = apex, base, r_apex, r_base
+        ratio = float(_num(r_apex / r_base))
+        axis = apex - base
+        length = float(np.linalg.norm(axis))
+        rotation_axis, angle = geometry.frame_to_axis(axis / length)
+        sides = self.sides_for(base, apex, r_base)
+        scale = (r_base, r_base, length)
+        self.counts["cones"] += 1
+        if ratio in self.cone_sides or len(self.cone_sides) < MAX_CONE_MESHES:
+            self.cone_sides[ratio] = max(self.cone_sides.get(ratio, geometry.LEAST_SIDES), sides)
+            self.shapes.write(
+                f'mesh {{ file "{self.folder}/cone-{_num(ratio)}.obj"  scale {_vec(scale)}  '
+                f"rotate {{ axis {_vec(rotation_axis)} angle {_num(angle)} }}  translate {_vec(base)}  "
+                f"material {name} }}\n"
+            )
+            return
+        vertices, normals, faces = geometry.frustum_arrays(ratio, sides)
+        vertices, normals = geometry.placed(vertices, normals, scale, rotation_axis, angle, base)
+        self.append(f"polygons-{name}.obj", vertices, normals, faces)
+
+    def sides_for(self, base, apex, radius):
+        """Sides a cone needs for its outline to be within the error bound where the eye sees it."""
+        camera = self.camera
+        depths = [float(np.dot(point - camera.eye, camera.forward)) for point in (base, apex)]
+        if max(depths) + radius < camera.hither:
+            return geometry.LEAST_SIDES  # wholly behind the eye: not in view (reflections are not measured)
+        depth = max(min(depths) - radius, camera.hither)
+        return geometry.segments_for_error(radius, depth, camera.pixels_per_unit_depth, self.max_error_pixels)
+
+    # --- files -------------------------------------------------------------------------
+    def append(self, file, vertices, normals, faces):
+        obj = self.objs.setdefault(file, _ObjFile())
+        obj.pending.append(geometry.obj_text(vertices, normals, faces, obj.vertices, obj.normals))
+        obj.vertices += len(vertices)
+        obj.normals += len(normals)
+        self.buffered += len(vertices) + len(normals) + len(faces)
+        if self.buffered > BUFFERED_LINES:
+            self.flush()
+
+    def flush(self):
+        for file, obj in self.objs.items():
+            if obj.pending:
+                with open(self.staging / self.folder / file, "a") as out:
+                    out.writelines(obj.pending)
+                obj.pending.clear()
+        self.buffered = 0
+
+    def finish(self, scene, scn_path):
+        """Writes the unit cone meshes and the .scn (header, then the shapes); the summary."""
+        self.flush()
+        self.shapes.close()
+        for ratio, sides in self.cone_sides.items():
+            (self.staging / self.folder / f"cone-{_num(ratio)}.obj").write_text(geometry.frustum_mesh(ratio, sides))
+        camera = _Camera(scene.view, self.corner_rays)
         lights = len(scene.lights)
         intensity = math.sqrt(max(lights, 1)) / (2 * max(lights, 1))
-        shapes = self.sphere_lines() + self.polygon_lines() + self.cone_lines()
-        lines = [
+        c = self.counts
+        header = [
             f"# Converted from {scene.path} by tools/nff2scn (rules: tools/nff/convert.py, docs/spd.md).",
-            f"# {len(scene.spheres)} spheres, {len(scene.polygons)} polygons, {len(scene.cones)} cones, "
+            f"# {c['spheres']} spheres, {c['polygons']} polygons, {c['cones']} cones, "
             f"{lights} lights (intensity and ambient {intensity:.6g} each).",
             "",
             f"render {{ width {camera.width}  height {camera.height}  max_depth 4  "
@@ -114,115 +232,26 @@ class _Writer:
         ]
         for light in scene.lights:
             color = _scale(light.color if light.color is not None else (1, 1, 1), intensity)
-            lines.append(f"light {{ position {_vec(light.position)}  color {_colour(color)} }}")
-        lines.append("")
-        for name, fill in self.materials.values():
-            lines.append(_material_text(name, fill, intensity))
-        lines.append("")
-        lines += shapes
-        summary = {
-            "spheres": len(scene.spheres),
-            "polygons": len(scene.polygons),
-            "triangles": self.triangle_count,
-            "cones": len(scene.cones),
-            "cone_sides": self.cone_sides,
+            header.append(f"light {{ position {_vec(light.position)}  color {_colour(color)} }}")
+        header.append("")
+        header += [_material_text(name, fill, intensity) for name, fill in self.materials.values()]
+        header.append("")
+        header += [
+            f'mesh {{ file "{self.folder}/{file}"  material {file[len("polygons-") : -len(".obj")]} }}'
+            for file in self.objs
+        ]
+        with open(scn_path, "w") as out:
+            out.write("\n".join(header) + "\n")
+            with open(self.staging / "shapes.part") as shapes:
+                shutil.copyfileobj(shapes, out)
+        (self.staging / "shapes.part").unlink()
+        return {
+            **c,
+            "cone_sides": dict(sorted(self.cone_sides.items())),
             "lights": lights,
             "materials": len(self.materials),
         }
-        return Converted("\n".join(lines) + "\n", self.meshes, summary)
 
-    def sphere_lines(self):
-        return [
-            f"sphere {{ center {_vec(s.center)}  radius {_num(s.radius)}  material {self.material(s.fill)} }}"
-            for s in self.scene.spheres
-        ]
-
-    def polygon_lines(self):
-        """One OBJ per material holding its polygons, triangulated; one mesh block each."""
-        by_material = {}
-        self.triangle_count = 0
-        for polygon in self.scene.polygons:
-            normal = geometry.polygon_normal(polygon.points)
-            if normal is None:
-                self.warnings.append((polygon.word, "a polygon without area (its corners are in a line): left out"))
-                continue
-            triangles = geometry.triangulate(polygon.points, normal)
-            if len(triangles) < len(polygon.points) - 2:
-                self.warnings.append((polygon.word, "a polygon whose outline crosses itself: partly left out"))
-            by_material.setdefault(self.material(polygon.fill), []).append((polygon, normal, triangles))
-            self.triangle_count += len(triangles)
-        lines = []
-        for name, polygons in by_material.items():
-            file = f"polygons-{name}.obj"
-            self.meshes[file] = _polygons_obj(polygons)
-            lines.append(f'mesh {{ file "{self.folder}/{file}"  material {name} }}')
-        return lines
-
-    def cone_lines(self):
-        """Each cone an instance of the unit frustum of its radius ratio, with sides enough for all."""
-        placed, sides = [], {}
-        for cone in self.scene.cones:
-            base, apex = np.array(cone.base, dtype=np.float64), np.array(cone.apex, dtype=np.float64)
-            r_base, r_apex = cone.base_radius, cone.apex_radius
-            if r_apex > r_base:  # the unit frustum narrows towards +z
-                base, apex, r_base, r_apex = apex, base, r_apex, r_base
-            ratio = float(_num(r_apex / r_base))
-            needed = self.sides_for(base, apex, r_base)
-            sides[ratio] = max(sides.get(ratio, geometry.LEAST_SIDES), needed)
-            placed.append((cone, base, apex, r_base, ratio))
-        self.cone_sides = {ratio: count for ratio, count in sorted(sides.items())}
-        lines = []
-        for cone, base, apex, r_base, ratio in placed:
-            file = f"cone-{_num(ratio)}-{sides[ratio]}.obj"
-            if file not in self.meshes:
-                self.meshes[file] = geometry.frustum_mesh(ratio, sides[ratio])
-            axis = apex - base
-            length = float(np.linalg.norm(axis))
-            rotation_axis, angle = geometry.frame_to_axis(axis / length)
-            lines.append(
-                f'mesh {{ file "{self.folder}/{file}"  scale {_vec((r_base, r_base, length))}  '
-                f"rotate {{ axis {_vec(rotation_axis)} angle {_num(angle)} }}  translate {_vec(base)}  "
-                f"material {self.material(cone.fill)} }}"
-            )
-        return lines
-
-    def sides_for(self, base, apex, radius):
-        """Sides a cone needs for its outline to be within the error bound where the eye sees it."""
-        camera = self.camera
-        depths = [float(np.dot(point - camera.eye, camera.forward)) for point in (base, apex)]
-        if max(depths) + radius < camera.hither:
-            return geometry.LEAST_SIDES  # wholly behind the eye: not in view (its reflections are not measured)
-        depth = max(min(depths) - radius, camera.hither)
-        return geometry.segments_for_error(radius, depth, camera.pixels_per_unit_depth, self.max_error_pixels)
-
-
-def _polygons_obj(polygons):
-    """OBJ text of polygons: each its own corners, its normals (one flat, or the patch's), its triangles."""
-    lines = []
-    vertices = normals = 0
-    for polygon, normal, triangles in polygons:
-        for point in polygon.points:
-            lines.append("v " + " ".join(_num(c) for c in point))
-        if polygon.normals is None:
-            lines.append("vn " + " ".join(_num(c) for c in normal))
-            corner_normals = [normals + 1] * len(polygon.points)
-            normals += 1
-        else:
-            for corner in polygon.normals:
-                given = np.array(corner, dtype=np.float64)
-                length = np.linalg.norm(given)
-                lines.append("vn " + " ".join(_num(c) for c in (given / length if length > 0 else normal)))
-            corner_normals = [normals + 1 + i for i in range(len(polygon.points))]
-            normals += len(polygon.points)
-        for triangle in triangles:
-            lines.append("f " + " ".join(f"{vertices + 1 + i}//{corner_normals[i]}" for i in triangle))
-        vertices += len(polygon.points)
-    return "\n".join(lines) + "\n"
-
-
-def convert(scene, meshes_folder, corner_rays=False, max_error_pixels=0.1):
-    """Converted(scn, meshes, summary) for a Scene; meshes_folder is how the .scn names the OBJ folder."""
-    writer = _Writer(scene, meshes_folder, corner_rays, max_error_pixels)
-    converted = writer.write()
-    converted.summary["warnings"] = writer.warnings
-    return converted
+    def close(self):
+        if not self.shapes.closed:
+            self.shapes.close()

@@ -60,31 +60,63 @@ def segments_for_error(radius, depth, pixels_per_unit_depth, max_error_pixels, m
     return max(LEAST_SIDES, min(most, sides))
 
 
-def frustum_mesh(apex_ratio, sides):
-    """OBJ text of an open cone frustum along +z: radius 1 at z = 0, apex_ratio at z = 1.
+def frustum_arrays(apex_ratio, sides):
+    """An open cone frustum along +z, radius 1 at z = 0 and apex_ratio at z = 1, as (vertices,
+    normals, faces): faces are rows (v0, n0, v1, n1, v2, n2) of 0-based indices.
 
-    Corners lie at radius r / cos^2(pi / 2n) ... precisely 2r / (1 + cos(pi / n)), so the facets
-    straddle the true surface (segments_for_error); vertex normals are the true surface's."""
+    Corners lie at radius 2r / (1 + cos(pi / n)), so the facets straddle the true surface by
+    r tan^2(pi / 2n) either way (segments_for_error); vertex normals are the true surface's."""
     angles = 2 * math.pi * np.arange(sides) / sides
     widen = 2 / (1 + math.cos(math.pi / sides))
     slope = 1 - apex_ratio  # radius falls by this much per unit of z
-    lines = [f"# open cone frustum: radius 1 at z = 0, {apex_ratio:.9g} at z = 1, {sides} sides"]
-    for z, radius in ((0.0, 1.0), (1.0, apex_ratio)):
-        for angle in angles:
-            lines.append(f"v {widen * radius * math.cos(angle):.9g} {widen * radius * math.sin(angle):.9g} {z:g}")
-    norm = math.hypot(1, slope)
-    for angle in angles:
-        lines.append(f"vn {math.cos(angle) / norm:.9g} {math.sin(angle) / norm:.9g} {slope / norm:.9g}")
-    for i in range(sides):
-        j = (i + 1) % sides
-        b0, b1, t0, t1 = i + 1, j + 1, sides + i + 1, sides + j + 1
-        n0, n1 = i + 1, j + 1
-        if apex_ratio > 0:
-            lines.append(f"f {b0}//{n0} {b1}//{n1} {t1}//{n1}")
-            lines.append(f"f {b0}//{n0} {t1}//{n1} {t0}//{n0}")
-        else:  # a point at the apex: one triangle per side
-            lines.append(f"f {b0}//{n0} {b1}//{n1} {t0}//{n0}")
+    rings = [
+        np.column_stack([widen * radius * np.cos(angles), widen * radius * np.sin(angles), np.full(sides, z)])
+        for z, radius in ((0.0, 1.0), (1.0, apex_ratio))
+    ]
+    vertices = np.vstack(rings)
+    normals = np.column_stack([np.cos(angles), np.sin(angles), np.full(sides, slope)]) / math.hypot(1, slope)
+    i = np.arange(sides)
+    j = (i + 1) % sides
+    b0, b1, t0, t1 = i, j, sides + i, sides + j
+    if apex_ratio > 0:
+        faces = np.vstack([np.column_stack([b0, i, b1, j, t1, j]), np.column_stack([b0, i, t1, j, t0, i])])
+    else:  # a point at the apex: one triangle per side
+        faces = np.column_stack([b0, i, b1, j, t0, i])
+    return vertices, normals, faces
+
+
+def frustum_mesh(apex_ratio, sides):
+    """OBJ text of the unit frustum of frustum_arrays."""
+    vertices, normals, faces = frustum_arrays(apex_ratio, sides)
+    header = f"# open cone frustum: radius 1 at z = 0, {apex_ratio:.9g} at z = 1, {sides} sides"
+    return header + "\n" + obj_text(vertices, normals, faces)
+
+
+def obj_text(vertices, normals, faces, first_vertex=0, first_normal=0):
+    """OBJ lines (v, vn, f v//vn) of triangles; indices in faces are 0-based within these arrays,
+    written after first_vertex vertices and first_normal normals already in the file."""
+    lines = [f"v {x:.9g} {y:.9g} {z:.9g}" for x, y, z in vertices + 0.0]  # + 0.0: no "-0"
+    lines += [f"vn {x:.9g} {y:.9g} {z:.9g}" for x, y, z in normals + 0.0]
+    offsets = np.array([first_vertex, first_normal] * 3) + 1
+    lines += ["f {}//{} {}//{} {}//{}".format(*row) for row in (faces + offsets).tolist()]
     return "\n".join(lines) + "\n"
+
+
+def rotation_matrix(axis, angle_degrees):
+    """The rotation by angle_degrees about the unit axis (counter-clockwise looking down it)."""
+    k = np.asarray(axis, dtype=np.float64)
+    theta = math.radians(angle_degrees)
+    cross = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + math.sin(theta) * cross + (1 - math.cos(theta)) * cross @ cross
+
+
+def placed(vertices, normals, scale, axis, angle_degrees, translate):
+    """Vertices and normals scaled, rotated and translated (tracer's order for a mesh block)."""
+    rotation = rotation_matrix(axis, angle_degrees)
+    scale = np.asarray(scale, dtype=np.float64)
+    moved = (vertices * scale) @ rotation.T + np.asarray(translate, dtype=np.float64)
+    turned = (normals / scale) @ rotation.T
+    return moved, turned / np.linalg.norm(turned, axis=1, keepdims=True)
 
 
 def frame_to_axis(direction):

@@ -42,35 +42,20 @@ def _umask():
     return mask
 
 
-def _write_outputs(scn_path, meshes_name, converted):
-    """Writes the OBJ folder and the .scn, each replaced as a whole (a failure leaves the old ones)."""
+def _publish(staging, scn_path, meshes_name):
+    """Moves the staged meshes folder and .scn into place, each replacing the old one whole."""
     folder = scn_path.parent / meshes_name
-    staging = pathlib.Path(tempfile.mkdtemp(prefix=f".{meshes_name}.", dir=scn_path.parent))
-    try:
-        staging.chmod(0o777 & ~_umask())  # mkdtemp makes it private
-        for name, text in converted.meshes.items():
-            (staging / name).write_text(text)
-        old = None
-        if folder.exists():
-            old = folder.with_name(f".{meshes_name}.old.{os.getpid()}")
-            folder.rename(old)
-        staging.rename(folder)
-        if old is not None:
-            shutil.rmtree(old)
-    finally:
-        if staging.exists():
-            shutil.rmtree(staging)
-    descriptor, temporary = tempfile.mkstemp(prefix=f".{scn_path.name}.", dir=scn_path.parent)
-    try:
-        os.chmod(descriptor, 0o666 & ~_umask())
-        with os.fdopen(descriptor, "w") as file:
-            file.write(converted.scn)
-            file.flush()
-            os.fsync(file.fileno())
-        os.replace(temporary, scn_path)
-    except BaseException:
-        os.unlink(temporary)
-        raise
+    old = None
+    if folder.exists():
+        old = folder.with_name(f".{meshes_name}.old.{os.getpid()}")
+        folder.rename(old)
+    (staging / meshes_name).rename(folder)
+    if old is not None:
+        shutil.rmtree(old)
+    staged_scn = staging / scn_path.name
+    with open(staged_scn, "rb+") as file:
+        os.fsync(file.fileno())
+    os.replace(staged_scn, scn_path)
 
 
 def convert_file(nff_path, scn_path, corner_rays=False, max_error_pixels=0.1):
@@ -79,15 +64,26 @@ def convert_file(nff_path, scn_path, corner_rays=False, max_error_pixels=0.1):
     Returns the conversion's summary (counts, and `seconds`: reading, converting and writing);
     raises reader.NffError (nothing written) or SystemExit for a file it cannot read."""
     started = time.perf_counter()
-    scene = reader.read_nff(nff_path, _read_input(nff_path))
-    meshes_name = f"{pathlib.Path(scn_path).stem}_meshes"
-    converted = convert.convert(scene, meshes_name, corner_rays, max_error_pixels)
-    for message in scene.warnings:
-        print(message, file=sys.stderr)
-    for word, message in converted.summary["warnings"]:
-        print(scene.source.diagnostic("warning", word, message), file=sys.stderr)
-    _write_outputs(pathlib.Path(scn_path), meshes_name, converted)
-    return {**converted.summary, "seconds": time.perf_counter() - started}
+    scn_path = pathlib.Path(scn_path)
+    text = _read_input(nff_path)
+    meshes_name = f"{scn_path.stem}_meshes"
+    staging = pathlib.Path(tempfile.mkdtemp(prefix=f".{scn_path.stem}.", dir=scn_path.parent))
+    try:
+        writer = convert.Writer(staging, meshes_name, corner_rays, max_error_pixels)
+        try:
+            scene = reader.read_nff(nff_path, text, writer)
+        finally:
+            writer.close()
+        summary = writer.finish(scene, staging / scn_path.name)
+        os.chmod(staging / scn_path.name, 0o666 & ~_umask())
+        for message in scene.warnings:
+            print(message, file=sys.stderr)
+        for word, message in writer.warnings:
+            print(scene.source.diagnostic("warning", word, message), file=sys.stderr)
+        _publish(staging, scn_path, meshes_name)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+    return {**summary, "seconds": time.perf_counter() - started}
 
 
 def main(argv=None):

@@ -6,6 +6,7 @@ NFF is a stream of whitespace-separated words: an entity's numbers may run on ov
 
 import dataclasses
 import math
+import re
 
 MAX_POLYGON_CORNERS = 100_000  # as tracer's OBJ reader
 MAX_ERRORS = 20
@@ -23,7 +24,8 @@ class NffError(Exception):
 class Word:
     text: str
     line: int  # 1-based
-    column: int  # 1-based, in characters
+    column: int  # 1-based, in characters (bytes: the file is read as Latin-1)
+    line_start: int  # offset of its line in the text
 
 
 @dataclasses.dataclass
@@ -88,55 +90,64 @@ class Scene:
     view: View | None = None
     background: tuple = (0.0, 0.0, 0.0)
     lights: list = dataclasses.field(default_factory=list)
-    spheres: list = dataclasses.field(default_factory=list)
-    cones: list = dataclasses.field(default_factory=list)
-    polygons: list = dataclasses.field(default_factory=list)
     warnings: list = dataclasses.field(default_factory=list)
     source: object = None  # the _Source: source.diagnostic(kind, word, message) formats a message at a word
 
 
-def _split_words(text):
-    """Every word of the text with its line and column; comments dropped."""
-    words = []
-    for number, line in enumerate(text.splitlines(), start=1):
-        code = line.split("#", 1)[0]
-        column = 0
-        for piece in code.split():
-            column = code.index(piece, column)
-            words.append(Word(piece, number, column + 1))
-            column += len(piece)
-    return words
+_TOKENS = re.compile(r"(\r\n|\r|\n)|#[^\r\n]*|([^\s#]+)")
+_WINDOW = 160  # characters of a long line shown around the column
+
+
+def _words(text, end):
+    """Every word of the text with its line and column, lazily (comments dropped); at the end,
+    end[0] and end[1] are the last line's number and start offset (the last line that has text,
+    when the file ends with a line break)."""
+    line, line_start, previous_start = 1, 0, 0
+    for match in _TOKENS.finditer(text):
+        if match.group(1):
+            line, line_start, previous_start = line + 1, match.end(), line_start
+        elif match.group(2):
+            yield Word(match.group(2), line, match.start() - line_start + 1, line_start)
+    end[:] = [line - 1, previous_start] if line > 1 and line_start == len(text) else [line, line_start]
 
 
 class _Source:
-    """The file's words with a cursor, and the formatting of diagnostics at a word."""
+    """The file's words with a one-word lookahead, and the formatting of diagnostics at a word.
+    Words are made as they are read: memory holds the text and the scene, not a list of words."""
 
     def __init__(self, path, text):
         self.path = path
-        self.lines = text.splitlines()
-        self.words = _split_words(text)
-        self.next = 0
+        self.text = text
+        self.end = [1, 0]
+        self.words = _words(text, self.end)
+        self.ahead = next(self.words, None)
 
     def diagnostic(self, kind, word, message):
         if word is None:  # the end of the file
-            line = len(self.lines) or 1
-            column = len(self.lines[-1]) + 1 if self.lines else 1
+            line, line_start = self.end
+            line_text = self.line_at(line_start)
+            column = len(line_text) + 1
         else:
-            line, column = word.line, word.column
-        source = self.lines[line - 1] if line <= len(self.lines) else ""
-        shown = "".join(c if c.isprintable() else "?" for c in source[:200])
-        caret = " " * min(column - 1, len(shown)) + "^"
+            line, column, line_start = word.line, word.column, word.line_start
+            line_text = self.line_at(line_start)
+        first = max(0, column - 1 - _WINDOW // 2) if len(line_text) > _WINDOW else 0
+        shown = "".join(c if c.isprintable() else "?" for c in line_text[first : first + _WINDOW])
+        caret = " " * min(column - 1 - first, len(shown)) + "^"
         return f"{self.path}:{line}:{column}: {kind}: {message}\n  {shown}\n  {caret}"
 
+    def line_at(self, start):
+        ends = [i for i in (self.text.find("\n", start), self.text.find("\r", start)) if i >= 0]
+        return self.text[start : min(ends) if ends else len(self.text)]
+
     def at_end(self):
-        return self.next >= len(self.words)
+        return self.ahead is None
 
     def peek(self):
-        return None if self.at_end() else self.words[self.next]
+        return self.ahead
 
     def take(self):
-        word = self.peek()
-        self.next += 1
+        word = self.ahead
+        self.ahead = next(self.words, None)
         return word
 
 
@@ -145,9 +156,10 @@ class _Abandon(Exception):
 
 
 class _Reader:
-    def __init__(self, path, text):
+    def __init__(self, path, text, sink):
         self.source = _Source(path, text)
         self.scene = Scene(path, source=self.source)
+        self.sink = sink
         self.errors = []
         self.fill = None
 
@@ -285,9 +297,20 @@ class _Reader:
         self.fill = Fill(color, kd, ks, shine, t, ior)
 
     def current_fill(self, word):
+        if self.scene.view is None:
+            self.error(word, "a shape before the view: NFF defines the view ('v') first")
         if self.fill is None:
             self.error(word, "a shape before any 'f' line: its surface is not defined")
         return self.fill
+
+    def emit(self, method, shape):
+        """Hands a shape to the sink (sink.sphere, .cone or .polygon), unless errors were found
+        (nothing will be written then)."""
+        if not self.errors:
+            try:
+                method(self.scene, shape)
+            except TooManyMaterials as error:
+                self.error(*error.args)
 
     def sphere(self, word):
         fill = self.current_fill(word)
@@ -298,7 +321,7 @@ class _Reader:
             self.error(radius_word, "a sphere of radius 0")
         if radius < 0:
             self.warning(radius_word, "negative radius (inside visible only): drawn two-sided like every shape")
-        self.scene.spheres.append(Sphere(center, abs(radius), fill, word))
+        self.emit(self.sink.sphere, Sphere(center, abs(radius), fill, word))
 
     def cone(self, word):
         fill = self.current_fill(word)
@@ -314,7 +337,7 @@ class _Reader:
             base_radius, apex_radius = -base_radius, -apex_radius
         if base_radius < 0 or apex_radius < 0 or base_radius == apex_radius == 0:
             self.error(radius_word, "a cone's radii must both be positive (or both negative), one may be 0")
-        self.scene.cones.append(Cone(base, base_radius, apex, apex_radius, fill, word))
+        self.emit(self.sink.cone, Cone(base, base_radius, apex, apex_radius, fill, word))
 
     def polygon(self, word):
         fill = self.current_fill(word)
@@ -325,9 +348,15 @@ class _Reader:
             points.append(self.vector(f"corner {index + 1}"))
             if patch:
                 normals.append(self.vector(f"the normal at corner {index + 1}"))
-        self.scene.polygons.append(Polygon(points, normals, fill, word))
+        self.emit(self.sink.polygon, Polygon(points, normals, fill, word))
 
 
-def read_nff(path, text):
-    """The Scene in NFF `text` (read from `path`, named in diagnostics); raises NffError."""
-    return _Reader(str(path), text).read()
+class TooManyMaterials(Exception):
+    """Raised by a sink with (word, message) when a shape brings one material too many."""
+
+
+def read_nff(path, text, sink):
+    """Reads NFF `text` (from `path`, named in diagnostics), handing each shape to the sink as
+    it is read (sink.sphere / .cone / .polygon (scene, shape)); returns the Scene (view,
+    background, lights, warnings). Raises NffError with every error found (at most 20)."""
+    return _Reader(str(path), text, sink).read()
