@@ -236,6 +236,8 @@ def test_frame_to_axis_turns_z_onto_any_direction():
         (VIEW.replace("angle 40", "angle 180"), "1:1", "between 0 and 180 degrees"),
         (VIEW.replace("11 11", "1 11"), "7:12", "from 2 to 16,384"),
         (VIEW + "f 1 1 1 1 0 1 0 0\nc 0 0 0 1 0 0 0 1\n", "9:1", "the same point"),
+        (VIEW + "f 1 1 1 1 0 1 0 0\ns 1_0 0 -5 1\n", "9:3", "found '1_0'"),
+        (VIEW + "f 1 1 1 1 0 1 0 0\n" + ("p 100000\n" + "0 0 0\n" * 100000) * 2 + "p 9\n", "200011:1", "too large"),
     ],
 )
 def test_errors_name_file_line_and_column(tmp_path, text, where, message):

@@ -8,7 +8,8 @@ import dataclasses
 import math
 import re
 
-MAX_POLYGON_CORNERS = 100_000  # as tracer's OBJ reader
+MAX_POLYGON_CORNERS = 100_000  # as tracer's OBJ reader (src/io/obj_reader.h), and ...
+MAX_POLYGON_WORK = 2e10  # ... the sum of n^2 over polygons of 5+ corners: Earcut's worst case stays ~30 s
 MAX_ERRORS = 20
 
 
@@ -162,6 +163,7 @@ class _Reader:
         self.sink = sink
         self.errors = []
         self.fill = None
+        self.polygon_work = 0.0
 
     # --- words -------------------------------------------------------------------------
     def error(self, word, message):
@@ -176,7 +178,7 @@ class _Reader:
         if word is None:
             self.error(None, f"expected {what}, found the end of the file")
         try:
-            value = float(word.text)
+            value = float(word.text.replace("_", " "))  # Python's float() would read 1_000
         except ValueError:
             self.error(word, f"expected {what}, found '{word.text}'")
         if not math.isfinite(value) or abs(value) > 1e30:
@@ -343,6 +345,14 @@ class _Reader:
         fill = self.current_fill(word)
         patch = word.text == "pp"
         corners = self.count("the number of corners", 3, MAX_POLYGON_CORNERS)
+        if corners >= 5:
+            self.polygon_work += corners * corners
+            if self.polygon_work > MAX_POLYGON_WORK:
+                self.error(
+                    word,
+                    "the polygons are too large in all (the sum of their squared corner counts "
+                    f"passes {MAX_POLYGON_WORK:g}); split them into smaller ones",
+                )
         points, normals = [], [] if patch else None
         for index in range(corners):
             points.append(self.vector(f"corner {index + 1}"))

@@ -67,7 +67,7 @@ def run_scene(name, args, generators, embree):
         steps.log(f"{name}: cross-checking with Mitsuba 3")
         check_folder = folder / "crosscheck"
         result["crosscheck"] = steps.crosscheck(scn, check_folder)
-        unstable = steps.unstable_pixels(scn, check_folder, relative=5e-7)
+        unstable = steps.unstable_pixels(scn, check_folder, relative=steps.MITSUBA_SPAWN_OFFSET, trials=16)
         result["conditioning"] = steps.agreement_on_stable_pixels(check_folder, unstable)
     if embree is not None:
         steps.log(f"{name}: timing against Embree")
