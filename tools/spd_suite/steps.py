@@ -141,7 +141,9 @@ def unstable_pixels(scn_path, folder, relative, trials=16, threads=2):
     from PIL import Image
 
     base_png = folder / "tracer_centres.png"
-    subprocess.run([str(tracer_path("tracer")), str(scn_path), "-o", str(base_png), "-q", "--threads", str(threads)])
+    subprocess.run(
+        [str(tracer_path("tracer")), str(scn_path), "-o", str(base_png), "-q", "--threads", str(threads)], check=True
+    )
     base = np.asarray(Image.open(base_png).convert("RGB")).astype(int)
     eye = re.search(r"eye \(([^)]*)\)", scn_path.read_text()).group(1)
     scale = max(1.0, float(np.linalg.norm([float(v) for v in eye.split(",")])))
@@ -153,7 +155,9 @@ def unstable_pixels(scn_path, folder, relative, trials=16, threads=2):
         moved_scn = scn_path.with_name(f"{scn_path.stem}.perturbed.scn")  # beside it: same mesh paths
         perturbed_eye_scene(scn_path, moved_scn, offset)
         png = folder / f"perturbed{trial}.png"
-        subprocess.run([str(tracer_path("tracer")), str(moved_scn), "-o", str(png), "-q", "--threads", str(threads)])
+        subprocess.run(
+            [str(tracer_path("tracer")), str(moved_scn), "-o", str(png), "-q", "--threads", str(threads)], check=True
+        )
         image = np.asarray(Image.open(png).convert("RGB")).astype(int)
         unstable |= np.abs(image - base).max(axis=2) > 2
         moved_scn.unlink()
