@@ -36,6 +36,7 @@ def parse_arguments(argv):
     parser.add_argument("--pairs", type=int, default=5, help="tracer/Embree pairs (A B A B ...)")
     parser.add_argument("--no-crosscheck", action="store_true")
     parser.add_argument("--no-embree", action="store_true")
+    parser.add_argument("--report-only", action="store_true", help="rewrite --docs from --out's results.json")
     args = parser.parse_args(argv)
     args.scenes = [name.strip() for name in args.scenes.split(",") if name.strip()]
     unknown = sorted(set(args.scenes) - set(steps.SCENES))
@@ -84,6 +85,9 @@ def run_scene(name, args, generators, embree):
 
 def main(argv=None):
     args = parse_arguments(argv)
+    if args.report_only:
+        report.write(args, json.loads((args.out / "results.json").read_text()))
+        return 0
     args.out.mkdir(parents=True, exist_ok=True)
     steps.log(f"building the generators from {args.source}")
     generators = args.out / "generators"
