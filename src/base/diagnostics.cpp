@@ -78,7 +78,17 @@ Diagnostic* Diagnostics::warning(const SourceFile& file, Span span, std::string 
 }
 
 void Diagnostics::note(Diagnostic* parent, const SourceFile& file, Span span, std::string message) {
-    if (parent) parent->notes.push_back({Severity::Note, locate(file, span), std::move(message), {}});
+    note(parent, locate(file, span), std::move(message));
+}
+
+void Diagnostics::note(Diagnostic* parent, Location location, std::string message) {
+    if (parent) parent->notes.push_back({Severity::Note, std::move(location), std::move(message), {}});
+}
+
+Diagnostic* Diagnostics::last_error_since(size_t mark) {
+    for (size_t i = list_.size(); i > mark; --i)
+        if (list_[i - 1].severity == Severity::Error) return &list_[i - 1];
+    return nullptr;
 }
 
 std::string in_quotes(std::string_view text) {

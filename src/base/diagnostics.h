@@ -52,6 +52,12 @@ public:
     Diagnostic* warning(const SourceFile& file, Span span, std::string message);
     // Attaches a note pointing at `span` to `parent` (no-op when parent is null).
     static void note(Diagnostic* parent, const SourceFile& file, Span span, std::string message);
+    static void note(Diagnostic* parent, Location location, std::string message);
+
+    // How many diagnostics are kept so far, and the last error kept after such a count (or
+    // nullptr): a later stage attaches its note to the errors an earlier call reported.
+    size_t mark() const { return list_.size(); }
+    Diagnostic* last_error_since(size_t mark);
 
     int error_count() const { return errors_; }
     int warning_count() const { return warnings_; }

@@ -45,9 +45,11 @@ static std::vector<bool> triangles_to_keep(const std::vector<glm::dvec3>& positi
     return keep;
 }
 
-// After errors in an OBJ file: where the scene names it.
-static void note_where_used(const Mesh& mesh, Diagnostics& diagnostics) {
-    if (mesh.named_at.line > 0) diagnostics.report(Severity::Note, mesh.named_at, "the mesh file is used here");
+// After errors in an OBJ file (those kept since `mark`): where the scene names it, as a note
+// on the last of them, so that it is printed after that file's errors and nowhere else.
+static void note_where_used(const Mesh& mesh, Diagnostics& diagnostics, size_t mark) {
+    if (mesh.named_at.line > 0)
+        Diagnostics::note(diagnostics.last_error_since(mark), mesh.named_at, "the mesh file is used here");
 }
 
 // The triangles of every face, as corner numbers into `obj`'s corner arrays; counts the
@@ -73,15 +75,16 @@ static std::vector<std::array<uint32_t, 3>> triangulate_faces(const ObjContents&
 }
 
 std::optional<TriangleMesh> load_mesh(const Mesh& mesh, Diagnostics& diagnostics) {
+    const size_t mark = diagnostics.mark();
     InputFile input = read_input_file(mesh.path, kMaxMeshFileBytes);
     if (!input.problem.empty()) {
         diagnostics.report(Severity::Error, Diagnostics::whole_file(mesh.path),
                            "cannot read the mesh file: " + input.problem);
-        note_where_used(mesh, diagnostics);
+        note_where_used(mesh, diagnostics, mark);
         return std::nullopt;
     }
     auto loaded = mesh_from_obj_text(mesh.path, std::move(input.text), diagnostics);
-    if (!loaded) note_where_used(mesh, diagnostics);
+    if (!loaded) note_where_used(mesh, diagnostics, mark);
     return loaded;
 }
 
