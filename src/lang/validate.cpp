@@ -133,6 +133,7 @@ private:
     void build_render(const Block& block, const Fields& fields);
     void build_camera(const Block& block, const Fields& fields);
     void build_mesh(const Fields& fields);
+    void warn_about_the_picture();
 
     const SourceFile& file_;
     Diagnostics& diagnostics_;
@@ -183,13 +184,46 @@ std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
         diagnostics_.report(Severity::Error, Diagnostics::whole_file(file_.path()),
                             "the scene has no camera block; add one, e.g. camera { eye (0, 0, 7) lookat (0, 0, 0) }");
     // With errors around, an unused material is usually a misspelled use: no extra noise.
-    if (!options_.fragment && !diagnostics_.has_errors())
+    if (!options_.fragment && !diagnostics_.has_errors()) {
         for (const auto& [name, material] : named_)
             if (!material.used && material.index >= 0)
                 diagnostics_.warning(file_, material.name_span, "material '" + name + "' is never used");
+        warn_about_the_picture();
+    }
 
     if (diagnostics_.has_errors()) return std::nullopt;
     return std::move(scene_);
+}
+
+// Warnings where the image cannot be what the author meant (the scene stays valid): nothing to
+// see, or surfaces that would reflect light with no light to reflect.
+void Validator::warn_about_the_picture() {
+    const SceneDescription& scene = scene_;
+    const Location whole = Diagnostics::whole_file(file_.path());
+    if (scene.spheres.empty() && scene.planes.empty() && scene.meshes.empty()) {
+        diagnostics_.report(Severity::Warning, whole,
+                            "the scene has no shapes: the image will be the background colour only");
+        return;
+    }
+    // Spheres alone, each wholly behind the eye: nothing in front of it.
+    const dvec3 forward = glm::normalize(scene.camera.lookat - scene.camera.eye);
+    const bool all_behind = scene.planes.empty() && scene.meshes.empty() &&
+                            std::all_of(scene.spheres.begin(), scene.spheres.end(), [&](const Sphere& sphere) {
+                                return glm::dot(sphere.center - scene.camera.eye, forward) < -sphere.radius;
+                            });
+    if (all_behind)
+        diagnostics_.report(Severity::Warning, whole,
+                            "every shape is behind the camera: the image will be the background colour only");
+    auto needs_light = [&](const auto& shapes) {
+        return std::any_of(shapes.begin(), shapes.end(), [&](const auto& shape) {
+            const Material& material = scene.materials[size_t(shape.material)];
+            return material.kd != dvec3(0.0) || material.ks != dvec3(0.0);
+        });
+    };
+    if (scene.lights.empty() && (needs_light(scene.spheres) || needs_light(scene.planes) || needs_light(scene.meshes)))
+        diagnostics_.report(Severity::Warning, whole,
+                            "the scene has no light: its diffuse and specular colours (kd, ks) will not show, only "
+                            "ka; add one, e.g. light { position (0, 5, 5) }");
 }
 
 // Names and counts: `material NAME`, no name elsewhere, one camera, at most one render block.

@@ -187,7 +187,12 @@ class Memory(Hostile):
 
     def test_many_warnings_are_capped(self):
         materials = " ".join(f"material m{i} {{ kd 1 }}" for i in range(20000))
-        scene = self.write("m.scn", CAMERA + materials + "\n")
+        scene = self.write(
+            "m.scn",
+            CAMERA
+            + materials
+            + "\nlight { position (0, 5, 5) }\nplane { point (0, 0, 0) normal (0, 1, 0) material { kd 1 } }\n",
+        )
         result = run("--check", scene)
         self.assertEqual(result.returncode, 0)
         self.assertIn(b"warning: 19980 more warnings not shown", result.stderr)

@@ -10,7 +10,9 @@ namespace {
 
 const std::string kCamera = "camera { eye (0, 0, 7) lookat (0, 0, 0) }\n";
 
-LoadResult load(const std::string& text) { return load_scene_text("/scenes/t.scn", text); }
+LoadResult load(const std::string& text) {
+    return load_scene_text("/scenes/t.scn", text);
+}
 
 std::vector<std::string> messages(const LoadResult& result) {
     std::vector<std::string> out;
@@ -35,7 +37,8 @@ TEST(Validate, MaterialsByNameInlineAndBeforeDefinition) {
     LoadResult r = load(kCamera +
                         "sphere { center (0, 0, 0) radius 1 material later }\n"
                         "sphere { center (0, 0, 0) radius 2 material { ka 0.1 kd (0.2, 1, 0.2) } }\n"
-                        "material later { km 0.8 n 5 }\n");
+                        "material later { km 0.8 n 5 }\n"
+                        "light { position (0, 5, 5) }\n");
     ASSERT_TRUE(r.scene);
     ASSERT_EQ(r.scene->materials.size(), 2u);
     const Material& later = r.scene->materials[size_t(r.scene->spheres[0].material)];
@@ -55,8 +58,8 @@ TEST(Validate, PlaneNormalsAreNormalisedAndPathsMadeAbsolute) {
     EXPECT_EQ(r.scene->planes[0].normal, dvec3(0, 1, 0));  // no underflow to a zero vector
 
     std::string dir = std::filesystem::path(TRACER_SOURCE_DIR) / "scenes";
-    LoadResult m = load_scene_text(dir + "/x.scn", kCamera +
-                                   "mesh { file \"meshes/tetrahedron.obj\" material { kd 1 } }\n");
+    LoadResult m =
+        load_scene_text(dir + "/x.scn", kCamera + "mesh { file \"meshes/tetrahedron.obj\" material { kd 1 } }\n");
     ASSERT_TRUE(m.scene);
     EXPECT_EQ(m.scene->meshes[0].path, dir + "/meshes/tetrahedron.obj");
     EXPECT_EQ(m.scene->meshes[0].rotate_degrees, 0);  // the nested block's defaults
@@ -64,10 +67,42 @@ TEST(Validate, PlaneNormalsAreNormalisedAndPathsMadeAbsolute) {
 }
 
 TEST(Validate, UnusedMaterialIsAWarningNotAnError) {
-    LoadResult r = load(kCamera + "material spare { kd 1 }\n");
+    LoadResult r =
+        load(kCamera + "material spare { kd 1 }\nplane { point (0, 0, 0) normal (0, 1, 0) material { ka 1 } }\n");
     EXPECT_TRUE(r.scene);
     EXPECT_EQ(r.diagnostics.warning_count(), 1);
     EXPECT_EQ(messages(r), std::vector<std::string>{"material 'spare' is never used"});
+}
+
+// Scenes that are valid but whose image cannot be what the author meant: a warning each.
+TEST(Validate, NoShapesIsAWarning) {
+    LoadResult r = load(kCamera + "light { position (0, 5, 5) }\n");
+    EXPECT_TRUE(r.scene);
+    EXPECT_EQ(messages(r),
+              std::vector<std::string>{"the scene has no shapes: the image will be the background colour only"});
+}
+
+TEST(Validate, NoLightIsAWarningWhereAMaterialHasDiffuseOrSpecular) {
+    const std::string no_light =
+        "the scene has no light: its diffuse and specular colours (kd, ks) will not show, only ka; add one, e.g. "
+        "light { position (0, 5, 5) }";
+    EXPECT_EQ(messages(load(kCamera + "sphere { center (0, 0, 0) radius 1 material { ks 0.5 } }\n")),
+              std::vector<std::string>{no_light});
+    // Ambient only, or mirrors only: nothing the lights would have added, no warning.
+    EXPECT_TRUE(messages(load(kCamera + "sphere { center (0, 0, 0) radius 1 material { ka 0.5 km 1 } }\n")).empty());
+}
+
+TEST(Validate, EveryShapeBehindTheCameraIsAWarning) {
+    const std::string behind = "light { position (0, 5, 5) }\nsphere { center (0, 0, 9) radius 1 material { kd 1 } }\n";
+    EXPECT_EQ(
+        messages(load(kCamera + behind)),
+        std::vector<std::string>{"every shape is behind the camera: the image will be the background colour only"});
+    // Touching the eye's plane counts as in front; a plane anywhere may be seen.
+    EXPECT_TRUE(messages(load(kCamera +
+                              "light { position (0, 5, 5) }\nsphere { center (0, 0, 8) radius 1 material { kd 1 } }\n"))
+                    .empty());
+    EXPECT_TRUE(
+        messages(load(kCamera + behind + "plane { point (0, -1, 0) normal (0, 1, 0) material { kd 1 } }\n")).empty());
 }
 
 TEST(Validate, ErrorsInOneBlockDoNotCascade) {
