@@ -37,9 +37,13 @@ Location Diagnostics::locate(const SourceFile& file, Span span) {
     location.line_text = std::string(line);
     for (char& c : location.line_text)  // binary data is not sent to the terminal
         if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7F) c = '?';
-    // Underline the token, but never past the end of the text shown.
-    int available = int(location.line_text.size()) - (start.column - location.text_column);
-    location.length = std::clamp(int(span.end) - int(span.begin), 1, std::max(available, 1));
+    // Underline the token in characters (a UTF-8 sequence is one), never past the text shown.
+    const size_t token_start = size_t(std::max(start.column - location.text_column, 0));
+    const std::string_view token = std::string_view(location.line_text)
+                                       .substr(std::min(token_start, location.line_text.size()),
+                                               size_t(std::max(int(span.end) - int(span.begin), 0)));
+    location.length =
+        std::max(int(std::count_if(token.begin(), token.end(), [](char c) { return !continues_utf8(c); })), 1);
     return location;
 }
 
@@ -131,10 +135,11 @@ static void format_one(std::ostream& out, const Diagnostic& d) {
     out << ": " << severity_name(d.severity) << ": " << d.message << '\n';
     if (at.line == 0) return;
     out << at.line_text << '\n';
-    // Keep tabs in the caret line so the caret lines up under tab-indented text.
+    // One space per character before the column (tabs kept), so that the caret lines up under
+    // text with tabs or non-ASCII characters.
     std::string pad;
     for (int i = 0; i < at.column - at.text_column && i < int(at.line_text.size()); ++i)
-        pad += at.line_text[i] == '\t' ? '\t' : ' ';
+        if (!continues_utf8(at.line_text[i])) pad += at.line_text[i] == '\t' ? '\t' : ' ';
     out << pad << '^' << std::string(std::max(at.length - 1, 0), '~') << '\n';
 }
 

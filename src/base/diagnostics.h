@@ -23,7 +23,7 @@ struct Location {
     std::string path;
     int line = 0;  // 0: the message concerns the whole file
     int column = 0;
-    int length = 1;
+    int length = 1;         // characters to underline
     std::string line_text;  // the line, or on a very long line a window of it around the column
     int text_column = 1;    // the column at which line_text starts (1 unless windowed)
 };
