@@ -165,12 +165,19 @@ void Diagnostics::print(std::ostream& out) const {
     for (const Diagnostic& d : list_) ordered.push_back(&d);
     std::stable_sort(ordered.begin(), ordered.end(),
                      [&](const Diagnostic* a, const Diagnostic* b) { return key(a) < key(b); });
-    for (const Diagnostic* d : ordered) out << format_diagnostic(*d);
+    int errors_shown = 0;
+    for (const Diagnostic* d : ordered) {
+        if (d->severity == Severity::Error && ++errors_shown > kMaxErrors) continue;
+        out << format_diagnostic(*d);
+    }
     if (warnings_ > kMaxWarnings)
         out << "warning: " << warnings_ - kMaxWarnings << " more warning" << (warnings_ - kMaxWarnings == 1 ? "" : "s")
             << " not shown\n";
-    if (saturated())
-        out << "error: stopped after " << kMaxErrors << " errors; fix these and run again to see any others\n";
+    if (errors_ > kMaxErrors) {
+        const std::string found = saturated() ? "at least " + std::to_string(errors_) : std::to_string(errors_);
+        out << "error: showing the first " << kMaxErrors << " of " << found
+            << " errors; fix these and run again to see the others\n";
+    }
 }
 
 }  // namespace tracer

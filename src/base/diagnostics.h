@@ -37,8 +37,9 @@ struct Diagnostic {
 
 class Diagnostics {
 public:
-    static constexpr int kMaxErrors = 20;
-    static constexpr int kMaxWarnings = 20;  // more are counted, not kept
+    static constexpr int kMaxErrors = 20;        // shown: the first in file order
+    static constexpr int kMaxErrorsFound = 200;  // the search stops here: later stages find earlier lines
+    static constexpr int kMaxWarnings = 20;      // more are counted, not kept
 
     // Resolves `span` in `file` into a printable location.
     static Location locate(const SourceFile& file, Span span);
@@ -62,11 +63,12 @@ public:
     int error_count() const { return errors_; }
     int warning_count() const { return warnings_; }
     bool has_errors() const { return errors_ > 0; }
-    // True once the error limit is reached: callers stop looking for more.
-    bool saturated() const { return errors_ >= kMaxErrors; }
+    // True once kMaxErrorsFound errors are kept: callers stop looking for more.
+    bool saturated() const { return errors_ >= kMaxErrorsFound; }
     const std::deque<Diagnostic>& all() const { return list_; }
 
-    // Prints every diagnostic kept, file by file in line order, then notices of any limit hit.
+    // Prints the diagnostics kept, file by file in line order (of the errors, the first
+    // kMaxErrors in that order), then notices of any limit hit.
     void print(std::ostream& out) const;
 
 private:

@@ -83,9 +83,9 @@ TEST(Parser, StrayClosingBraceAtTopLevel) {
 
 TEST(Parser, StopsAtTheErrorLimit) {
     std::string text;
-    for (int i = 0; i < 50; ++i) text += "sphere { radius ( }\n";
+    for (int i = 0; i < 500; ++i) text += "sphere { radius ( }\n";
     Parsed p = parse(text);
-    EXPECT_EQ(p.diagnostics.error_count(), Diagnostics::kMaxErrors);
+    EXPECT_EQ(p.diagnostics.error_count(), Diagnostics::kMaxErrorsFound);
 }
 
 }  // namespace
