@@ -31,6 +31,10 @@ KeySpec nonzero(KeySpec spec) {
     spec.nonzero = true;
     return spec;
 }
+KeySpec square(KeySpec spec) {
+    spec.perfect_square = true;
+    return spec;
+}
 KeySpec one_of(KeySpec spec, std::vector<std::string_view> choices) {
     spec.choices = std::move(choices);
     return spec;
@@ -49,9 +53,9 @@ const BlockSpec kRender{
         ranged(key("max_depth", ValueType::Integer, "4",
                    "Reflection bounces after the primary hit; the ray that would be one more "
                    "bounce returns black."), 0, 100000),
-        ranged(key("samples", ValueType::Integer, "1",
-                   "Samples per pixel: a perfect square N*N, stratified over the pixel, box "
-                   "filter. 1 is one ray through the pixel centre."), 1, 4096),
+        square(ranged(key("samples", ValueType::Integer, "1",
+                          "Samples per pixel: a perfect square N*N, stratified over the pixel, box "
+                          "filter. 1 is one ray through the pixel centre."), 1, 4096)),
         ranged(key("background", ValueType::Triple, "0",
                    "Colour of rays that leave the scene."), 0, kInf),
         key("shadows", ValueType::Boolean, "true", "Trace shadow rays to the lights."),

@@ -32,7 +32,8 @@ struct KeySpec {
     double max = std::numeric_limits<double>::infinity();
     bool min_open = false;  // true: the minimum itself is not allowed
     bool max_open = false;
-    bool nonzero = false;  // vectors: must not have zero length
+    bool nonzero = false;         // vectors: must not have zero length
+    bool perfect_square = false;  // whole numbers: must be N * N (samples)
     std::string_view meaning;
     const BlockSpec* block = nullptr;       // ValueType::Block: the nested block's table
     std::vector<std::string_view> choices;  // ValueType::Choice: the allowed names

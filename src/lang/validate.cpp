@@ -122,6 +122,7 @@ private:
     bool check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields);
     bool check_value(const Value& value, const KeySpec& key, Fields& fields);
     bool check_number(double number, Span span, const KeySpec& key);
+    bool check_perfect_square(double number, Span span, const KeySpec& key);
     bool type_error(const Value& value, const KeySpec& key, const std::string& extra = "");
 
     // Builders: checked fields -> scene description.
@@ -374,7 +375,7 @@ bool Validator::check_number(double number, Span span, const KeySpec& key) {
     }
     bool below = key.min_open ? number <= key.min : number < key.min;
     bool above = key.max_open ? number >= key.max : number > key.max;
-    if (!below && !above) return true;
+    if (!below && !above) return !key.perfect_square || check_perfect_square(number, span, key);
     std::string name = "'" + std::string(key.name) + "'";
     std::string rule;
     if (std::isinf(key.max))
@@ -471,13 +472,19 @@ void Validator::build_render(const Block& block, const Fields& fields) {
 
     if (const std::string problem = render_settings_problem(render); !problem.empty())
         diagnostics_.error(file_, block.kind_span, problem);
-    int root = int(std::lround(std::sqrt(double(render.samples))));
-    if (root * root != render.samples) {
-        int lower = int(std::floor(std::sqrt(double(render.samples))));
-        diagnostics_.error(file_, fields.value_span("samples"),
-                           "'samples' must be a perfect square (N x N stratified samples); try " +
-                               std::to_string(lower * lower) + " or " + std::to_string((lower + 1) * (lower + 1)));
-    }
+}
+
+// A whole number that must be N * N (checked with the key's other rules, so that it is
+// reported even when another key of the block is wrong).
+bool Validator::check_perfect_square(double number, Span span, const KeySpec& key) {
+    const int count = int(number);
+    const int root = int(std::lround(std::sqrt(double(count))));
+    if (root * root == count) return true;
+    const int lower = int(std::floor(std::sqrt(double(count))));
+    diagnostics_.error(file_, span,
+                       "'" + std::string(key.name) + "' must be a perfect square (N x N stratified samples); try " +
+                           std::to_string(lower * lower) + " or " + std::to_string((lower + 1) * (lower + 1)));
+    return false;
 }
 
 void Validator::build_camera(const Block& block, const Fields& fields) {
