@@ -22,7 +22,59 @@ int edit_distance(std::string_view a, std::string_view b) {
     return d[n][m];
 }
 
+// Names other renderers and textbooks use (POV-Ray, pbrt, Mitsuba, RTIOW), and the names this
+// language has for the same thing; the first one among the candidates is suggested.
+struct Synonym {
+    std::string_view word;
+    std::vector<std::string_view> ours;
+};
+static const std::vector<Synonym>& synonyms() {
+    static const std::vector<Synonym> table = {
+        {"ambient", {"ka"}},
+        {"diffuse", {"kd"}},
+        {"specular", {"ks"}},
+        {"phong", {"ks"}},
+        {"reflection", {"km"}},
+        {"reflect", {"km"}},
+        {"mirror", {"km"}},
+        {"shininess", {"n"}},
+        {"phong_size", {"n"}},
+        {"exponent", {"n"}},
+        {"transmission", {"kt"}},
+        {"transparency", {"kt"}},
+        {"refraction", {"kt"}},
+        {"eta", {"ior"}},
+        {"location", {"eye", "position", "center"}},
+        {"pos", {"position", "center"}},
+        {"origin", {"eye", "center", "point"}},
+        {"from", {"eye"}},
+        {"lookfrom", {"eye"}},
+        {"look_from", {"eye"}},
+        {"at", {"lookat"}},
+        {"look_at", {"lookat"}},
+        {"target", {"lookat"}},
+        {"fov", {"fovy"}},
+        {"angle", {"fovy"}},
+        {"filename", {"file"}},
+        {"path", {"file"}},
+        {"spp", {"samples"}},
+        {"depth", {"max_depth"}},
+        {"maxdepth", {"max_depth"}},
+        {"point_light", {"light"}},
+        {"pointlight", {"light"}},
+        {"light_source", {"light"}},
+        {"intensity", {"color"}},
+        {"colour", {"color"}},
+    };
+    return table;
+}
+
 std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates) {
+    for (const Synonym& synonym : synonyms()) {
+        if (edit_distance(word, synonym.word) != 0 || word.size() != synonym.word.size()) continue;
+        for (std::string_view ours : synonym.ours)
+            if (std::find(candidates.begin(), candidates.end(), ours) != candidates.end()) return std::string(ours);
+    }
     // Allow about one edit per three letters: "radus" -> "radius", but not "x" -> "n".
     int best = std::max(1, int(word.size()) / 3) + 1;
     std::string_view found;

@@ -10,7 +10,8 @@ namespace tracer {
 // Edit distance with adjacent transpositions (optimal string alignment), ignoring case.
 int edit_distance(std::string_view a, std::string_view b);
 
-// The candidate closest to `word` if it is close enough to be a likely typo, else "".
+// The candidate that `word` means in another renderer's vocabulary ("specular": "ks"), else
+// the candidate closest to it if close enough to be a likely typo, else "".
 std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates);
 
 // "; did you mean 'x'?" or "" — to append to a message.

@@ -24,5 +24,24 @@ TEST(Suggest, SuggestsOnlyLikelyTypos) {
     EXPECT_EQ(did_you_mean("zzz", keys), "");
 }
 
+TEST(Suggest, OtherRenderersWordsSuggestOurs) {
+    const std::vector<std::string_view> material{"ka", "kd", "ks", "km", "n", "kt", "ior"};
+    EXPECT_EQ(closest_match("specular", material), "ks");
+    EXPECT_EQ(closest_match("Diffuse", material), "kd");
+    EXPECT_EQ(closest_match("ambient", material), "ka");
+    EXPECT_EQ(closest_match("reflection", material), "km");
+    EXPECT_EQ(closest_match("shininess", material), "n");
+    EXPECT_EQ(closest_match("phong_size", material), "n");
+    // The same word means the key the block has: eye in a camera, position in a light.
+    EXPECT_EQ(closest_match("location", {"eye", "lookat", "up", "fovy", "focal"}), "eye");
+    EXPECT_EQ(closest_match("location", {"position", "color"}), "position");
+    EXPECT_EQ(closest_match("from", {"eye", "lookat", "up", "fovy", "focal"}), "eye");
+    EXPECT_EQ(closest_match("pos", {"position", "color"}), "position");
+    EXPECT_EQ(closest_match("point_light", {"camera", "render", "material", "sphere", "plane", "mesh", "light"}),
+              "light");
+    // A synonym without its key among the candidates suggests nothing.
+    EXPECT_EQ(closest_match("specular", {"center", "radius", "material"}), "");
+}
+
 }  // namespace
 }  // namespace tracer
