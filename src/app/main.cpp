@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -68,8 +69,14 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
             tracer::RenderSettings& render = scene.render;
             if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
             if (options.leaf_size > 0) render.leaf_size = options.leaf_size;
+            // One of width and height alone keeps the scene's aspect ratio (as tools/crosscheck).
+            const double aspect = double(render.width) / double(render.height);
             if (options.width > 0) render.width = options.width;
             if (options.height > 0) render.height = options.height;
+            if (options.width > 0 && options.height == 0)
+                render.height = std::max(1, int(std::lround(options.width / aspect)));
+            if (options.height > 0 && options.width == 0)
+                render.width = std::max(1, int(std::lround(options.height * aspect)));
             if (options.samples > 0) render.samples = options.samples;
         },
         std::cerr, &unreadable);
@@ -209,8 +216,12 @@ int run(int argc, char** argv) {
     app.add_option("--accel", options.accel, "Override the scene's mesh accelerator")
         ->check(CLI::IsMember(std::vector<std::string>(accel_names.begin(), accel_names.end())));
     app.add_option("--leaf-size", options.leaf_size, "Override the scene's BVH leaf size")->check(CLI::Range(1, 255));
-    app.add_option("--width", options.width, "Override the scene's image width")->check(CLI::Range(1, 16384));
-    app.add_option("--height", options.height, "Override the scene's image height")->check(CLI::Range(1, 16384));
+    app.add_option("--width", options.width,
+                   "Override the scene's image width (alone: the height follows the aspect ratio)")
+        ->check(CLI::Range(1, 16384));
+    app.add_option("--height", options.height,
+                   "Override the scene's image height (alone: the width follows the aspect ratio)")
+        ->check(CLI::Range(1, 16384));
     app.add_option("--samples", options.samples, "Override the scene's samples per pixel (N*N: 1, 4, 9, 16, ...)")
         ->check(CLI::Range(1, 4096) & perfect_square);
     app.add_flag("--stats", options.stats, "Print BVH and ray statistics on stderr");

@@ -60,6 +60,10 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(self.leftovers(), [])
 
     def test_size_and_samples_override_the_render_block(self):
+        # One of width and height alone keeps the scene's aspect ratio (64 x 48: 4 to 3).
+        for size, expected in ((["--width", "32"], (32, 24)), (["--height", "12"], (16, 12)), (["--width", "7"], (7, 5))):
+            render = json.loads(run("--dump-json", self.small, *size).stdout)["render"]
+            self.assertEqual((render["width"], render["height"]), expected)
         result = run("--dump-json", self.small, "--width", "30", "--height", "20", "--samples", "9")
         self.assertEqual(result.returncode, 0, result.stderr)
         render = json.loads(result.stdout)["render"]
