@@ -156,6 +156,11 @@ const BlockSpec kMesh{
                    "Rotation, applied after scaling: `rotate { axis (x, y, z) angle degrees }`."),
                &kRotate),
         key("translate", ValueType::Vector, "(0, 0, 0)", "Translation, applied last."),
+        one_of(key("shading", ValueType::Choice, "smooth",
+                   "`smooth` interpolates vertex normals across each triangle (the file's `vn`, else "
+                   "the area-weighted average of the faces at each vertex: a cube of 8 shared corners "
+                   "looks like a cushion); `flat` gives each triangle its own normal (hard edges)."),
+               {"smooth", "flat"}),
         key("material", ValueType::MaterialRef, "", "A material name or an inline material block."),
     },
     "mesh {\n  file \"../scenes/meshes/tetrahedron.obj\"\n  scale 0.5\n"

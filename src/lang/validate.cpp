@@ -524,6 +524,7 @@ void Validator::build_mesh(const Fields& fields) {
     mesh.rotate_axis = normalized(rotate.triple("axis"));
     mesh.rotate_degrees = rotate.number("angle");
     mesh.translate = fields.triple("translate");
+    mesh.flat = fields.text("shading") == "flat";
     mesh.material = material_index(fields);
     scene_.meshes.push_back(mesh);
 }

@@ -50,10 +50,22 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
         parallel_for(
             file.positions.size(),
             [&](size_t i) { out.positions[first_position + i] = Vec3(placement.point(file.positions[i])); }, threads);
-        // Normals: the file's placed by the inverse transpose, else area-weighted over the
-        // placed triangles.
+        // Normals: each triangle's own (flat), the file's placed by the inverse transpose, else
+        // area-weighted over the placed triangles.
         std::vector<Vec3> normals;
-        if (!file.normal_ids.empty()) {
+        const bool flat = parts[part].flat;
+        if (flat) {
+            normals.resize(file.triangles.size());
+            parallel_for(
+                normals.size(),
+                [&](size_t t) {
+                    const auto& v = file.triangles[t];
+                    const Vec3 a = out.positions[first_position + v[0]], b = out.positions[first_position + v[1]],
+                               c = out.positions[first_position + v[2]];
+                    normals[t] = normalize_or_zero(glm::cross(b - a, c - a));
+                },
+                threads);
+        } else if (!file.normal_ids.empty()) {
             normals.resize(file.normals.size());
             parallel_for(
                 normals.size(),
@@ -65,7 +77,7 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
         const auto& ids = file.normal_ids.empty() ? file.triangles : file.normal_ids;
         for (uint32_t t = 0; t < file.triangles.size(); ++t) {
             const auto& v = file.triangles[t];
-            const auto& n = ids[t];
+            const std::array<uint32_t, 3> n = flat ? std::array<uint32_t, 3>{t, t, t} : ids[t];
             out.triangles.push_back({first_position + v[0], first_position + v[1], first_position + v[2]});
             out.normal_ids.push_back({first_normal + n[0], first_normal + n[1], first_normal + n[2]});
             out.origin.emplace_back(part, t);

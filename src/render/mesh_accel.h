@@ -33,6 +33,7 @@ struct MeshPart {
     const TriangleMesh* file;
     Placement placement;
     uint32_t tag = 0;
+    bool flat = false;  // each triangle shaded with its own normal
 };
 
 class MeshAccel {
@@ -41,8 +42,8 @@ public:
     // file's (placed by the inverse transpose), else area-weighted over the placed triangles.
     MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& settings);
     // One file, placed.
-    MeshAccel(const TriangleMesh& file, const Placement& placement, const SearchSettings& settings)
-        : MeshAccel(std::vector<MeshPart>{{&file, placement, 0}}, settings) {}
+    MeshAccel(const TriangleMesh& file, const Placement& placement, const SearchSettings& settings, bool flat = false)
+        : MeshAccel(std::vector<MeshPart>{{&file, placement, 0, flat}}, settings) {}
 
     // The nearest triangle with t inside `range`; shrinks range.max to it.
     bool intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const;

@@ -85,8 +85,8 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
                        bool flatten_shared) {
     std::vector<int> blocks_of_file(meshes.files.size(), 0);
     for (uint32_t file : meshes.file_of_block) ++blocks_of_file[file];
-    std::map<uint32_t, uint32_t> shared_mesh;  // file -> index into meshes_
-    std::vector<MeshPart> merged;              // the blocks built placed, in one mesh
+    std::map<std::pair<uint32_t, bool>, uint32_t> shared_mesh;  // (file, flat) -> index into meshes_
+    std::vector<MeshPart> merged;                               // the blocks built placed, in one mesh
     std::vector<uint32_t> merged_instances;
     for (size_t block = 0; block < scene.meshes.size() && block < meshes.file_of_block.size(); ++block) {
         const Mesh& mesh = scene.meshes[block];
@@ -97,12 +97,12 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
         MeshInstance instance;
         if (blocks_of_file[file] == 1 || flatten_shared) {
             // Placed in world coordinates, with every other such block, in one mesh.
-            merged.push_back({&meshes.files[file], placement, object});
+            merged.push_back({&meshes.files[file], placement, object, mesh.flat});
             merged_instances.push_back(index);
         } else {
             // Shared: built once in the file's coordinates; rays are carried there.
-            auto [known, is_new] = shared_mesh.try_emplace(file, uint32_t(meshes_.size()));
-            if (is_new) meshes_.emplace_back(meshes.files[file], Placement(), settings);
+            auto [known, is_new] = shared_mesh.try_emplace({file, mesh.flat}, uint32_t(meshes_.size()));
+            if (is_new) meshes_.emplace_back(meshes.files[file], Placement(), settings, mesh.flat);
             instance.mesh = known->second;
             instance.placed = false;
             instance.to_world = Mat3(placement.linear);

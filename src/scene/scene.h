@@ -93,6 +93,7 @@ struct Mesh {
     double rotate_degrees = 0.0;
     dvec3 translate{0.0};
     int material = 0;
+    bool flat = false;  // shading: each triangle's own normal instead of interpolated vertex normals
 };
 
 struct SceneDescription {

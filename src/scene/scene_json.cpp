@@ -37,12 +37,14 @@ Json scene_to_json(const SceneDescription& scene) {
         out["planes"].push_back(
             {{"point", vec(p.point)}, {"normal", vec(p.normal)}, {"material", material_json(scene, p.material)}});
     out["meshes"] = Json::array();
-    for (const Mesh& m : scene.meshes)
+    for (const Mesh& m : scene.meshes) {
         out["meshes"].push_back({{"file", m.path},
                                  {"scale", vec(m.scale)},
                                  {"rotate", {{"axis", vec(m.rotate_axis)}, {"angle", m.rotate_degrees}}},
                                  {"translate", vec(m.translate)},
                                  {"material", material_json(scene, m.material)}});
+        if (m.flat) out["meshes"].back()["shading"] = "flat";  // only then: the default is implied
+    }
     out["lights"] = Json::array();
     for (const Light& l : scene.lights)
         out["lights"].push_back({{"position", vec(l.position)}, {"color", vec(l.color)}});

@@ -145,6 +145,15 @@ def test_meshes_without_normals_get_area_weighted_ones(dump, tmp_path):
     np.testing.assert_allclose(got, mitsuba_render.area_weighted_normals(positions, faces), atol=1e-6)
 
 
+def test_flat_meshes_use_face_normals_in_mitsuba(dump, tmp_path):
+    scene, loaded = load(dump, ROOT / "scenes" / "cubes.scn", tmp_path)
+    assert [mesh.get("shading") for mesh in scene["meshes"]] == [None, "flat"]  # the default is left out
+    xml = (tmp_path / "scene.xml").read_text()
+    assert xml.count('name="face_normals" value="true"') == 1
+    params = mi.traverse(loaded)
+    assert "mesh0.vertex_normals" in params and params["mesh1.vertex_normals"].shape[0] == 0
+
+
 def test_file_normals_count_only_when_every_face_names_them(tmp_path):
     # tracer's rule (io/obj_mesh.cpp): vn lines alone are not enough.
     cases = {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n": True,

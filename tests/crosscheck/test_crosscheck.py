@@ -12,7 +12,7 @@ from xcheck import metrics
 SMALL = ["--width", "300"]  # 300 x 200 for the 1200 x 800 scenes
 
 
-@pytest.mark.parametrize("scene", ["task2", "bunny", "glass"])
+@pytest.mark.parametrize("scene", ["task2", "bunny", "glass", "cubes"])
 def test_tracer_and_mitsuba_agree_at_reduced_resolution(tracer_bin, tmp_path, scene):
     result = run_tool("crosscheck", ROOT / "scenes" / f"{scene}.scn", *SMALL, "--out", tmp_path,
                       "--max-over-2", "0.1", "--max-over-8", "0.05", "--json")

@@ -147,6 +147,11 @@ TEST(Bunnies, MatchesTheCommittedGoldenImage) {
     expect_matches_golden(render_scene("bunnies"), "bunnies");
 }
 
+// One OBJ cube shaded smooth and flat (`shading flat`).
+TEST(Cubes, MatchesTheCommittedGoldenImage) {
+    expect_matches_golden(render_scene("cubes"), "cubes");
+}
+
 // Refraction: two glass balls in task2's room (a regression guard; the rules themselves are
 // checked by hand in refraction_test.cpp).
 TEST(Glass, MatchesTheCommittedGoldenImage) {

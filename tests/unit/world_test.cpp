@@ -258,6 +258,46 @@ TEST(World, InstanceNormalsMatchTheMeshBuiltPlaced) {
     EXPECT_GT(hits, 500);
 }
 
+// A cube of 8 shared corners without normals: smooth shading averages the three faces at each
+// corner (a cushion); `shading flat` gives each face its own normal, placed or instanced, and
+// a file used both ways is built once for each.
+TEST(World, FlatShadingGivesEachTriangleItsOwnNormal) {
+    TriangleMesh cube;
+    for (int i = 0; i < 8; ++i) cube.positions.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0});
+    // Two triangles per face, wound outwards.
+    const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& f : faces) {
+        cube.triangles.push_back({f[0], f[1], f[2]});
+        cube.triangles.push_back({f[0], f[2], f[3]});
+    }
+    SceneDescription scene;
+    scene.materials.resize(1);
+    Mesh block;
+    scene.meshes = {block};
+    const Ray towards_the_top_face{{0.5, 5, 0.3}, {0, -1, 0}};
+    SearchCounts counts;
+    const auto smooth = World(scene, SceneMeshes{{cube}, {0}}).intersect(towards_the_top_face, {0, kInfinity}, counts);
+    ASSERT_TRUE(smooth);
+    EXPECT_GT(glm::length(smooth->normal - Vec3(0, 1, 0)), 0.1);  // the corners' averages lean outwards
+    scene.meshes[0].flat = true;
+    const auto flat = World(scene, SceneMeshes{{cube}, {0}}).intersect(towards_the_top_face, {0, kInfinity}, counts);
+    ASSERT_TRUE(flat);
+    EXPECT_EQ(flat->normal, Vec3(0, 1, 0));
+    // Instanced: two flat blocks and one smooth block of the same file.
+    scene.meshes = {scene.meshes[0], scene.meshes[0], block};
+    scene.meshes[1].translate = {10, 0, 0};
+    scene.meshes[2].translate = {20, 0, 0};
+    const World both(scene, SceneMeshes{{cube}, {0, 0, 0}});
+    EXPECT_EQ(both.meshes().size(), 2u);
+    const auto flat_instance = both.intersect(towards_the_top_face, {0, kInfinity}, counts);
+    ASSERT_TRUE(flat_instance);
+    EXPECT_LT(glm::length(flat_instance->normal - Vec3(0, 1, 0)), 1e-12);
+    const Ray towards_the_smooth_one{{20.5, 5, 0.3}, {0, -1, 0}};
+    const auto smooth_instance = both.intersect(towards_the_smooth_one, {0, kInfinity}, counts);
+    ASSERT_TRUE(smooth_instance);
+    EXPECT_LT(glm::length(smooth_instance->normal - smooth->normal), 1e-12);
+}
+
 // A mesh file named by many blocks is read once and built once; every extra instance costs a
 // few hundred bytes, not a copy of the mesh.
 TEST(World, InstancesShareOneMesh) {

@@ -237,6 +237,8 @@ def to_mitsuba_xml(scene):
             out.leaf("rotate", value=_numbers(mesh["rotate"]["axis"]), angle=repr(float(mesh["rotate"]["angle"])))
         out.leaf("translate", value=_numbers(mesh["translate"]))
         out.close("transform")
+        if mesh.get("shading") == "flat":  # tracer's `shading flat`: each triangle's own normal
+            out.leaf("boolean", name="face_normals", value="true")
         out.leaf("ref", id=ids[_material_key(mesh["material"])])
         out.close("shape")
 

@@ -55,7 +55,7 @@ def load(xml_path, scene, **parameters):
     mitsuba_scene = mi.load_file(str(xml_path), optimize=False, **parameters)  # optimize would merge shapes
     params = mi.traverse(mitsuba_scene)
     for index, mesh in enumerate(scene["meshes"]):
-        if obj_normals_used(mesh["file"]):
+        if mesh.get("shading") == "flat" or obj_normals_used(mesh["file"]):
             continue
         positions = np.array(params[f"mesh{index}.vertex_positions"], dtype=np.float64).reshape(-1, 3)
         faces = np.array(params[f"mesh{index}.faces"]).reshape(-1, 3)
