@@ -258,6 +258,13 @@ def test_lone_carriage_returns_end_lines_and_long_lines_are_windowed(tmp_path):
     assert len(shown) < 200 and shown[len(caret) - 1] == "x"
 
 
+def test_warnings_are_capped(tmp_path):
+    done, output = run_nff2scn(tmp_path, VIEW + "f 1 1 1 1 0 1 0 0\n" + "p 3\n0 0 0\n1 1 1\n2 2 2\n" * 100)
+    assert done.returncode == 0 and output.exists()
+    assert done.stderr.count(": warning: a polygon without area") == convert.MAX_WARNINGS
+    assert "80 more warnings not shown" in done.stderr
+
+
 def test_errors_are_capped_and_each_reported(tmp_path):
     text = VIEW + "f 1 1 1 1 0 1 0 0\n" + "s 0 0 x 1\n" * 50
     done, _ = run_nff2scn(tmp_path, text)

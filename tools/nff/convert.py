@@ -31,6 +31,7 @@ from .reader import TooManyMaterials
 
 MAX_MATERIALS = 65_536  # different `f` lines: each may become an OBJ file of its own
 MAX_CONE_MESHES = 1_024  # different cone radius ratios given a unit mesh of their own
+MAX_WARNINGS = 20  # shown; more are counted
 BUFFERED_LINES = 200_000  # OBJ lines held before they are appended to their files
 
 
@@ -107,7 +108,8 @@ class Writer:
         self.objs = {}  # file name -> _ObjFile
         self.buffered = 0
         self.cone_sides = {}  # radius ratio -> most sides any of its cones needs
-        self.warnings = []
+        self.warnings = []  # (word, message): the first MAX_WARNINGS
+        self.more_warnings = 0
         self.counts = {"spheres": 0, "polygons": 0, "triangles": 0, "cones": 0}
 
     def material(self, fill, word):
@@ -117,6 +119,12 @@ class Writer:
                 raise TooManyMaterials(word, f"more than {MAX_MATERIALS:,} different surfaces ('f' lines)")
             self.materials[key] = (f"m{len(self.materials)}", fill)
         return self.materials[key][0]
+
+    def warn(self, word, message):
+        if len(self.warnings) < MAX_WARNINGS:
+            self.warnings.append((word, message))
+        else:
+            self.more_warnings += 1
 
     # --- shapes, as the reader meets them ---------------------------------------------
     def sphere(self, scene, sphere):
@@ -128,11 +136,11 @@ class Writer:
         name = self.material(polygon.fill, polygon.word)
         normal = geometry.polygon_normal(polygon.points)
         if normal is None:
-            self.warnings.append((polygon.word, "a polygon without area (its corners are in a line): left out"))
+            self.warn(polygon.word, "a polygon without area (its corners are in a line): left out")
             return
         triangles = geometry.triangulate(polygon.points, normal)
         if len(triangles) < len(polygon.points) - 2:
-            self.warnings.append((polygon.word, "a polygon whose outline crosses itself: partly left out"))
+            self.warn(polygon.word, "a polygon whose outline crosses itself: partly left out")
         points = np.asarray(polygon.points, dtype=np.float64)
         if polygon.normals is None:
             normals, corner_normal = normal[None, :], np.zeros(len(points), dtype=np.int64)

@@ -80,6 +80,8 @@ def convert_file(nff_path, scn_path, corner_rays=False, max_error_pixels=0.1):
             print(message, file=sys.stderr)
         for word, message in writer.warnings:
             print(scene.source.diagnostic("warning", word, message), file=sys.stderr)
+        if writer.more_warnings:
+            print(f"{nff_path}: note: {writer.more_warnings:,} more warnings not shown", file=sys.stderr)
         _publish(staging, scn_path, meshes_name)
     finally:
         shutil.rmtree(staging, ignore_errors=True)

@@ -171,7 +171,8 @@ class _Reader:
         raise _Abandon
 
     def warning(self, word, message):
-        self.scene.warnings.append(self.source.diagnostic("warning", word, message))
+        if len(self.scene.warnings) < MAX_ERRORS:  # as many warnings as errors are shown
+            self.scene.warnings.append(self.source.diagnostic("warning", word, message))
 
     def number(self, what):
         word = self.source.take()
