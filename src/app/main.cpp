@@ -22,6 +22,7 @@
 #include "app/progress.h"
 #include "base/output_file.h"
 #include "io/image_file.h"
+#include "lang/load_scene.h"
 #include "lang/reference_doc.h"
 #include "lang/schema.h"
 #include "render/render_stats.h"
@@ -180,9 +181,9 @@ int check_only(const Options& options) {
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
     const tracer::SceneDescription& scene = loaded->scene;
-    std::cout << options.scene << ": ok (" << scene.spheres.size() << " spheres, " << scene.planes.size() << " planes, "
-              << scene.meshes.size() << " meshes, " << scene.lights.size() << " lights, " << scene.materials.size()
-              << " materials)\n";
+    std::cout << (options.scene == "-" ? std::string(tracer::kStandardInputName) : options.scene) << ": ok ("
+              << scene.spheres.size() << " spheres, " << scene.planes.size() << " planes, " << scene.meshes.size()
+              << " meshes, " << scene.lights.size() << " lights, " << scene.materials.size() << " materials)\n";
     return kOk;
 }
 
@@ -207,7 +208,7 @@ int run(int argc, char** argv) {
     Options options;
     CLI::App app{"tracer: renders scene files with Whitted ray tracing and Phong shading.", "tracer"};
     app.set_version_flag("--version", std::string("tracer ") + TRACER_VERSION);
-    app.add_option("scene", options.scene, "The scene file (.scn)");
+    app.add_option("scene", options.scene, "The scene file (.scn), or - for standard input");
     app.add_option("-o,--output", options.output,
                    "The image to write; the format follows the extension (.png, .exr, ...)");
     app.add_option("--threads", options.threads, "Render threads (default: every core)")->check(CLI::Range(1, 1024));

@@ -93,4 +93,24 @@ InputFile read_input_file(const std::string& path, uint64_t max_bytes) {
     return result;
 }
 
+InputFile read_standard_input(uint64_t max_bytes) {
+    InputFile result;
+    size_t filled = 0;
+    while (filled <= max_bytes) {
+        result.text.resize(size_t(std::min<uint64_t>(max_bytes + 1, filled + 65536)));
+        const ssize_t got = ::read(STDIN_FILENO, result.text.data() + filled, result.text.size() - filled);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) {
+            result.problem = errno_text(errno);
+            break;
+        }
+        if (got == 0) break;
+        filled += size_t(got);
+    }
+    if (result.problem.empty() && filled > max_bytes)
+        result.problem = "more than the limit of " + describe_bytes(max_bytes);
+    result.text.resize(result.problem.empty() ? filled : 0);
+    return result;
+}
+
 }  // namespace tracer

@@ -22,6 +22,10 @@ struct InputFile {
 // FIFO, not a regular file", "it is 2.1 GB; the limit is 1.0 GB"): never blocks on special files.
 InputFile read_input_file(const std::string& path, uint64_t max_bytes);
 
+// Standard input read to its end (waiting for the writer, as the user asked for it), or why
+// not: an error, or more than max_bytes.
+InputFile read_standard_input(uint64_t max_bytes);
+
 // Why `path` could not be read as an input file, looking without opening it (so without
 // blocking); empty if it looks readable. The same reasons as read_input_file gives.
 std::string input_file_problem(const std::string& path, uint64_t max_bytes);

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "base/diagnostics.h"
 #include "scene/scene.h"
@@ -12,10 +13,13 @@ namespace tracer {
 struct LoadResult {
     std::optional<SceneDescription> scene;  // empty when there were errors
     Diagnostics diagnostics;
-    bool unreadable = false;                // the scene file itself could not be read
+    bool unreadable = false;  // the scene file itself could not be read
 };
 
-// Loads the scene at `path`; every problem found is in the result's diagnostics.
+// Loads the scene at `path`; every problem found is in the result's diagnostics. A `path` of
+// "-" reads standard input, named kStandardInputName in messages (mesh paths relative to
+// the working folder).
+inline constexpr std::string_view kStandardInputName = "<stdin>";
 LoadResult load_scene(const std::string& path);
 
 // Parses and validates scene text held in memory (`path` names it in messages and anchors

@@ -73,6 +73,22 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("30x20, 4 spp", result.stderr)
 
+    def test_scene_from_standard_input(self):
+        # "-" reads the scene from standard input; mesh paths are relative to the working folder.
+        (self.tmp / "meshes").mkdir()
+        (self.tmp / "meshes" / "t.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+        mesh_scene = SMALL_SCENE + 'mesh { file "meshes/t.obj" material { kd 1 } }\n'
+        result = run("--check", "-", input=mesh_scene, cwd=self.tmp)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertTrue(result.stdout.startswith("<stdin>: ok"), result.stdout)
+        out = self.tmp / "from_stdin.png"
+        result = run("-", "-o", out, "-q", input=SMALL_SCENE, cwd=self.tmp)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(out.read_bytes()[:4], b"\x89PNG")
+        result = run("--check", "-", input="camera { eye (0, 0, 7) lookat (0, 0, 0) }\nsphere { radius 1 }\n")
+        self.assertEqual(result.returncode, 1)
+        self.assertTrue(result.stderr.startswith("<stdin>:2:1: error: sphere is missing"), result.stderr)
+
     def test_render_writes_png_and_summary(self):
         out = self.tmp / "out.png"
         result = run(self.small, "-o", out, "--threads", "2")
