@@ -53,6 +53,27 @@ std::string input_file_problem(const std::string& path, uint64_t max_bytes) {
     return problem;
 }
 
+// Reads `fd` to its end into `text`, growing it from its current size as needed and stopping
+// once more than max_bytes are in; returns the bytes read (a read error goes to `problem`).
+static size_t read_to_end(int fd, uint64_t max_bytes, std::string& text, std::string& problem) {
+    size_t filled = 0;
+    for (;;) {
+        if (filled == text.size()) {
+            if (filled > max_bytes) break;
+            text.resize(size_t(std::min<uint64_t>(max_bytes + 1, filled + 65536)));
+        }
+        const ssize_t got = ::read(fd, text.data() + filled, text.size() - filled);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) {
+            problem = errno_text(errno);
+            break;
+        }
+        if (got == 0) break;
+        filled += size_t(got);
+    }
+    return filled;
+}
+
 InputFile read_input_file(const std::string& path, uint64_t max_bytes) {
     InputFile result;
     // Step 1: open without blocking (a FIFO with no writer would wait for ever) and look at
@@ -71,21 +92,7 @@ InputFile read_input_file(const std::string& path, uint64_t max_bytes) {
 
     // Step 2: read to the end, stopping one byte past the limit if the file grows meanwhile.
     result.text.resize(size_t(info.st_size) + 1);
-    size_t filled = 0;
-    for (;;) {
-        if (filled == result.text.size()) {
-            if (filled > max_bytes) break;
-            result.text.resize(size_t(std::min<uint64_t>(max_bytes + 1, filled + 65536)));
-        }
-        const ssize_t got = ::read(fd, result.text.data() + filled, result.text.size() - filled);
-        if (got < 0 && errno == EINTR) continue;
-        if (got < 0) {
-            result.problem = errno_text(errno);
-            break;
-        }
-        if (got == 0) break;
-        filled += size_t(got);
-    }
+    const size_t filled = read_to_end(fd, max_bytes, result.text, result.problem);
     ::close(fd);
     if (result.problem.empty() && filled > max_bytes)
         result.problem = "it grew past the limit of " + describe_bytes(max_bytes) + " while being read";
@@ -95,18 +102,7 @@ InputFile read_input_file(const std::string& path, uint64_t max_bytes) {
 
 InputFile read_standard_input(uint64_t max_bytes) {
     InputFile result;
-    size_t filled = 0;
-    while (filled <= max_bytes) {
-        result.text.resize(size_t(std::min<uint64_t>(max_bytes + 1, filled + 65536)));
-        const ssize_t got = ::read(STDIN_FILENO, result.text.data() + filled, result.text.size() - filled);
-        if (got < 0 && errno == EINTR) continue;
-        if (got < 0) {
-            result.problem = errno_text(errno);
-            break;
-        }
-        if (got == 0) break;
-        filled += size_t(got);
-    }
+    const size_t filled = read_to_end(STDIN_FILENO, max_bytes, result.text, result.problem);
     if (result.problem.empty() && filled > max_bytes)
         result.problem = "more than the limit of " + describe_bytes(max_bytes);
     result.text.resize(result.problem.empty() ? filled : 0);

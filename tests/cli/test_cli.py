@@ -88,6 +88,10 @@ class CommandLine(unittest.TestCase):
         result = run("--check", "-", input="camera { eye (0, 0, 7) lookat (0, 0, 0) }\nsphere { radius 1 }\n")
         self.assertEqual(result.returncode, 1)
         self.assertTrue(result.stderr.startswith("<stdin>:2:1: error: sphere is missing"), result.stderr)
+        # More than a scene file may hold: refused, as a file would be (exit 3).
+        result = run("--check", "-", input=" " * ((128 << 20) + 1))
+        self.assertEqual(result.returncode, 3)
+        self.assertIn("<stdin>: error: cannot read the scene file: more than the limit of 134.2 MB", result.stderr)
 
     def test_render_writes_png_and_summary(self):
         out = self.tmp / "out.png"

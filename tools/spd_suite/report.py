@@ -1,12 +1,11 @@
 """docs/spd.md from the suite's measurements: tables, and each image beside upstream's."""
 
 import datetime
-import os
 import pathlib
-import platform
 import subprocess
 
 from PIL import Image
+from xcheck import speed_vs_error
 
 from . import steps
 
@@ -16,20 +15,11 @@ RULES = pathlib.Path(__file__).with_name("rules.md")  # the rule-by-rule section
 
 
 def machine(measured_at):
-    model = "unknown CPU"
-    try:
-        for line in pathlib.Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                model = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    # The renderer's version: the last commit to src/ before the measurement (tools and docs do
-    # not change it).
+    """The CPU, cores and OS, and the renderer's version: the last commit to src/ before the
+    measurement (tools and docs do not change it)."""
     command = ["git", "log", "-1", "--format=%h", f"--before={int(measured_at)}", "--", "src"]
     commit = subprocess.run(command, capture_output=True, text=True, cwd=steps.ROOT)
-    system = f"{platform.system()} {platform.release()}"
-    return f"{model}, {os.cpu_count()} cores, {system}; tracer's src/ at {commit.stdout.strip()}"
+    return f"{speed_vs_error.machine()}; tracer's src/ at {commit.stdout.strip()}"
 
 
 def side_by_side(tracer_png, upstream_png, out_png):

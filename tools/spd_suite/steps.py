@@ -11,7 +11,6 @@ import sys
 import time
 
 import numpy as np
-from nff import nff2scn
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SCENES = ("balls", "gears", "mount", "rings", "teapot", "tetra", "tree")
@@ -63,11 +62,6 @@ def generate(generators, scene, size, nff_path):
     command = [str(generators / scene)] + ([] if size is None else ["-s", str(size)])
     with open(nff_path, "w") as output:
         subprocess.run(command, check=True, stdout=output, cwd=generators)
-
-
-def convert(nff_path, scn_path, corner_rays):
-    """tools/nff2scn on one file; its summary (counts and seconds)."""
-    return nff2scn.convert_file(nff_path, scn_path, corner_rays)
 
 
 def tracer_path(name):

@@ -17,6 +17,8 @@ import json
 import pathlib
 import sys
 
+from nff import nff2scn
+
 from . import report, steps
 
 SHARED = steps.ROOT.parent / "shared"
@@ -56,8 +58,8 @@ def run_scene(name, args, generators, embree):
     steps.generate(generators, name, args.size, nff)
     result = {"scene": name, "nff_bytes": nff.stat().st_size}
     scn, corners = folder / f"{name}.scn", folder / f"{name}_corners.scn"
-    result["convert"] = steps.convert(nff, scn, corner_rays=False)
-    steps.convert(nff, corners, corner_rays=True)
+    result["convert"] = nff2scn.convert_file(nff, scn, corner_rays=False)
+    nff2scn.convert_file(nff, corners, corner_rays=True)
     result["parse_seconds"] = steps.median_seconds([str(steps.tracer_path("tracer")), "--check", str(scn)], 3)
 
     steps.log(f"{name}: rendering under upstream's procedure")
