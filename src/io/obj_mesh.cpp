@@ -11,6 +11,7 @@
 #include "base/input_file.h"
 #include "io/obj_reader.h"
 #include "io/polygon.h"
+#include "scene/placement.h"
 
 namespace tracer {
 
@@ -166,10 +167,7 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
             largest[f] = std::max({largest[f], std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     for (size_t block = 0; block < scene.meshes.size(); ++block) {
         const Mesh& mesh = scene.meshes[block];
-        const double scale = std::max({mesh.scale.x, mesh.scale.y, mesh.scale.z});
-        const double translate =
-            std::max({std::abs(mesh.translate.x), std::abs(mesh.translate.y), std::abs(mesh.translate.z)});
-        const double reach = std::sqrt(3.0) * scale * largest[meshes.file_of_block[block]] + translate;
+        const double reach = Placement(mesh).reach(largest[meshes.file_of_block[block]]);
         if (!(reach <= kLargestMagnitude)) {
             char reach_text[32];
             std::snprintf(reach_text, sizeof reach_text, "%.3g", reach);

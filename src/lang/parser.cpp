@@ -117,8 +117,8 @@ void Parser::parse_block(SceneAst& scene) {
 
 // body = "{" { entry } "}" ;
 void Parser::parse_body(Body& body, const std::string& owner) {
-    // Only `mesh { rotate { } }` nests at all; a deep pile of braces is a mistake, and must not
-    // exhaust the stack of this recursive parser.
+    // Nesting goes three deep at most (`mesh { transform { rotate { } } }`); a deep pile of
+    // braces is a mistake, and must not exhaust the stack of this recursive parser.
     constexpr size_t kMaxNesting = 16;
     if (open_.size() >= kMaxNesting) fail(peek(), "blocks are nested too deeply (more than 16 levels)");
     Token open = take();

@@ -35,6 +35,10 @@ KeySpec square(KeySpec spec) {
     spec.perfect_square = true;
     return spec;
 }
+KeySpec mirror_size(KeySpec spec) {
+    spec.mirror_size = true;
+    return spec;
+}
 KeySpec one_of(KeySpec spec, std::vector<std::string_view> choices) {
     spec.choices = std::move(choices);
     return spec;
@@ -136,7 +140,7 @@ const BlockSpec kPlane{
 
 const BlockSpec kRotate{
     "rotate", false, false, Occurs::AtMostOnce,
-    "A rotation about an axis through the origin (inside `mesh`).",
+    "A rotation about an axis through the origin (inside a placed shape or a `transform`).",
     {
         nonzero(key("axis", ValueType::Vector, "(0, 1, 0)", "Rotation axis (normalised for you).")),
         key("angle", ValueType::Number, "0", "Angle in degrees, counter-clockwise looking down the axis."),
@@ -144,27 +148,85 @@ const BlockSpec kRotate{
     "",
 };
 
+KeySpec scale_key(std::string_view meaning) {
+    return mirror_size(key("scale", ValueType::Triple, "1", meaning));
+}
+KeySpec rotate_key(std::string_view meaning) {
+    return nested(key("rotate", ValueType::Block, "{ axis (0, 1, 0) angle 0 }", meaning), &kRotate);
+}
+
+const BlockSpec kTransform{
+    "transform", false, false, Occurs::AtMostOnce,
+    "Steps that place a shape, applied in the order written; each key may appear any number of "
+    "times (inside `mesh`, `triangle`, `quad` and `box`, instead of their own `scale`, `rotate` and "
+    "`translate`).",
+    {
+        scale_key("Scale about the origin, uniform or per axis; a negative factor mirrors."),
+        rotate_key("Rotate about an axis through the origin: `rotate { axis (x, y, z) angle degrees }`."),
+        key("translate", ValueType::Vector, "(0, 0, 0)", "Move."),
+    },
+    "",
+    true,
+};
+
+// The keys that place a shape, after the shape's own keys and before its material.
+std::vector<KeySpec> placed(std::vector<KeySpec> keys, std::vector<KeySpec> after = {}) {
+    keys.push_back(scale_key("Scale factor, uniform or per axis, applied first; a negative factor mirrors."));
+    keys.push_back(rotate_key("Rotation, applied after scaling: `rotate { axis (x, y, z) angle degrees }`."));
+    keys.push_back(key("translate", ValueType::Vector, "(0, 0, 0)", "Translation, applied last."));
+    keys.push_back(nested(key("transform", ValueType::Block, "{ }",
+                              "Instead of `scale`, `rotate` and `translate`: any number of those steps in the "
+                              "order they apply, e.g. `transform { translate (0, 1, 0) rotate { angle 45 } "
+                              "scale (-1, 1, 1) }`."),
+                          &kTransform));
+    keys.insert(keys.end(), after.begin(), after.end());
+    keys.push_back(key("material", ValueType::MaterialRef, "", "A material name or an inline material block."));
+    return keys;
+}
+
 const BlockSpec kMesh{
     "mesh", false, true, Occurs::Any,
-    "A triangle mesh from an OBJ file, placed by scale, then rotate, then translate.",
-    {
-        key("file", ValueType::Path, "",
-            "The OBJ file, relative to the scene file's folder. Blocks naming the same file share "
-            "it: it is read and its BVH built once."),
-        ranged(key("scale", ValueType::Triple, "1", "Scale factor, uniform or per axis."), kSmallestSize, kInf),
-        nested(key("rotate", ValueType::Block, "{ axis (0, 1, 0) angle 0 }",
-                   "Rotation, applied after scaling: `rotate { axis (x, y, z) angle degrees }`."),
-               &kRotate),
-        key("translate", ValueType::Vector, "(0, 0, 0)", "Translation, applied last."),
-        one_of(key("shading", ValueType::Choice, "smooth",
-                   "`smooth` interpolates vertex normals across each triangle (the file's `vn`, else "
-                   "the area-weighted average of the faces at each vertex: a cube of 8 shared corners "
-                   "looks like a cushion); `flat` gives each triangle its own normal (hard edges)."),
-               {"smooth", "flat"}),
-        key("material", ValueType::MaterialRef, "", "A material name or an inline material block."),
-    },
+    "A triangle mesh from an OBJ file, placed by scale, then rotate, then translate (or the steps of "
+    "a `transform`).",
+    placed({key("file", ValueType::Path, "",
+                "The OBJ file, relative to the scene file's folder. Blocks naming the same file share "
+                "it: it is read and its BVH built once.")},
+           {one_of(key("shading", ValueType::Choice, "smooth",
+                       "`smooth` interpolates vertex normals across each triangle (the file's `vn`, else "
+                       "the area-weighted average of the faces at each vertex: a cube of 8 shared corners "
+                       "looks like a cushion); `flat` gives each triangle its own normal (hard edges)."),
+                   {"smooth", "flat"})}),
     "mesh {\n  file \"../scenes/meshes/tetrahedron.obj\"\n  scale 0.5\n"
     "  rotate { axis (0, 1, 0) angle 30 }\n  translate (0, -0.5, 0)\n  material { kd 0.8 }\n}\n",
+};
+
+const BlockSpec kTriangle{
+    "triangle", false, true, Occurs::Any,
+    "A flat triangle, seen from both sides, placed like a mesh.",
+    placed({key("a", ValueType::Vector, "", "First corner."), key("b", ValueType::Vector, "", "Second corner."),
+            key("c", ValueType::Vector, "", "Third corner; (b - a) x (c - a) is the front's normal.")}),
+    "triangle {\n  a (-1, 0, 0)\n  b (1, 0, 0)\n  c (0, 1.5, 0)\n  material { kd (1, 0.5, 0) }\n}\n",
+};
+
+const BlockSpec kQuad{
+    "quad", false, true, Occurs::Any,
+    "A flat parallelogram (a rectangle when the edges are perpendicular), seen from both sides, "
+    "placed like a mesh: its corners are `corner`, `corner + edge1`, `corner + edge1 + edge2` and "
+    "`corner + edge2`.",
+    placed({key("corner", ValueType::Vector, "", "One corner."),
+            nonzero(key("edge1", ValueType::Vector, "", "The edge from `corner` to the next corner.")),
+            nonzero(key("edge2", ValueType::Vector, "",
+                        "The other edge from `corner`; edge1 x edge2 is the front's normal."))}),
+    "quad {\n  corner (-2, 0, -2)\n  edge1 (0, 0, 4)\n  edge2 (4, 0, 0)\n  material { kd 0.8 km 0.2 }\n}\n",
+};
+
+const BlockSpec kBox{
+    "box", false, true, Occurs::Any,
+    "A box with flat faces, axis-aligned between two corners before it is placed like a mesh.",
+    placed({key("min", ValueType::Vector, "", "The corner with the smallest x, y and z."),
+            key("max", ValueType::Vector, "", "The opposite corner: larger on every axis.")}),
+    "box {\n  min (-0.5, 0, -0.5)\n  max (0.5, 1, 0.5)\n  rotate { axis (0, 1, 0) angle 30 }\n"
+    "  material { kd (0.2, 0.4, 0.9) }\n}\n",
 };
 
 const BlockSpec kLight{
@@ -186,8 +248,9 @@ const KeySpec* BlockSpec::find_key(std::string_view key_name) const {
 }
 
 const std::vector<const BlockSpec*>& all_block_specs() {
-    static const std::vector<const BlockSpec*> specs{&kCamera, &kRender, &kMaterial, &kSphere,
-                                                     &kPlane,  &kMesh,   &kRotate,   &kLight};
+    static const std::vector<const BlockSpec*> specs{&kCamera, &kRender,   &kMaterial, &kSphere, &kPlane,
+                                                     &kMesh,   &kTriangle, &kQuad,     &kBox,    &kRotate,
+                                                     &kTransform, &kLight};
     return specs;
 }
 

@@ -34,6 +34,7 @@ struct KeySpec {
     bool max_open = false;
     bool nonzero = false;         // vectors: must not have zero length
     bool perfect_square = false;  // whole numbers: must be N * N (samples)
+    bool mirror_size = false;     // sizes that may be negative (mirroring): |x| >= kSmallestSize
     std::string_view meaning;
     const BlockSpec* block = nullptr;       // ValueType::Block: the nested block's table
     std::vector<std::string_view> choices;  // ValueType::Choice: the allowed names
@@ -51,6 +52,7 @@ struct BlockSpec {
     std::string_view summary;
     std::vector<KeySpec> keys;
     std::string_view example;  // a complete, valid fragment shown in the reference
+    bool ordered = false;      // a list of steps: keys may repeat, and their order is kept (transform)
 
     const KeySpec* find_key(std::string_view key) const;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -14,6 +15,8 @@
 #include "lang/parser.h"
 #include "lang/schema.h"
 #include "lang/suggest.h"
+#include "scene/flat_shapes.h"
+#include "scene/placement.h"
 
 namespace tracer {
 namespace {
@@ -94,6 +97,9 @@ public:
         auto found = children_.find(name);
         return found != children_.end() ? found->second.get() : nullptr;
     }
+    // An ordered block's steps (transform), each with its one key, in the order written.
+    void add_step(std::unique_ptr<Fields> step) { steps_.push_back(std::move(step)); }
+    const std::vector<std::unique_ptr<Fields>>& steps() const { return steps_; }
 
 private:
     struct Given {
@@ -103,6 +109,7 @@ private:
     const BlockSpec* spec_;
     std::map<std::string_view, Given> given_;
     std::map<std::string_view, std::unique_ptr<Fields>> children_;
+    std::vector<std::unique_ptr<Fields>> steps_;
 };
 
 class Validator {
@@ -120,6 +127,8 @@ private:
     // Generic checks driven by the tables.
     bool check_block_header(const Block& block, const BlockSpec& spec);
     bool check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields);
+    bool check_steps(const Body& body, const BlockSpec& spec, Fields& fields);
+    bool unknown_key(const Entry& entry, const BlockSpec& spec, std::vector<std::string>& suggested);
     bool check_value(const Value& value, const KeySpec& key, Fields& fields);
     bool check_number(double number, Span span, const KeySpec& key);
     bool check_perfect_square(double number, Span span, const KeySpec& key);
@@ -133,7 +142,10 @@ private:
     void build(const Block& block, const Fields& fields);
     void build_render(const Block& block, const Fields& fields);
     void build_camera(const Block& block, const Fields& fields);
-    void build_mesh(const Fields& fields);
+    bool build_placed(const Block& block, const Fields& fields, Placed& out);
+    void build_mesh(const Block& block, const Fields& fields);
+    void build_flat_shape(const Block& block, const Fields& fields);
+    bool check_reach(const Block& block, const Placed& placed, const TriangleMesh& mesh);
     void warn_about_the_picture();
 
     const SourceFile& file_;
@@ -201,14 +213,15 @@ std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
 void Validator::warn_about_the_picture() {
     const SceneDescription& scene = scene_;
     const Location whole = Diagnostics::whole_file(file_.path());
-    if (scene.spheres.empty() && scene.planes.empty() && scene.meshes.empty()) {
+    const bool flat_shapes = !scene.triangles.empty() || !scene.quads.empty() || !scene.boxes.empty();
+    if (scene.spheres.empty() && scene.planes.empty() && scene.meshes.empty() && !flat_shapes) {
         diagnostics_.report(Severity::Warning, whole,
                             "the scene has no shapes: the image will be the background colour only");
         return;
     }
     // Spheres alone, each wholly behind the eye: nothing in front of it.
     const dvec3 forward = glm::normalize(scene.camera.lookat - scene.camera.eye);
-    const bool all_behind = scene.planes.empty() && scene.meshes.empty() &&
+    const bool all_behind = scene.planes.empty() && scene.meshes.empty() && !flat_shapes &&
                             std::all_of(scene.spheres.begin(), scene.spheres.end(), [&](const Sphere& sphere) {
                                 return glm::dot(sphere.center - scene.camera.eye, forward) < -sphere.radius;
                             });
@@ -221,7 +234,8 @@ void Validator::warn_about_the_picture() {
             return material.kd != dvec3(0.0) || material.ks != dvec3(0.0);
         });
     };
-    if (scene.lights.empty() && (needs_light(scene.spheres) || needs_light(scene.planes) || needs_light(scene.meshes)))
+    if (scene.lights.empty() && (needs_light(scene.spheres) || needs_light(scene.planes) || needs_light(scene.meshes) ||
+                                 needs_light(scene.triangles) || needs_light(scene.quads) || needs_light(scene.boxes)))
         diagnostics_.report(Severity::Warning, whole,
                             "the scene has no light: its diffuse and specular colours (kd, ks) will not show, only "
                             "ka; add one, e.g. light { position (0, 5, 5) }");
@@ -248,20 +262,27 @@ bool Validator::check_block_header(const Block& block, const BlockSpec& spec) {
     return true;
 }
 
+// Reports a key the block's table does not have, with the closest known key (remembered in
+// `suggested`, so that it is not also reported missing).
+bool Validator::unknown_key(const Entry& entry, const BlockSpec& spec, std::vector<std::string>& suggested) {
+    std::vector<std::string_view> names;
+    for (const KeySpec& k : spec.keys) names.push_back(k.name);
+    suggested.push_back(closest_match(entry.key, names));
+    diagnostics_.error(file_, entry.key_span,
+                       "unknown key " + in_quotes(entry.key) + " in " + std::string(spec.kind) +
+                           did_you_mean(entry.key, names));
+    return false;
+}
+
 bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields) {
+    if (spec.ordered) return check_steps(body, spec, fields);
     bool ok = true;
     std::vector<std::string> suggested;  // keys offered in "did you mean": not reported missing
     for (const Entry& entry : body.entries) {
         if (diagnostics_.saturated()) return false;
         const KeySpec* key = spec.find_key(entry.key);
         if (!key) {
-            std::vector<std::string_view> names;
-            for (const KeySpec& k : spec.keys) names.push_back(k.name);
-            suggested.push_back(closest_match(entry.key, names));
-            diagnostics_.error(file_, entry.key_span,
-                               "unknown key " + in_quotes(entry.key) + " in " + std::string(spec.kind) +
-                                   did_you_mean(entry.key, names));
-            ok = false;
+            ok = unknown_key(entry, spec, suggested);
             continue;
         }
         if (fields.has(key->name)) {
@@ -286,6 +307,25 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
             auto child = std::make_unique<Fields>(*key.block);
             fields.set_child(key, std::move(child));
         }
+    }
+    return ok;
+}
+
+// An ordered block (transform): every entry is one step, keys may repeat, order is kept.
+bool Validator::check_steps(const Body& body, const BlockSpec& spec, Fields& fields) {
+    bool ok = true;
+    std::vector<std::string> suggested;
+    for (const Entry& entry : body.entries) {
+        if (diagnostics_.saturated()) return false;
+        const KeySpec* key = spec.find_key(entry.key);
+        if (!key) {
+            ok = unknown_key(entry, spec, suggested);
+            continue;
+        }
+        auto step = std::make_unique<Fields>(spec);
+        step->set(*key, entry.value, entry.key_span);
+        ok = check_value(entry.value, *key, *step) && ok;
+        fields.add_step(std::move(step));
     }
     return ok;
 }
@@ -373,6 +413,15 @@ bool Validator::check_number(double number, Span span, const KeySpec& key) {
                                format_number(number));
         return false;
     }
+    if (key.mirror_size && std::abs(number) < kSmallestSize) {
+        diagnostics_.error(file_, span,
+                           "'" + std::string(key.name) + "' " +
+                               (number == 0 ? std::string("must not be 0 (a negative factor mirrors)")
+                                            : "must be at least 1e-30 in size (the smallest size the renderer is "
+                                              "tested with)") +
+                               ", found " + format_number(number));
+        return false;
+    }
     bool below = key.min_open ? number <= key.min : number < key.min;
     bool above = key.max_open ? number >= key.max : number > key.max;
     if (!below && !above) return !key.perfect_square || check_perfect_square(number, span, key);
@@ -449,7 +498,8 @@ void Validator::build(const Block& block, const Fields& fields) {
     const std::string& kind = block.kind;
     if (kind == "render") return build_render(block, fields);
     if (kind == "camera") return build_camera(block, fields);
-    if (kind == "mesh") return build_mesh(fields);
+    if (kind == "mesh") return build_mesh(block, fields);
+    if (kind == "triangle" || kind == "quad" || kind == "box") return build_flat_shape(block, fields);
     if (kind == "light") {
         scene_.lights.push_back({fields.triple("position"), fields.triple("color")});
     } else if (kind == "sphere") {
@@ -509,7 +559,60 @@ void Validator::build_camera(const Block& block, const Fields& fields) {
     }
 }
 
-void Validator::build_mesh(const Fields& fields) {
+// The placement and material of a mesh or flat shape: its scale, rotate and translate keys, or
+// the steps of its transform block (not both). False if the placement is refused.
+bool Validator::build_placed(const Block& block, const Fields& fields, Placed& out) {
+    out.at = Diagnostics::locate(file_, block.kind_span);
+    out.material = material_index(fields);
+    out.scale = fields.triple("scale");
+    const Fields& rotate = *fields.child("rotate");
+    out.rotate_axis = normalized(rotate.triple("axis"));
+    out.rotate_degrees = rotate.number("angle");
+    out.translate = fields.triple("translate");
+    if (!fields.has("transform")) return true;
+
+    for (std::string_view own : {"scale", "rotate", "translate"}) {
+        if (!fields.has(own)) continue;
+        Diagnostic* d = diagnostics_.error(
+            file_, fields.key_span("transform"),
+            "'transform' cannot be combined with 'scale', 'rotate' or 'translate' in one block; write those "
+            "steps inside the transform, in the order they apply");
+        Diagnostics::note(d, file_, fields.key_span(own), "'" + std::string(own) + "' is set here");
+        return false;
+    }
+    // The steps, and how much they scale in all (each factor is in range; their product must be too).
+    double smallest = 1, largest = 1;
+    for (const auto& step : fields.child("transform")->steps()) {
+        TransformStep out_step;
+        if (step->has("scale")) {
+            out_step.kind = TransformStep::Kind::Scale;
+            out_step.vector = step->triple("scale");
+            const dvec3 size = glm::abs(out_step.vector);
+            smallest *= std::min({size.x, size.y, size.z});
+            largest *= std::max({size.x, size.y, size.z});
+        } else if (step->has("rotate")) {
+            const Fields& turn = *step->child("rotate");
+            out_step.kind = TransformStep::Kind::Rotate;
+            out_step.vector = normalized(turn.triple("axis"));
+            out_step.degrees = turn.number("angle");
+        } else {
+            out_step.kind = TransformStep::Kind::Translate;
+            out_step.vector = step->triple("translate");
+        }
+        out.steps.push_back(out_step);
+    }
+    if (smallest < kSmallestSize || largest > kLargestMagnitude) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.3g", smallest < kSmallestSize ? smallest : largest);
+        diagnostics_.error(file_, fields.key_span("transform"),
+                           std::string("the transform's scale steps multiply to ") + text +
+                               " on some axis; sizes must stay between 1e-30 and 1e30");
+        return false;
+    }
+    return true;
+}
+
+void Validator::build_mesh(const Block& block, const Fields& fields) {
     Mesh mesh;
     fs::path path = fields.text("file");
     if (path.is_relative()) path = scene_dir_ / path;
@@ -518,15 +621,66 @@ void Validator::build_mesh(const Fields& fields) {
     const std::string problem = input_file_problem(mesh.path, kMaxMeshFileBytes);  // looks, never opens
     if (!problem.empty())
         diagnostics_.error(file_, fields.value_span("file"), "cannot read mesh file '" + mesh.path + "': " + problem);
-
-    mesh.scale = fields.triple("scale");
-    const Fields& rotate = *fields.child("rotate");
-    mesh.rotate_axis = normalized(rotate.triple("axis"));
-    mesh.rotate_degrees = rotate.number("angle");
-    mesh.translate = fields.triple("translate");
     mesh.flat = fields.text("shading") == "flat";
-    mesh.material = material_index(fields);
-    scene_.meshes.push_back(mesh);
+    if (build_placed(block, fields, mesh)) scene_.meshes.push_back(mesh);
+}
+
+// Placed, no corner of a flat shape may leave the renderer's range.
+bool Validator::check_reach(const Block& block, const Placed& placed, const TriangleMesh& mesh) {
+    const Placement placement(placed);
+    double reach = 0;
+    for (const dvec3& corner : mesh.positions) {
+        const dvec3 p = glm::abs(placement.point(corner));
+        reach = std::max({reach, p.x, p.y, p.z});
+    }
+    if (reach <= kLargestMagnitude) return true;
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", reach);
+    diagnostics_.error(file_, block.kind_span,
+                       "this " + block.kind + ", scaled and moved, reaches coordinates up to " + text +
+                           ", beyond +-1e30 (the renderer keeps bounding boxes in float and squares and cubes "
+                           "lengths)");
+    return false;
+}
+
+// The unit normal of the plane spanned by two edges, or zero if they are parallel (computed
+// on unit edges, so that neither tiny nor huge lengths underflow or overflow).
+dvec3 spanned_normal(const dvec3& edge1, const dvec3& edge2) {
+    return normalized(glm::cross(normalized(edge1), normalized(edge2)));
+}
+
+void Validator::build_flat_shape(const Block& block, const Fields& fields) {
+    const std::string& kind = block.kind;
+    if (kind == "triangle") {
+        FlatTriangle shape;
+        shape.a = fields.triple("a"), shape.b = fields.triple("b"), shape.c = fields.triple("c");
+        if (spanned_normal(shape.b - shape.a, shape.c - shape.a) == dvec3(0.0))
+            return (void)diagnostics_.error(file_, block.kind_span,
+                                            "the triangle's corners lie on one line: it has no area");
+        if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
+            scene_.triangles.push_back(shape);
+    } else if (kind == "quad") {
+        Quad shape;
+        shape.corner = fields.triple("corner"), shape.edge1 = fields.triple("edge1");
+        shape.edge2 = fields.triple("edge2");
+        if (spanned_normal(shape.edge1, shape.edge2) == dvec3(0.0))
+            return (void)diagnostics_.error(file_, fields.value_span("edge2"),
+                                            "'edge2' is parallel to 'edge1': the quad has no area");
+        if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
+            scene_.quads.push_back(shape);
+    } else {
+        Box shape;
+        shape.min = fields.triple("min"), shape.max = fields.triple("max");
+        for (int axis = 0; axis < 3; ++axis) {
+            if (shape.max[axis] > shape.min[axis]) continue;
+            return (void)diagnostics_.error(file_, fields.value_span("max"),
+                                            std::string("'max' must be greater than 'min' on every axis; on ") +
+                                                "xyz"[axis] + ", " + format_number(shape.max[axis]) +
+                                                " is not greater than " + format_number(shape.min[axis]));
+        }
+        if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
+            scene_.boxes.push_back(shape);
+    }
 }
 
 }  // namespace

@@ -35,6 +35,13 @@ struct PlacedMesh {
     std::vector<std::pair<uint32_t, uint32_t>> origin;  // per triangle: its part and its number there
 };
 
+// Triangles with their second and third corners swapped: a mirrored file's winding, turning
+// again the way its (mirrored) normals point.
+std::vector<std::array<uint32_t, 3>> reversed_winding(std::vector<std::array<uint32_t, 3>> triangles) {
+    for (auto& t : triangles) std::swap(t[1], t[2]);
+    return triangles;
+}
+
 PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
     PlacedMesh out;
     size_t triangles = 0;
@@ -45,6 +52,9 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
     for (uint32_t part = 0; part < parts.size(); ++part) {
         const TriangleMesh& file = *parts[part].file;
         const Placement& placement = parts[part].placement;
+        const bool mirrored = placement.mirrors();
+        const auto reversed = mirrored ? reversed_winding(file.triangles) : std::vector<std::array<uint32_t, 3>>{};
+        const auto& corners = mirrored ? reversed : file.triangles;
         const uint32_t first_position = uint32_t(out.positions.size()), first_normal = uint32_t(out.normals.size());
         out.positions.resize(first_position + file.positions.size());
         parallel_for(
@@ -55,11 +65,11 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
         std::vector<Vec3> normals;
         const bool flat = parts[part].flat;
         if (flat) {
-            normals.resize(file.triangles.size());
+            normals.resize(corners.size());
             parallel_for(
                 normals.size(),
                 [&](size_t t) {
-                    const auto& v = file.triangles[t];
+                    const auto& v = corners[t];
                     const Vec3 a = out.positions[first_position + v[0]], b = out.positions[first_position + v[1]],
                                c = out.positions[first_position + v[2]];
                     normals[t] = normalize_or_zero(glm::cross(b - a, c - a));
@@ -71,12 +81,14 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
                 normals.size(),
                 [&](size_t i) { normals[i] = normalize_or_zero(Vec3(placement.normal * file.normals[i])); }, threads);
         } else {
-            normals = area_weighted_normals(std::span(out.positions).subspan(first_position), file.triangles);
+            normals = area_weighted_normals(std::span(out.positions).subspan(first_position), corners);
         }
         out.normals.insert(out.normals.end(), normals.begin(), normals.end());
-        const auto& ids = file.normal_ids.empty() ? file.triangles : file.normal_ids;
-        for (uint32_t t = 0; t < file.triangles.size(); ++t) {
-            const auto& v = file.triangles[t];
+        const auto reversed_ids =
+            mirrored ? reversed_winding(file.normal_ids) : std::vector<std::array<uint32_t, 3>>{};
+        const auto& ids = file.normal_ids.empty() ? corners : mirrored ? reversed_ids : file.normal_ids;
+        for (uint32_t t = 0; t < corners.size(); ++t) {
+            const auto& v = corners[t];
             const std::array<uint32_t, 3> n = flat ? std::array<uint32_t, 3>{t, t, t} : ids[t];
             out.triangles.push_back({first_position + v[0], first_position + v[1], first_position + v[2]});
             out.normal_ids.push_back({first_normal + n[0], first_normal + n[1], first_normal + n[2]});

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "render/bvh.h"
-#include "render/placement.h"
+#include "scene/placement.h"
 #include "render/triangle.h"
 #include "scene/triangle_mesh.h"
 

@@ -8,6 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include "render/geometry.h"
+#include "scene/flat_shapes.h"
 
 namespace tracer {
 namespace {
@@ -117,6 +118,20 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
         }
         instances_.push_back(instance);
     }
+    // The flat shapes (triangle, quad, box): small meshes of their own, placed and merged too.
+    std::vector<TriangleMesh> flat_meshes;
+    flat_meshes.reserve(scene.triangles.size() + scene.quads.size() + scene.boxes.size());  // no reallocation
+    auto add_flat = [&](const Placed& shape, TriangleMesh mesh) {
+        const uint32_t index = uint32_t(instances_.size()), object = uint32_t(objects_.size());
+        objects_.push_back({ObjectKind::MeshInstance, index, shape.material});
+        flat_meshes.push_back(std::move(mesh));
+        merged.push_back({&flat_meshes.back(), Placement(shape), object, true});
+        merged_instances.push_back(index);
+        instances_.emplace_back();
+    };
+    for (const FlatTriangle& shape : scene.triangles) add_flat(shape, triangle_mesh(shape));
+    for (const Quad& shape : scene.quads) add_flat(shape, triangle_mesh(shape));
+    for (const Box& shape : scene.boxes) add_flat(shape, triangle_mesh(shape));
     if (merged.empty()) return;
     for (uint32_t index : merged_instances) instances_[index].mesh = uint32_t(meshes_.size());
     meshes_.emplace_back(merged, settings);

@@ -12,7 +12,7 @@
 
 #include "render/bvh.h"
 #include "render/mesh_accel.h"
-#include "render/placement.h"
+#include "scene/placement.h"
 #include "render/types.h"
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
@@ -58,10 +58,11 @@ struct Object {
     int material;
 };
 
-// A mesh block: a mesh and where the block places it. Blocks whose file no other block uses
-// are built placed in the world, all of them merged into one mesh (`placed`: rays reach it
-// unchanged); a file that several blocks name is built once in its own coordinates, and rays
-// are carried there by each block's `to_object`.
+// A mesh block or a flat shape (World::instances() holds the scene's mesh blocks in order, then
+// its triangles, quads and boxes): a mesh and where the block places it. Flat shapes and the
+// blocks whose file no other block uses are built placed in the world, all of them merged into
+// one mesh (`placed`: rays reach it unchanged); a file that several blocks name is built once in
+// its own coordinates, and rays are carried there by each block's `to_object`.
 struct MeshInstance {
     uint32_t mesh = 0;  // index into World::meshes()
     bool placed = true;

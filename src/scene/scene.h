@@ -84,16 +84,50 @@ struct Light {
     dvec3 color{1.0};
 };
 
-// A triangle mesh from an OBJ file, placed by scale, then rotation, then translation.
-struct Mesh {
-    std::string path;   // absolute
-    Location named_at;  // the `file` value in the scene, for messages about the OBJ file
-    dvec3 scale{1.0};
+// One step of a transform block: scale by per-axis factors (negative ones mirror), rotate by
+// `degrees` counter-clockwise looking down the unit axis `vector`, or translate by `vector`.
+struct TransformStep {
+    enum class Kind { Scale, Rotate, Translate };
+    Kind kind = Kind::Translate;
+    dvec3 vector{0.0};
+    double degrees = 0.0;
+};
+
+// Where a shape's own coordinates go in the world: scale, then rotate about the axis, then
+// translate (the block's keys), then the steps of its transform block in the order written.
+// The validator lets a block use the keys or the steps, not both.
+struct Placed {
+    dvec3 scale{1.0};  // a negative factor mirrors
     dvec3 rotate_axis{0.0, 1.0, 0.0};  // unit length
     double rotate_degrees = 0.0;
     dvec3 translate{0.0};
-    int material = 0;
+    std::vector<TransformStep> steps;
+    int material = 0;  // index into SceneDescription::materials
+    Location at;       // the block's first word, for messages and statistics
+};
+
+// A triangle mesh from an OBJ file.
+struct Mesh : Placed {
+    std::string path;   // absolute
+    Location named_at;  // the `file` value in the scene, for messages about the OBJ file
     bool flat = false;  // shading: each triangle's own normal instead of interpolated vertex normals
+};
+
+// The finite flat shapes, flat-shaded and seen from both sides; their corners are in their own
+// coordinates, before placing. A triangle's front is where (b - a) x (c - a) points.
+struct FlatTriangle : Placed {
+    dvec3 a{0.0}, b{0.0}, c{0.0};
+};
+
+// A parallelogram: corner, corner + edge1, corner + edge1 + edge2, corner + edge2. Its front is
+// where edge1 x edge2 points.
+struct Quad : Placed {
+    dvec3 corner{0.0}, edge1{1.0, 0.0, 0.0}, edge2{0.0, 1.0, 0.0};
+};
+
+// An axis-aligned box (before placing) between two opposite corners, faces turned outwards.
+struct Box : Placed {
+    dvec3 min{0.0}, max{1.0};
 };
 
 struct SceneDescription {
@@ -104,6 +138,9 @@ struct SceneDescription {
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
     std::vector<Mesh> meshes;
+    std::vector<FlatTriangle> triangles;
+    std::vector<Quad> quads;
+    std::vector<Box> boxes;
     std::vector<Light> lights;
 };
 

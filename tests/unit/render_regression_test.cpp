@@ -14,7 +14,7 @@
 #include "io/image_file.h"
 #include "io/obj_mesh.h"
 #include "lang/load_scene.h"
-#include "render/placement.h"
+#include "scene/placement.h"
 #include "render/renderer.h"
 
 namespace tracer {

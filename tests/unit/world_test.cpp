@@ -9,7 +9,7 @@
 
 #include "io/obj_mesh.h"
 #include "render/geometry.h"
-#include "render/placement.h"
+#include "scene/placement.h"
 #include "render/triangle.h"
 #include "render/world.h"
 

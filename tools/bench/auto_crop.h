@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "render/camera.h"
-#include "render/placement.h"
+#include "scene/placement.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
