@@ -25,8 +25,10 @@
 #include "lang/load_scene.h"
 #include "lang/reference_doc.h"
 #include "lang/schema.h"
+#include "lang/validate.h"
 #include "render/render_stats.h"
 #include "render/renderer.h"
+#include "scene/mesh_facts.h"
 #include "scene/scene_json.h"
 
 namespace {
@@ -51,11 +53,14 @@ struct Options {
     bool check = false;
     bool dump_json = false;
     bool reference = false;
-    std::string accel;  // empty: the scene's
-    int leaf_size = 0;  // 0: the scene's
-    int width = 0;      // 0: the scene's (likewise height and samples)
-    int height = 0;
-    int samples = 0;
+    // Overrides of the scene's render block, as written (empty: the scene's), checked by the
+    // scene's own rules (setting_problem).
+    std::string accel;
+    std::string leaf_size;
+    std::string width;
+    std::string height;
+    std::string samples;
+    std::string max_depth;
     bool stats = false;
     std::string stats_json;
 };
@@ -69,16 +74,20 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
         [&](tracer::SceneDescription& scene) {
             tracer::RenderSettings& render = scene.render;
             if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
-            if (options.leaf_size > 0) render.leaf_size = options.leaf_size;
+            auto whole = [](const std::string& text, int scene_value) {
+                return text.empty() ? scene_value : int(std::stod(text));  // checked: a whole number
+            };
+            render.leaf_size = whole(options.leaf_size, render.leaf_size);
+            render.samples = whole(options.samples, render.samples);
+            render.max_depth = whole(options.max_depth, render.max_depth);
             // One of width and height alone keeps the scene's aspect ratio (as tools/crosscheck).
             const double aspect = double(render.width) / double(render.height);
-            if (options.width > 0) render.width = options.width;
-            if (options.height > 0) render.height = options.height;
-            if (options.width > 0 && options.height == 0)
-                render.height = std::max(1, int(std::lround(options.width / aspect)));
-            if (options.height > 0 && options.width == 0)
-                render.width = std::max(1, int(std::lround(options.height * aspect)));
-            if (options.samples > 0) render.samples = options.samples;
+            render.width = whole(options.width, render.width);
+            render.height = whole(options.height, render.height);
+            if (!options.width.empty() && options.height.empty())
+                render.height = std::max(1, int(std::lround(render.width / aspect)));
+            if (!options.height.empty() && options.width.empty())
+                render.width = std::max(1, int(std::lround(render.height * aspect)));
         },
         std::cerr, &unreadable);
     if (!loaded) exit_code = unreadable ? kIoError : kSceneError;
@@ -176,6 +185,17 @@ int render_to_file(const Options& options) {
     return kOk;
 }
 
+// "12 meshes, " ("" for none; the words of kinds a scene need not have).
+std::string count_of(size_t count, const char* kinds) {
+    return count == 0 ? "" : std::to_string(count) + " " + kinds + ", ";
+}
+
+std::string vector_text(const tracer::dvec3& v) {
+    char text[96];
+    std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g)", v.x, v.y, v.z);
+    return text;
+}
+
 int check_only(const Options& options) {
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
@@ -183,7 +203,20 @@ int check_only(const Options& options) {
     const tracer::SceneDescription& scene = loaded->scene;
     std::cout << (options.scene == "-" ? std::string(tracer::kStandardInputName) : options.scene) << ": ok ("
               << scene.spheres.size() << " spheres, " << scene.planes.size() << " planes, " << scene.meshes.size()
-              << " meshes, " << scene.lights.size() << " lights, " << scene.materials.size() << " materials)\n";
+              << " meshes, " << count_of(scene.triangles.size(), "triangles") << count_of(scene.quads.size(), "quads")
+              << count_of(scene.boxes.size(), "boxes") << scene.lights.size() << " lights, " << scene.materials.size()
+              << " materials)\n";
+    // Each mesh block's facts, where it puts its triangles (the first few; --dump-json has all).
+    constexpr size_t kMeshesListed = 20;
+    for (size_t block = 0; block < std::min(scene.meshes.size(), kMeshesListed); ++block) {
+        const tracer::Mesh& mesh = scene.meshes[block];
+        const auto facts = tracer::mesh_facts(loaded->meshes.files[loaded->meshes.file_of_block[block]], mesh);
+        std::cout << "  mesh " << tracer::shape_label(mesh.path, mesh.at) << ": " << facts.triangles
+                  << " triangles, " << facts.vertices << " vertices, placed within " << vector_text(facts.lower)
+                  << " to " << vector_text(facts.upper) << '\n';
+    }
+    if (scene.meshes.size() > kMeshesListed)
+        std::cout << "  and " << scene.meshes.size() - kMeshesListed << " more mesh blocks (--dump-json lists all)\n";
     return kOk;
 }
 
@@ -191,18 +224,14 @@ int dump_json(const Options& options) {
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
-    std::cout << json_text(tracer::scene_to_json(loaded->scene)) << '\n';
+    std::cout << json_text(tracer::scene_to_json(loaded->scene, &loaded->meshes)) << '\n';
     return kOk;
 }
 
-// CLI11 check that a count is N*N for a whole N, the render block's rule for `samples`.
-const CLI::Validator perfect_square(
-    [](const std::string& text) -> std::string {
-        const int count = std::atoi(text.c_str());
-        const int root = int(std::lround(std::sqrt(double(count))));
-        return root * root == count ? "" : "not a perfect square N*N (1, 4, 9, 16, 25, ...)";
-    },
-    "N*N");
+// A CLI11 check of an override by the render block's own table: the scene's rules and messages.
+CLI::Validator render_key(const char* key) {
+    return CLI::Validator([key](std::string& text) { return tracer::setting_problem("render", key, text); }, "", key);
+}
 
 int run(int argc, char** argv) {
     Options options;
@@ -213,18 +242,20 @@ int run(int argc, char** argv) {
                    "The image to write; the format follows the extension (.png, .exr, ...)");
     app.add_option("--threads", options.threads, "Render threads (default: every core)")->check(CLI::Range(1, 1024));
     app.add_flag("-q,--quiet", options.quiet, "No progress indicator and no summary line");
-    const auto& accel_names = tracer::find_block_spec("render")->find_key("accel")->choices;  // the table's
-    app.add_option("--accel", options.accel, "Override the scene's mesh accelerator")
-        ->check(CLI::IsMember(std::vector<std::string>(accel_names.begin(), accel_names.end())));
-    app.add_option("--leaf-size", options.leaf_size, "Override the scene's BVH leaf size")->check(CLI::Range(1, 255));
+    app.add_option("--accel", options.accel, "Override the scene's mesh accelerator (none, box, median, sah)")
+        ->check(render_key("accel"));
+    app.add_option("--leaf-size", options.leaf_size, "Override the scene's BVH leaf size")
+        ->check(render_key("leaf_size"));
     app.add_option("--width", options.width,
                    "Override the scene's image width (alone: the height follows the aspect ratio)")
-        ->check(CLI::Range(1, 16384));
+        ->check(render_key("width"));
     app.add_option("--height", options.height,
                    "Override the scene's image height (alone: the width follows the aspect ratio)")
-        ->check(CLI::Range(1, 16384));
+        ->check(render_key("height"));
     app.add_option("--samples", options.samples, "Override the scene's samples per pixel (N*N: 1, 4, 9, 16, ...)")
-        ->check(CLI::Range(1, 4096) & perfect_square);
+        ->check(render_key("samples"));
+    app.add_option("--max-depth", options.max_depth, "Override the scene's reflection and refraction depth")
+        ->check(render_key("max_depth"));
     app.add_flag("--stats", options.stats, "Print BVH and ray statistics on stderr");
     app.add_option("--stats-json", options.stats_json, "Write the statistics as JSON to this file");
     app.add_flag("--check", options.check, "Only check the scene; report every problem found");

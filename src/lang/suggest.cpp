@@ -64,6 +64,16 @@ static const std::vector<Synonym>& synonyms() {
         {"pointlight", {"light"}},
         {"light_source", {"light"}},
         {"intensity", {"color"}},
+        {"move", {"translate"}},
+        {"translation", {"translate"}},
+        {"offset", {"translate"}},
+        {"rotation", {"rotate"}},
+        {"scaling", {"scale"}},
+        {"matrix", {"transform"}},
+        {"transforms", {"transform"}},
+        {"cube", {"box"}},
+        {"rectangle", {"quad"}},
+        {"parallelogram", {"quad"}},
         {"colour", {"color"}},
     };
     return table;

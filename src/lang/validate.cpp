@@ -122,6 +122,12 @@ public:
     }
 
     std::optional<SceneDescription> run(const SceneAst& ast);
+    // Checks one value of `key` as a scene's block would (its type, range and other rules).
+    bool check_setting(const Value& value, const KeySpec& key, const BlockSpec& spec) {
+        Fields fields(spec);
+        fields.set(key, value, value.span);
+        return check_value(value, key, fields);
+    }
 
 private:
     // Generic checks driven by the tables.
@@ -643,10 +649,10 @@ bool Validator::check_reach(const Block& block, const Placed& placed, const Tria
     return false;
 }
 
-// The unit normal of the plane spanned by two edges, or zero if they are parallel (computed
-// on unit edges, so that neither tiny nor huge lengths underflow or overflow).
-dvec3 spanned_normal(const dvec3& edge1, const dvec3& edge2) {
-    return normalized(glm::cross(normalized(edge1), normalized(edge2)));
+// True if two edges are parallel, to within 1e-12 radians, and so span no area (computed on
+// unit edges, so that neither tiny nor huge lengths underflow or overflow).
+bool parallel(const dvec3& edge1, const dvec3& edge2) {
+    return glm::length(glm::cross(normalized(edge1), normalized(edge2))) < 1e-12;
 }
 
 void Validator::build_flat_shape(const Block& block, const Fields& fields) {
@@ -654,7 +660,7 @@ void Validator::build_flat_shape(const Block& block, const Fields& fields) {
     if (kind == "triangle") {
         FlatTriangle shape;
         shape.a = fields.triple("a"), shape.b = fields.triple("b"), shape.c = fields.triple("c");
-        if (spanned_normal(shape.b - shape.a, shape.c - shape.a) == dvec3(0.0))
+        if (parallel(shape.b - shape.a, shape.c - shape.a))
             return (void)diagnostics_.error(file_, block.kind_span,
                                             "the triangle's corners lie on one line: it has no area");
         if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
@@ -663,7 +669,7 @@ void Validator::build_flat_shape(const Block& block, const Fields& fields) {
         Quad shape;
         shape.corner = fields.triple("corner"), shape.edge1 = fields.triple("edge1");
         shape.edge2 = fields.triple("edge2");
-        if (spanned_normal(shape.edge1, shape.edge2) == dvec3(0.0))
+        if (parallel(shape.edge1, shape.edge2))
             return (void)diagnostics_.error(file_, fields.value_span("edge2"),
                                             "'edge2' is parallel to 'edge1': the quad has no area");
         if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
@@ -684,6 +690,21 @@ void Validator::build_flat_shape(const Block& block, const Fields& fields) {
 }
 
 }  // namespace
+
+std::string setting_problem(std::string_view block, std::string_view key, const std::string& text) {
+    const BlockSpec* spec = find_block_spec(block);
+    const KeySpec* key_spec = spec ? spec->find_key(key) : nullptr;
+    if (!key_spec) return "no key '" + std::string(key) + "' in " + std::string(block);  // a caller's bug
+    const SourceFile file("<command line>", text);
+    Diagnostics diagnostics;
+    Value value;
+    if (parse_single_value(file, diagnostics, value))
+        Validator(file, diagnostics, {true}).check_setting(value, *key_spec, *spec);
+    else if (diagnostics.all().empty())  // more than one value
+        return "'" + std::string(key) + "' expects " + std::string(describe(key_spec->type)) + ", found " +
+               in_quotes(text);
+    return diagnostics.all().empty() ? "" : diagnostics.all().front().message;
+}
 
 std::optional<SceneDescription> validate_scene(const SceneAst& ast, const SourceFile& file, Diagnostics& diagnostics,
                                                const ValidateOptions& options) {

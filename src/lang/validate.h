@@ -3,6 +3,8 @@
 #pragma once
 
 #include <optional>
+#include <string>
+#include <string_view>
 
 #include "lang/ast.h"
 #include "base/diagnostics.h"
@@ -22,5 +24,10 @@ struct ValidateOptions {
 std::optional<SceneDescription> validate_scene(const SceneAst& ast, const SourceFile& file,
                                                Diagnostics& diagnostics,
                                                const ValidateOptions& options = {});
+
+// Why `text`, as the value of `key` in the top-level block `block`, would be refused in a scene
+// (the same message, e.g. "'width' must be between 1 and 16384, found 0"), or empty: the one
+// check for settings given on the command line.
+std::string setting_problem(std::string_view block, std::string_view key, const std::string& text);
 
 }  // namespace tracer

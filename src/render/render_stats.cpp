@@ -1,6 +1,9 @@
 #include "render/render_stats.h"
 
+#include <algorithm>
 #include <cstdio>
+
+#include "scene/mesh_facts.h"
 
 namespace tracer {
 namespace {
@@ -52,16 +55,23 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
     top["memory_bytes"] = world.top_level_memory_bytes();
     out["objects"] = top;
 
-    // The meshes: each mesh file once, however many instances place it.
-    // Each mesh's blocks: the instances of a shared file, or the blocks merged into a placed mesh.
+    // The meshes: each mesh file once, however many instances place it; and the shapes each one
+    // holds (the instances of a shared file, or the blocks and flat shapes merged into a placed mesh).
+    std::vector<std::string> labels;
+    for (const Mesh& mesh : scene.meshes) labels.push_back(shape_label(mesh.path, mesh.at));
+    for (const FlatTriangle& shape : scene.triangles) labels.push_back(shape_label("triangle", shape.at));
+    for (const Quad& shape : scene.quads) labels.push_back(shape_label("quad", shape.at));
+    for (const Box& shape : scene.boxes) labels.push_back(shape_label("box", shape.at));
     std::vector<size_t> blocks_of(world.meshes().size(), 0);
     std::vector<bool> placed(world.meshes().size(), false);
     std::vector<std::string> file_of(world.meshes().size());
+    std::vector<nlohmann::ordered_json> shapes_of(world.meshes().size(), nlohmann::ordered_json::array());
     for (size_t block = 0; block < world.instances().size(); ++block) {
         const MeshInstance& instance = world.instances()[block];
         placed[instance.mesh] = instance.placed;
         if (blocks_of[instance.mesh]++ == 0 && block < scene.meshes.size())
             file_of[instance.mesh] = scene.meshes[block].path;
+        if (block < labels.size()) shapes_of[instance.mesh].push_back(labels[block]);
     }
     out["meshes"] = nlohmann::ordered_json::array();
     for (size_t i = 0; i < world.meshes().size(); ++i) {
@@ -70,6 +80,7 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
                                         {"triangles", mesh.triangle_count()},
                                         {"placed", bool(placed[i])},  // in world coordinates, merged
                                         {"blocks", blocks_of[i]},
+                                        {"shapes", shapes_of[i]},
                                         {"instances", placed[i] ? 0 : blocks_of[i]},
                                         {"build_seconds", mesh.build_seconds()},
                                         {"memory_bytes", mesh.memory_bytes()}};
@@ -98,13 +109,18 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
     std::snprintf(line, sizeof line, "; %.1f KiB\n", top["memory_bytes"].get<double>() / 1024);
     out += line;
     for (const auto& mesh : s["meshes"]) {
-        const std::string file = mesh["file"].get<std::string>();
-        const size_t blocks = mesh["blocks"].get<size_t>();
-        const std::string others = mesh["placed"].get<bool>() && blocks > 1
-                                       ? " and " + std::to_string(blocks - 1) + " more blocks, merged"
-                                       : "";
-        std::snprintf(line, sizeof line, "mesh %s%s: %zu triangles, %s built in %.3f ms",
-                      file.substr(file.find_last_of('/') + 1).c_str(), others.c_str(), mesh["triangles"].get<size_t>(),
+        // The first shape it holds, then the lines of a few more.
+        const auto& shapes = mesh["shapes"];
+        std::string name = shapes.empty() ? mesh["file"].get<std::string>() : shapes[0].get<std::string>();
+        if (shapes.size() > 1) {
+            name += " and " + std::to_string(shapes.size() - 1) + " more" + (mesh["placed"].get<bool>() ? ", merged" : "");
+            constexpr size_t kNamed = 4;
+            for (size_t i = 1; i < std::min(shapes.size(), kNamed); ++i)
+                name += (i == 1 ? " (" : ", ") + shapes[i].get<std::string>();
+            name += shapes.size() > kNamed ? ", ...)" : ")";
+        }
+        std::snprintf(line, sizeof line, "mesh %s: %zu triangles, %s built in %.3f ms", name.c_str(),
+                      mesh["triangles"].get<size_t>(),
                       s["accel"].get<std::string>().c_str(), mesh["build_seconds"].get<double>() * 1e3);
         out += line;
         if (mesh.contains("nodes")) {

@@ -1,5 +1,7 @@
 #include "scene/scene_json.h"
 
+#include "scene/mesh_facts.h"
+
 namespace tracer {
 namespace {
 
@@ -13,9 +15,34 @@ Json material_json(const SceneDescription& scene, int index) {
                 {"km", vec(m.km)}, {"n", m.n}, {"kt", vec(m.kt)}, {"ior", m.ior}};
 }
 
+// Where a shape is placed: its scale, rotate and translate keys, or its transform's steps.
+void add_placement(Json& out, const Placed& placed) {
+    if (placed.steps.empty()) {
+        out["scale"] = vec(placed.scale);
+        out["rotate"] = {{"axis", vec(placed.rotate_axis)}, {"angle", placed.rotate_degrees}};
+        out["translate"] = vec(placed.translate);
+        return;
+    }
+    out["transform"] = Json::array();
+    for (const TransformStep& step : placed.steps) {
+        if (step.kind == TransformStep::Kind::Scale) out["transform"].push_back({{"scale", vec(step.vector)}});
+        if (step.kind == TransformStep::Kind::Rotate)
+            out["transform"].push_back({{"rotate", {{"axis", vec(step.vector)}, {"angle", step.degrees}}}});
+        if (step.kind == TransformStep::Kind::Translate)
+            out["transform"].push_back({{"translate", vec(step.vector)}});
+    }
+}
+
+// A placed shape's entry: its own keys, its placement, its material.
+Json placed_json(const SceneDescription& scene, const Placed& placed, Json own) {
+    add_placement(own, placed);
+    own["material"] = material_json(scene, placed.material);
+    return own;
+}
+
 }  // namespace
 
-Json scene_to_json(const SceneDescription& scene) {
+Json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes) {
     Json out;
     out["format"] = "tracer-scene";
     out["version"] = 1;
@@ -37,14 +64,28 @@ Json scene_to_json(const SceneDescription& scene) {
         out["planes"].push_back(
             {{"point", vec(p.point)}, {"normal", vec(p.normal)}, {"material", material_json(scene, p.material)}});
     out["meshes"] = Json::array();
-    for (const Mesh& m : scene.meshes) {
-        out["meshes"].push_back({{"file", m.path},
-                                 {"scale", vec(m.scale)},
-                                 {"rotate", {{"axis", vec(m.rotate_axis)}, {"angle", m.rotate_degrees}}},
-                                 {"translate", vec(m.translate)},
-                                 {"material", material_json(scene, m.material)}});
-        if (m.flat) out["meshes"].back()["shading"] = "flat";  // only then: the default is implied
+    for (size_t block = 0; block < scene.meshes.size(); ++block) {
+        const Mesh& m = scene.meshes[block];
+        Json entry = placed_json(scene, m, {{"file", m.path}});
+        if (m.flat) entry["shading"] = "flat";  // only then: the default is implied
+        if (meshes && block < meshes->file_of_block.size()) {
+            const MeshFacts facts = mesh_facts(meshes->files[meshes->file_of_block[block]], m);
+            entry["triangles"] = facts.triangles;
+            entry["vertices"] = facts.vertices;
+            entry["bounds"] = {vec(facts.lower), vec(facts.upper)};
+        }
+        out["meshes"].push_back(entry);
     }
+    out["triangles"] = Json::array();
+    for (const FlatTriangle& t : scene.triangles)
+        out["triangles"].push_back(placed_json(scene, t, {{"a", vec(t.a)}, {"b", vec(t.b)}, {"c", vec(t.c)}}));
+    out["quads"] = Json::array();
+    for (const Quad& q : scene.quads)
+        out["quads"].push_back(
+            placed_json(scene, q, {{"corner", vec(q.corner)}, {"edge1", vec(q.edge1)}, {"edge2", vec(q.edge2)}}));
+    out["boxes"] = Json::array();
+    for (const Box& b : scene.boxes)
+        out["boxes"].push_back(placed_json(scene, b, {{"min", vec(b.min)}, {"max", vec(b.max)}}));
     out["lights"] = Json::array();
     for (const Light& l : scene.lights)
         out["lights"].push_back({{"position", vec(l.position)}, {"color", vec(l.color)}});

@@ -5,10 +5,13 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene.h"
+#include "scene/triangle_mesh.h"
 
 namespace tracer {
 
-// Every default filled in; each shape carries its full material; paths are absolute.
-nlohmann::ordered_json scene_to_json(const SceneDescription& scene);
+// Every default filled in; each shape carries its full material; paths are absolute. With the
+// scene's meshes as loaded, each mesh block also states its facts (triangles, vertices, placed
+// bounds).
+nlohmann::ordered_json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes = nullptr);
 
 }  // namespace tracer

@@ -73,6 +73,55 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("30x20, 4 spp", result.stderr)
 
+    def test_overrides_are_checked_by_the_scene_rules(self):
+        # Each override against the same key written in the scene's render block: refused alike,
+        # with the same message (CLI11 puts the option's name before it), or accepted alike.
+        cases = {
+            "width": ["0", "16385", "10.5", "nan", "abc", "300", "4096"],
+            "height": ["-1", "1e9", "2", "(1, 2, 3)"],
+            "samples": ["8", "0", "4097", "16", "9"],
+            "max_depth": ["-1", "100001", "0", "7"],
+            "leaf_size": ["0", "256", "8"],
+            "accel": ["fast", "bvh", "median", "1"],
+        }
+        for key, values in cases.items():
+            for value in values:
+                with self.subTest(key=key, value=value):
+                    scene = self.tmp / "override.scn"
+                    scene.write_text(SMALL_SCENE.replace("render { width 64 height 48 }", f"render {{ {key} {value} }}"))
+                    in_scene = run("--check", scene)
+                    option = "--" + key.replace("_", "-")
+                    on_command_line = run("--check", self.small, option, value)
+                    if in_scene.returncode == 0:
+                        self.assertEqual(on_command_line.returncode, 0, on_command_line.stderr)
+                        continue
+                    self.assertEqual(in_scene.returncode, 1)
+                    self.assertEqual(on_command_line.returncode, 2)
+                    message = in_scene.stderr.splitlines()[0].split(": error: ", 1)[1]
+                    self.assertIn(f"{option}: {message}", on_command_line.stderr)
+
+    def test_check_and_dump_json_state_mesh_facts(self):
+        scene = self.tmp / "facts.scn"
+        obj = ROOT / "scenes" / "meshes" / "cube.obj"
+        scene.write_text(
+            "camera { eye (0, 0, 7) lookat (0, 0, 0) }\nlight { position (2, 3, 4) }\n"
+            f'mesh {{ file "{obj}" transform {{ scale (2, 1, 1) translate (0, 1, 0) }} material {{ kd 1 }} }}\n'
+            "quad { corner (0, 0, 0) edge1 (0, 0, 1) edge2 (1, 0, 0) material { kd 1 } }\n"
+        )
+        result = run("--check", scene)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("1 meshes, 1 quads, 1 lights", result.stdout)
+        self.assertIn("mesh cube.obj (line 3): 12 triangles, 8 vertices, placed within (-2, 0, -1) to (2, 2, 1)",
+                      result.stdout)
+        dumped = json.loads(run("--dump-json", scene).stdout)
+        mesh = dumped["meshes"][0]
+        self.assertEqual((mesh["triangles"], mesh["vertices"]), (12, 8))
+        self.assertEqual(mesh["bounds"], [[-2.0, 0.0, -1.0], [2.0, 2.0, 1.0]])
+        self.assertEqual(mesh["transform"], [{"scale": [2.0, 1.0, 1.0]}, {"translate": [0.0, 1.0, 0.0]}])
+        self.assertNotIn("scale", mesh)
+        self.assertEqual(dumped["quads"][0]["edge1"], [0.0, 0.0, 1.0])
+        self.assertEqual(dumped["quads"][0]["scale"], [1.0, 1.0, 1.0])
+
     def test_scene_from_standard_input(self):
         # "-" reads the scene from standard input; mesh paths are relative to the working folder.
         (self.tmp / "meshes").mkdir()
@@ -186,7 +235,7 @@ class CommandLine(unittest.TestCase):
             out = self.tmp / f"{accel}.png"
             result = run(mesh_scene, "-o", out, "--accel", accel, "--stats", "--stats-json", stats_path)
             self.assertEqual(result.returncode, 0, result.stderr)
-            self.assertRegex(result.stderr, r"mesh tetrahedron.obj: 4 triangles, " + accel)
+            self.assertRegex(result.stderr, r"mesh tetrahedron.obj \(line 3\): 4 triangles, " + accel)
             self.assertRegex(result.stderr, r"objects: 1 spheres, 0 planes, 1 mesh instances")
             self.assertRegex(result.stderr, r"per ray [0-9.]+ object box tests, [0-9.]+ object tests, "
                                             r"[0-9.]+ mesh box tests, [0-9.]+ triangle tests")

@@ -1,0 +1,229 @@
+// The finite flat shapes (triangle, quad, box) and placing by transform steps: hits, misses,
+// shared edges, both faces, closed boxes with outward faces, mirroring, and agreement between
+// the acceleration structure and testing every triangle.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "render/world.h"
+#include "scene/flat_shapes.h"
+#include "scene/placement.h"
+
+namespace tracer {
+namespace {
+
+TransformStep step(TransformStep::Kind kind, dvec3 vector, double degrees = 0) { return {kind, vector, degrees}; }
+
+SceneDescription one_material() {
+    SceneDescription scene;
+    scene.materials.resize(1);
+    return scene;
+}
+
+std::optional<SurfaceHit> shoot(const World& world, dvec3 origin, dvec3 direction) {
+    SearchCounts counts;
+    return world.intersect({Vec3(origin), Vec3(glm::normalize(direction))}, {0, kInfinity}, counts);
+}
+
+TEST(Placement, StepsApplyInTheOrderWritten) {
+    Placed move_then_turn, turn_then_move;
+    move_then_turn.steps = {step(TransformStep::Kind::Translate, {1, 0, 0}),
+                            step(TransformStep::Kind::Rotate, {0, 1, 0}, 90)};
+    turn_then_move.steps = {move_then_turn.steps[1], move_then_turn.steps[0]};
+    // Turning (1, 0, 0) by 90 degrees counter-clockwise about y (looking down it) gives (0, 0, -1).
+    EXPECT_LT(glm::length(Placement(move_then_turn).point({0, 0, 0}) - dvec3(0, 0, -1)), 1e-15);
+    EXPECT_LT(glm::length(Placement(turn_then_move).point({0, 0, 0}) - dvec3(1, 0, 0)), 1e-15);
+    // The keys come first: scale 2, then a step moving by 1.
+    Placed keys_then_steps;
+    keys_then_steps.scale = dvec3(2);
+    keys_then_steps.steps = {step(TransformStep::Kind::Translate, {1, 0, 0})};
+    EXPECT_EQ(Placement(keys_then_steps).point({1, 1, 1}), dvec3(3, 2, 2));
+    Placed mirror;
+    mirror.steps = {step(TransformStep::Kind::Scale, {1, -1, 1})};
+    EXPECT_TRUE(Placement(mirror).mirrors());
+    EXPECT_FALSE(Placement(keys_then_steps).mirrors());
+}
+
+// A 2 x 2 square in the plane y = 0: rays straight down and straight up.
+TEST(FlatShapes, QuadIsHitInsideFromBothSidesAndMissedOutside) {
+    SceneDescription scene = one_material();
+    Quad quad;
+    quad.corner = {-1, 0, -1}, quad.edge1 = {0, 0, 2}, quad.edge2 = {2, 0, 0};  // front: +y
+    scene.quads = {quad};
+    const World world(scene);
+    std::mt19937 random(1);
+    std::uniform_real_distribution<double> across(-1.5, 1.5);
+    int inside = 0, outside = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const double x = across(random), z = i % 4 == 0 ? x : across(random);  // every 4th on the diagonal
+        const bool in = std::abs(x) < 1 && std::abs(z) < 1;
+        if (!in && std::abs(x) < 1 + 1e-9 && std::abs(z) < 1 + 1e-9) continue;  // on an outer edge: either
+        for (double side : {1.0, -1.0}) {
+            const auto hit = shoot(world, {x, 3 * side, z}, {0, -side, 0});
+            ASSERT_EQ(hit.has_value(), in) << x << " " << z << " side " << side;
+            if (!hit) continue;
+            EXPECT_NEAR(hit->t, 3, 1e-12);
+            EXPECT_EQ(hit->geometric_normal, Vec3(0, 1, 0));  // the front's, whichever side is hit
+            EXPECT_EQ(hit->normal, Vec3(0, 1, 0));
+        }
+        (in ? inside : outside) += 1;
+    }
+    EXPECT_GT(inside, 5000);
+    EXPECT_GT(outside, 5000);
+}
+
+TEST(FlatShapes, TriangleIsHitInsideItsEdgesOnly) {
+    SceneDescription scene = one_material();
+    FlatTriangle triangle;
+    triangle.a = {0, 0, 0}, triangle.b = {4, 0, 0}, triangle.c = {0, 3, 0};  // front: +z
+    scene.triangles = {triangle};
+    const World world(scene);
+    std::mt19937 random(2);
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (int i = 0; i < 20000; ++i) {
+        const double u = 1.2 * unit(random) - 0.1, v = 1.2 * unit(random) - 0.1;
+        const dvec3 point = triangle.a + u * (triangle.b - triangle.a) + v * (triangle.c - triangle.a);
+        const double margin = std::min({u, v, 1 - u - v});
+        if (std::abs(margin) < 1e-9) continue;  // on an edge: either
+        for (double side : {1.0, -1.0}) {
+            const auto hit = shoot(world, point + dvec3(0, 0, 2 * side), {0, 0, -side});
+            ASSERT_EQ(hit.has_value(), margin > 0) << u << " " << v;
+            if (hit) EXPECT_EQ(hit->geometric_normal, Vec3(0, 0, 1));
+        }
+    }
+}
+
+// A box, turned and moved (and mirrored): closed, its faces' normals outwards. Rays from inside
+// towards random points, its corners and its edges' midpoints all hit it, leaving by a face
+// whose normal points along the ray; rays from outside at its centre enter against it.
+void expect_closed_and_outward(const Box& box) {
+    SceneDescription scene = one_material();
+    scene.boxes = {box};
+    const World world(scene);
+    const Placement placement(box);
+    const TriangleMesh corners = triangle_mesh(box);
+    const dvec3 centre = placement.point((box.min + box.max) * 0.5);
+    std::vector<dvec3> targets;
+    for (const dvec3& a : corners.positions) {
+        targets.push_back(placement.point(a));
+        for (const dvec3& b : corners.positions) targets.push_back(placement.point((a + b) * 0.5));
+    }
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> unit(0, 1);
+    for (int i = 0; i < 20000; ++i) {
+        const dvec3 local(box.min + (box.max - box.min) * dvec3(unit(random), unit(random), unit(random)));
+        targets.push_back(placement.point(local) + (placement.point(local) - centre));  // beyond a face
+    }
+    for (const dvec3& target : targets) {
+        const dvec3 direction = target - centre;
+        if (glm::length(direction) == 0) continue;
+        const auto leaving = shoot(world, centre, direction);
+        ASSERT_TRUE(leaving) << "leaked towards " << target.x << " " << target.y << " " << target.z;
+        EXPECT_GT(glm::dot(leaving->geometric_normal, Vec3(direction)), 0);
+        const dvec3 outside = centre + 10.0 * glm::normalize(direction) * glm::length(box.max - box.min);
+        const auto entering = shoot(world, outside, centre - outside);
+        ASSERT_TRUE(entering);
+        EXPECT_LT(glm::dot(entering->geometric_normal, Vec3(centre - outside)), 0);
+    }
+}
+
+TEST(FlatShapes, BoxIsClosedWithFacesPointingOutwards) {
+    Box box;
+    box.min = {-1, -2, -0.5}, box.max = {1, 0.5, 3};
+    box.rotate_axis = glm::normalize(dvec3(1, 2, 3)), box.rotate_degrees = 33, box.translate = {0.3, -7, 2};
+    expect_closed_and_outward(box);
+    Box mirrored = box;
+    mirrored.steps = {step(TransformStep::Kind::Scale, {-1, 0.5, 2})};
+    expect_closed_and_outward(mirrored);
+}
+
+// A mirrored mesh keeps its normals outwards and its winding with them, placed in the world
+// (its triangles re-wound) or instanced (rays carried into the file's coordinates).
+TEST(FlatShapes, MirroredMeshesKeepTheirNormalsOutwards) {
+    Box unit_box;
+    unit_box.min = dvec3(-1), unit_box.max = dvec3(1);
+    const TriangleMesh cube = triangle_mesh(unit_box);  // wound outwards, no file normals
+    for (bool flat : {false, true}) {
+        SceneDescription scene = one_material();
+        Mesh block;
+        block.flat = flat;
+        block.steps = {step(TransformStep::Kind::Scale, {-1, 1, 1}),
+                       step(TransformStep::Kind::Rotate, {0, 1, 0}, 20)};
+        scene.meshes = {block};
+        const World placed(scene, SceneMeshes{{cube}, {0}});
+        scene.meshes.push_back(block);
+        scene.meshes.back().steps.push_back(step(TransformStep::Kind::Translate, {100, 0, 0}));
+        const World instanced(scene, SceneMeshes{{cube}, {0, 0}});
+        ASSERT_TRUE(placed.instances()[0].placed);
+        ASSERT_FALSE(instanced.instances()[0].placed);
+        for (const World* world : {&placed, &instanced}) {
+            for (const dvec3 from : {dvec3(0, 5, 0.2), dvec3(5, 0.3, 0.1), dvec3(-0.2, 0.1, -5)}) {
+                const auto hit = shoot(*world, from, -from);
+                ASSERT_TRUE(hit);
+                EXPECT_LT(glm::dot(hit->geometric_normal, Vec3(-from)), 0) << "flat " << flat;
+                EXPECT_LT(glm::dot(hit->normal, Vec3(-from)), 0) << "flat " << flat;
+            }
+        }
+    }
+}
+
+// Many flat shapes of every kind, randomly placed (some mirrored): the BVH over them finds the
+// same shape at the same t as testing every triangle.
+TEST(FlatShapes, AccelerationStructureAgreesWithTestingEveryTriangle) {
+    std::mt19937 random(4);
+    std::uniform_real_distribution<double> unit(0, 1);
+    auto random_vector = [&](double size) {
+        return dvec3(size * (unit(random) - 0.5), size * (unit(random) - 0.5), size * (unit(random) - 0.5));
+    };
+    SceneDescription scene;
+    scene.materials.resize(3);
+    for (int i = 0; i < 300; ++i) {
+        Placed placed;
+        placed.material = i % 3;
+        placed.steps = {step(TransformStep::Kind::Scale, {i % 5 == 0 ? -1.0 : 1.0, 1, 1}),
+                        step(TransformStep::Kind::Rotate, glm::normalize(random_vector(1) + dvec3(0, 1, 0)),
+                             360 * unit(random)),
+                        step(TransformStep::Kind::Translate, random_vector(10))};
+        if (i % 3 == 0) {
+            FlatTriangle t;
+            static_cast<Placed&>(t) = placed;
+            t.a = random_vector(1), t.b = random_vector(1), t.c = random_vector(1);
+            scene.triangles.push_back(t);
+        } else if (i % 3 == 1) {
+            Quad q;
+            static_cast<Placed&>(q) = placed;
+            q.corner = random_vector(1), q.edge1 = random_vector(1), q.edge2 = random_vector(1);
+            scene.quads.push_back(q);
+        } else {
+            Box b;
+            static_cast<Placed&>(b) = placed;
+            b.min = -dvec3(0.1) - dvec3(unit(random), unit(random), unit(random)) * 0.5;
+            b.max = dvec3(0.1) + dvec3(unit(random), unit(random), unit(random)) * 0.5;
+            scene.boxes.push_back(b);
+        }
+    }
+    const World world(scene);
+    scene.render.accel = Accelerator::None;
+    const World brute(scene);
+    ASSERT_EQ(world.instances().size(), 300u);
+    int hits = 0;
+    for (int i = 0; i < 50000; ++i) {
+        const dvec3 origin = random_vector(30), target = random_vector(10);
+        SearchCounts counts;
+        const Ray ray{Vec3(origin), Vec3(glm::normalize(target - origin))};
+        const auto expected = brute.nearest_hit(ray, {0, kInfinity}, counts);
+        const auto found = world.nearest_hit(ray, {0, kInfinity}, counts);
+        ASSERT_EQ(found.has_value(), expected.has_value());
+        if (!found) continue;
+        ++hits;
+        ASSERT_EQ(found->object, expected->object);
+        ASSERT_EQ(found->t, expected->t);
+        EXPECT_EQ(world.surface(ray, *found).material, world.objects()[found->object].material);
+    }
+    EXPECT_GT(hits, 20000);
+}
+
+}  // namespace
+}  // namespace tracer
