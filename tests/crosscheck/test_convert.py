@@ -24,8 +24,7 @@ def load(dump, scene_path, tmp_path, *extra):
 @pytest.mark.parametrize("scene_path", SCENES, ids=lambda p: p.name)
 def test_every_scene_loads(dump, tmp_path, scene_path):
     scene, loaded = load(dump, scene_path, tmp_path)
-    shapes = len(scene["spheres"]) + len(scene["planes"]) + len(scene["meshes"])
-    assert len(loaded.shapes()) == shapes
+    assert len(loaded.shapes()) == len(convert.shapes(scene))
     assert len(loaded.emitters()) == len(scene["lights"])
     film = loaded.sensors()[0].film()
     assert list(film.size()) == [scene["render"]["width"], scene["render"]["height"]]
@@ -173,3 +172,22 @@ def test_refraction_is_carried_over_only_where_a_material_transmits(dump, tmp_pa
     xml = convert.to_mitsuba_xml(glass)
     assert '<boolean name="refracts" value="true"' in xml
     assert '<float name="ior" value="1.5"' in xml and '<rgb name="kt" value="0.6, 0.9, 0.7"' in xml
+
+
+def test_flat_shapes_become_mitsubas_own_rectangles_and_cubes(dump):
+    scene = dump(ROOT / "scenes" / "room.scn")
+    xml = convert.to_mitsuba_xml(scene)
+    assert xml.count('type="rectangle"') == len(scene["quads"]) == 102
+    assert xml.count('type="cube"') == len(scene["boxes"]) == 6
+    assert xml.count('name="flip_normals"') == 1  # the pennant, mirrored by scale (-1, 1, 1)
+    # The rectangle's corners (-1, -1), (1, -1), (1, 1), (-1, 1) land on the quad's corners in order.
+    quad = {"corner": [1.0, 2.0, 3.0], "edge1": [0.0, 0.0, 2.0], "edge2": [4.0, 0.0, 0.0]}
+    matrix = np.array(convert.quad_to_rectangle(quad))
+    corner, edge1, edge2 = (np.array(quad[k]) for k in ("corner", "edge1", "edge2"))
+    for (x, y), expected in zip(((-1, -1), (1, -1), (1, 1), (-1, 1)),
+                                (corner, corner + edge1, corner + edge1 + edge2, corner + edge2), strict=True):
+        assert np.allclose((matrix @ [x, y, 0, 1])[:3], expected)
+    assert np.allclose(matrix[:3, 2], [0, 1, 0])  # the rectangle's normal becomes edge1 x edge2
+    box = {"min": [-1.0, 0.0, 2.0], "max": [1.0, 4.0, 3.0]}
+    cube = np.array(convert.box_to_cube(box))
+    assert np.allclose((cube @ [-1, -1, -1, 1])[:3], box["min"]) and np.allclose((cube @ [1, 1, 1, 1])[:3], box["max"])

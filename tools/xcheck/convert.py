@@ -134,11 +134,77 @@ def _material_key(material):
     return (material["name"], repr(sorted(material.items())))
 
 
+SHAPE_KINDS = ("spheres", "planes", "meshes", "triangles", "quads", "boxes")
+
+
+def shapes(scene):
+    """Every shape of the scene description, of every kind (older dumps lack the flat shapes)."""
+    return [shape for kind in SHAPE_KINDS for shape in scene.get(kind, [])]
+
+
 def refracts(scene):
     """True if some shape's material transmits (kt > 0): the integrator then branches."""
-    return any(
-        any(shape["material"].get("kt", [0, 0, 0])) for kind in ("spheres", "planes", "meshes") for shape in scene[kind]
+    return any(any(shape["material"].get("kt", [0, 0, 0])) for shape in shapes(scene))
+
+
+def _placement(out, shape, before=None):
+    """The shape's to_world: an optional matrix of its own (rows), then tracer's placement:
+    scale, rotate about the axis, translate, or its transform steps in order (Mitsuba applies a
+    transform's children in the order written)."""
+    out.open("transform", name="to_world")
+    if before is not None:
+        out.leaf("matrix", value=" ".join(repr(float(x)) for row in before for x in row))
+    steps = shape.get("transform") or [
+        {"scale": shape["scale"]},
+        {"rotate": shape["rotate"]},
+        {"translate": shape["translate"]},
+    ]
+    for step in steps:
+        if "scale" in step:
+            out.leaf("scale", value=_numbers(step["scale"]))
+        elif "rotate" in step and step["rotate"]["angle"] != 0:
+            out.leaf("rotate", value=_numbers(step["rotate"]["axis"]), angle=repr(float(step["rotate"]["angle"])))
+        elif "translate" in step:
+            out.leaf("translate", value=_numbers(step["translate"]))
+    out.close("transform")
+
+
+def mirrors(shape):
+    """True if the shape's placement turns space inside out (an odd number of negative scale
+    factors). tracer keeps such a shape's normals pointing outwards; Mitsuba takes its face
+    normals from the placed winding, which a mirror reverses, so the converter flips them back."""
+    steps = shape.get("transform") or [{"scale": shape["scale"]}]
+    negative = sum(x < 0 for step in steps if "scale" in step for x in step["scale"])
+    return negative % 2 == 1
+
+
+def _affine(columns, origin):
+    """A 4 x 4 matrix (rows) mapping the unit axes to `columns` and the origin to `origin`."""
+    return [[*(column[row] for column in columns), origin[row]] for row in range(3)] + [[0.0, 0.0, 0.0, 1.0]]
+
+
+def quad_to_rectangle(quad):
+    """The matrix taking Mitsuba's rectangle ([-1, 1]^2 at z = 0, normal +z) onto the quad:
+    half edges as x and y, the unit normal edge1 x edge2 as z, the quad's centre as origin."""
+    edge1, edge2 = quad["edge1"], quad["edge2"]
+    centre = [c + 0.5 * (a + b) for c, a, b in zip(quad["corner"], edge1, edge2, strict=True)]
+    half1, half2 = [0.5 * x for x in edge1], [0.5 * x for x in edge2]
+    return _affine([half1, half2, _normalize(_cross(edge1, edge2))], centre)
+
+
+def box_to_cube(box):
+    """The matrix taking Mitsuba's cube ([-1, 1]^3) onto the box before placing."""
+    low, high = box["min"], box["max"]
+    half = [0.5 * (b - a) for a, b in zip(low, high, strict=True)]
+    return _affine(
+        [[half[0], 0, 0], [0, half[1], 0], [0, 0, half[2]]], [0.5 * (a + b) for a, b in zip(low, high, strict=True)]
     )
+
+
+def triangle_obj(triangle):
+    """OBJ text of a flat triangle."""
+    corners = "".join(f"v {p[0]!r} {p[1]!r} {p[2]!r}\n" for p in (triangle["a"], triangle["b"], triangle["c"]))
+    return corners + "f 1 2 3\n"
 
 
 def to_mitsuba_xml(scene):
@@ -197,19 +263,18 @@ def to_mitsuba_xml(scene):
 
     # Step 3: materials, each once.
     ids = {}
-    for kind in ("spheres", "planes", "meshes"):
-        for shape in scene[kind]:
-            material = shape["material"]
-            key = _material_key(material)
-            if key in ids:
-                continue
-            ids[key] = f"material{len(ids)}-{material['name']}"
-            out.open("bsdf", type=PHONG_PLUGIN, id=ids[key])
-            for name in ("ka", "kd", "ks", "km", "kt"):
-                out.leaf("rgb", name=name, value=_numbers(material.get(name, [0, 0, 0])))
-            out.leaf("float", name="n", value=repr(float(material["n"])))
-            out.leaf("float", name="ior", value=repr(float(material.get("ior", 1.0))))
-            out.close("bsdf")
+    for shape in shapes(scene):
+        material = shape["material"]
+        key = _material_key(material)
+        if key in ids:
+            continue
+        ids[key] = f"material{len(ids)}-{material['name']}"
+        out.open("bsdf", type=PHONG_PLUGIN, id=ids[key])
+        for name in ("ka", "kd", "ks", "km", "kt"):
+            out.leaf("rgb", name=name, value=_numbers(material.get(name, [0, 0, 0])))
+        out.leaf("float", name="n", value=repr(float(material["n"])))
+        out.leaf("float", name="ior", value=repr(float(material.get("ior", 1.0))))
+        out.close("bsdf")
 
     # Step 4: shapes.
     for index, sphere in enumerate(scene["spheres"]):
@@ -228,18 +293,29 @@ def to_mitsuba_xml(scene):
         out.leaf("ref", id=ids[_material_key(plane["material"])])
         out.close("shape")
     for index, mesh in enumerate(scene["meshes"]):
-        # tracer's order: scale, then rotate about the axis, then translate.
         out.open("shape", type="obj", id=f"mesh{index}")
         out.leaf("string", name="filename", value=mesh["file"])
-        out.open("transform", name="to_world")
-        out.leaf("scale", value=_numbers(mesh["scale"]))
-        if mesh["rotate"]["angle"] != 0:
-            out.leaf("rotate", value=_numbers(mesh["rotate"]["axis"]), angle=repr(float(mesh["rotate"]["angle"])))
-        out.leaf("translate", value=_numbers(mesh["translate"]))
-        out.close("transform")
+        _placement(out, mesh)
         if mesh.get("shading") == "flat":  # tracer's `shading flat`: each triangle's own normal
             out.leaf("boolean", name="face_normals", value="true")
+        if mirrors(mesh):
+            out.leaf("boolean", name="flip_normals", value="true")
         out.leaf("ref", id=ids[_material_key(mesh["material"])])
+        out.close("shape")
+    # The flat shapes: Mitsuba's own rectangle and cube (not tracer's triangles), and a one-face
+    # OBJ for each triangle.
+    flat = [("triangle", "obj", t, None) for t in scene.get("triangles", [])]
+    flat += [("quad", "rectangle", q, quad_to_rectangle(q)) for q in scene.get("quads", [])]
+    flat += [("box", "cube", b, box_to_cube(b)) for b in scene.get("boxes", [])]
+    for index, (kind, plugin, shape, matrix) in enumerate(flat):
+        out.open("shape", type=plugin, id=f"{kind}{index}")
+        if kind == "triangle":
+            out.leaf("string", name="filename", value=f"triangle{index}.obj")
+            out.leaf("boolean", name="face_normals", value="true")
+        _placement(out, shape, matrix)
+        if mirrors(shape):
+            out.leaf("boolean", name="flip_normals", value="true")
+        out.leaf("ref", id=ids[_material_key(shape["material"])])
         out.close("shape")
 
     # Step 5: point lights; the integrator undoes Mitsuba's 1/r^2 fall-off.
@@ -258,6 +334,8 @@ def write_mitsuba_scene(scene, folder):
     folder = pathlib.Path(folder)
     for index, plane in enumerate(scene["planes"]):
         (folder / f"plane{index}.obj").write_text(plane_mesh_obj(scene, plane))
+    for index, triangle in enumerate(scene.get("triangles", [])):
+        (folder / f"triangle{index}.obj").write_text(triangle_obj(triangle))
     xml_path = folder / "scene.xml"
     xml_path.write_text(to_mitsuba_xml(scene))
     return xml_path
