@@ -152,6 +152,11 @@ TEST(Cubes, MatchesTheCommittedGoldenImage) {
     expect_matches_golden(render_scene("cubes"), "cubes");
 }
 
+// A room of quads and boxes only (finite flat shapes, transform steps, a mirrored triangle).
+TEST(Room, MatchesTheCommittedGoldenImage) {
+    expect_matches_golden(render_scene("room"), "room");
+}
+
 // Refraction: two glass balls in task2's room (a regression guard; the rules themselves are
 // checked by hand in refraction_test.cpp).
 TEST(Glass, MatchesTheCommittedGoldenImage) {
