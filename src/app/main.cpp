@@ -211,9 +211,9 @@ int check_only(const Options& options) {
     for (size_t block = 0; block < std::min(scene.meshes.size(), kMeshesListed); ++block) {
         const tracer::Mesh& mesh = scene.meshes[block];
         const auto facts = tracer::mesh_facts(loaded->meshes.files[loaded->meshes.file_of_block[block]], mesh);
-        std::cout << "  mesh " << tracer::shape_label(mesh.path, mesh.at) << ": " << facts.triangles
-                  << " triangles, " << facts.vertices << " vertices, placed within " << vector_text(facts.lower)
-                  << " to " << vector_text(facts.upper) << '\n';
+        std::cout << "  mesh " << tracer::shape_label(mesh.path, mesh.at) << ": " << facts.triangles << " triangles, "
+                  << facts.vertices << " vertices, placed within " << vector_text(facts.lower) << " to "
+                  << vector_text(facts.upper) << '\n';
     }
     if (scene.meshes.size() > kMeshesListed)
         std::cout << "  and " << scene.meshes.size() - kMeshesListed << " more mesh blocks (--dump-json lists all)\n";

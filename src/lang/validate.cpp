@@ -274,9 +274,9 @@ bool Validator::unknown_key(const Entry& entry, const BlockSpec& spec, std::vect
     std::vector<std::string_view> names;
     for (const KeySpec& k : spec.keys) names.push_back(k.name);
     suggested.push_back(closest_match(entry.key, names));
-    diagnostics_.error(file_, entry.key_span,
-                       "unknown key " + in_quotes(entry.key) + " in " + std::string(spec.kind) +
-                           did_you_mean(entry.key, names));
+    diagnostics_.error(
+        file_, entry.key_span,
+        "unknown key " + in_quotes(entry.key) + " in " + std::string(spec.kind) + did_you_mean(entry.key, names));
     return false;
 }
 

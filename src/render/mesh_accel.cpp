@@ -84,8 +84,7 @@ PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
             normals = area_weighted_normals(std::span(out.positions).subspan(first_position), corners);
         }
         out.normals.insert(out.normals.end(), normals.begin(), normals.end());
-        const auto reversed_ids =
-            mirrored ? reversed_winding(file.normal_ids) : std::vector<std::array<uint32_t, 3>>{};
+        const auto reversed_ids = mirrored ? reversed_winding(file.normal_ids) : std::vector<std::array<uint32_t, 3>>{};
         const auto& ids = file.normal_ids.empty() ? corners : mirrored ? reversed_ids : file.normal_ids;
         for (uint32_t t = 0; t < corners.size(); ++t) {
             const auto& v = corners[t];

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "render/bvh.h"
-#include "scene/placement.h"
 #include "render/triangle.h"
+#include "scene/placement.h"
 #include "scene/triangle_mesh.h"
 
 namespace tracer {

@@ -12,8 +12,8 @@
 
 #include "render/bvh.h"
 #include "render/mesh_accel.h"
-#include "scene/placement.h"
 #include "render/types.h"
+#include "scene/placement.h"
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
 

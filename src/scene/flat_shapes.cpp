@@ -30,8 +30,8 @@ TriangleMesh triangle_mesh(const Box& shape) {
     TriangleMesh mesh;
     // Corner i takes x from bit 0 of i, y from bit 1, z from bit 2 (0: min, 1: max).
     for (uint32_t i = 0; i < 8; ++i)
-        mesh.positions.push_back({(i & 1 ? shape.max : shape.min).x, (i & 2 ? shape.max : shape.min).y,
-                                  (i & 4 ? shape.max : shape.min).z});
+        mesh.positions.push_back(
+            {(i & 1 ? shape.max : shape.min).x, (i & 2 ? shape.max : shape.min).y, (i & 4 ? shape.max : shape.min).z});
     add_quad(mesh, 0, 4, 6, 2);  // x = min, normal -x
     add_quad(mesh, 1, 3, 7, 5);  // x = max, normal +x
     add_quad(mesh, 0, 1, 5, 4);  // y = min, normal -y

@@ -97,7 +97,7 @@ struct TransformStep {
 // translate (the block's keys), then the steps of its transform block in the order written.
 // The validator lets a block use the keys or the steps, not both.
 struct Placed {
-    dvec3 scale{1.0};  // a negative factor mirrors
+    dvec3 scale{1.0};                  // a negative factor mirrors
     dvec3 rotate_axis{0.0, 1.0, 0.0};  // unit length
     double rotate_degrees = 0.0;
     dvec3 translate{0.0};

@@ -14,7 +14,9 @@
 namespace tracer {
 namespace {
 
-TransformStep step(TransformStep::Kind kind, dvec3 vector, double degrees = 0) { return {kind, vector, degrees}; }
+TransformStep step(TransformStep::Kind kind, dvec3 vector, double degrees = 0) {
+    return {kind, vector, degrees};
+}
 
 SceneDescription one_material() {
     SceneDescription scene;
@@ -149,8 +151,7 @@ TEST(FlatShapes, MirroredMeshesKeepTheirNormalsOutwards) {
         SceneDescription scene = one_material();
         Mesh block;
         block.flat = flat;
-        block.steps = {step(TransformStep::Kind::Scale, {-1, 1, 1}),
-                       step(TransformStep::Kind::Rotate, {0, 1, 0}, 20)};
+        block.steps = {step(TransformStep::Kind::Scale, {-1, 1, 1}), step(TransformStep::Kind::Rotate, {0, 1, 0}, 20)};
         scene.meshes = {block};
         const World placed(scene, SceneMeshes{{cube}, {0}});
         scene.meshes.push_back(block);
@@ -182,10 +183,10 @@ TEST(FlatShapes, AccelerationStructureAgreesWithTestingEveryTriangle) {
     for (int i = 0; i < 300; ++i) {
         Placed placed;
         placed.material = i % 3;
-        placed.steps = {step(TransformStep::Kind::Scale, {i % 5 == 0 ? -1.0 : 1.0, 1, 1}),
-                        step(TransformStep::Kind::Rotate, glm::normalize(random_vector(1) + dvec3(0, 1, 0)),
-                             360 * unit(random)),
-                        step(TransformStep::Kind::Translate, random_vector(10))};
+        placed.steps = {
+            step(TransformStep::Kind::Scale, {i % 5 == 0 ? -1.0 : 1.0, 1, 1}),
+            step(TransformStep::Kind::Rotate, glm::normalize(random_vector(1) + dvec3(0, 1, 0)), 360 * unit(random)),
+            step(TransformStep::Kind::Translate, random_vector(10))};
         if (i % 3 == 0) {
             FlatTriangle t;
             static_cast<Placed&>(t) = placed;

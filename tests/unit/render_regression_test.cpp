@@ -14,8 +14,8 @@
 #include "io/image_file.h"
 #include "io/obj_mesh.h"
 #include "lang/load_scene.h"
-#include "scene/placement.h"
 #include "render/renderer.h"
+#include "scene/placement.h"
 
 namespace tracer {
 namespace {

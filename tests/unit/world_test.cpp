@@ -9,9 +9,9 @@
 
 #include "io/obj_mesh.h"
 #include "render/geometry.h"
-#include "scene/placement.h"
 #include "render/triangle.h"
 #include "render/world.h"
+#include "scene/placement.h"
 
 namespace tracer {
 namespace {
