@@ -85,6 +85,32 @@ void Diagnostics::note(Diagnostic* parent, const SourceFile& file, Span span, st
     note(parent, locate(file, span), std::move(message));
 }
 
+Location Diagnostics::locate(const Sources& sources, Span span) {
+    return locate(sources.file(span), span);
+}
+
+// The notes saying where a span's text came from: each loop iteration and include around it.
+static void add_context(Diagnostic* diagnostic, const Sources& sources, Span span) {
+    if (!diagnostic) return;
+    for (const auto& [at, text] : sources.context(span)) Diagnostics::note(diagnostic, sources, at, text);
+}
+
+Diagnostic* Diagnostics::error(const Sources& sources, Span span, std::string message) {
+    Diagnostic* d = error(sources.file(span), span, std::move(message));
+    add_context(d, sources, span);
+    return d;
+}
+
+Diagnostic* Diagnostics::warning(const Sources& sources, Span span, std::string message) {
+    Diagnostic* d = warning(sources.file(span), span, std::move(message));
+    add_context(d, sources, span);
+    return d;
+}
+
+void Diagnostics::note(Diagnostic* parent, const Sources& sources, Span span, std::string message) {
+    if (parent) note(parent, locate(sources, span), std::move(message));
+}
+
 void Diagnostics::note(Diagnostic* parent, Location location, std::string message) {
     if (parent) parent->notes.push_back({Severity::Note, std::move(location), std::move(message), {}});
 }

@@ -53,6 +53,12 @@ public:
     Diagnostic* warning(const SourceFile& file, Span span, std::string message);
     // Attaches a note pointing at `span` to `parent` (no-op when parent is null).
     static void note(Diagnostic* parent, const SourceFile& file, Span span, std::string message);
+    // The same for spans of a whole scene (its included files, its loops): located in their
+    // own file, errors and warnings followed by notes saying where the text came from.
+    static Location locate(const Sources& sources, Span span);
+    Diagnostic* error(const Sources& sources, Span span, std::string message);
+    Diagnostic* warning(const Sources& sources, Span span, std::string message);
+    static void note(Diagnostic* parent, const Sources& sources, Span span, std::string message);
     static void note(Diagnostic* parent, Location location, std::string message);
 
     // How many diagnostics are kept so far, and the last error kept after such a count (or

@@ -1,6 +1,7 @@
 #include "base/source.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace tracer {
 
@@ -32,6 +33,48 @@ std::string_view SourceFile::line_text(int line) const {
     std::string_view text = std::string_view(text_).substr(begin, end - begin);
     while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
     return text;
+}
+
+Sources::Sources(std::unique_ptr<SourceFile> scene) {
+    files_.push_back(std::move(scene));
+    origins_.push_back({});
+}
+
+uint32_t Sources::add_include(std::unique_ptr<SourceFile> file, Span included_at) {
+    files_.push_back(std::move(file));
+    origins_.push_back({uint32_t(files_.size() - 1), false, included_at, {}, 0});
+    return uint32_t(origins_.size() - 1);
+}
+
+uint32_t Sources::add_iteration(Span loop, std::string_view name, double value) {
+    origins_.push_back({origins_[loop.origin].file, true, loop, name, value});
+    return uint32_t(origins_.size() - 1);
+}
+
+std::vector<std::pair<Span, std::string>> Sources::context(Span span) const {
+    std::vector<std::pair<Span, std::string>> out;
+    for (uint32_t origin = span.origin; origin != 0;) {
+        const Origin& o = origins_[origin];
+        char text[96];
+        if (o.iteration)
+            std::snprintf(text, sizeof text, "in iteration %.*s = %.17g of this loop", int(std::min<size_t>(o.name.size(), 40)),
+                          o.name.data(), o.value);
+        else
+            std::snprintf(text, sizeof text, "included from here");
+        out.emplace_back(o.at, std::string(text));
+        origin = o.at.origin;
+    }
+    return out;
+}
+
+std::vector<Span> Sources::include_chain(uint32_t origin) const {
+    std::vector<Span> out;
+    while (origin != 0) {
+        const Origin& o = origins_[origin];
+        if (!o.iteration) out.push_back(o.at);
+        origin = o.at.origin;
+    }
+    return out;
 }
 
 }  // namespace tracer

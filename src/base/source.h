@@ -3,16 +3,19 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace tracer {
 
-// A half-open byte range [begin, end) in one source file.
+// A half-open byte range [begin, end) in one source file; `origin` says which file and in what
+// context the text was evaluated (an index into Sources; 0: the scene file itself).
 struct Span {
     uint32_t begin = 0;
     uint32_t end = 0;
+    uint32_t origin = 0;
 };
 
 // A 1-based line and column (columns count bytes).
@@ -40,6 +43,41 @@ private:
     std::string path_;
     std::string text_;
     std::vector<uint32_t> line_starts_;
+};
+
+// Every source text of one scene (the scene file and the files it includes) and the contexts
+// its values were made in (an include, a loop iteration): what a Span's `origin` indexes.
+class Sources {
+public:
+    // The scene file; its spans have origin 0.
+    explicit Sources(std::unique_ptr<SourceFile> scene);
+
+    // A file included by the statement at `included_at`; returns the origin of its spans.
+    uint32_t add_include(std::unique_ptr<SourceFile> file, Span included_at);
+    // An iteration of the loop at `loop` with `name` = `value`: spans of text evaluated in it
+    // get the returned origin (they lie in the loop's file).
+    uint32_t add_iteration(Span loop, std::string_view name, double value);
+
+    const SourceFile& scene() const { return *files_.front(); }
+    // The file a span lies in.
+    const SourceFile& file(Span span) const { return *files_[origins_[span.origin].file]; }
+    // Where a span's text came from, innermost first: each an explaining span and its text
+    // ("in iteration i = 5 of this loop", "included from here").
+    std::vector<std::pair<Span, std::string>> context(Span span) const;
+    // The spans of the include statements above `origin`'s file, innermost first.
+    std::vector<Span> include_chain(uint32_t origin) const;
+    size_t origins() const { return origins_.size(); }
+
+private:
+    struct Origin {
+        uint32_t file = 0;
+        bool iteration = false;  // else the file itself, included at `at` (unless it is the scene)
+        Span at;                 // the loop or the include statement
+        std::string_view name;   // the loop's variable
+        double value = 0;
+    };
+    std::vector<std::unique_ptr<SourceFile>> files_;
+    std::vector<Origin> origins_;
 };
 
 }  // namespace tracer

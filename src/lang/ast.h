@@ -1,10 +1,12 @@
-// The scene as written: blocks of `key value` entries, before any meaning is given to them.
-// The parser builds it without knowing which keys exist; validation checks it against the
-// block tables (schema.h) and produces the scene description.
+// The scene as evaluated: blocks of `key value` entries holding plain values (numbers, vectors,
+// strings, words, nested blocks), before any meaning is given to them. The interpreter builds
+// it from the program as written (program.h); validation checks it against the block tables
+// (schema.h) and produces the scene description.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/source.h"
@@ -47,6 +49,7 @@ struct Block {
 
 struct SceneAst {
     std::vector<Block> blocks;
+    std::vector<std::pair<std::string, Value>> parameters;  // each `param` and the value it took
 };
 
 }  // namespace tracer

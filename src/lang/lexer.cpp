@@ -22,6 +22,13 @@ std::string describe(TokenKind kind) {
         case TokenKind::LParen: return "'('";
         case TokenKind::RParen: return "')'";
         case TokenKind::Comma: return "','";
+        case TokenKind::Plus: return "'+'";
+        case TokenKind::Minus: return "'-'";
+        case TokenKind::Star: return "'*'";
+        case TokenKind::Slash: return "'/'";
+        case TokenKind::Equals: return "'='";
+        case TokenKind::Dot: return "'.'";
+        case TokenKind::DotDot: return "'..'";
         case TokenKind::End: return "end of file";
         case TokenKind::Error: return "an invalid token";
     }
@@ -33,8 +40,8 @@ std::string describe(const Token& token) {
     return in_quotes(token.text);
 }
 
-Lexer::Lexer(const SourceFile& file, Diagnostics& diagnostics)
-    : file_(file), diagnostics_(diagnostics), text_(file.text()) {}
+Lexer::Lexer(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin)
+    : file_(file), diagnostics_(diagnostics), text_(file.text()), origin_(origin) {}
 
 void Lexer::report(Span span, std::string message) {
     if (!quiet_) diagnostics_.error(file_, span, std::move(message));
@@ -43,7 +50,7 @@ void Lexer::report(Span span, std::string message) {
 Token Lexer::make(TokenKind kind, uint32_t begin) {
     Token token;
     token.kind = kind;
-    token.span = {begin, pos_};
+    token.span = {begin, pos_, origin_};
     token.text = text_.substr(begin, pos_ - begin);
     last_end_ = pos_;
     return token;
@@ -53,6 +60,7 @@ void Lexer::skip_space_and_comments() {
     while (pos_ < text_.size()) {
         char c = text_[pos_];
         if (c == '#') {
+            warn_about_directive(pos_);
             while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
         } else if (c == ' ' || c == '\t' || c == '\r' || c == '\n') {
             ++pos_;
@@ -68,7 +76,7 @@ Token Lexer::next() {
     if (pos_ >= text_.size()) {
         const uint32_t after_last_token = last_end_;
         Token end = make(TokenKind::End, begin);
-        end.span = {after_last_token, after_last_token};
+        end.span = {after_last_token, after_last_token, origin_};
         return end;
     }
 
@@ -79,6 +87,11 @@ Token Lexer::next() {
         case '(': ++pos_; return make(TokenKind::LParen, begin);
         case ')': ++pos_; return make(TokenKind::RParen, begin);
         case ',': ++pos_; return make(TokenKind::Comma, begin);
+        case '+': ++pos_; return make(TokenKind::Plus, begin);
+        case '-': ++pos_; return make(TokenKind::Minus, begin);
+        case '*': ++pos_; return make(TokenKind::Star, begin);
+        case '/': ++pos_; return make(TokenKind::Slash, begin);
+        case '=': ++pos_; return make(TokenKind::Equals, begin);
         case '"': return lex_string(begin);
         default: break;
     }
@@ -86,10 +99,17 @@ Token Lexer::next() {
         while (pos_ < text_.size() && is_ident_char(text_[pos_])) ++pos_;
         return make(TokenKind::Identifier, begin);
     }
-    bool starts_number = is_digit(c) || c == '.' ||
-                         ((c == '-' || c == '+') && pos_ + 1 < text_.size() &&
-                          (is_digit(text_[pos_ + 1]) || text_[pos_ + 1] == '.'));
-    if (starts_number) return lex_number(begin);
+    if (c == '.' && !(pos_ + 1 < text_.size() && is_digit(text_[pos_ + 1]))) {
+        pos_ += pos_ + 1 < text_.size() && text_[pos_ + 1] == '.' ? 2 : 1;
+        return make(pos_ - begin == 2 ? TokenKind::DotDot : TokenKind::Dot, begin);
+    }
+    if (is_digit(c) || c == '.') return lex_number(begin);
+    if (c == '<') {  // POV-Ray's <x, y, z>
+        ++pos_;
+        Token bad = make(TokenKind::Error, begin);
+        report(bad.span, "unexpected character '<'; a vector is written (x, y, z) in parentheses");
+        return bad;
+    }
 
     // Skip a whole UTF-8 sequence so the message shows the character, not one of its bytes.
     ++pos_;
@@ -105,16 +125,17 @@ static bool overflows(std::string_view text) {
     return std::isinf(std::strtod(std::string(text).c_str(), nullptr));
 }
 
-// number = [ "+" | "-" ] ( digits [ "." { digit } ] | "." digits ) [ ( "e" | "E" ) [ "+" | "-" ] digits ]
+// number = ( digits [ "." { digit } ] | "." digits ) [ ( "e" | "E" ) [ "+" | "-" ] digits ]
+// ("0..8" is 0, "..", 8: a dot followed by a dot ends the number).
 Token Lexer::lex_number(uint32_t begin) {
     auto digits = [&] {
         uint32_t start = pos_;
         while (pos_ < text_.size() && is_digit(text_[pos_])) ++pos_;
         return pos_ > start;
     };
-    if (text_[pos_] == '-' || text_[pos_] == '+') ++pos_;
+    auto range_follows = [&] { return pos_ + 1 < text_.size() && text_[pos_ + 1] == '.'; };
     bool ok = digits();
-    if (pos_ < text_.size() && text_[pos_] == '.') {
+    if (pos_ < text_.size() && text_[pos_] == '.' && !range_follows()) {
         ++pos_;
         ok = digits() || ok;
     }
@@ -125,7 +146,7 @@ Token Lexer::lex_number(uint32_t begin) {
     }
     // A number glued to letters, digits or dots ("1.2.3", "3x") is one malformed token.
     bool glued = false;
-    while (pos_ < text_.size() && (is_ident_char(text_[pos_]) || text_[pos_] == '.')) {
+    while (pos_ < text_.size() && (is_ident_char(text_[pos_]) || (text_[pos_] == '.' && !range_follows()))) {
         ++pos_;
         glued = true;
     }
@@ -136,7 +157,6 @@ Token Lexer::lex_number(uint32_t begin) {
         return token;
     }
     std::string_view digits_text = token.text;
-    if (digits_text.front() == '+') digits_text.remove_prefix(1);
     auto [end, status] = std::from_chars(digits_text.data(), digits_text.data() + digits_text.size(),
                                          token.number);
     if (status == std::errc::result_out_of_range && !overflows(digits_text)) {
@@ -147,6 +167,27 @@ Token Lexer::lex_number(uint32_t begin) {
         report(token.span, "number " + in_quotes(token.text) + " is out of range (it would be infinite)");
     }
     return token;
+}
+
+// Other scene languages' directives, written out of habit, are comments here: say so once each.
+void Lexer::warn_about_directive(uint32_t begin) {
+    static const std::pair<std::string_view, std::string_view> kHints[] = {
+        {"#include", "write include \"file.scn\""},
+        {"#declare", "write let NAME = value"},
+        {"#local", "write let NAME = value"},
+        {"#for", "write for NAME in A..B { ... }"},
+        {"#while", "write for NAME in A..B { ... }"},
+        {"#if", "tracer has no conditionals"},
+    };
+    const std::string_view rest = text_.substr(begin);
+    for (const auto& [directive, instead] : kHints) {
+        if (rest.substr(0, directive.size()) != directive) continue;
+        if (rest.size() > directive.size() && is_ident_char(rest[directive.size()])) continue;
+        if (!quiet_)
+            diagnostics_.warning(file_, {begin, begin + uint32_t(directive.size()), origin_},
+                                 "'#' starts a comment, so this line is ignored; " + std::string(instead));
+        return;
+    }
 }
 
 // string = '"' { character other than '"', '\' or a line break | '\"' | '\\' } '"'

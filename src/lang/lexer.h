@@ -1,5 +1,5 @@
-// The scene language's tokens: identifiers, numbers, strings, { } ( ) and commas.
-// Comments run from '#' to the end of the line. Bad characters and malformed numbers are
+// The scene language's tokens: identifiers, numbers, strings, { } ( ) , and the operators
+// + - * / = . .. Comments run from '#' to the end of the line. Bad characters and malformed numbers are
 // reported once and come back as Error tokens, so the parser never sees them twice.
 #pragma once
 
@@ -11,13 +11,31 @@
 
 namespace tracer {
 
-enum class TokenKind { Identifier, Number, String, LBrace, RBrace, LParen, RParen, Comma, End, Error };
+enum class TokenKind {
+    Identifier,
+    Number,
+    String,
+    LBrace,
+    RBrace,
+    LParen,
+    RParen,
+    Comma,
+    Plus,
+    Minus,
+    Star,
+    Slash,
+    Equals,
+    Dot,
+    DotDot,
+    End,
+    Error
+};
 
 struct Token {
     TokenKind kind = TokenKind::End;
     Span span;
     std::string_view text;  // the token as written
-    double number = 0;      // Number: its value (always finite)
+    double number = 0;      // Number: its value (always finite, never negative: a sign is an operator)
     std::string string;     // String: the contents with escapes resolved
 };
 
@@ -28,7 +46,8 @@ std::string describe(const Token& token);
 
 class Lexer {
 public:
-    Lexer(const SourceFile& file, Diagnostics& diagnostics);
+    // Spans of the tokens carry `origin` (Sources: which file, and in what context).
+    Lexer(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin = 0);
 
     // Returns the next token, reporting and skipping over anything malformed.
     Token next();
@@ -49,6 +68,9 @@ private:
     uint32_t pos_ = 0;
     uint32_t last_end_ = 0;  // end of the last token, where "end of file" is shown
     bool quiet_ = false;
+    uint32_t origin_ = 0;
+    // Comments that look like another language's directives, already warned about.
+    void warn_about_directive(uint32_t begin);
 };
 
 }  // namespace tracer

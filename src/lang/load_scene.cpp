@@ -1,29 +1,32 @@
 #include "lang/load_scene.h"
 
 #include "base/input_file.h"
+#include "lang/interpreter.h"
 #include "lang/parser.h"
 #include "lang/validate.h"
 
 namespace tracer {
 
-LoadResult load_scene_text(const std::string& path, std::string text, bool fragment) {
+LoadResult load_scene_text(const std::string& path, std::string text, bool fragment,
+                           const InterpretOptions& interpret_options) {
     LoadResult result;
-    SourceFile file(path, std::move(text));
-    SceneAst ast = parse_scene(file, result.diagnostics);
+    Sources sources(std::make_unique<SourceFile>(path, std::move(text)));
+    const Program program = parse_program(sources.scene(), result.diagnostics);
+    const SceneAst ast = interpret(program, sources, result.diagnostics, interpret_options);
     ValidateOptions options;
     options.fragment = fragment;
-    result.scene = validate_scene(ast, file, result.diagnostics, options);
+    result.scene = validate_scene(ast, sources, result.diagnostics, options);
     return result;
 }
 
-LoadResult load_scene(const std::string& path) {
+LoadResult load_scene(const std::string& path, const InterpretOptions& options) {
     // "-": standard input, named <stdin> in messages; its mesh paths are relative to the
     // working folder (the folder of a file named <stdin> there).
     const bool standard_input = path == "-";
     const std::string name = standard_input ? std::string(kStandardInputName) : path;
     InputFile input =
         standard_input ? read_standard_input(kMaxSceneFileBytes) : read_input_file(path, kMaxSceneFileBytes);
-    if (input.problem.empty()) return load_scene_text(name, std::move(input.text));
+    if (input.problem.empty()) return load_scene_text(name, std::move(input.text), false, options);
     LoadResult result;
     result.unreadable = true;
     result.diagnostics.report(Severity::Error, Diagnostics::whole_file(name),

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "base/diagnostics.h"
+#include "lang/interpreter.h"
 #include "scene/scene.h"
 
 namespace tracer {
@@ -20,10 +21,11 @@ struct LoadResult {
 // "-" reads standard input, named kStandardInputName in messages (mesh paths relative to
 // the working folder).
 inline constexpr std::string_view kStandardInputName = "<stdin>";
-LoadResult load_scene(const std::string& path);
+LoadResult load_scene(const std::string& path, const InterpretOptions& options = {});
 
 // Parses and validates scene text held in memory (`path` names it in messages and anchors
 // relative paths).
-LoadResult load_scene_text(const std::string& path, std::string text, bool fragment = false);
+LoadResult load_scene_text(const std::string& path, std::string text, bool fragment = false,
+                           const InterpretOptions& options = {});
 
 }  // namespace tracer

@@ -18,13 +18,18 @@ struct OpenBrace {
     std::string owner;  // what the brace opened, for "to close the 'sphere' block"
 };
 
+// The words that start a statement other than a block.
+bool is_statement_keyword(std::string_view word) {
+    return word == "let" || word == "param" || word == "for" || word == "include";
+}
+
 class Parser {
 public:
-    Parser(const SourceFile& file, Diagnostics& diagnostics)
-        : file_(file), diagnostics_(diagnostics), lexer_(file, diagnostics) {}
+    Parser(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin)
+        : file_(file), diagnostics_(diagnostics), lexer_(file, diagnostics, origin) {}
 
-    SceneAst parse_scene();
-    bool parse_lone_value(Value& out);
+    Program parse_program();
+    bool parse_lone_value(Expr& out);
 
 private:
     // Token access with two tokens of look-ahead.
@@ -32,23 +37,38 @@ private:
     Token take();
     bool at(TokenKind kind, size_t ahead = 0) { return peek(ahead).kind == kind; }
 
-    void parse_block(SceneAst& scene);
-    void parse_body(Body& body, const std::string& owner);
-    void parse_entry(Body& body);
-    void parse_value(Value& value, const std::string& key);
-    void parse_vector(Value& value);
+    void parse_statements(std::vector<Statement>& out, bool in_loop);
+    void parse_statement(std::vector<Statement>& out);
+    void parse_block(std::vector<Statement>& out);
+    void parse_binding(std::vector<Statement>& out, Statement::Kind kind);
+    void parse_loop(std::vector<Statement>& out);
+    void parse_include(std::vector<Statement>& out);
+    void parse_body(BodyCode& body, const std::string& owner);
+    void parse_entry(BodyCode& body);
+    void parse_value(Expr& value, const std::string& key);
+    Expr parse_expression();
+    Expr parse_term();
+    Expr parse_unary();
+    Expr parse_postfix();
+    Expr parse_primary();
+    Token expect(TokenKind kind, const std::string& what);
 
     bool starts_new_block();
+    bool starts_statement();
+    void skip_to_next_statement();
     [[noreturn]] void fail(const Token& token, std::string message);
     void skip_to_block_end();
-    void skip_to_next_block();
 
     const SourceFile& file_;
     Diagnostics& diagnostics_;
     Lexer lexer_;
     std::deque<Token> lookahead_;
-    std::vector<OpenBrace> open_;  // braces opened inside the current top-level block
+    std::vector<OpenBrace> open_;  // braces opened inside the current block
+    int depth_ = 0;                 // expressions and loops nested: a bound against stack overflow
 };
+
+// Nesting deeper than this (parentheses, unary minus, loops) is refused: the parser recurses.
+constexpr int kMaxDepth = 200;
 
 const Token& Parser::peek(size_t ahead) {
     while (lookahead_.size() <= ahead) {
@@ -70,31 +90,118 @@ void Parser::fail(const Token& token, std::string message) {
     throw SyntaxError{};
 }
 
-// scene = { block } ;
-SceneAst Parser::parse_scene() {
-    SceneAst scene;
+// scene = { statement } ;
+Program Parser::parse_program() {
+    Program program;
+    parse_statements(program.statements, false);
+    return program;
+}
+
+// The statements of the file, or of a loop's body up to its '}'.
+void Parser::parse_statements(std::vector<Statement>& out, bool in_loop) {
     while (!at(TokenKind::End) && !diagnostics_.saturated()) {
+        if (in_loop && at(TokenKind::RBrace)) return;
         if (!at(TokenKind::Identifier)) {
             Token stray = take();
             if (stray.kind != TokenKind::Error)
                 diagnostics_.error(file_, stray.span,
-                               stray.kind == TokenKind::RBrace
-                                   ? "unexpected '}': no block is open here"
-                                   : "expected a block such as 'sphere { ... }', found " + describe(stray));
-            skip_to_next_block();
+                                   stray.kind == TokenKind::RBrace
+                                       ? "unexpected '}': no block is open here"
+                                       : "expected a block such as 'sphere { ... }', found " + describe(stray));
+            skip_to_next_statement();
             continue;
         }
-        parse_block(scene);
+        parse_statement(out);
     }
-    return scene;
+}
+
+// statement = block | let | param | for | include ;
+void Parser::parse_statement(std::vector<Statement>& out) {
+    const std::string_view word = peek().text;
+    if (word == "let" && at(TokenKind::Identifier, 1)) return parse_binding(out, Statement::Kind::Let);
+    if (word == "param" && at(TokenKind::Identifier, 1)) return parse_binding(out, Statement::Kind::Param);
+    if (word == "for" && at(TokenKind::Identifier, 1)) return parse_loop(out);
+    if (word == "include" && at(TokenKind::String, 1)) return parse_include(out);
+    parse_block(out);
+}
+
+// let = "let" identifier "=" expression ;   param = "param" identifier "=" expression ;
+void Parser::parse_binding(std::vector<Statement>& out, Statement::Kind kind) {
+    Statement statement;
+    statement.kind = kind;
+    statement.keyword = take().span;
+    Token name = take();
+    statement.name = std::string(name.text);
+    statement.name_span = name.span;
+    open_.clear();
+    try {
+        expect(TokenKind::Equals, "'=' after '" + statement.name + "'");
+        statement.value = parse_expression();
+    } catch (const SyntaxError&) {
+        skip_to_next_statement();
+        return;
+    } catch (const UnclosedBlock&) {
+        return;
+    }
+    out.push_back(std::move(statement));
+}
+
+// for = "for" identifier "in" expression ".." expression "{" { statement } "}" ;
+void Parser::parse_loop(std::vector<Statement>& out) {
+    Statement loop;
+    loop.kind = Statement::Kind::For;
+    loop.keyword = take().span;
+    Token name = take();
+    loop.name = std::string(name.text);
+    loop.name_span = name.span;
+    open_.clear();
+    Span open_brace;
+    try {
+        if (!(at(TokenKind::Identifier) && peek().text == "in"))
+            fail(peek(), "expected 'in' after 'for " + loop.name + "', found " + describe(peek()));
+        take();
+        loop.value = parse_expression();
+        expect(TokenKind::DotDot, "'..' between the first and the end of the range");
+        loop.end = parse_expression();
+        open_brace = expect(TokenKind::LBrace, "'{' to open the loop's body").span;
+    } catch (const SyntaxError&) {
+        skip_to_next_statement();
+        return;
+    } catch (const UnclosedBlock&) {
+        return;
+    }
+    if (++depth_ > kMaxDepth) {
+        diagnostics_.error(file_, loop.keyword, "loops are nested too deeply (more than 200 levels)");
+        throw SyntaxError{};
+    }
+    parse_statements(loop.statements, true);
+    --depth_;
+    if (at(TokenKind::End)) {
+        Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
+        Diagnostics::note(d, file_, open_brace, "to close the 'for' loop opened here");
+    } else {
+        take();  // '}'
+    }
+    out.push_back(std::move(loop));
+}
+
+// include = "include" string ;
+void Parser::parse_include(std::vector<Statement>& out) {
+    Statement include;
+    include.kind = Statement::Kind::Include;
+    include.keyword = take().span;
+    Token path = take();
+    include.word = path.string;
+    include.name_span = path.span;
+    out.push_back(std::move(include));
 }
 
 // block = identifier [ identifier ] body ;
-void Parser::parse_block(SceneAst& scene) {
-    Block block;
+void Parser::parse_block(std::vector<Statement>& out) {
+    Statement block;
     Token kind = take();
-    block.kind = std::string(kind.text);
-    block.kind_span = kind.span;
+    block.word = std::string(kind.text);
+    block.keyword = kind.span;
     open_.clear();
     try {
         if (at(TokenKind::Identifier)) {
@@ -102,21 +209,25 @@ void Parser::parse_block(SceneAst& scene) {
             block.name = std::string(name.text);
             block.name_span = name.span;
         }
-        if (!at(TokenKind::LBrace))
-            fail(peek(), "expected '{' after '" + std::string(kind.text) +
-                             (block.name.empty() ? "" : " " + block.name) + "', found " + describe(peek()));
-        parse_body(block.body, block.kind);
+        if (!at(TokenKind::LBrace)) {
+            std::string message = "expected '{' after '" + std::string(kind.text) +
+                                  (block.name.empty() ? "" : " " + block.name) + "', found " + describe(peek());
+            if (at(TokenKind::Equals))  // POV-Ray's `#declare R = 0.5;` without the '#'
+                message += "; a name is given a value by 'let NAME = value'";
+            fail(peek(), message);
+        }
+        parse_body(block.body, block.word);
     } catch (const SyntaxError&) {
         block.broken = true;
         skip_to_block_end();
     } catch (const UnclosedBlock&) {
         block.broken = open_.size() > 1;  // entries so far are complete unless a nested block was cut
     }
-    scene.blocks.push_back(std::move(block));
+    out.push_back(std::move(block));
 }
 
 // body = "{" { entry } "}" ;
-void Parser::parse_body(Body& body, const std::string& owner) {
+void Parser::parse_body(BodyCode& body, const std::string& owner) {
     // Nesting goes three deep at most (`mesh { transform { rotate { } } }`); a deep pile of
     // braces is a mistake, and must not exhaust the stack of this recursive parser.
     constexpr size_t kMaxNesting = 16;
@@ -139,83 +250,174 @@ void Parser::parse_body(Body& body, const std::string& owner) {
 }
 
 // A top-level block written where a key was expected almost always means a missing '}':
-// `sphere {`, `sphere name {` or `material name {` (a plain `material {` is an inline material).
+// `sphere {`, `sphere name {` or `material name {` (a plain `material {` is an inline material),
+// and so does a statement (`let x =`, `for i in`, `include "..."`).
 bool Parser::starts_new_block() {
     if (!at(TokenKind::Identifier)) return false;
     std::string_view word = peek().text;
+    if (starts_statement()) return true;
     if (!find_block_spec(word)) return false;
     if (word != "material" && at(TokenKind::LBrace, 1)) return true;
     return at(TokenKind::Identifier, 1) && at(TokenKind::LBrace, 2);
 }
 
+// `let x =`, `param x =`, `for x in`, `include "..."`.
+bool Parser::starts_statement() {
+    if (!at(TokenKind::Identifier)) return false;
+    std::string_view word = peek().text;
+    if ((word == "let" || word == "param") && at(TokenKind::Identifier, 1) && at(TokenKind::Equals, 2)) return true;
+    if (word == "for" && at(TokenKind::Identifier, 1) && at(TokenKind::Identifier, 2) && peek(2).text == "in")
+        return true;
+    return word == "include" && at(TokenKind::String, 1);
+}
+
+Token Parser::expect(TokenKind kind, const std::string& what) {
+    if (!at(kind)) fail(peek(), "expected " + what + ", found " + describe(peek()));
+    return take();
+}
+
 // entry = identifier value ;
-void Parser::parse_entry(Body& body) {
-    if (!at(TokenKind::Identifier))
-        fail(peek(), "expected a key or '}', found " + describe(peek()));
-    Entry entry;
+void Parser::parse_entry(BodyCode& body) {
+    if (!at(TokenKind::Identifier)) fail(peek(), "expected a key or '}', found " + describe(peek()));
+    EntryCode entry;
     Token key = take();
     entry.key = std::string(key.text);
     entry.key_span = key.span;
+    if (at(TokenKind::Equals))
+        fail(peek(), "a key takes its value without '=': write '" + entry.key + " value'");
     parse_value(entry.value, entry.key);
     body.entries.push_back(std::move(entry));
 }
 
-// value = number | vector | string | identifier | body ;
-void Parser::parse_value(Value& value, const std::string& key) {
-    const Token& token = peek();
-    switch (token.kind) {
-        case TokenKind::Number:
-            value.kind = Value::Kind::Number;
-            value.number = token.number;
-            value.span = take().span;
-            return;
-        case TokenKind::String:
-            value.kind = Value::Kind::String;
-            value.span = token.span;
-            value.text = take().string;
-            return;
-        case TokenKind::Identifier:
-            value.kind = Value::Kind::Identifier;
-            value.span = token.span;
-            value.text = std::string(take().text);
-            return;
-        case TokenKind::LParen:
-            parse_vector(value);
-            return;
-        case TokenKind::LBrace:
-            value.kind = Value::Kind::Block;
-            value.body = std::make_shared<Body>();
-            value.span = token.span;
-            parse_body(*value.body, key);
-            value.span.end = value.body->close_brace.end;
-            return;
-        default:
-            fail(token, "expected a value for '" + key + "', found " + describe(token));
+// value = expression | body ;
+void Parser::parse_value(Expr& value, const std::string& key) {
+    if (at(TokenKind::LBrace)) {
+        value.kind = Expr::Kind::Block;
+        value.body = std::make_shared<BodyCode>();
+        value.span = peek().span;
+        parse_body(*value.body, key);
+        value.span.end = value.body->close_brace.end;
+        return;
     }
+    const TokenKind kind = peek().kind;
+    if (kind != TokenKind::Number && kind != TokenKind::String && kind != TokenKind::Identifier &&
+        kind != TokenKind::LParen && kind != TokenKind::Minus && kind != TokenKind::Plus)
+        fail(peek(), "expected a value for '" + key + "', found " + describe(peek()));
+    value = parse_expression();
 }
 
-// vector = "(" number { "," number } ")" ;
-void Parser::parse_vector(Value& value) {
-    value.kind = Value::Kind::Vector;
-    value.span = take().span;
-    for (;;) {
-        const Token& token = peek();
-        if (token.kind != TokenKind::Number) {
-            std::string found = describe(token);
-            if (token.kind == TokenKind::Identifier)
-                found += " (vector components are plain numbers; NaN and infinity are not allowed)";
-            fail(token, "expected a number in vector, found " + found);
+// expression = term { ( "+" | "-" ) term } ;
+Expr Parser::parse_expression() {
+    Expr left = parse_term();
+    while (at(TokenKind::Plus) || at(TokenKind::Minus)) {
+        Expr binary;
+        binary.kind = Expr::Kind::Binary;
+        binary.op = take().kind == TokenKind::Plus ? '+' : '-';
+        binary.operands.push_back(std::move(left));
+        binary.operands.push_back(parse_term());
+        binary.span = {binary.operands[0].span.begin, binary.operands[1].span.end, binary.operands[0].span.origin};
+        left = std::move(binary);
+    }
+    return left;
+}
+
+// term = unary { ( "*" | "/" ) unary } ;
+Expr Parser::parse_term() {
+    Expr left = parse_unary();
+    while (at(TokenKind::Star) || at(TokenKind::Slash)) {
+        Expr binary;
+        binary.kind = Expr::Kind::Binary;
+        binary.op = take().kind == TokenKind::Star ? '*' : '/';
+        binary.operands.push_back(std::move(left));
+        binary.operands.push_back(parse_unary());
+        binary.span = {binary.operands[0].span.begin, binary.operands[1].span.end, binary.operands[0].span.origin};
+        left = std::move(binary);
+    }
+    return left;
+}
+
+// unary = ( "-" | "+" ) unary | postfix ;
+Expr Parser::parse_unary() {
+    if (!at(TokenKind::Minus) && !at(TokenKind::Plus)) return parse_postfix();
+    if (++depth_ > kMaxDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");
+    Expr unary;
+    unary.kind = Expr::Kind::Unary;
+    const Token sign = take();
+    unary.op = sign.kind == TokenKind::Minus ? '-' : '+';
+    unary.operands.push_back(parse_unary());
+    unary.span = {sign.span.begin, unary.operands[0].span.end, sign.span.origin};
+    --depth_;
+    return unary;
+}
+
+// postfix = primary { "." identifier } ;
+Expr Parser::parse_postfix() {
+    Expr value = parse_primary();
+    while (at(TokenKind::Dot)) {
+        take();
+        Token component = expect(TokenKind::Identifier, "a component name (x, y or z) after '.'");
+        Expr access;
+        access.kind = Expr::Kind::Component;
+        access.text = std::string(component.text);
+        access.span = {value.span.begin, component.span.end, value.span.origin};
+        access.operands.push_back(std::move(value));
+        value = std::move(access);
+    }
+    return value;
+}
+
+// primary = number | string | identifier [ "(" [ expression { "," expression } ] ")" ]
+//         | "(" expression { "," expression } ")" ;
+Expr Parser::parse_primary() {
+    Expr value;
+    const Token& token = peek();
+    value.span = token.span;
+    switch (token.kind) {
+        case TokenKind::Number:
+            value.kind = Expr::Kind::Number;
+            value.number = take().number;
+            return value;
+        case TokenKind::String:
+            value.kind = Expr::Kind::String;
+            value.text = take().string;
+            return value;
+        case TokenKind::Identifier:
+            value.kind = Expr::Kind::Name;
+            value.text = std::string(take().text);
+            if (!at(TokenKind::LParen)) return value;
+            value.kind = Expr::Kind::Call;
+            break;
+        case TokenKind::LParen:
+            value.kind = Expr::Kind::Vector;
+            break;
+        default:
+            fail(token, "expected a value, found " + describe(token));
+    }
+    // The parenthesised list of a call or a vector.
+    if (++depth_ > kMaxDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");
+    take();  // '('
+    const bool call = value.kind == Expr::Kind::Call;
+    if (!(call && at(TokenKind::RParen))) {
+        for (;;) {
+            value.operands.push_back(parse_expression());
+            if (at(TokenKind::Comma)) {
+                take();
+                continue;
+            }
+            if (at(TokenKind::RParen)) break;
+            fail(peek(), std::string("expected ',' or ')' in ") + (call ? "the call" : "vector") + ", found " +
+                             describe(peek()));
         }
-        value.components.push_back(token.number);
-        value.component_spans.push_back(take().span);
-        if (at(TokenKind::Comma)) {
-            take();
-            continue;
-        }
-        if (at(TokenKind::RParen)) break;
-        fail(peek(), "expected ',' or ')' in vector, found " + describe(peek()));
     }
     value.span.end = take().span.end;
+    --depth_;
+    // (a) is a, in parentheses; (a, b, ...) a vector.
+    if (!call && value.operands.size() == 1) {
+        Expr inner = std::move(value.operands[0]);
+        inner.span = value.span;
+        return inner;
+    }
+    return value;
 }
 
 // Skips to the '}' that closes the current top-level block (or the end of the file).
@@ -248,12 +450,7 @@ void Parser::skip_to_block_end() {
     }
 }
 
-// After a stray token at the top level: skip to something that can start a block.
-void Parser::skip_to_next_block() {
-    while (!at(TokenKind::End) && !at(TokenKind::Identifier)) take();
-}
-
-bool Parser::parse_lone_value(Value& out) {
+bool Parser::parse_lone_value(Expr& out) {
     try {
         parse_value(out, "default");
     } catch (const SyntaxError&) {
@@ -264,14 +461,24 @@ bool Parser::parse_lone_value(Value& out) {
     return at(TokenKind::End);
 }
 
-}  // namespace
-
-SceneAst parse_scene(const SourceFile& file, Diagnostics& diagnostics) {
-    return Parser(file, diagnostics).parse_scene();
+// After a broken statement: skip to what can start the next one (a statement keyword, a block
+// kind, or a loop's closing brace).
+void Parser::skip_to_next_statement() {
+    lexer_.set_quiet(true);
+    while (!at(TokenKind::End) && !at(TokenKind::RBrace) &&
+           !(at(TokenKind::Identifier) && (find_block_spec(peek().text) || is_statement_keyword(peek().text))))
+        take();
+    lexer_.set_quiet(false);
 }
 
-bool parse_single_value(const SourceFile& file, Diagnostics& diagnostics, Value& out) {
-    return Parser(file, diagnostics).parse_lone_value(out);
+}  // namespace
+
+Program parse_program(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin) {
+    return Parser(file, diagnostics, origin).parse_program();
+}
+
+bool parse_single_expression(const SourceFile& file, Diagnostics& diagnostics, Expr& out) {
+    return Parser(file, diagnostics, 0).parse_lone_value(out);
 }
 
 }  // namespace tracer

@@ -3,16 +3,17 @@
 // top-level block and carries on, so one run reports the errors of several blocks.
 #pragma once
 
-#include "lang/ast.h"
 #include "base/diagnostics.h"
 #include "base/source.h"
+#include "lang/program.h"
 
 namespace tracer {
 
-// Parses a whole scene file; syntax errors go to `diagnostics`.
-SceneAst parse_scene(const SourceFile& file, Diagnostics& diagnostics);
+// Parses a whole scene file; syntax errors go to `diagnostics`. Spans carry `origin` (Sources).
+Program parse_program(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin = 0);
 
-// Parses a single value (used for the defaults written in the block tables).
-bool parse_single_value(const SourceFile& file, Diagnostics& diagnostics, Value& out);
+// Parses a single value: an expression or a block (the defaults written in the block tables,
+// settings from the command line). False on a syntax error or text after the value.
+bool parse_single_expression(const SourceFile& file, Diagnostics& diagnostics, Expr& out);
 
 }  // namespace tracer

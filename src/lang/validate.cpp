@@ -12,7 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/input_file.h"
-#include "lang/parser.h"
+#include "lang/interpreter.h"
 #include "lang/schema.h"
 #include "lang/suggest.h"
 #include "scene/flat_shapes.h"
@@ -57,7 +57,7 @@ const Value& default_of(const KeySpec& key) {
     SourceFile file("<default>", std::string(key.default_value));
     Diagnostics ignored;
     Value value;
-    if (!parse_single_value(file, ignored, value)) std::abort();  // a broken table: a bug
+    if (!evaluate_single_value(file, ignored, value)) std::abort();  // a broken table: a bug
     return cache.emplace(&key, std::move(value)).first->second;
 }
 
@@ -114,11 +114,10 @@ private:
 
 class Validator {
 public:
-    Validator(const SourceFile& file, Diagnostics& diagnostics, const ValidateOptions& options)
-        : file_(file), diagnostics_(diagnostics), options_(options) {
+    Validator(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& options)
+        : file_(sources), diagnostics_(diagnostics), options_(options) {
         std::error_code ignored;
-        scene_dir_ = fs::absolute(fs::path(file.path()), ignored).parent_path();
-        scene_.source_path = fs::absolute(fs::path(file.path()), ignored).lexically_normal().string();
+        scene_.source_path = fs::absolute(fs::path(sources.scene().path()), ignored).lexically_normal().string();
     }
 
     std::optional<SceneDescription> run(const SceneAst& ast);
@@ -154,10 +153,9 @@ private:
     bool check_reach(const Block& block, const Placed& placed, const TriangleMesh& mesh);
     void warn_about_the_picture();
 
-    const SourceFile& file_;
+    const Sources& file_;  // the scene file and those it includes
     Diagnostics& diagnostics_;
     ValidateOptions options_;
-    fs::path scene_dir_;
     SceneDescription scene_;
 
     struct NamedMaterial {
@@ -200,7 +198,7 @@ std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
 
     // Step 3: whole-scene checks.
     if (!options_.fragment && !first_of_kind_.count("camera") && !diagnostics_.saturated())
-        diagnostics_.report(Severity::Error, Diagnostics::whole_file(file_.path()),
+        diagnostics_.report(Severity::Error, Diagnostics::whole_file(file_.scene().path()),
                             "the scene has no camera block; add one, e.g. camera { eye (0, 0, 7) lookat (0, 0, 0) }");
     // With errors around, an unused material is usually a misspelled use: no extra noise.
     if (!options_.fragment && !diagnostics_.has_errors()) {
@@ -218,7 +216,7 @@ std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
 // see, or surfaces that would reflect light with no light to reflect.
 void Validator::warn_about_the_picture() {
     const SceneDescription& scene = scene_;
-    const Location whole = Diagnostics::whole_file(file_.path());
+    const Location whole = Diagnostics::whole_file(file_.scene().path());
     const bool flat_shapes = !scene.triangles.empty() || !scene.quads.empty() || !scene.boxes.empty();
     if (scene.spheres.empty() && scene.planes.empty() && scene.meshes.empty() && !flat_shapes) {
         diagnostics_.report(Severity::Warning, whole,
@@ -620,8 +618,11 @@ bool Validator::build_placed(const Block& block, const Fields& fields, Placed& o
 
 void Validator::build_mesh(const Block& block, const Fields& fields) {
     Mesh mesh;
+    // Relative to the folder of the file the path is written in (the scene or an included file).
     fs::path path = fields.text("file");
-    if (path.is_relative()) path = scene_dir_ / path;
+    std::error_code ignored;
+    if (path.is_relative())
+        path = fs::absolute(fs::path(file_.file(fields.value_span("file")).path()), ignored).parent_path() / path;
     mesh.path = path.lexically_normal().string();
     mesh.named_at = Diagnostics::locate(file_, fields.value_span("file"));
     const std::string problem = input_file_problem(mesh.path, kMaxMeshFileBytes);  // looks, never opens
@@ -695,20 +696,20 @@ std::string setting_problem(std::string_view block, std::string_view key, const 
     const BlockSpec* spec = find_block_spec(block);
     const KeySpec* key_spec = spec ? spec->find_key(key) : nullptr;
     if (!key_spec) return "no key '" + std::string(key) + "' in " + std::string(block);  // a caller's bug
-    const SourceFile file("<command line>", text);
+    Sources sources(std::make_unique<SourceFile>("<command line>", text));
     Diagnostics diagnostics;
     Value value;
-    if (parse_single_value(file, diagnostics, value))
-        Validator(file, diagnostics, {true}).check_setting(value, *key_spec, *spec);
+    if (evaluate_single_value(sources.scene(), diagnostics, value))
+        Validator(sources, diagnostics, {true}).check_setting(value, *key_spec, *spec);
     else if (diagnostics.all().empty())  // more than one value
         return "'" + std::string(key) + "' expects " + std::string(describe(key_spec->type)) + ", found " +
                in_quotes(text);
     return diagnostics.all().empty() ? "" : diagnostics.all().front().message;
 }
 
-std::optional<SceneDescription> validate_scene(const SceneAst& ast, const SourceFile& file, Diagnostics& diagnostics,
+std::optional<SceneDescription> validate_scene(const SceneAst& ast, const Sources& sources, Diagnostics& diagnostics,
                                                const ValidateOptions& options) {
-    return Validator(file, diagnostics, options).run(ast);
+    return Validator(sources, diagnostics, options).run(ast);
 }
 
 }  // namespace tracer

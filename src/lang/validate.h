@@ -20,8 +20,8 @@ struct ValidateOptions {
 };
 
 // The scene description, or nothing if any error was reported (the errors are in
-// `diagnostics`). Relative paths resolve against the folder of `file`.
-std::optional<SceneDescription> validate_scene(const SceneAst& ast, const SourceFile& file,
+// `diagnostics`). Relative paths resolve against the folder of the file they are written in.
+std::optional<SceneDescription> validate_scene(const SceneAst& ast, const Sources& sources,
                                                Diagnostics& diagnostics,
                                                const ValidateOptions& options = {});
 

@@ -1,4 +1,4 @@
-// Fuzz target: the scene front end (lex, parse, validate), its messages, the JSON dump, and
+// Fuzz target: the scene front end (lex, parse, run, validate), its messages, the JSON dump, and
 // a tiny render of what it accepts (mesh blocks left out: their paths would read real files).
 #include <cstddef>
 #include <cstdint>
@@ -11,7 +11,13 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace tracer;
-    LoadResult loaded = load_scene_text("fuzz.scn", std::string(reinterpret_cast<const char*>(data), size));
+    // Small generation limits: the fuzzer's time and memory per input are short (the real
+    // limits are tested in tests/cli).
+    InterpretOptions options;
+    options.max_blocks = 20'000;
+    options.max_iterations = 100'000;
+    LoadResult loaded =
+        load_scene_text("fuzz.scn", std::string(reinterpret_cast<const char*>(data), size), false, options);
     std::ostringstream messages;
     loaded.diagnostics.print(messages);
     if (!loaded.scene) return 0;

@@ -92,7 +92,9 @@ TEST(FlatShapes, TriangleIsHitInsideItsEdgesOnly) {
         for (double side : {1.0, -1.0}) {
             const auto hit = shoot(world, point + dvec3(0, 0, 2 * side), {0, 0, -side});
             ASSERT_EQ(hit.has_value(), margin > 0) << u << " " << v;
-            if (hit) EXPECT_EQ(hit->geometric_normal, Vec3(0, 0, 1));
+            if (hit) {
+                EXPECT_EQ(hit->geometric_normal, Vec3(0, 0, 1));
+            }
         }
     }
 }

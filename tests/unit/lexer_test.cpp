@@ -35,15 +35,40 @@ double number_of(const std::string& text) {
 
 TEST(Lexer, NumbersInEveryDecimalAndExponentForm) {
     EXPECT_EQ(number_of("3"), 3.0);
-    EXPECT_EQ(number_of("-0.5"), -0.5);
-    EXPECT_EQ(number_of("+2"), 2.0);
     EXPECT_EQ(number_of(".25"), 0.25);
-    EXPECT_EQ(number_of("-.25"), -0.25);
     EXPECT_EQ(number_of("4."), 4.0);
     EXPECT_EQ(number_of("1e-3"), 1e-3);
     EXPECT_EQ(number_of("1E+2"), 100.0);
     EXPECT_EQ(number_of("2.5e2"), 250.0);
     EXPECT_EQ(number_of("0.1"), 0.1);  // correctly rounded, locale-independent
+}
+
+// A sign is an operator (the parser makes -0.5 a negation); ".." ends a number (a range).
+TEST(Lexer, SignsDotsAndRangesAreOperators) {
+    using K = TokenKind;
+    auto kinds_of = [](const std::string& text) {
+        std::vector<K> kinds;
+        for (const Token& t : lex(text).tokens) kinds.push_back(t.kind);
+        return kinds;
+    };
+    EXPECT_EQ(kinds_of("-0.5"), (std::vector<K>{K::Minus, K::Number, K::End}));
+    EXPECT_EQ(kinds_of("+2*3/4=5"),
+              (std::vector<K>{K::Plus, K::Number, K::Star, K::Number, K::Slash, K::Number, K::Equals, K::Number,
+                              K::End}));
+    EXPECT_EQ(kinds_of("0..8"), (std::vector<K>{K::Number, K::DotDot, K::Number, K::End}));
+    EXPECT_EQ(kinds_of("1...5"), (std::vector<K>{K::Number, K::DotDot, K::Number, K::End}));  // 1 .. .5
+    EXPECT_EQ(kinds_of("v.x"), (std::vector<K>{K::Identifier, K::Dot, K::Identifier, K::End}));
+    EXPECT_EQ(lex("0..8").tokens[2].number, 8);
+}
+
+// Other languages' directives are comments here, with a warning saying what to write instead.
+TEST(Lexer, DirectivesOfOtherLanguagesAreCommentsWithAHint) {
+    Lexed lexed = lex("#include \"colors.inc\"\n#declare R = 0.5;\n#includes are fine\n# include\n");
+    ASSERT_EQ(lexed.diagnostics.warning_count(), 2);
+    EXPECT_EQ(lexed.diagnostics.all()[0].message,
+              "'#' starts a comment, so this line is ignored; write include \"file.scn\"");
+    EXPECT_EQ(lexed.diagnostics.all()[1].message, "'#' starts a comment, so this line is ignored; write let NAME = value");
+    EXPECT_EQ(lexed.tokens.size(), 1u);  // all comments
 }
 
 TEST(Lexer, TinyNumbersUnderflowToZeroButHugeOnesAreErrors) {
@@ -55,7 +80,7 @@ TEST(Lexer, TinyNumbersUnderflowToZeroButHugeOnesAreErrors) {
 }
 
 TEST(Lexer, MalformedNumbersAreOneErrorEach) {
-    for (const char* text : {"1.2.3", "3x", "1e", "1e+", "."}) {
+    for (const char* text : {"1.2.3", "3x", "1e", "1e+"}) {
         Lexed lexed = lex(text);
         EXPECT_EQ(lexed.diagnostics.error_count(), 1) << text;
         EXPECT_EQ(lexed.tokens[0].kind, TokenKind::Error) << text;

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "lang/interpreter.h"
 #include "lang/parser.h"
 
 namespace tracer {
@@ -12,8 +13,8 @@ struct Parsed {
 
 Parsed parse(const std::string& text) {
     Parsed out;
-    SourceFile file("t.scn", text);
-    out.ast = parse_scene(file, out.diagnostics);
+    Sources sources(std::make_unique<SourceFile>("t.scn", text));
+    out.ast = interpret(parse_program(sources.scene(), out.diagnostics), sources, out.diagnostics);
     return out;
 }
 

@@ -1,0 +1,41 @@
+// Runs a scene program (program.h) into the blocks of plain values that validation checks
+// (ast.h): expressions computed, names replaced by their values, loops unrolled, included files
+// read, parsed and run in place. Every value keeps the span of the expression that made it,
+// tagged with the loop iteration or include it came from (Sources), so that later messages can
+// point at it and say which iteration it was.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "base/diagnostics.h"
+#include "base/source.h"
+#include "lang/ast.h"
+#include "lang/program.h"
+
+namespace tracer {
+
+// Most blocks one scene may generate, and most loop iterations it may run (each an error).
+constexpr size_t kMaxGeneratedBlocks = 2'000'000;
+constexpr size_t kMaxLoopIterations = 10'000'000;
+// Deepest chain of included files.
+constexpr int kMaxIncludeDepth = 32;
+
+struct InterpretOptions {
+    // -D NAME=VALUE from the command line, in order: each must name a `param` of the scene.
+    std::vector<std::pair<std::string, std::string>> parameters;
+    size_t max_blocks = kMaxGeneratedBlocks;  // lower for fuzzing, where memory and time are short
+    size_t max_iterations = kMaxLoopIterations;
+};
+
+// The program of `sources.scene()` run; problems go to `diagnostics`. Included files are added
+// to `sources`.
+SceneAst interpret(const Program& program, Sources& sources, Diagnostics& diagnostics,
+                   const InterpretOptions& options = {});
+
+// One value alone, with no names defined (a default in the block tables, a setting or a -D
+// value from the command line). False, with the problem in `diagnostics`, if it has none.
+bool evaluate_single_value(const SourceFile& file, Diagnostics& diagnostics, Value& out);
+
+}  // namespace tracer

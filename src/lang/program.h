@@ -1,0 +1,73 @@
+// A scene file as written: statements (blocks, names, loops, includes) whose values are
+// expressions. The parser builds it; the interpreter (interpreter.h) evaluates it into the
+// blocks of plain values (ast.h) that validation checks.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "base/source.h"
+
+namespace tracer {
+
+struct BodyCode;
+
+struct Expr {
+    enum class Kind {
+        Number,     // a literal: `number`
+        String,     // a literal: `text`
+        Name,       // a let, param or loop name, or else a word (`sah`, `true`, a material): `text`
+        Vector,     // (a, b, c): `operands`
+        Unary,      // `op` ('-' or '+') applied to operands[0]
+        Binary,     // operands[0] `op` operands[1], op one of + - * /
+        Call,       // `text`(operands...)
+        Component,  // operands[0].`text` (x, y or z)
+        Block,      // an inline block `{ ... }`: `body`
+    };
+    Kind kind = Kind::Number;
+    Span span;
+    double number = 0;
+    std::string text;
+    char op = 0;
+    std::vector<Expr> operands;
+    std::shared_ptr<BodyCode> body;
+};
+
+struct EntryCode {
+    std::string key;
+    Span key_span;
+    Expr value;
+};
+
+struct BodyCode {
+    Span open_brace;
+    Span close_brace;
+    std::vector<EntryCode> entries;
+};
+
+struct Statement {
+    enum class Kind {
+        Block,    // kind [name] { entries }
+        Let,      // let name = value
+        Param,    // param name = value (the command line may set it: -D name=value)
+        For,      // for name in value..end { statements }
+        Include,  // include "path"
+    };
+    Kind kind = Kind::Block;
+    Span keyword;  // the block's kind or the statement's keyword
+    std::string word;  // Block: its kind; Include: the path
+    std::string name;  // Block: its name (may be empty); Let, Param, For: the name bound
+    Span name_span;    // Include: the path's span
+    BodyCode body;     // Block
+    bool broken = false;  // Block: a syntax error was reported inside; do not validate further
+    Expr value;           // Let, Param: the value; For: the first number
+    Expr end;             // For: the end of the range (not included)
+    std::vector<Statement> statements;  // For: the loop's body
+};
+
+struct Program {
+    std::vector<Statement> statements;
+};
+
+}  // namespace tracer
