@@ -9,8 +9,9 @@ namespace tracer {
 
 std::optional<LoadedScene> load_scene_with_meshes(const std::string& path,
                                                   const std::function<void(SceneDescription&)>& adjust,
-                                                  std::ostream& errors, bool* unreadable) {
-    LoadResult loaded = load_scene(path);
+                                                  std::ostream& errors, bool* unreadable,
+                                                  const InterpretOptions& options) {
+    LoadResult loaded = load_scene(path, options);
     std::optional<SceneMeshes> meshes;
     if (loaded.scene) {
         if (adjust) adjust(*loaded.scene);

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "lang/interpreter.h"
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
 
@@ -22,6 +23,7 @@ struct LoadedScene {
 // scene file itself could not be read.
 std::optional<LoadedScene> load_scene_with_meshes(const std::string& path,
                                                   const std::function<void(SceneDescription&)>& adjust,
-                                                  std::ostream& errors, bool* unreadable = nullptr);
+                                                  std::ostream& errors, bool* unreadable = nullptr,
+                                                  const InterpretOptions& options = {});
 
 }  // namespace tracer

@@ -61,9 +61,20 @@ struct Options {
     std::string height;
     std::string samples;
     std::string max_depth;
+    std::vector<std::string> defines;  // -D NAME=VALUE
     bool stats = false;
     std::string stats_json;
 };
+
+// The -D NAME=VALUE definitions (checked to have a '=' when parsed).
+tracer::InterpretOptions interpret_options(const Options& options) {
+    tracer::InterpretOptions out;
+    for (const std::string& define : options.defines) {
+        const size_t equals = define.find('=');
+        out.parameters.emplace_back(define.substr(0, equals), define.substr(equals + 1));
+    }
+    return out;
+}
 
 // Loads and validates the scene with the command line's overrides and reads its meshes,
 // printing every diagnostic; nullopt on errors (with `exit_code` set).
@@ -89,7 +100,7 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
             if (!options.height.empty() && options.width.empty())
                 render.width = std::max(1, int(std::lround(render.height * aspect)));
         },
-        std::cerr, &unreadable);
+        std::cerr, &unreadable, interpret_options(options));
     if (!loaded) exit_code = unreadable ? kIoError : kSceneError;
     return loaded;
 }
@@ -256,6 +267,16 @@ int run(int argc, char** argv) {
         ->check(render_key("samples"));
     app.add_option("--max-depth", options.max_depth, "Override the scene's reflection and refraction depth")
         ->check(render_key("max_depth"));
+    app.add_option("-D,--define", options.defines,
+                   "Set a parameter of the scene (declared there by 'param NAME = VALUE'): -D radius=0.3, "
+                   "-D colour=(1,0,0); repeatable")
+        ->check(CLI::Validator(
+            [](std::string& text) -> std::string {
+                const size_t equals = text.find('=');
+                return equals == std::string::npos || equals == 0 ? "expected NAME=VALUE, e.g. -D radius=0.3" : "";
+            },
+            "NAME=VALUE"))
+        ->allow_extra_args(false);
     app.add_flag("--stats", options.stats, "Print BVH and ray statistics on stderr");
     app.add_option("--stats-json", options.stats_json, "Write the statistics as JSON to this file");
     app.add_flag("--check", options.check, "Only check the scene; report every problem found");

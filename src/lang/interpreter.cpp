@@ -256,11 +256,6 @@ std::shared_ptr<Body> Interpreter::run_body(const BodyCode& code, const std::str
 void Interpreter::run_binding(const Statement& statement, uint32_t origin) {
     const bool param = statement.kind == Statement::Kind::Param;
     const Span name_span = at(statement.name_span, origin);
-    if (param && !iterations_.empty()) {
-        diagnostics_.error(sources_, at(statement.keyword, origin),
-                           "a 'param' is declared at the top level of a file, not inside a loop");
-        return;
-    }
     Binding binding;
     binding.defined_at = name_span;
     try {

@@ -65,6 +65,7 @@ private:
     std::deque<Token> lookahead_;
     std::vector<OpenBrace> open_;  // braces opened inside the current block
     int depth_ = 0;                 // expressions and loops nested: a bound against stack overflow
+    int loops_ = 0;                 // loops around the statement being parsed
 };
 
 // Nesting deeper than this (parentheses, unary minus, loops) is refused: the parser recurses.
@@ -135,6 +136,11 @@ void Parser::parse_binding(std::vector<Statement>& out, Statement::Kind kind) {
     statement.name_span = name.span;
     open_.clear();
     try {
+        if (kind == Statement::Kind::Param && loops_ > 0) {
+            diagnostics_.error(file_, statement.keyword,
+                               "a 'param' is declared at the top level of a file, not inside a loop");
+            throw SyntaxError{};
+        }
         expect(TokenKind::Equals, "'=' after '" + statement.name + "'");
         statement.value = parse_expression();
     } catch (const SyntaxError&) {
@@ -174,7 +180,9 @@ void Parser::parse_loop(std::vector<Statement>& out) {
         diagnostics_.error(file_, loop.keyword, "loops are nested too deeply (more than 200 levels)");
         throw SyntaxError{};
     }
+    ++loops_;
     parse_statements(loop.statements, true);
+    --loops_;
     --depth_;
     if (at(TokenKind::End)) {
         Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");

@@ -130,8 +130,17 @@ struct Box : Placed {
     dvec3 min{0.0}, max{1.0};
 };
 
+// A `param` of the scene and the value it took (from the command line, or its default): one
+// number or a vector's components.
+struct Parameter {
+    std::string name;
+    std::vector<double> value;
+    bool vector = false;
+};
+
 struct SceneDescription {
     std::string source_path;  // absolute path of the scene file
+    std::vector<Parameter> parameters;
     RenderSettings render;
     Camera camera;
     std::vector<Material> materials;

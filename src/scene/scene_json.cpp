@@ -47,6 +47,11 @@ Json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes) {
     out["format"] = "tracer-scene";
     out["version"] = 1;
     out["source"] = scene.source_path;
+    if (!scene.parameters.empty()) {  // only then: older readers know no such key
+        out["parameters"] = Json::object();
+        for (const Parameter& p : scene.parameters)
+            out["parameters"][p.name] = p.vector ? Json(p.value) : Json(p.value.at(0));
+    }
     const RenderSettings& r = scene.render;
     out["render"] = {{"width", r.width},          {"height", r.height},
                      {"max_depth", r.max_depth},  {"samples", r.samples},
