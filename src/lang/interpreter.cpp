@@ -451,7 +451,7 @@ Value Interpreter::evaluate_name(const Expr& expr, uint32_t origin, bool top) {
         value.component_spans.assign(value.components.size(), span);
         return value;
     }
-    const std::string suggestion = did_you_mean(expr.text, names_in_scope());
+    const std::string suggestion = scopes_.size() == 1 && scopes_[0].empty() ? "" : did_you_mean(expr.text, names_in_scope());
     if (top && (nan_or_infinity_word(expr.text) || suggestion.empty())) {
         Value word;
         word.kind = Value::Kind::Identifier;

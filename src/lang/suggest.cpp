@@ -6,20 +6,26 @@
 namespace tracer {
 
 int edit_distance(std::string_view a, std::string_view b) {
-    auto lower = [](char c) { return char(std::tolower(static_cast<unsigned char>(c))); };
+    // Optimal string alignment distance, case-insensitive (ASCII), in three rolling rows: it runs
+    // for every unknown word of a scene, so it allocates nothing.
+    constexpr size_t kLongest = 64;
+    if (a.size() > kLongest || b.size() > kLongest) return int(std::max(a.size(), b.size()));
+    auto lower = [](char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; };
     const size_t n = a.size(), m = b.size();
-    std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1));
-    for (size_t i = 0; i <= n; ++i) d[i][0] = int(i);
-    for (size_t j = 0; j <= m; ++j) d[0][j] = int(j);
+    int before[kLongest + 1], previous[kLongest + 1], current[kLongest + 1];
+    for (size_t j = 0; j <= m; ++j) previous[j] = int(j);
     for (size_t i = 1; i <= n; ++i) {
+        current[0] = int(i);
         for (size_t j = 1; j <= m; ++j) {
-            int cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
-            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            const int cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+            current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + cost});
             if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) && lower(a[i - 2]) == lower(b[j - 1]))
-                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+                current[j] = std::min(current[j], before[j - 2] + 1);
         }
+        std::copy(previous, previous + m + 1, before);
+        std::copy(current, current + m + 1, previous);
     }
-    return d[n][m];
+    return previous[m];
 }
 
 // Names other renderers and textbooks use (POV-Ray, pbrt, Mitsuba, RTIOW), and the names this
@@ -81,7 +87,7 @@ static const std::vector<Synonym>& synonyms() {
 
 std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates) {
     for (const Synonym& synonym : synonyms()) {
-        if (edit_distance(word, synonym.word) != 0 || word.size() != synonym.word.size()) continue;
+        if (word.size() != synonym.word.size() || edit_distance(word, synonym.word) != 0) continue;
         for (std::string_view ours : synonym.ours)
             if (std::find(candidates.begin(), candidates.end(), ours) != candidates.end()) return std::string(ours);
     }

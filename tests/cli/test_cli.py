@@ -100,6 +100,29 @@ class CommandLine(unittest.TestCase):
                     message = in_scene.stderr.splitlines()[0].split(": error: ", 1)[1]
                     self.assertIn(f"{option}: {message}", on_command_line.stderr)
 
+    def test_parameters_from_the_command_line(self):
+        scene = self.tmp / "param.scn"
+        scene.write_text("param r = 0.5\nparam tint = (1, 1, 1)\n" + SMALL_SCENE.replace("radius 1", "radius r"))
+        dumped = json.loads(run("--dump-json", scene).stdout)
+        self.assertEqual(dumped["parameters"], {"r": 0.5, "tint": [1.0, 1.0, 1.0]})
+        self.assertEqual(dumped["spheres"][0]["radius"], 0.5)
+        result = run("--dump-json", scene, "-D", "r=0.25 * 3", "--define", "tint=(1, 0, 0)")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        dumped = json.loads(result.stdout)
+        self.assertEqual(dumped["parameters"], {"r": 0.75, "tint": [1.0, 0.0, 0.0]})
+        self.assertEqual(dumped["spheres"][0]["radius"], 0.75)
+        # An unknown name, a bad value, a value the scene refuses, and no '=' at all.
+        result = run("--check", scene, "-D", "radius=2")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("<command line>: error: -D radius: the scene has no 'param radius'", result.stderr)
+        result = run("--check", scene, "-D", "r=(1,")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("<command line>: error: -D r=(1,: expected a value, found end of file", result.stderr)
+        result = run("--check", scene, "-D", "r=-1")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("error: 'radius' must be greater than 0, found -1", result.stderr)
+        self.assertEqual(run("--check", scene, "-D", "r").returncode, 2)
+
     def test_check_and_dump_json_state_mesh_facts(self):
         scene = self.tmp / "facts.scn"
         obj = ROOT / "scenes" / "meshes" / "cube.obj"

@@ -157,6 +157,11 @@ TEST(Room, MatchesTheCommittedGoldenImage) {
     expect_matches_golden(render_scene("room"), "room");
 }
 
+// A scene written with names, a parameter, expressions and loops (64 squares, 64 balls).
+TEST(Chessboard, MatchesTheCommittedGoldenImage) {
+    expect_matches_golden(render_scene("chessboard"), "chessboard");
+}
+
 // Refraction: two glass balls in task2's room (a regression guard; the rules themselves are
 // checked by hand in refraction_test.cpp).
 TEST(Glass, MatchesTheCommittedGoldenImage) {
