@@ -176,10 +176,15 @@ void Parser::parse_loop(std::vector<Statement>& out) {
     } catch (const UnclosedBlock&) {
         return;
     }
-    if (++depth_ > kMaxDepth) {
+    if (depth_ + 1 > kMaxDepth) {
+        // Deeper is a generated or broken file: report once and skip the rest of it.
         diagnostics_.error(file_, loop.keyword, "loops are nested too deeply (more than 200 levels)");
-        throw SyntaxError{};
+        lexer_.set_quiet(true);
+        while (!at(TokenKind::End)) take();
+        lexer_.set_quiet(false);
+        return;
     }
+    ++depth_;
     ++loops_;
     parse_statements(loop.statements, true);
     --loops_;

@@ -4,6 +4,7 @@
     test_cli.py --tracer build/release/tracer
 """
 import argparse
+import hashlib
 import json
 import os
 import pathlib
@@ -99,6 +100,21 @@ class CommandLine(unittest.TestCase):
                     self.assertEqual(on_command_line.returncode, 2)
                     message = in_scene.stderr.splitlines()[0].split(": error: ", 1)[1]
                     self.assertIn(f"{option}: {message}", on_command_line.stderr)
+
+    def test_shipped_scenes_describe_the_same_scene_as_before_the_interpreter(self):
+        # The hashes were taken from the parser that read scenes before names, loops and
+        # expressions existed: every scene must still mean exactly the same.
+        lines = (pathlib.Path(__file__).parent / "scene_descriptions.sha256").read_text().splitlines()
+        entries = [line.split() for line in lines if line and not line.startswith("#")]
+        self.assertGreaterEqual(len(entries), 19)
+        for expected, relative in entries:
+            with self.subTest(scene=relative):
+                result = run("--dump-json", ROOT / relative)
+                self.assertEqual(result.returncode, 0, result.stderr)
+                scene = json.loads(result.stdout)
+                scene.pop("source")
+                text = json.dumps(scene, sort_keys=True).replace(str(ROOT), "<root>")
+                self.assertEqual(hashlib.sha256(text.encode()).hexdigest(), expected)
 
     def test_parameters_from_the_command_line(self):
         scene = self.tmp / "param.scn"

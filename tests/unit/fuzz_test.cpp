@@ -12,12 +12,13 @@
 namespace tracer {
 namespace {
 
-std::string read_task2() {
-    std::ifstream in(std::filesystem::path(TRACER_SOURCE_DIR) / "scenes" / "task2.scn");
+std::string read_scene(const std::string& name) {
+    std::ifstream in(std::filesystem::path(TRACER_SOURCE_DIR) / "scenes" / name);
     std::ostringstream text;
     text << in.rdbuf();
     return text.str();
 }
+std::string read_task2() { return read_scene("task2.scn"); }
 
 TEST(Fuzz, RandomEditsOfTask2NeverCrashAndAreConsistent) {
     const std::string original = read_task2();
@@ -43,6 +44,56 @@ TEST(Fuzz, RandomEditsOfTask2NeverCrashAndAreConsistent) {
         rejected += result.scene ? 0 : 1;
     }
     EXPECT_GT(rejected, 1000);  // the edits really do break scenes
+}
+
+// The same for a program: names, a parameter, expressions, nested loops (scenes/chessboard.scn),
+// edited with the operators too; small generation limits keep every round fast.
+TEST(Fuzz, RandomEditsOfAProgramNeverCrashAndAreConsistent) {
+    const std::string original = read_scene("chessboard.scn");
+    ASSERT_FALSE(original.empty());
+    const std::string alphabet = "{}(),#\"-+*/=.e0123456789 \n\tabcijxyz_\x01\xff";
+    const std::string words[] = {"let ", "for ", " in ", "..", "param ", "include \"x.scn\" ", "sqrt(", ".x"};
+    InterpretOptions limits;
+    limits.max_blocks = 5000;
+    limits.max_iterations = 20000;
+    std::mt19937 random(54321);
+    int rejected = 0;
+    for (int round = 0; round < 1500; ++round) {
+        std::string text = original;
+        int edits = 1 + int(random() % 4);
+        for (int e = 0; e < edits && !text.empty(); ++e) {
+            size_t at = random() % text.size();
+            switch (random() % 4) {
+                case 0: text.erase(at, 1 + random() % 8); break;
+                case 1: text.insert(at, 1, alphabet[random() % alphabet.size()]); break;
+                case 2: text.insert(at, words[random() % std::size(words)]); break;
+                default: text[at] = alphabet[random() % alphabet.size()]; break;
+            }
+        }
+        LoadResult result = load_scene_text("fuzz.scn", text, false, limits);
+        EXPECT_EQ(bool(result.scene), !result.diagnostics.has_errors()) << text;
+        for (const Diagnostic& d : result.diagnostics.all()) format_diagnostic(d);
+        rejected += result.scene ? 0 : 1;
+    }
+    EXPECT_GT(rejected, 300);
+}
+
+// Deep parentheses, signs and loops are errors, not a stack overflow.
+TEST(Fuzz, DeeplyNestedExpressionsAndLoopsAreAnError) {
+    const std::string cases[] = {"let a = " + std::string(100000, '(') + "1",
+                                 "let a = " + std::string(100000, '-') + "1",
+                                 [] {
+                                     std::string loops;
+                                     for (int i = 0; i < 100000; ++i) loops += "for i in 0..1 { ";
+                                     return loops;
+                                 }()};
+    for (const std::string& text : cases) {
+        LoadResult result = load_scene_text("deep.scn", text);
+        EXPECT_FALSE(result.scene);
+        ASSERT_GE(result.diagnostics.error_count(), 1);
+        EXPECT_NE(result.diagnostics.all()[0].message.find("nested too deeply (more than 200"), std::string::npos)
+            << result.diagnostics.all()[0].message;
+    }
 }
 
 TEST(Fuzz, DeeplyNestedBracesAreAnErrorNotAStackOverflow) {
