@@ -55,7 +55,8 @@ public:
     // A file included by the statement at `included_at`; returns the origin of its spans.
     uint32_t add_include(std::unique_ptr<SourceFile> file, Span included_at);
     // An iteration of the loop at `loop` with `name` = `value`: spans of text evaluated in it
-    // get the returned origin (they lie in the loop's file).
+    // get the returned origin (they lie in the loop's file). `name` must outlive this object
+    // (a view of a source text held here).
     uint32_t add_iteration(Span loop, std::string_view name, double value);
 
     const SourceFile& scene() const { return *files_.front(); }

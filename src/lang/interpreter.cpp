@@ -81,11 +81,12 @@ class Interpreter {
 public:
     Interpreter(Sources& sources, Diagnostics& diagnostics) : sources_(sources), diagnostics_(diagnostics) {}
 
-    SceneAst run(const Program& program, const InterpretOptions& options);
+    SceneAst run(const InterpretOptions& options);
     bool single_value(const Expr& expr, Value& out);
 
 private:
     // Statements.
+    void run_file(const SourceFile& file, uint32_t origin);
     void run_statements(const std::vector<Statement>& statements, uint32_t origin);
     void run_block(const Statement& statement, uint32_t origin);
     void run_binding(const Statement& statement, uint32_t origin);
@@ -121,7 +122,6 @@ private:
     std::set<std::string, std::less<>> used_overrides_;
     std::vector<Iteration> iterations_;  // the loops being run, innermost last
     std::vector<std::string> include_stack_;
-    std::map<std::string, std::unique_ptr<Program>> included_;  // parsed once, by canonical path
     size_t blocks_ = 0, iterations_run_ = 0;
     bool stopped_ = false;  // a limit was hit: nothing more is generated
     InterpretOptions limits_;
@@ -152,7 +152,7 @@ void Interpreter::fail(Span span, std::string message) {
     throw EvaluationError{};
 }
 
-SceneAst Interpreter::run(const Program& program, const InterpretOptions& options) {
+SceneAst Interpreter::run(const InterpretOptions& options) {
     limits_ = options;
     // Step 1: the command line's parameters, each a value alone.
     for (const auto& [name, text] : options.parameters) {
@@ -167,8 +167,8 @@ SceneAst Interpreter::run(const Program& program, const InterpretOptions& option
         }
         overrides_[name] = value;
     }
-    // Step 2: the program.
-    run_statements(program.statements, 0);
+    // Step 2: the scene file, statement by statement.
+    run_file(sources_.scene(), 0);
     // Step 3: -D names the scene does not declare.
     for (const auto& [name, value] : overrides_) {
         if (used_overrides_.count(name)) continue;
@@ -178,6 +178,16 @@ SceneAst Interpreter::run(const Program& program, const InterpretOptions& option
                             "-D " + name + ": the scene has no 'param " + name + "'" + did_you_mean(name, params));
     }
     return std::move(scene_);
+}
+
+// A file read and run one statement at a time: only the scene it makes is held whole.
+void Interpreter::run_file(const SourceFile& file, uint32_t origin) {
+    StatementReader reader(file, diagnostics_, origin);
+    std::vector<Statement> statement;
+    while (!stopped_ && reader.next(statement)) {
+        run_statements(statement, origin);
+        statement.clear();
+    }
 }
 
 void Interpreter::run_statements(const std::vector<Statement>& statements, uint32_t origin) {
@@ -308,6 +318,9 @@ void Interpreter::run_loop(const Statement& statement, uint32_t origin) {
     } catch (const EvaluationError&) {
         return;
     }
+    // The name as the source text holds it: the statement itself is gone once it has run, and
+    // the iterations' notes are written later.
+    const std::string_view name = sources_.file(at(statement.name_span, origin)).slice(statement.name_span);
     for (double i = first; i < end; ++i) {
         if (stopped_ || diagnostics_.saturated()) return;
         if (++iterations_run_ > limits_.max_iterations) {
@@ -317,7 +330,7 @@ void Interpreter::run_loop(const Statement& statement, uint32_t origin) {
             stopped_ = true;
             return;
         }
-        iterations_.push_back({at(statement.keyword, origin), statement.name, i});
+        iterations_.push_back({at(statement.keyword, origin), name, i});
         scopes_.emplace_back();
         Binding binding;
         binding.value = number_value(i, statement.name_span);
@@ -352,11 +365,10 @@ void Interpreter::run_include(const Statement& statement, uint32_t origin) {
     const uint32_t file_origin =
         sources_.add_include(std::make_unique<SourceFile>(path.lexically_normal().string(), std::move(input.text)),
                              path_span);
-    const Program program = parse_program(sources_.file({0, 0, file_origin}), diagnostics_, file_origin);
     include_stack_.push_back(canonical);
     std::vector<Iteration> outer;  // the included file's spans carry its own origin
     std::swap(outer, iterations_);
-    run_statements(program.statements, file_origin);
+    run_file(sources_.file({0, 0, file_origin}), file_origin);
     std::swap(outer, iterations_);
     include_stack_.pop_back();
 }
@@ -615,9 +627,8 @@ bool Interpreter::single_value(const Expr& expr, Value& out) {
 
 }  // namespace
 
-SceneAst interpret(const Program& program, Sources& sources, Diagnostics& diagnostics,
-                   const InterpretOptions& options) {
-    return Interpreter(sources, diagnostics).run(program, options);
+SceneAst interpret(Sources& sources, Diagnostics& diagnostics, const InterpretOptions& options) {
+    return Interpreter(sources, diagnostics).run(options);
 }
 
 bool evaluate_single_value(const SourceFile& file, Diagnostics& diagnostics, Value& out) {

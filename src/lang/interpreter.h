@@ -29,10 +29,9 @@ struct InterpretOptions {
     size_t max_iterations = kMaxLoopIterations;
 };
 
-// The program of `sources.scene()` run; problems go to `diagnostics`. Included files are added
-// to `sources`.
-SceneAst interpret(const Program& program, Sources& sources, Diagnostics& diagnostics,
-                   const InterpretOptions& options = {});
+// The scene file `sources.scene()` parsed and run, one statement at a time; problems go to
+// `diagnostics`. Included files are added to `sources`.
+SceneAst interpret(Sources& sources, Diagnostics& diagnostics, const InterpretOptions& options = {});
 
 // One value alone, with no names defined (a default in the block tables, a setting or a -D
 // value from the command line). False, with the problem in `diagnostics`, if it has none.

@@ -11,8 +11,7 @@ LoadResult load_scene_text(const std::string& path, std::string text, bool fragm
                            const InterpretOptions& interpret_options) {
     LoadResult result;
     Sources sources(std::make_unique<SourceFile>(path, std::move(text)));
-    const Program program = parse_program(sources.scene(), result.diagnostics);
-    const SceneAst ast = interpret(program, sources, result.diagnostics, interpret_options);
+    const SceneAst ast = interpret(sources, result.diagnostics, interpret_options);
     ValidateOptions options;
     options.fragment = fragment;
     result.scene = validate_scene(ast, sources, result.diagnostics, options);

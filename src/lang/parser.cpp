@@ -23,12 +23,15 @@ bool is_statement_keyword(std::string_view word) {
     return word == "let" || word == "param" || word == "for" || word == "include";
 }
 
+}  // namespace
+
 class Parser {
 public:
     Parser(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin)
         : file_(file), diagnostics_(diagnostics), lexer_(file, diagnostics, origin) {}
 
     Program parse_program();
+    bool next_statement(std::vector<Statement>& out);
     bool parse_lone_value(Expr& out);
 
 private:
@@ -69,7 +72,7 @@ private:
 };
 
 // Nesting deeper than this (parentheses, unary minus, loops) is refused: the parser recurses.
-constexpr int kMaxDepth = 200;
+static constexpr int kMaxDepth = 200;
 
 const Token& Parser::peek(size_t ahead) {
     while (lookahead_.size() <= ahead) {
@@ -102,6 +105,15 @@ Program Parser::parse_program() {
 void Parser::parse_statements(std::vector<Statement>& out, bool in_loop) {
     while (!at(TokenKind::End) && !diagnostics_.saturated()) {
         if (in_loop && at(TokenKind::RBrace)) return;
+        next_statement(out);
+    }
+}
+
+// One statement (appended to `out`, unless it was too broken to keep); false at the end of
+// the file or once the errors are too many to go on.
+bool Parser::next_statement(std::vector<Statement>& out) {
+    if (at(TokenKind::End) || diagnostics_.saturated()) return false;
+    {
         if (!at(TokenKind::Identifier)) {
             Token stray = take();
             if (stray.kind != TokenKind::Error)
@@ -110,10 +122,11 @@ void Parser::parse_statements(std::vector<Statement>& out, bool in_loop) {
                                        ? "unexpected '}': no block is open here"
                                        : "expected a block such as 'sphere { ... }', found " + describe(stray));
             skip_to_next_statement();
-            continue;
+            return true;
         }
         parse_statement(out);
     }
+    return true;
 }
 
 // statement = block | let | param | for | include ;
@@ -268,7 +281,7 @@ void Parser::parse_body(BodyCode& body, const std::string& owner) {
 bool Parser::starts_new_block() {
     if (!at(TokenKind::Identifier)) return false;
     std::string_view word = peek().text;
-    if (starts_statement()) return true;
+    if (is_statement_keyword(word)) return starts_statement();
     if (!find_block_spec(word)) return false;
     if (word != "material" && at(TokenKind::LBrace, 1)) return true;
     return at(TokenKind::Identifier, 1) && at(TokenKind::LBrace, 2);
@@ -484,11 +497,15 @@ void Parser::skip_to_next_statement() {
     lexer_.set_quiet(false);
 }
 
-}  // namespace
 
 Program parse_program(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin) {
     return Parser(file, diagnostics, origin).parse_program();
 }
+
+StatementReader::StatementReader(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin)
+    : parser_(std::make_unique<Parser>(file, diagnostics, origin)) {}
+StatementReader::~StatementReader() = default;
+bool StatementReader::next(std::vector<Statement>& out) { return parser_->next_statement(out); }
 
 bool parse_single_expression(const SourceFile& file, Diagnostics& diagnostics, Expr& out) {
     return Parser(file, diagnostics, 0).parse_lone_value(out);

@@ -14,7 +14,7 @@ struct Parsed {
 Parsed parse(const std::string& text) {
     Parsed out;
     Sources sources(std::make_unique<SourceFile>("t.scn", text));
-    out.ast = interpret(parse_program(sources.scene(), out.diagnostics), sources, out.diagnostics);
+    out.ast = interpret(sources, out.diagnostics);
     return out;
 }
 
