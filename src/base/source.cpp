@@ -57,8 +57,8 @@ std::vector<std::pair<Span, std::string>> Sources::context(Span span) const {
         const Origin& o = origins_[origin];
         char text[96];
         if (o.iteration)
-            std::snprintf(text, sizeof text, "in iteration %.*s = %.17g of this loop", int(std::min<size_t>(o.name.size(), 40)),
-                          o.name.data(), o.value);
+            std::snprintf(text, sizeof text, "in iteration %.*s = %.17g of this loop",
+                          int(std::min<size_t>(o.name.size(), 40)), o.name.data(), o.value);
         else
             std::snprintf(text, sizeof text, "included from here");
         out.emplace_back(o.at, std::string(text));

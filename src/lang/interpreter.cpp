@@ -21,8 +21,12 @@ namespace fs = std::filesystem;
 // Thrown after an error inside an expression has been reported: the entry is dropped.
 struct EvaluationError {};
 
-bool is_vector(const Value& value) { return value.kind == Value::Kind::Vector; }
-bool is_number(const Value& value) { return value.kind == Value::Kind::Number; }
+bool is_vector(const Value& value) {
+    return value.kind == Value::Kind::Vector;
+}
+bool is_number(const Value& value) {
+    return value.kind == Value::Kind::Number;
+}
 
 Value number_value(double number, Span span) {
     Value value;
@@ -44,11 +48,16 @@ Value vector_value(std::vector<double> components, Span span) {
 // "a number", "a vector of 3 numbers", ...
 std::string kind_of(const Value& value) {
     switch (value.kind) {
-        case Value::Kind::Number: return "a number";
-        case Value::Kind::Vector: return "a vector of " + std::to_string(value.components.size()) + " numbers";
-        case Value::Kind::String: return "a string";
-        case Value::Kind::Identifier: return "the word " + in_quotes(value.text);
-        case Value::Kind::Block: return "a block";
+        case Value::Kind::Number:
+            return "a number";
+        case Value::Kind::Vector:
+            return "a vector of " + std::to_string(value.components.size()) + " numbers";
+        case Value::Kind::String:
+            return "a string";
+        case Value::Kind::Identifier:
+            return "the word " + in_quotes(value.text);
+        case Value::Kind::Block:
+            return "a block";
     }
     return "a value";
 }
@@ -194,11 +203,19 @@ void Interpreter::run_statements(const std::vector<Statement>& statements, uint3
     for (const Statement& statement : statements) {
         if (stopped_ || diagnostics_.saturated()) return;
         switch (statement.kind) {
-            case Statement::Kind::Block: run_block(statement, origin); break;
+            case Statement::Kind::Block:
+                run_block(statement, origin);
+                break;
             case Statement::Kind::Let:
-            case Statement::Kind::Param: run_binding(statement, origin); break;
-            case Statement::Kind::For: run_loop(statement, origin); break;
-            case Statement::Kind::Include: run_include(statement, origin); break;
+            case Statement::Kind::Param:
+                run_binding(statement, origin);
+                break;
+            case Statement::Kind::For:
+                run_loop(statement, origin);
+                break;
+            case Statement::Kind::Include:
+                run_include(statement, origin);
+                break;
         }
     }
 }
@@ -239,7 +256,7 @@ std::shared_ptr<Body> Interpreter::run_body(const BodyCode& code, const std::str
         out.key_span = at(entry.key_span, origin);
         if (entry.value.kind == Expr::Kind::Block) {
             // A nested block: its own table (rotate, transform), or a material's.
-            const std::string nested = key && key->block                               ? std::string(key->block->kind)
+            const std::string nested = key && key->block                            ? std::string(key->block->kind)
                                        : key && key->type == ValueType::MaterialRef ? "material"
                                                                                     : std::string();
             out.value.kind = Value::Kind::Block;
@@ -312,8 +329,8 @@ void Interpreter::run_loop(const Statement& statement, uint32_t origin) {
         for (const Expr* bound : {&statement.value, &statement.end}) {
             const double value = bound == &statement.value ? first : end;
             if (std::floor(value) != value)
-                fail(at(bound->span, origin), "a range goes from whole number to whole number; this is " +
-                                                  format_number(value));
+                fail(at(bound->span, origin),
+                     "a range goes from whole number to whole number; this is " + format_number(value));
         }
     } catch (const EvaluationError&) {
         return;
@@ -324,9 +341,9 @@ void Interpreter::run_loop(const Statement& statement, uint32_t origin) {
     for (double i = first; i < end; ++i) {
         if (stopped_ || diagnostics_.saturated()) return;
         if (++iterations_run_ > limits_.max_iterations) {
-            diagnostics_.error(sources_, at(statement.keyword, origin),
-                               "the scene runs more than " + std::to_string(limits_.max_iterations) +
-                                   " loop iterations (the limit)");
+            diagnostics_.error(
+                sources_, at(statement.keyword, origin),
+                "the scene runs more than " + std::to_string(limits_.max_iterations) + " loop iterations (the limit)");
             stopped_ = true;
             return;
         }
@@ -359,12 +376,12 @@ void Interpreter::run_include(const Statement& statement, uint32_t origin) {
     }
     InputFile input = read_input_file(path.string(), kMaxSceneFileBytes);
     if (!input.problem.empty()) {
-        diagnostics_.error(sources_, path_span, "cannot include '" + path.lexically_normal().string() + "': " + input.problem);
+        diagnostics_.error(sources_, path_span,
+                           "cannot include '" + path.lexically_normal().string() + "': " + input.problem);
         return;
     }
-    const uint32_t file_origin =
-        sources_.add_include(std::make_unique<SourceFile>(path.lexically_normal().string(), std::move(input.text)),
-                             path_span);
+    const uint32_t file_origin = sources_.add_include(
+        std::make_unique<SourceFile>(path.lexically_normal().string(), std::move(input.text)), path_span);
     include_stack_.push_back(canonical);
     std::vector<Iteration> outer;  // the included file's spans carry its own origin
     std::swap(outer, iterations_);
@@ -410,7 +427,8 @@ const std::vector<double>& Interpreter::vector_operand(const Value& value, const
 Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
     const Span span = at(expr.span, origin);
     switch (expr.kind) {
-        case Expr::Kind::Number: return number_value(expr.number, span);
+        case Expr::Kind::Number:
+            return number_value(expr.number, span);
         case Expr::Kind::String: {
             Value value;
             value.kind = Value::Kind::String;
@@ -418,7 +436,8 @@ Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
             value.span = span;
             return value;
         }
-        case Expr::Kind::Name: return evaluate_name(expr, origin, top);
+        case Expr::Kind::Name:
+            return evaluate_name(expr, origin, top);
         case Expr::Kind::Vector: {
             Value value;
             value.kind = Value::Kind::Vector;
@@ -433,8 +452,8 @@ Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
         case Expr::Kind::Unary: {
             Value value = evaluate(expr.operands[0], origin);
             if (!is_number(value) && !is_vector(value))
-                fail(value.span, std::string("'") + expr.op + "' applies to numbers and vectors; this is " +
-                                     kind_of(value));
+                fail(value.span,
+                     std::string("'") + expr.op + "' applies to numbers and vectors; this is " + kind_of(value));
             if (expr.op == '-') {
                 value.number = -value.number;
                 for (double& c : value.components) c = -c;
@@ -443,10 +462,14 @@ Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
             if (is_vector(value)) value.component_spans.assign(value.components.size(), span);
             return value;
         }
-        case Expr::Kind::Binary: return evaluate_binary(expr, origin);
-        case Expr::Kind::Call: return evaluate_call(expr, origin);
-        case Expr::Kind::Component: return evaluate_component(expr, origin);
-        case Expr::Kind::Block: fail(span, "a block { ... } is not a value here");
+        case Expr::Kind::Binary:
+            return evaluate_binary(expr, origin);
+        case Expr::Kind::Call:
+            return evaluate_call(expr, origin);
+        case Expr::Kind::Component:
+            return evaluate_component(expr, origin);
+        case Expr::Kind::Block:
+            fail(span, "a block { ... } is not a value here");
     }
     fail(span, "not a value");
 }
@@ -463,7 +486,8 @@ Value Interpreter::evaluate_name(const Expr& expr, uint32_t origin, bool top) {
         value.component_spans.assign(value.components.size(), span);
         return value;
     }
-    const std::string suggestion = scopes_.size() == 1 && scopes_[0].empty() ? "" : did_you_mean(expr.text, names_in_scope());
+    const std::string suggestion =
+        scopes_.size() == 1 && scopes_[0].empty() ? "" : did_you_mean(expr.text, names_in_scope());
     if (top && (nan_or_infinity_word(expr.text) || suggestion.empty())) {
         Value word;
         word.kind = Value::Kind::Identifier;
@@ -519,10 +543,9 @@ Value Interpreter::evaluate_call(const Expr& expr, uint32_t origin) {
         std::string_view name;
         size_t arity;
     };
-    static const Function kFunctions[] = {{"sqrt", 1},  {"sin", 1},    {"cos", 1},       {"tan", 1},
-                                          {"abs", 1},   {"floor", 1},  {"min", 2},       {"max", 2},
-                                          {"mod", 2},   {"length", 1}, {"normalize", 1}, {"dot", 2},
-                                          {"cross", 2}, {"lerp", 3}};
+    static const Function kFunctions[] = {{"sqrt", 1},      {"sin", 1}, {"cos", 1},   {"tan", 1}, {"abs", 1},
+                                          {"floor", 1},     {"min", 2}, {"max", 2},   {"mod", 2}, {"length", 1},
+                                          {"normalize", 1}, {"dot", 2}, {"cross", 2}, {"lerp", 3}};
     const Function* function = nullptr;
     for (const Function& f : kFunctions)
         if (f.name == expr.text) function = &f;
@@ -581,9 +604,9 @@ Value Interpreter::evaluate_call(const Expr& expr, uint32_t origin) {
     }
     if (f == "cross") {
         const auto &a = vec(0), &b = vec(1);
-        return finite(vector_value({a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]},
-                                   span),
-                      span);
+        return finite(
+            vector_value({a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}, span),
+            span);
     }
     // lerp(a, b, t) = a + (b - a) t, of numbers or of vectors.
     const double t = number(2);

@@ -67,8 +67,8 @@ private:
     Lexer lexer_;
     std::deque<Token> lookahead_;
     std::vector<OpenBrace> open_;  // braces opened inside the current block
-    int depth_ = 0;                 // expressions and loops nested: a bound against stack overflow
-    int loops_ = 0;                 // loops around the statement being parsed
+    int depth_ = 0;                // expressions and loops nested: a bound against stack overflow
+    int loops_ = 0;                // loops around the statement being parsed
 };
 
 // Nesting deeper than this (parentheses, unary minus, loops) is refused: the parser recurses.
@@ -309,8 +309,7 @@ void Parser::parse_entry(BodyCode& body) {
     Token key = take();
     entry.key = std::string(key.text);
     entry.key_span = key.span;
-    if (at(TokenKind::Equals))
-        fail(peek(), "a key takes its value without '=': write '" + entry.key + " value'");
+    if (at(TokenKind::Equals)) fail(peek(), "a key takes its value without '=': write '" + entry.key + " value'");
     parse_value(entry.value, entry.key);
     body.entries.push_back(std::move(entry));
 }
@@ -497,7 +496,6 @@ void Parser::skip_to_next_statement() {
     lexer_.set_quiet(false);
 }
 
-
 Program parse_program(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin) {
     return Parser(file, diagnostics, origin).parse_program();
 }
@@ -505,7 +503,9 @@ Program parse_program(const SourceFile& file, Diagnostics& diagnostics, uint32_t
 StatementReader::StatementReader(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin)
     : parser_(std::make_unique<Parser>(file, diagnostics, origin)) {}
 StatementReader::~StatementReader() = default;
-bool StatementReader::next(std::vector<Statement>& out) { return parser_->next_statement(out); }
+bool StatementReader::next(std::vector<Statement>& out) {
+    return parser_->next_statement(out);
+}
 
 bool parse_single_expression(const SourceFile& file, Diagnostics& diagnostics, Expr& out) {
     return Parser(file, diagnostics, 0).parse_lone_value(out);

@@ -55,14 +55,14 @@ struct Statement {
         Include,  // include "path"
     };
     Kind kind = Kind::Block;
-    Span keyword;  // the block's kind or the statement's keyword
-    std::string word;  // Block: its kind; Include: the path
-    std::string name;  // Block: its name (may be empty); Let, Param, For: the name bound
-    Span name_span;    // Include: the path's span
-    BodyCode body;     // Block
-    bool broken = false;  // Block: a syntax error was reported inside; do not validate further
-    Expr value;           // Let, Param: the value; For: the first number
-    Expr end;             // For: the end of the range (not included)
+    Span keyword;                       // the block's kind or the statement's keyword
+    std::string word;                   // Block: its kind; Include: the path
+    std::string name;                   // Block: its name (may be empty); Let, Param, For: the name bound
+    Span name_span;                     // Include: the path's span
+    BodyCode body;                      // Block
+    bool broken = false;                // Block: a syntax error was reported inside; do not validate further
+    Expr value;                         // Let, Param: the value; For: the first number
+    Expr end;                           // For: the end of the range (not included)
     std::vector<Statement> statements;  // For: the loop's body
 };
 

@@ -169,10 +169,9 @@ private:
 
 std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
     for (const auto& [name, value] : ast.parameters)
-        scene_.parameters.push_back({name,
-                                     value.kind == Value::Kind::Vector ? value.components
-                                                                       : std::vector<double>{value.number},
-                                     value.kind == Value::Kind::Vector});
+        scene_.parameters.push_back(
+            {name, value.kind == Value::Kind::Vector ? value.components : std::vector<double>{value.number},
+             value.kind == Value::Kind::Vector});
     // Step 1: block kinds, names and counts; named materials first so shapes may use a
     // material defined further down the file.
     std::vector<std::pair<const Block*, const BlockSpec*>> shapes_and_settings;

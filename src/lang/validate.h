@@ -21,8 +21,7 @@ struct ValidateOptions {
 
 // The scene description, or nothing if any error was reported (the errors are in
 // `diagnostics`). Relative paths resolve against the folder of the file they are written in.
-std::optional<SceneDescription> validate_scene(const SceneAst& ast, const Sources& sources,
-                                               Diagnostics& diagnostics,
+std::optional<SceneDescription> validate_scene(const SceneAst& ast, const Sources& sources, Diagnostics& diagnostics,
                                                const ValidateOptions& options = {});
 
 // Why `text`, as the value of `key` in the top-level block `block`, would be refused in a scene

@@ -18,7 +18,9 @@ std::string read_scene(const std::string& name) {
     text << in.rdbuf();
     return text.str();
 }
-std::string read_task2() { return read_scene("task2.scn"); }
+std::string read_task2() {
+    return read_scene("task2.scn");
+}
 
 TEST(Fuzz, RandomEditsOfTask2NeverCrashAndAreConsistent) {
     const std::string original = read_task2();
@@ -64,10 +66,18 @@ TEST(Fuzz, RandomEditsOfAProgramNeverCrashAndAreConsistent) {
         for (int e = 0; e < edits && !text.empty(); ++e) {
             size_t at = random() % text.size();
             switch (random() % 4) {
-                case 0: text.erase(at, 1 + random() % 8); break;
-                case 1: text.insert(at, 1, alphabet[random() % alphabet.size()]); break;
-                case 2: text.insert(at, words[random() % std::size(words)]); break;
-                default: text[at] = alphabet[random() % alphabet.size()]; break;
+                case 0:
+                    text.erase(at, 1 + random() % 8);
+                    break;
+                case 1:
+                    text.insert(at, 1, alphabet[random() % alphabet.size()]);
+                    break;
+                case 2:
+                    text.insert(at, words[random() % std::size(words)]);
+                    break;
+                default:
+                    text[at] = alphabet[random() % alphabet.size()];
+                    break;
             }
         }
         LoadResult result = load_scene_text("fuzz.scn", text, false, limits);
@@ -81,8 +91,7 @@ TEST(Fuzz, RandomEditsOfAProgramNeverCrashAndAreConsistent) {
 // Deep parentheses, signs and loops are errors, not a stack overflow.
 TEST(Fuzz, DeeplyNestedExpressionsAndLoopsAreAnError) {
     const std::string cases[] = {"let a = " + std::string(100000, '(') + "1",
-                                 "let a = " + std::string(100000, '-') + "1",
-                                 [] {
+                                 "let a = " + std::string(100000, '-') + "1", [] {
                                      std::string loops;
                                      for (int i = 0; i < 100000; ++i) loops += "for i in 0..1 { ";
                                      return loops;

@@ -83,8 +83,7 @@ TEST(Interpreter, LoopsRunFromTheFirstNumberUpToButNotIncludingTheEnd) {
     EXPECT_EQ(r.scene->spheres[5].center, dvec3(2, 2, 0));
     EXPECT_EQ(load("for i in 3..3 { sphere { center (0, 0, 0) radius 1 material { kd 1 } } }").scene->spheres.size(),
               0u);
-    EXPECT_EQ(load("for i in -2..1 { sphere { center (i, 0, 0) radius 1 material { kd 1 } } }")
-                  .scene->spheres.size(),
+    EXPECT_EQ(load("for i in -2..1 { sphere { center (i, 0, 0) radius 1 material { kd 1 } } }").scene->spheres.size(),
               3u);
 }
 
@@ -105,8 +104,9 @@ TEST(Interpreter, LoopBodiesHaveTheirOwnScope) {
 }
 
 TEST(Interpreter, WordsThatAreNotNamesReachTheValidator) {
-    LoadResult r = load("material gold { kd (1, 0.8, 0.2) }\nrender { accel median shadows false }\n"
-                        "sphere { center (0, 0, 0) radius 1 material gold }");
+    LoadResult r = load(
+        "material gold { kd (1, 0.8, 0.2) }\nrender { accel median shadows false }\n"
+        "sphere { center (0, 0, 0) radius 1 material gold }");
     ASSERT_TRUE(r.scene) << errors(r)[0];
     EXPECT_EQ(r.scene->render.accel, Accelerator::Median);
     EXPECT_FALSE(r.scene->render.shadows);
@@ -124,7 +124,8 @@ TEST(Interpreter, ExpressionErrorsAreReportedWhereTheyHappen) {
     EXPECT_EQ(first_error("let a = 1e300 * 1e300"), "this expression's value is not finite (too large for a double)");
     EXPECT_EQ(first_error("let a = (1, 2, 3) * (1, 2, 3)"),
               "'*' does not multiply two vectors; use dot(a, b) or cross(a, b)");
-    EXPECT_EQ(first_error("let a = (1, 2, 3) + 1"), "'+' needs two numbers or two vectors; this is a number and a vector");
+    EXPECT_EQ(first_error("let a = (1, 2, 3) + 1"),
+              "'+' needs two numbers or two vectors; this is a number and a vector");
     EXPECT_EQ(first_error("let a = sqrt(-1)"), "sqrt of a negative number (-1)");
     EXPECT_EQ(first_error("let a = sqr(4)"), "unknown function 'sqr'; did you mean 'sqrt'?");
     EXPECT_EQ(first_error("let a = min(1)"), "'min' takes 2 arguments, found 1");
@@ -148,8 +149,9 @@ TEST(Interpreter, ErrorsInALoopNameTheIteration) {
 }
 
 TEST(Interpreter, ParametersTakeTheirValueFromTheCommandLine) {
-    const std::string text = "param r = 0.5\nparam colour = (1, 1, 1)\n"
-                             "sphere { center (0, 0, 0) radius r material { kd colour } }";
+    const std::string text =
+        "param r = 0.5\nparam colour = (1, 1, 1)\n"
+        "sphere { center (0, 0, 0) radius r material { kd colour } }";
     LoadResult defaults = load(text);
     ASSERT_TRUE(defaults.scene);
     EXPECT_EQ(defaults.scene->spheres[0].radius, 0.5);

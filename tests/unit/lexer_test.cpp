@@ -52,9 +52,8 @@ TEST(Lexer, SignsDotsAndRangesAreOperators) {
         return kinds;
     };
     EXPECT_EQ(kinds_of("-0.5"), (std::vector<K>{K::Minus, K::Number, K::End}));
-    EXPECT_EQ(kinds_of("+2*3/4=5"),
-              (std::vector<K>{K::Plus, K::Number, K::Star, K::Number, K::Slash, K::Number, K::Equals, K::Number,
-                              K::End}));
+    EXPECT_EQ(kinds_of("+2*3/4=5"), (std::vector<K>{K::Plus, K::Number, K::Star, K::Number, K::Slash, K::Number,
+                                                    K::Equals, K::Number, K::End}));
     EXPECT_EQ(kinds_of("0..8"), (std::vector<K>{K::Number, K::DotDot, K::Number, K::End}));
     EXPECT_EQ(kinds_of("1...5"), (std::vector<K>{K::Number, K::DotDot, K::Number, K::End}));  // 1 .. .5
     EXPECT_EQ(kinds_of("v.x"), (std::vector<K>{K::Identifier, K::Dot, K::Identifier, K::End}));
@@ -67,7 +66,8 @@ TEST(Lexer, DirectivesOfOtherLanguagesAreCommentsWithAHint) {
     ASSERT_EQ(lexed.diagnostics.warning_count(), 2);
     EXPECT_EQ(lexed.diagnostics.all()[0].message,
               "'#' starts a comment, so this line is ignored; write include \"file.scn\"");
-    EXPECT_EQ(lexed.diagnostics.all()[1].message, "'#' starts a comment, so this line is ignored; write let NAME = value");
+    EXPECT_EQ(lexed.diagnostics.all()[1].message,
+              "'#' starts a comment, so this line is ignored; write let NAME = value");
     EXPECT_EQ(lexed.tokens.size(), 1u);  // all comments
 }
 
