@@ -44,6 +44,7 @@ private:
     void parse_statement(std::vector<Statement>& out);
     void parse_block(std::vector<Statement>& out);
     void parse_binding(std::vector<Statement>& out, Statement::Kind kind);
+    void parse_named_material(std::vector<Statement>& out, const Statement& let);
     void parse_loop(std::vector<Statement>& out);
     void parse_include(std::vector<Statement>& out);
     void parse_body(BodyCode& body, const std::string& owner);
@@ -155,6 +156,9 @@ void Parser::parse_binding(std::vector<Statement>& out, Statement::Kind kind) {
             throw SyntaxError{};
         }
         expect(TokenKind::Equals, "'=' after '" + statement.name + "'");
+        if (kind == Statement::Kind::Let && at(TokenKind::Identifier) && peek().text == "material" &&
+            at(TokenKind::LBrace, 1))
+            return parse_named_material(out, statement);
         statement.value = parse_expression();
     } catch (const SyntaxError&) {
         skip_to_next_statement();
@@ -163,6 +167,24 @@ void Parser::parse_binding(std::vector<Statement>& out, Statement::Kind kind) {
         return;
     }
     out.push_back(std::move(statement));
+}
+
+// `let gold = material { ... }` is another way to write `material gold { ... }`.
+void Parser::parse_named_material(std::vector<Statement>& out, const Statement& let) {
+    Statement block;
+    block.word = "material";
+    block.keyword = take().span;
+    block.name = let.name;
+    block.name_span = let.name_span;
+    try {
+        parse_body(block.body, block.word);
+    } catch (const SyntaxError&) {
+        block.broken = true;
+        skip_to_block_end();
+    } catch (const UnclosedBlock&) {
+        block.broken = open_.size() > 1;
+    }
+    out.push_back(std::move(block));
 }
 
 // for = "for" identifier "in" expression ".." expression "{" { statement } "}" ;

@@ -115,6 +115,19 @@ TEST(Interpreter, WordsThatAreNotNamesReachTheValidator) {
               std::vector<std::string>{"undefined name 'radius2'; did you mean 'radius1'?"});
 }
 
+// `let gold = material { ... }` names a material exactly as `material gold { ... }` does.
+TEST(Interpreter, LetNamesAMaterialAsAMaterialBlockDoes) {
+    LoadResult a = load("let gold = material { kd (1, 0.8, 0.2) ks 0.5 }\nsphere { center (0, 0, 0) radius 1 material gold }");
+    LoadResult b = load("material gold { kd (1, 0.8, 0.2) ks 0.5 }\nsphere { center (0, 0, 0) radius 1 material gold }");
+    ASSERT_TRUE(a.scene && b.scene);
+    EXPECT_EQ(a.scene->materials[0].name, "gold");
+    EXPECT_EQ(a.scene->materials[0].kd, b.scene->materials[0].kd);
+    EXPECT_EQ(a.scene->materials[0].ks, b.scene->materials[0].ks);
+    EXPECT_EQ(errors(load("let gold = material { kd 1 }\nmaterial gold { kd 2 }\nsphere { center (0, 0, 0) radius 1 "
+                          "material gold }")),
+              std::vector<std::string>{"material 'gold' is defined twice"});
+}
+
 TEST(Interpreter, ExpressionErrorsAreReportedWhereTheyHappen) {
     auto first_error = [](const std::string& text) {
         const auto found = errors(load(text));
