@@ -117,8 +117,10 @@ TEST(Interpreter, WordsThatAreNotNamesReachTheValidator) {
 
 // `let gold = material { ... }` names a material exactly as `material gold { ... }` does.
 TEST(Interpreter, LetNamesAMaterialAsAMaterialBlockDoes) {
-    LoadResult a = load("let gold = material { kd (1, 0.8, 0.2) ks 0.5 }\nsphere { center (0, 0, 0) radius 1 material gold }");
-    LoadResult b = load("material gold { kd (1, 0.8, 0.2) ks 0.5 }\nsphere { center (0, 0, 0) radius 1 material gold }");
+    LoadResult a =
+        load("let gold = material { kd (1, 0.8, 0.2) ks 0.5 }\nsphere { center (0, 0, 0) radius 1 material gold }");
+    LoadResult b =
+        load("material gold { kd (1, 0.8, 0.2) ks 0.5 }\nsphere { center (0, 0, 0) radius 1 material gold }");
     ASSERT_TRUE(a.scene && b.scene);
     EXPECT_EQ(a.scene->materials[0].name, "gold");
     EXPECT_EQ(a.scene->materials[0].kd, b.scene->materials[0].kd);
