@@ -236,7 +236,10 @@ void Interpreter::run_block(const Statement& statement, uint32_t origin) {
     bool failed = false;
     block.body = std::move(*run_body(statement.body, statement.word, origin, failed));
     block.broken = statement.broken || failed;  // reported: not validated too
-    scene_.blocks.push_back(std::move(block));
+    if (limits_.on_block)
+        limits_.on_block(std::move(block));
+    else
+        scene_.blocks.push_back(std::move(block));
 }
 
 // A body's entries evaluated; `failed` is set if a value had an error (reported).

@@ -5,6 +5,7 @@
 // point at it and say which iteration it was.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,6 +28,9 @@ struct InterpretOptions {
     std::vector<std::pair<std::string, std::string>> parameters;
     size_t max_blocks = kMaxGeneratedBlocks;  // lower for fuzzing, where memory and time are short
     size_t max_iterations = kMaxLoopIterations;
+    // If set, each block is handed over as soon as it is made, not kept in the SceneAst: a
+    // scene of a million blocks is then never held whole.
+    std::function<void(Block&&)> on_block;
 };
 
 // The scene file `sources.scene()` parsed and run, one statement at a time; problems go to

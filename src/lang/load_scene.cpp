@@ -11,10 +11,14 @@ LoadResult load_scene_text(const std::string& path, std::string text, bool fragm
                            const InterpretOptions& interpret_options) {
     LoadResult result;
     Sources sources(std::make_unique<SourceFile>(path, std::move(text)));
-    const SceneAst ast = interpret(sources, result.diagnostics, interpret_options);
+    // Each block is checked and built as the interpreter makes it.
     ValidateOptions options;
     options.fragment = fragment;
-    result.scene = validate_scene(ast, sources, result.diagnostics, options);
+    SceneBuilder builder(sources, result.diagnostics, options);
+    InterpretOptions streaming = interpret_options;
+    streaming.on_block = [&](Block&& block) { builder.add(block); };
+    const SceneAst ast = interpret(sources, result.diagnostics, streaming);
+    result.scene = builder.finish(ast.parameters);
     return result;
 }
 

@@ -121,6 +121,9 @@ public:
     }
 
     std::optional<SceneDescription> run(const SceneAst& ast);
+    void set_parameters(const std::vector<std::pair<std::string, Value>>& parameters);
+    void accept(const Block& block);
+    std::optional<SceneDescription> finish();
     // Checks one value of `key` as a scene's block would (its type, range and other rules).
     bool check_setting(const Value& value, const KeySpec& key, const BlockSpec& spec) {
         Fields fields(spec);
@@ -164,42 +167,78 @@ private:
         bool used = false;
     };
     std::map<std::string, NamedMaterial, std::less<>> named_;
-    std::map<std::string_view, const Block*> first_of_kind_;
+    std::map<std::string_view, Span> first_of_kind_;  // each kind's first block
+    // Materials used by name before their block, resolved by finish(): a shape's material index
+    // kLaterMaterial - i stands for later_uses_[i].
+    struct LaterUse {
+        std::string name;
+        Span span;
+    };
+    static constexpr int kLaterMaterial = -2;
+    std::vector<LaterUse> later_uses_;
+    void resolve_later_materials();
 };
 
-std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
-    for (const auto& [name, value] : ast.parameters)
+// Takes a scene's parameters, as the interpreter found them.
+void Validator::set_parameters(const std::vector<std::pair<std::string, Value>>& parameters) {
+    for (const auto& [name, value] : parameters)
         scene_.parameters.push_back(
             {name, value.kind == Value::Kind::Vector ? value.components : std::vector<double>{value.number},
              value.kind == Value::Kind::Vector});
-    // Step 1: block kinds, names and counts; named materials first so shapes may use a
-    // material defined further down the file.
-    std::vector<std::pair<const Block*, const BlockSpec*>> shapes_and_settings;
-    for (const Block& block : ast.blocks) {
-        if (diagnostics_.saturated()) break;
-        const BlockSpec* spec = find_block_spec(block.kind);
-        if (!spec) {
-            std::vector<std::string_view> kinds;
-            for (const BlockSpec* s : all_block_specs())
-                if (s->top_level) kinds.push_back(s->kind);
-            diagnostics_.error(file_, block.kind_span,
-                               "unknown block " + in_quotes(block.kind) + did_you_mean(block.kind, kinds));
+}
+
+std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
+    set_parameters(ast.parameters);
+    for (const Block& block : ast.blocks) accept(block);
+    return finish();
+}
+
+// One block, checked and built as soon as it is made (the interpreter hands them over one by
+// one, so that a big scene is never held whole). A material used before its block is
+// resolved at the end.
+void Validator::accept(const Block& block) {
+    if (diagnostics_.saturated()) return;
+    const BlockSpec* spec = find_block_spec(block.kind);
+    if (!spec) {
+        std::vector<std::string_view> kinds;
+        for (const BlockSpec* s : all_block_specs())
+            if (s->top_level) kinds.push_back(s->kind);
+        diagnostics_.error(file_, block.kind_span,
+                           "unknown block " + in_quotes(block.kind) + did_you_mean(block.kind, kinds));
+        return;
+    }
+    if (!check_block_header(block, *spec)) return;
+    if (spec->kind == "material") return add_named_material(block);
+    if (block.broken) return;
+    Fields fields(*spec);
+    if (check_body(block.body, *spec, block.kind_span, fields)) build(block, fields);
+}
+
+// Materials used before their block: now defined, or undefined.
+void Validator::resolve_later_materials() {
+    for (const LaterUse& use : later_uses_) {
+        auto found = named_.find(use.name);
+        if (found != named_.end()) {
+            found->second.used = true;
             continue;
         }
-        if (!check_block_header(block, *spec)) continue;
-        if (spec->kind == "material")
-            add_named_material(block);
-        else if (!block.broken)
-            shapes_and_settings.emplace_back(&block, spec);
+        std::vector<std::string_view> names;
+        for (const auto& [name, material] : named_) names.push_back(name);
+        diagnostics_.error(file_, use.span, "undefined material " + in_quotes(use.name) + did_you_mean(use.name, names));
     }
+    auto resolve = [&](auto& shapes) {
+        for (auto& shape : shapes)
+            if (shape.material <= kLaterMaterial) {
+                auto found = named_.find(later_uses_[size_t(kLaterMaterial - shape.material)].name);
+                shape.material = found != named_.end() ? found->second.index : -1;
+            }
+    };
+    resolve(scene_.spheres), resolve(scene_.planes), resolve(scene_.meshes);
+    resolve(scene_.triangles), resolve(scene_.quads), resolve(scene_.boxes);
+}
 
-    // Step 2: everything else, now that every material name is known.
-    for (auto [block, spec] : shapes_and_settings) {
-        if (diagnostics_.saturated()) break;
-        Fields fields(*spec);
-        if (check_body(block->body, *spec, block->kind_span, fields)) build(*block, fields);
-    }
-
+std::optional<SceneDescription> Validator::finish() {
+    resolve_later_materials();
     // Step 3: whole-scene checks.
     if (!options_.fragment && !first_of_kind_.count("camera") && !diagnostics_.saturated())
         diagnostics_.report(Severity::Error, Diagnostics::whole_file(file_.scene().path()),
@@ -261,10 +300,10 @@ bool Validator::check_block_header(const Block& block, const BlockSpec& spec) {
                            "a " + block.kind + " block takes no name; write " + block.kind + " { ... }");
         return false;
     }
-    auto [first, inserted] = first_of_kind_.emplace(spec.kind, &block);
+    auto [first, inserted] = first_of_kind_.emplace(spec.kind, block.kind_span);
     if (!inserted && spec.occurs != Occurs::Any) {
         Diagnostic* d = diagnostics_.error(file_, block.kind_span, "a scene has only one " + block.kind + " block");
-        Diagnostics::note(d, file_, first->second->kind_span, "the first " + block.kind + " block is here");
+        Diagnostics::note(d, file_, first->second, "the first " + block.kind + " block is here");
         return false;
     }
     return true;
@@ -485,20 +524,20 @@ int Validator::material_index(const Fields& fields) {
         scene_.materials.push_back(build_material(*fields.child("material"), ""));
         return int(scene_.materials.size()) - 1;
     }
-    return named_.at(value.text).index;  // check_material_name made sure it exists
+    auto found = named_.find(value.text);
+    if (found != named_.end()) return found->second.index;
+    return kLaterMaterial - int(later_uses_.size() - 1);  // this block's use, just recorded by check_material_name
 }
 
-// A material used by name must be defined somewhere in the file; marks it used.
+// A material used by name must be defined somewhere in the scene: marks it used, or records
+// the use to be resolved once every block is in (it may be defined further down).
 bool Validator::check_material_name(const Value& value) {
     auto found = named_.find(value.text);
-    if (found == named_.end()) {
-        std::vector<std::string_view> names;
-        for (const auto& [name, material] : named_) names.push_back(name);
-        diagnostics_.error(file_, value.span,
-                           "undefined material " + in_quotes(value.text) + did_you_mean(value.text, names));
-        return false;
+    if (found != named_.end()) {
+        found->second.used = true;
+        return true;
     }
-    found->second.used = true;
+    later_uses_.push_back({value.text, value.span});
     return true;
 }
 
@@ -664,8 +703,11 @@ void Validator::build_flat_shape(const Block& block, const Fields& fields) {
     const std::string& kind = block.kind;
     if (kind == "triangle") {
         FlatTriangle shape;
-        shape.a = fields.triple("a"), shape.b = fields.triple("b"), shape.c = fields.triple("c");
-        if (parallel(shape.b - shape.a, shape.c - shape.a))
+        shape.a = fields.triple("a");
+        shape.b = fields.triple("b");
+        shape.c = fields.triple("c");
+        const dvec3 side1 = shape.b - shape.a, side2 = shape.c - shape.a;
+        if (parallel(side1, side2))
             return (void)diagnostics_.error(file_, block.kind_span,
                                             "the triangle's corners lie on one line: it has no area");
         if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
@@ -709,6 +751,21 @@ std::string setting_problem(std::string_view block, std::string_view key, const 
         return "'" + std::string(key) + "' expects " + std::string(describe(key_spec->type)) + ", found " +
                in_quotes(text);
     return diagnostics.all().empty() ? "" : diagnostics.all().front().message;
+}
+
+struct SceneBuilder::State {
+    Validator validator;
+};
+
+SceneBuilder::SceneBuilder(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& options)
+    : state_(std::make_unique<State>(State{Validator(sources, diagnostics, options)})) {}
+SceneBuilder::~SceneBuilder() = default;
+
+void SceneBuilder::add(const Block& block) { state_->validator.accept(block); }
+
+std::optional<SceneDescription> SceneBuilder::finish(const std::vector<std::pair<std::string, Value>>& parameters) {
+    state_->validator.set_parameters(parameters);
+    return state_->validator.finish();
 }
 
 std::optional<SceneDescription> validate_scene(const SceneAst& ast, const Sources& sources, Diagnostics& diagnostics,

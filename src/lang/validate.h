@@ -2,6 +2,7 @@
 // in defaults, resolves materials and paths, and reports every problem it finds.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -23,6 +24,22 @@ struct ValidateOptions {
 // `diagnostics`). Relative paths resolve against the folder of the file they are written in.
 std::optional<SceneDescription> validate_scene(const SceneAst& ast, const Sources& sources, Diagnostics& diagnostics,
                                                const ValidateOptions& options = {});
+
+// The same, a block at a time: blocks are checked and built as they come (the interpreter's
+// on_block), and finish() gives the scene description.
+class SceneBuilder {
+public:
+    SceneBuilder(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& options = {});
+    ~SceneBuilder();
+    // Checks one block and adds what it describes.
+    void add(const Block& block);
+    // The scene description (with the parameters the scene used), or nothing after errors.
+    std::optional<SceneDescription> finish(const std::vector<std::pair<std::string, Value>>& parameters);
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
 
 // Why `text`, as the value of `key` in the top-level block `block`, would be refused in a scene
 // (the same message, e.g. "'width' must be between 1 and 16384, found 0"), or empty: the one
