@@ -542,19 +542,12 @@ Value Interpreter::evaluate_call(const Expr& expr, uint32_t origin) {
     const Span span = at(expr.span, origin);
     std::vector<Value> args;
     for (const Expr& operand : expr.operands) args.push_back(evaluate(operand, origin));
-    struct Function {
-        std::string_view name;
-        size_t arity;
-    };
-    static const Function kFunctions[] = {{"sqrt", 1},      {"sin", 1}, {"cos", 1},   {"tan", 1}, {"abs", 1},
-                                          {"floor", 1},     {"min", 2}, {"max", 2},   {"mod", 2}, {"length", 1},
-                                          {"normalize", 1}, {"dot", 2}, {"cross", 2}, {"lerp", 3}};
-    const Function* function = nullptr;
-    for (const Function& f : kFunctions)
+    const FunctionSpec* function = nullptr;
+    for (const FunctionSpec& f : all_functions())
         if (f.name == expr.text) function = &f;
     if (!function) {
         std::vector<std::string_view> names;
-        for (const Function& f : kFunctions) names.push_back(f.name);
+        for (const FunctionSpec& f : all_functions()) names.push_back(f.name);
         fail(at(Span{expr.span.begin, expr.span.begin + uint32_t(expr.text.size()), expr.span.origin}, origin),
              "unknown function " + in_quotes(expr.text) + did_you_mean(expr.text, names));
     }
@@ -652,6 +645,26 @@ bool Interpreter::single_value(const Expr& expr, Value& out) {
 }
 
 }  // namespace
+
+const std::vector<FunctionSpec>& all_functions() {
+    static const std::vector<FunctionSpec> functions = {
+        {"sqrt", 1, "Square root (of a number not below 0)."},
+        {"sin", 1, "Sine of an angle in degrees."},
+        {"cos", 1, "Cosine of an angle in degrees."},
+        {"tan", 1, "Tangent of an angle in degrees."},
+        {"abs", 1, "Absolute value, of a number or of each component of a vector."},
+        {"floor", 1, "The largest whole number not above."},
+        {"min", 2, "The smaller of two numbers."},
+        {"max", 2, "The larger of two numbers."},
+        {"mod", 2, "Remainder of a / b, with b's sign: mod(-1, 3) is 2."},
+        {"length", 1, "Length of a vector."},
+        {"normalize", 1, "The vector scaled to length 1 (not the zero vector)."},
+        {"dot", 2, "Dot product of two vectors."},
+        {"cross", 2, "Cross product of two vectors (right-handed)."},
+        {"lerp", 3, "lerp(a, b, t) = a + (b - a) t, of numbers or of vectors."},
+    };
+    return functions;
+}
 
 SceneAst interpret(Sources& sources, Diagnostics& diagnostics, const InterpretOptions& options) {
     return Interpreter(sources, diagnostics).run(options);

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -32,6 +33,15 @@ struct InterpretOptions {
     // scene of a million blocks is then never held whole.
     std::function<void(Block&&)> on_block;
 };
+
+// A function expressions may call: its name, how many arguments it takes, what it gives (the
+// one table the interpreter and the reference both read).
+struct FunctionSpec {
+    std::string_view name;
+    size_t arity;
+    std::string_view meaning;
+};
+const std::vector<FunctionSpec>& all_functions();
 
 // The scene file `sources.scene()` parsed and run, one statement at a time; problems go to
 // `diagnostics`. Included files are added to `sources`.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "lang/interpreter.h"
 #include "lang/schema.h"
 
 namespace tracer {
@@ -66,6 +67,19 @@ std::string reference_markdown() {
         }
         if (!spec->example.empty()) out << "\nExample:\n\n```scn\n" << spec->example << "```\n";
     }
+    out << "\n## Statements\n\n"
+           "Between blocks (and inside a loop's body) a scene may also have these; what they mean is in\n"
+           "[README.md](README.md).\n\n"
+           "| statement | what it does |\n|---|---|\n"
+           "| `let NAME = value` | names a number or a vector (`let NAME = material { ... }` names a material) |\n"
+           "| `param NAME = value` | a `let` that `-D NAME=VALUE` on the command line may change (top level only) |\n"
+           "| `for NAME in A..B { ... }` | runs its statements for NAME = A, A + 1, ..., B - 1 |\n"
+           "| `include \"file.scn\"` | runs another file in place (path relative to this file) |\n"
+           "\nValues may be expressions: `+ - * /`, unary minus, parentheses, vectors `(a, b, c)`, components\n"
+           "`v.x`, `v.y`, `v.z`, and these functions:\n\n"
+           "| function | arguments | gives |\n|---|---|---|\n";
+    for (const FunctionSpec& function : all_functions())
+        out << "| `" << function.name << "` | " << function.arity << " | " << function.meaning << " |\n";
     return out.str();
 }
 
