@@ -168,13 +168,8 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
     for (size_t block = 0; block < scene.meshes.size(); ++block) {
         const Mesh& mesh = scene.meshes[block];
         const double reach = Placement(mesh).reach(largest[meshes.file_of_block[block]]);
-        if (!(reach <= kLargestMagnitude)) {
-            char reach_text[32];
-            std::snprintf(reach_text, sizeof reach_text, "%.3g", reach);
-            diagnostics.report(Severity::Error, mesh.named_at,
-                               "this mesh, scaled and moved, reaches coordinates up to " + std::string(reach_text) +
-                                   ", beyond +-1e30 (the renderer keeps bounding boxes in float " +
-                                   "and squares and cubes lengths)");
+        if (const std::string problem = placed_reach_problem("mesh", reach); !problem.empty()) {
+            diagnostics.report(Severity::Error, mesh.named_at, problem);
             ok = false;
         }
     }

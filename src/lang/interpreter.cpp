@@ -62,12 +62,6 @@ std::string kind_of(const Value& value) {
     return "a value";
 }
 
-bool nan_or_infinity_word(std::string_view word) {
-    std::string lower;
-    for (char c : word) lower += char(std::tolower(static_cast<unsigned char>(c)));
-    return lower == "nan" || lower == "inf" || lower == "infinity";
-}
-
 // What a name holds, and where it was defined. A name whose value had an error is `broken`:
 // using it is an error already reported.
 struct Binding {
@@ -101,7 +95,7 @@ private:
     void run_binding(const Statement& statement, uint32_t origin);
     void run_loop(const Statement& statement, uint32_t origin);
     void run_include(const Statement& statement, uint32_t origin);
-    std::shared_ptr<Body> run_body(const BodyCode& code, const std::string& kind, uint32_t origin, bool& failed);
+    std::shared_ptr<Body> run_body(const BodyCode& code, const BlockSpec* spec, uint32_t origin, bool& failed);
 
     // Expressions.
     Value evaluate(const Expr& expr, uint32_t origin, bool top = false);
@@ -234,7 +228,7 @@ void Interpreter::run_block(const Statement& statement, uint32_t origin) {
     block.name = statement.name;
     block.name_span = at(statement.name_span, origin);
     bool failed = false;
-    block.body = std::move(*run_body(statement.body, statement.word, origin, failed));
+    block.body = std::move(*run_body(statement.body, find_block_spec(statement.word), origin, failed));
     block.broken = statement.broken || failed;  // reported: not validated too
     if (limits_.on_block)
         limits_.on_block(std::move(block));
@@ -242,16 +236,13 @@ void Interpreter::run_block(const Statement& statement, uint32_t origin) {
         scene_.blocks.push_back(std::move(block));
 }
 
-// A body's entries evaluated; `failed` is set if a value had an error (reported).
-std::shared_ptr<Body> Interpreter::run_body(const BodyCode& code, const std::string& kind, uint32_t origin,
+// A body's entries evaluated, their keys looked up in `spec` (the block's table; none for an
+// unknown block); `failed` is set if a value had an error (reported).
+std::shared_ptr<Body> Interpreter::run_body(const BodyCode& code, const BlockSpec* spec, uint32_t origin,
                                             bool& failed) {
     auto body = std::make_shared<Body>();
     body->open_brace = at(code.open_brace, origin);
     body->close_brace = at(code.close_brace, origin);
-    const BlockSpec* spec = kind.empty() ? nullptr : find_block_spec(kind);
-    if (!spec)  // a nested block's table
-        for (const BlockSpec* candidate : all_block_specs())
-            if (candidate->kind == kind) spec = candidate;
     for (const EntryCode& entry : code.entries) {
         const KeySpec* key = spec ? spec->find_key(entry.key) : nullptr;
         Entry out;
@@ -259,9 +250,9 @@ std::shared_ptr<Body> Interpreter::run_body(const BodyCode& code, const std::str
         out.key_span = at(entry.key_span, origin);
         if (entry.value.kind == Expr::Kind::Block) {
             // A nested block: its own table (rotate, transform), or a material's.
-            const std::string nested = key && key->block                            ? std::string(key->block->kind)
-                                       : key && key->type == ValueType::MaterialRef ? "material"
-                                                                                    : std::string();
+            const BlockSpec* nested = key && key->block                            ? key->block
+                                      : key && key->type == ValueType::MaterialRef ? find_block_spec("material")
+                                                                                   : nullptr;
             out.value.kind = Value::Kind::Block;
             out.value.span = at(entry.value.span, origin);
             out.value.body = run_body(*entry.value.body, nested, origin, failed);
@@ -491,14 +482,14 @@ Value Interpreter::evaluate_name(const Expr& expr, uint32_t origin, bool top) {
     }
     const std::string suggestion =
         scopes_.size() == 1 && scopes_[0].empty() ? "" : did_you_mean(expr.text, names_in_scope());
-    if (top && (nan_or_infinity_word(expr.text) || suggestion.empty())) {
+    if (top && (names_nan_or_infinity(expr.text) || suggestion.empty())) {
         Value word;
         word.kind = Value::Kind::Identifier;
         word.text = expr.text;
         word.span = span;
         return word;
     }
-    if (nan_or_infinity_word(expr.text))
+    if (names_nan_or_infinity(expr.text))
         fail(span, "undefined name " + in_quotes(expr.text) + " (NaN and infinity are not allowed)");
     fail(span, "undefined name " + in_quotes(expr.text) + suggestion);
 }
@@ -633,7 +624,7 @@ bool Interpreter::single_value(const Expr& expr, Value& out) {
             out.kind = Value::Kind::Block;
             out.span = expr.span;
             bool failed = false;
-            out.body = run_body(*expr.body, "", 0, failed);
+            out.body = run_body(*expr.body, nullptr, 0, failed);
             if (failed) return false;
         } else {
             out = evaluate(expr, 0, true);

@@ -45,6 +45,8 @@ private:
     void parse_block(std::vector<Statement>& out);
     void parse_binding(std::vector<Statement>& out, Statement::Kind kind);
     void parse_named_material(std::vector<Statement>& out, const Statement& let);
+    template <class Parse>
+    void parse_block_guarded(std::vector<Statement>& out, Statement block, Parse parse);
     void parse_loop(std::vector<Statement>& out);
     void parse_include(std::vector<Statement>& out);
     void parse_body(BodyCode& body, const std::string& owner);
@@ -169,6 +171,21 @@ void Parser::parse_binding(std::vector<Statement>& out, Statement::Kind kind) {
     out.push_back(std::move(statement));
 }
 
+// Runs `parse` on a block's statement and keeps the block: after a syntax error it is marked
+// broken (reported once, not validated) and the parser skips to the block's end.
+template <class Parse>
+void Parser::parse_block_guarded(std::vector<Statement>& out, Statement block, Parse parse) {
+    try {
+        parse(block);
+    } catch (const SyntaxError&) {
+        block.broken = true;
+        skip_to_block_end();
+    } catch (const UnclosedBlock&) {
+        block.broken = open_.size() > 1;  // entries so far are complete unless a nested block was cut
+    }
+    out.push_back(std::move(block));
+}
+
 // `let gold = material { ... }` is another way to write `material gold { ... }`.
 void Parser::parse_named_material(std::vector<Statement>& out, const Statement& let) {
     Statement block;
@@ -176,15 +193,7 @@ void Parser::parse_named_material(std::vector<Statement>& out, const Statement& 
     block.keyword = take().span;
     block.name = let.name;
     block.name_span = let.name_span;
-    try {
-        parse_body(block.body, block.word);
-    } catch (const SyntaxError&) {
-        block.broken = true;
-        skip_to_block_end();
-    } catch (const UnclosedBlock&) {
-        block.broken = open_.size() > 1;
-    }
-    out.push_back(std::move(block));
+    parse_block_guarded(out, std::move(block), [&](Statement& material) { parse_body(material.body, material.word); });
 }
 
 // for = "for" identifier "in" expression ".." expression "{" { statement } "}" ;
@@ -251,27 +260,21 @@ void Parser::parse_block(std::vector<Statement>& out) {
     block.word = std::string(kind.text);
     block.keyword = kind.span;
     open_.clear();
-    try {
+    parse_block_guarded(out, std::move(block), [&](Statement& statement) {
         if (at(TokenKind::Identifier)) {
             Token name = take();
-            block.name = std::string(name.text);
-            block.name_span = name.span;
+            statement.name = std::string(name.text);
+            statement.name_span = name.span;
         }
         if (!at(TokenKind::LBrace)) {
             std::string message = "expected '{' after '" + std::string(kind.text) +
-                                  (block.name.empty() ? "" : " " + block.name) + "', found " + describe(peek());
+                                  (statement.name.empty() ? "" : " " + statement.name) + "', found " + describe(peek());
             if (at(TokenKind::Equals))  // POV-Ray's `#declare R = 0.5;` without the '#'
                 message += "; a name is given a value by 'let NAME = value'";
             fail(peek(), message);
         }
-        parse_body(block.body, block.word);
-    } catch (const SyntaxError&) {
-        block.broken = true;
-        skip_to_block_end();
-    } catch (const UnclosedBlock&) {
-        block.broken = open_.size() > 1;  // entries so far are complete unless a nested block was cut
-    }
-    out.push_back(std::move(block));
+        parse_body(statement.body, statement.word);
+    });
 }
 
 // body = "{" { entry } "}" ;
@@ -353,17 +356,23 @@ void Parser::parse_value(Expr& value, const std::string& key) {
     value = parse_expression();
 }
 
+// `left op right`, spanning both.
+static Expr binary_expression(Expr left, char op, Expr right) {
+    Expr binary;
+    binary.kind = Expr::Kind::Binary;
+    binary.op = op;
+    binary.span = {left.span.begin, right.span.end, left.span.origin};
+    binary.operands.push_back(std::move(left));
+    binary.operands.push_back(std::move(right));
+    return binary;
+}
+
 // expression = term { ( "+" | "-" ) term } ;
 Expr Parser::parse_expression() {
     Expr left = parse_term();
     while (at(TokenKind::Plus) || at(TokenKind::Minus)) {
-        Expr binary;
-        binary.kind = Expr::Kind::Binary;
-        binary.op = take().kind == TokenKind::Plus ? '+' : '-';
-        binary.operands.push_back(std::move(left));
-        binary.operands.push_back(parse_term());
-        binary.span = {binary.operands[0].span.begin, binary.operands[1].span.end, binary.operands[0].span.origin};
-        left = std::move(binary);
+        const char op = take().kind == TokenKind::Plus ? '+' : '-';
+        left = binary_expression(std::move(left), op, parse_term());
     }
     return left;
 }
@@ -372,13 +381,8 @@ Expr Parser::parse_expression() {
 Expr Parser::parse_term() {
     Expr left = parse_unary();
     while (at(TokenKind::Star) || at(TokenKind::Slash)) {
-        Expr binary;
-        binary.kind = Expr::Kind::Binary;
-        binary.op = take().kind == TokenKind::Star ? '*' : '/';
-        binary.operands.push_back(std::move(left));
-        binary.operands.push_back(parse_unary());
-        binary.span = {binary.operands[0].span.begin, binary.operands[1].span.end, binary.operands[0].span.origin};
-        left = std::move(binary);
+        const char op = take().kind == TokenKind::Star ? '*' : '/';
+        left = binary_expression(std::move(left), op, parse_unary());
     }
     return left;
 }

@@ -104,6 +104,12 @@ std::string closest_match(std::string_view word, const std::vector<std::string_v
     return std::string(found);
 }
 
+bool names_nan_or_infinity(std::string_view word) {
+    std::string lower;
+    for (char c : word) lower += char(std::tolower(static_cast<unsigned char>(c)));
+    return lower == "nan" || lower == "inf" || lower == "infinity";
+}
+
 std::string did_you_mean(std::string_view word, const std::vector<std::string_view>& candidates) {
     std::string match = closest_match(word, candidates);
     return match.empty() ? "" : "; did you mean '" + match + "'?";

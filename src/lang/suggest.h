@@ -14,6 +14,10 @@ int edit_distance(std::string_view a, std::string_view b);
 // the candidate closest to it if close enough to be a likely typo, else "".
 std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates);
 
+// True for a word meant as NaN or infinity ("nan", "Inf", "infinity"), which the language does not
+// allow: messages about such a word say so.
+bool names_nan_or_infinity(std::string_view word);
+
 // "; did you mean 'x'?" or "" — to append to a message.
 std::string did_you_mean(std::string_view word, const std::vector<std::string_view>& candidates);
 

@@ -40,13 +40,6 @@ std::string describe_found(const Value& value) {
     return "a value";
 }
 
-bool names_nan_or_infinity(const Value& value) {
-    if (value.kind != Value::Kind::Identifier) return false;
-    std::string word;
-    for (char c : value.text) word += char(std::tolower(static_cast<unsigned char>(c)));
-    return word == "nan" || word == "inf" || word == "infinity";
-}
-
 // A key's default, parsed once from the scene syntax written in its table row.
 const Value& default_of(const KeySpec& key) {
     static std::mutex mutex;
@@ -380,7 +373,8 @@ bool Validator::check_steps(const Body& body, const BlockSpec& spec, Fields& fie
 bool Validator::type_error(const Value& value, const KeySpec& key, const std::string& extra) {
     std::string message = "'" + std::string(key.name) + "' expects " + std::string(describe(key.type)) + ", found " +
                           describe_found(value);
-    if (names_nan_or_infinity(value)) message += " (NaN and infinity are not allowed)";
+    if (value.kind == Value::Kind::Identifier && names_nan_or_infinity(value.text))
+        message += " (NaN and infinity are not allowed)";
     diagnostics_.error(file_, value.span, message + extra);
     return false;
 }
@@ -683,13 +677,9 @@ bool Validator::check_reach(const Block& block, const Placed& placed, const Tria
         const dvec3 p = glm::abs(placement.point(corner));
         reach = std::max({reach, p.x, p.y, p.z});
     }
-    if (reach <= kLargestMagnitude) return true;
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", reach);
-    diagnostics_.error(file_, block.kind_span,
-                       "this " + block.kind + ", scaled and moved, reaches coordinates up to " + text +
-                           ", beyond +-1e30 (the renderer keeps bounding boxes in float and squares and cubes "
-                           "lengths)");
+    const std::string problem = placed_reach_problem(block.kind, reach);
+    if (problem.empty()) return true;
+    diagnostics_.error(file_, block.kind_span, problem);
     return false;
 }
 

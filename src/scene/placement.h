@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <string_view>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat3x3.hpp>
@@ -63,5 +66,15 @@ private:
         if (degrees != 0) then(glm::dmat3(glm::rotate(glm::dmat4(1.0), glm::radians(degrees), axis)));
     }
 };
+
+// Why a shape (`what`: "mesh", "quad", ...) whose placed coordinates reach `reach` cannot be
+// rendered, or "" when it lies within +-kLargestMagnitude.
+inline std::string placed_reach_problem(std::string_view what, double reach) {
+    if (reach <= kLargestMagnitude) return "";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", reach);
+    return "this " + std::string(what) + ", scaled and moved, reaches coordinates up to " + text +
+           ", beyond +-1e30 (the renderer keeps bounding boxes in float and squares and cubes lengths)";
+}
 
 }  // namespace tracer
