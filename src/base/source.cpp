@@ -46,6 +46,11 @@ uint32_t Sources::add_include(std::unique_ptr<SourceFile> file, Span included_at
     return uint32_t(origins_.size() - 1);
 }
 
+uint32_t Sources::add_include_again(uint32_t origin, Span included_at) {
+    origins_.push_back({origins_[origin].file, false, included_at, {}, 0});
+    return uint32_t(origins_.size() - 1);
+}
+
 uint32_t Sources::add_iteration(Span loop, std::string_view name, double value) {
     origins_.push_back({origins_[loop.origin].file, true, loop, name, value});
     return uint32_t(origins_.size() - 1);

@@ -54,6 +54,9 @@ public:
 
     // A file included by the statement at `included_at`; returns the origin of its spans.
     uint32_t add_include(std::unique_ptr<SourceFile> file, Span included_at);
+    // The file of `origin` included once more, by the statement at `included_at` (its text is
+    // held once however often it is included).
+    uint32_t add_include_again(uint32_t origin, Span included_at);
     // An iteration of the loop at `loop` with `name` = `value`: spans of text evaluated in it
     // get the returned origin (they lie in the loop's file). `name` must outlive this object
     // (a view of a source text held here).

@@ -125,6 +125,8 @@ private:
     std::set<std::string, std::less<>> used_overrides_;
     std::vector<Iteration> iterations_;  // the loops being run, innermost last
     std::vector<std::string> include_stack_;
+    std::map<std::string, uint32_t> included_;  // each file read, by canonical path: its first origin
+    size_t included_bytes_ = 0;                 // text run through includes, repeats counted
     size_t blocks_ = 0, iterations_run_ = 0;
     bool stopped_ = false;  // a limit was hit: nothing more is generated
     InterpretOptions limits_;
@@ -368,18 +370,33 @@ void Interpreter::run_include(const Statement& statement, uint32_t origin) {
         diagnostics_.error(sources_, path_span, "includes are nested too deeply (more than 32 files)");
         return;
     }
-    InputFile input = read_input_file(path.string(), kMaxSceneFileBytes);
-    if (!input.problem.empty()) {
+    // Each file is read once; a file included again (by a loop, say) is run from the text held.
+    uint32_t file_origin = 0;
+    if (auto known = included_.find(canonical); known != included_.end()) {
+        file_origin = sources_.add_include_again(known->second, path_span);
+    } else {
+        InputFile input = read_input_file(path.string(), kMaxSceneFileBytes);
+        if (!input.problem.empty()) {
+            diagnostics_.error(sources_, path_span,
+                               "cannot include '" + path.lexically_normal().string() + "': " + input.problem);
+            return;
+        }
+        file_origin = sources_.add_include(
+            std::make_unique<SourceFile>(path.lexically_normal().string(), std::move(input.text)), path_span);
+        included_.emplace(canonical, file_origin);
+    }
+    const SourceFile& file = sources_.file({0, 0, file_origin});
+    included_bytes_ += file.text().size();
+    if (included_bytes_ > kMaxIncludedBytes) {
         diagnostics_.error(sources_, path_span,
-                           "cannot include '" + path.lexically_normal().string() + "': " + input.problem);
+                           "the scene includes more than 256 MiB of text in all (each inclusion counted; the limit)");
+        stopped_ = true;
         return;
     }
-    const uint32_t file_origin = sources_.add_include(
-        std::make_unique<SourceFile>(path.lexically_normal().string(), std::move(input.text)), path_span);
     include_stack_.push_back(canonical);
     std::vector<Iteration> outer;  // the included file's spans carry its own origin
     std::swap(outer, iterations_);
-    run_file(sources_.file({0, 0, file_origin}), file_origin);
+    run_file(file, file_origin);
     std::swap(outer, iterations_);
     include_stack_.pop_back();
 }

@@ -21,8 +21,10 @@ namespace tracer {
 // Most blocks one scene may generate, and most loop iterations it may run (each an error).
 constexpr size_t kMaxGeneratedBlocks = 2'000'000;
 constexpr size_t kMaxLoopIterations = 10'000'000;
-// Deepest chain of included files.
+// Deepest chain of included files, and the most text the includes of one scene may run,
+// counting a file again each time it is included (a loop may include one).
 constexpr int kMaxIncludeDepth = 32;
+constexpr size_t kMaxIncludedBytes = size_t(256) << 20;
 
 struct InterpretOptions {
     // -D NAME=VALUE from the command line, in order: each must name a `param` of the scene.

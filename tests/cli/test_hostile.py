@@ -166,6 +166,15 @@ class Hangs(Hostile):
             run("--check", scene, limits=limits), 1, "the scene generates more than 2000000 blocks (the limit)"
         )
 
+    def test_a_loop_including_a_big_file_stops_at_the_included_text_limit(self):
+        # Each inclusion counts; the file's text is held once: bounded time and memory.
+        self.write("big.scn", "# " + "x" * 1_000_000 + "\n")
+        scene = self.write("loop.scn", SMALL_SCENE + 'for i in 0..100000 { include "big.scn" }\n')
+        limits = [] if sanitized() else [(resource.RLIMIT_AS, 1 << 30)]
+        self.assertError(
+            run("--check", scene, limits=limits), 1, "the scene includes more than 256 MiB of text in all"
+        )
+
     def test_fifo_and_devices_as_inputs(self):
         fifo = self.tmp / "pipe.obj"
         os.mkfifo(fifo)

@@ -216,6 +216,17 @@ TEST_F(Includes, AnIncludedFilesBlocksAndNamesComeInPlace) {
     EXPECT_EQ(r.scene->materials[0].name, "gold");
 }
 
+// A file included by a loop runs in each iteration, seeing the loop's names; its text is read and
+// held once.
+TEST_F(Includes, AFileIncludedByALoopRunsEachTime) {
+    write("lib/ball.scn", "sphere { center (i, 0, 0) radius 0.25 material { kd 1 } }\n");
+    write("main.scn", kCamera + "for i in 0..3 { include \"lib/ball.scn\" }\n");
+    LoadResult r = load_file("main.scn");
+    ASSERT_TRUE(r.scene) << errors(r)[0];
+    ASSERT_EQ(r.scene->spheres.size(), 3u);
+    EXPECT_EQ(r.scene->spheres[2].center, dvec3(2, 0, 0));
+}
+
 TEST_F(Includes, ErrorsPointIntoTheIncludedFileAndSayFromWhere) {
     write("lib/bad.scn", "sphere { center (0, 0, 0) radius -1 material { kd 1 } }\n");
     write("main.scn", kCamera + "include \"lib/bad.scn\"\n");
