@@ -20,6 +20,7 @@
 
 #include "app/load_files.h"
 #include "app/progress.h"
+#include "app/regions.h"
 #include "base/output_file.h"
 #include "io/image_file.h"
 #include "lang/load_scene.h"
@@ -37,11 +38,13 @@ enum ExitCode { kOk = 0, kSceneError = 1, kUsageError = 2, kIoError = 3, kInterr
 
 std::atomic<bool> g_interrupted{false};
 std::atomic<bool> g_rendering{false};
+std::atomic<bool> g_waiting_for_regions{false};
 
-// Before the render nothing has been written: stop at once. During it: ask the render to stop
-// (it then writes nothing). Async-signal-safe: an atomic store or _exit only.
+// Before the render (or between the regions of a list) nothing is being written: stop at once.
+// During it: ask the render to stop (it then writes nothing). Async-signal-safe: an atomic store
+// or _exit only.
 extern "C" void on_interrupt(int) {
-    if (!g_rendering) ::_exit(kInterrupted);
+    if (!g_rendering || g_waiting_for_regions) ::_exit(kInterrupted);
     g_interrupted = true;
 }
 
@@ -62,6 +65,8 @@ struct Options {
     std::string samples;
     std::string max_depth;
     std::vector<std::string> defines;  // -D NAME=VALUE
+    std::vector<int> region;           // --region X0 Y0 W H (empty: the whole frame)
+    bool region_list = false;          // --region-list: regions read from stdin
     bool stats = false;
     std::string stats_json;
 };
@@ -133,12 +138,34 @@ std::string millions(uint64_t count) {
     return text;
 }
 
+// --region-list: the regions read from stdin, each written where its line says.
+int render_regions(const Options& options, const tracer::World& world, const tracer::SceneDescription& scene) {
+    tracer::RenderOptions render_options;
+    render_options.threads = options.threads;
+    render_options.cancel = &g_interrupted;
+    g_rendering = true;
+    auto output_problem = [&](const std::string& path) -> std::optional<std::string> {
+        if (auto problem = tracer::check_output_path(path)) return problem;
+        Options one = options;
+        one.output = path;
+        return output_clash(one, scene);
+    };
+    const bool complete = tracer::render_region_list(world, scene, render_options, output_problem, std::cin, std::cout,
+                                                     g_waiting_for_regions);
+    if (!complete || g_interrupted) {
+        std::cerr << "tracer: interrupted; the region being rendered was not written\n";
+        return kInterrupted;
+    }
+    return kOk;
+}
+
 int render_to_file(const Options& options) {
     // Step 1: check everything that can be checked before spending time on pixels.
-    if (auto problem = tracer::check_output_path(options.output)) {
-        std::cerr << "tracer: error: " << *problem << '\n';
-        return kIoError;
-    }
+    if (!options.region_list)
+        if (auto problem = tracer::check_output_path(options.output)) {
+            std::cerr << "tracer: error: " << *problem << '\n';
+            return kIoError;
+        }
     if (!options.stats_json.empty())
         if (auto problem = tracer::output_path_problem(options.stats_json)) {
             std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
@@ -152,12 +179,20 @@ int render_to_file(const Options& options) {
         std::cerr << "tracer: error: " << *clash << '\n';
         return kUsageError;
     }
+    if (!options.region.empty())
+        if (auto problem = tracer::region_problem(options.region, scene.render)) {
+            std::cerr << "tracer: error: --" << *problem << '\n';
+            return kUsageError;
+        }
     const tracer::World world(loaded->scene, loaded->meshes, options.threads);
+    if (options.region_list) return render_regions(options, world, scene);
 
     // Step 2: render, stoppable with Ctrl-C (or a SIGTERM, even one that came while loading).
     tracer::ProgressLine progress(!options.quiet);
     tracer::RenderOptions render_options;
     render_options.threads = options.threads;
+    if (!options.region.empty())
+        render_options.crop = {options.region[0], options.region[1], options.region[2], options.region[3]};
     render_options.cancel = &g_interrupted;
     render_options.progress = [&](double fraction) { progress.update(fraction); };
     tracer::Image image;
@@ -217,6 +252,9 @@ int check_only(const Options& options) {
               << " meshes, " << count_of(scene.triangles.size(), "triangles") << count_of(scene.quads.size(), "quads")
               << count_of(scene.boxes.size(), "boxes") << scene.lights.size() << " lights, " << scene.materials.size()
               << " materials)\n";
+    const tracer::RenderSettings& render = scene.render;
+    std::cout << "  image: " << render.width << " x " << render.height << " pixels, " << render.samples
+              << (render.samples == 1 ? " sample" : " samples") << " per pixel, max depth " << render.max_depth << '\n';
     // Each mesh block's facts, where it puts its triangles (the first few; --dump-json has all).
     constexpr size_t kMeshesListed = 20;
     for (size_t block = 0; block < std::min(scene.meshes.size(), kMeshesListed); ++block) {
@@ -277,6 +315,14 @@ int run(int argc, char** argv) {
             },
             "NAME=VALUE"))
         ->allow_extra_args(false);
+    app.add_option("--region", options.region,
+                   "Render only this window of the frame, each pixel as the whole render has it: X0 Y0 W H "
+                   "(left, top, width, height in pixels); EXR records it as the data window")
+        ->expected(4);
+    app.add_flag("--region-list", options.region_list,
+                 "Load the scene once, then render the regions read from standard input, one 'X0 Y0 W H OUTPUT' "
+                 "per line, answering 'done OUTPUT' or 'error OUTPUT: message' on standard output (tools/farm's "
+                 "workers)");
     app.add_flag("--stats", options.stats, "Print BVH and ray statistics on stderr");
     app.add_option("--stats-json", options.stats_json, "Write the statistics as JSON to this file");
     app.add_flag("--check", options.check, "Only check the scene; report every problem found");
@@ -307,9 +353,18 @@ int run(int argc, char** argv) {
     if (options.check && options.dump_json) return usage_error("--check and --dump-json cannot be combined");
     if ((options.check || options.dump_json) && !options.output.empty())
         return usage_error("-o is for rendering; it cannot be combined with --check or --dump-json");
+    if ((options.check || options.dump_json) && (!options.region.empty() || options.region_list))
+        return usage_error(
+            "--region and --region-list are for rendering; they cannot be combined with --check or "
+            "--dump-json");
     if (options.check) return check_only(options);
     if (options.dump_json) return dump_json(options);
-    if (options.output.empty()) return usage_error("no output image given (-o out.png)");
+    if (options.region_list &&
+        (!options.output.empty() || !options.region.empty() || options.stats || !options.stats_json.empty()))
+        return usage_error(
+            "--region-list takes each output from its input lines; it cannot be combined with -o, "
+            "--region, --stats or --stats-json");
+    if (options.output.empty() && !options.region_list) return usage_error("no output image given (-o out.png)");
     return render_to_file(options);
 }
 

@@ -15,7 +15,8 @@ namespace tracer {
 // folder), checked before rendering so no time is wasted.
 std::optional<std::string> check_output_path(const std::string& path);
 
-// Writes the image; returns an error message on failure (and leaves `path` untouched).
+// Writes the image (a window where the format can record it: EXR's data window inside the
+// frame's display window); returns an error message on failure (and leaves `path` untouched).
 std::optional<std::string> write_image(const std::string& path, const Image& image);
 
 // round(255 v) of v clamped to [0, 1]: the 8-bit value of conventions.md.

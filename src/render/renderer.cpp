@@ -1,19 +1,20 @@
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <mutex>
 
-#include "render/camera.h"
 #include "base/parallel.h"
+#include "render/camera.h"
 #include "render/world.h"
 
 namespace tracer {
 
 // The mean of N x N rays through the centres of a regular grid of sub-pixel cells (N = 1:
 // the pixel centre).
-static Color shade_pixel(const World& world, const PinholeCamera& camera, const RenderSettings& settings,
-                         int x, int y, int grid, RayCounts& counts) {
+static Color shade_pixel(const World& world, const PinholeCamera& camera, const RenderSettings& settings, int x, int y,
+                         int grid, RayCounts& counts) {
     Color sum(0.0);
     const Real cell = Real(1) / grid;  // exact for grid 1 (offset 0.5: the pixel centre)
     for (int sy = 0; sy < grid; ++sy)
@@ -25,37 +26,28 @@ static Color shade_pixel(const World& world, const PinholeCamera& camera, const 
     return grid == 1 ? sum : sum * (1.0 / double(grid * grid));
 }
 
-// Black for every pixel outside `area` (the pixels inside are all written by the render).
-static void clear_outside(Image& image, const PixelRect& area) {
-    const size_t row = size_t(image.width) * 3;
-    auto clear = [&](size_t begin, size_t end) { std::fill(image.rgb.begin() + begin, image.rgb.begin() + end, 0.0); };
-    clear(0, size_t(area.y0) * row);
-    for (int y = area.y0; y < area.y0 + area.height; ++y) {
-        clear(size_t(y) * row, size_t(y) * row + size_t(area.x0) * 3);
-        clear(size_t(y) * row + size_t(area.x0 + area.width) * 3, size_t(y + 1) * row);
-    }
-    clear(size_t(area.y0 + area.height) * row, image.rgb.size());
-}
-
 bool render(const World& world, const SceneDescription& scene, const RenderOptions& options, Image& image,
             RenderStats& stats) {
     const RenderSettings& settings = scene.render;
     const PinholeCamera camera(scene.camera, settings.width, settings.height);
     const int grid = int(std::lround(std::sqrt(double(settings.samples))));
 
-    // Step 1: the pixels to render, and black around them.
+    // Step 1: the pixels to render (the crop, kept inside the frame), and an image of just them.
     PixelRect area = options.crop.width > 0 ? options.crop : PixelRect{0, 0, settings.width, settings.height};
     area.x0 = std::clamp(area.x0, 0, settings.width);
     area.y0 = std::clamp(area.y0, 0, settings.height);
     area.width = std::clamp(area.width, 0, settings.width - area.x0);
     area.height = std::clamp(area.height, 0, settings.height - area.y0);
-    image.width = settings.width;
-    image.height = settings.height;
-    image.rgb.resize(size_t(settings.width) * size_t(settings.height) * 3);
-    clear_outside(image, area);
+    image.width = area.width;
+    image.height = area.height;
+    image.x0 = area.x0;
+    image.y0 = area.y0;
+    image.frame_width = settings.width;
+    image.frame_height = settings.height;
+    image.rgb.resize(size_t(area.width) * size_t(area.height) * 3);
 
     // Step 2: rows handed to the threads one at a time. The time is the render loop's (as
-    // embree_bench's): it leaves out the image's allocation and the clearing around a crop.
+    // embree_bench's): it leaves out the image's allocation.
     const auto start = std::chrono::steady_clock::now();
     const int threads = options.pool ? options.pool->size()
                                      : std::max(1, std::min(thread_count(options.threads), std::max(area.height, 1)));
@@ -83,7 +75,7 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
             for (int x = area.x0; x < area.x0 + area.width; ++x) {
                 const Color c = grid == 1 ? trace(world, settings, rays[size_t(x - area.x0)], counts)
                                           : shade_pixel(world, camera, settings, x, y, grid, counts);
-                double* out = &image.rgb[(size_t(y) * size_t(settings.width) + size_t(x)) * 3];
+                double* out = &image.rgb[(size_t(row) * size_t(area.width) + size_t(x - area.x0)) * 3];
                 out[0] = c.r, out[1] = c.g, out[2] = c.b;
             }
             const int done = rows_done.fetch_add(1) + 1;

@@ -23,7 +23,8 @@ struct RenderOptions {
     int threads = 0;  // 0: one per hardware thread
     // Threads kept between renders (then `threads` is ignored); null: started for this render.
     WorkerPool* pool = nullptr;
-    // Only these pixels are traced (the rest stay black); width 0 means the whole image.
+    // Only these pixels are traced, and the image holds just them (a window of the frame, each
+    // pixel as the whole frame's render has it); width 0 means the whole frame.
     PixelRect crop;
     // Called now and then from a worker with the finished fraction in [0, 1].
     std::function<void(double)> progress;
@@ -37,8 +38,8 @@ struct RenderStats {
     RayCounts rays;
 };
 
-// Renders the world as the scene's camera and render settings say into `image`; false if
-// cancelled (the image is then incomplete).
+// Renders the world as the scene's camera and render settings say into `image` (the crop's
+// window of the frame, or all of it); false if cancelled (the image is then incomplete).
 bool render(const World& world, const SceneDescription& scene, const RenderOptions& options, Image& image,
             RenderStats& stats);
 

@@ -1,0 +1,73 @@
+#include "app/regions.h"
+
+#include <istream>
+#include <ostream>
+#include <sstream>
+
+#include "io/image_file.h"
+
+namespace tracer {
+
+std::optional<std::string> region_problem(const std::vector<int>& region, const RenderSettings& render) {
+    if (region.size() != 4) return "a region is four whole numbers: X0 Y0 W H";
+    const int x0 = region[0], y0 = region[1], width = region[2], height = region[3];
+    const std::string frame = std::to_string(render.width) + " x " + std::to_string(render.height);
+    const std::string text = "region " + std::to_string(x0) + " " + std::to_string(y0) + " " + std::to_string(width) +
+                             " " + std::to_string(height);
+    if (width < 1 || height < 1) return text + " is empty: its width and height must be at least 1";
+    if (x0 < 0 || y0 < 0) return text + " starts outside the image: X0 and Y0 must be 0 or more";
+    if (int64_t(x0) + width > render.width)
+        return text + " reaches past the image's right edge: X0 + W must be at most the width (the image is " + frame +
+               ")";
+    if (int64_t(y0) + height > render.height)
+        return text + " reaches past the image's bottom edge: Y0 + H must be at most the height (the image is " +
+               frame + ")";
+    return std::nullopt;
+}
+
+// The region and output path of a request line, or an error message.
+static std::optional<std::string> parse_request(const std::string& line, std::vector<int>& region,
+                                                std::string& output) {
+    std::istringstream in(line);
+    region.assign(4, 0);
+    for (int& value : region)
+        if (!(in >> value)) return "expected 'X0 Y0 W H OUTPUT', got '" + line + "'";
+    std::getline(in >> std::ws, output);
+    while (!output.empty() && (output.back() == ' ' || output.back() == '\r')) output.pop_back();
+    if (output.empty()) return "expected 'X0 Y0 W H OUTPUT': no output path in '" + line + "'";
+    return std::nullopt;
+}
+
+bool render_region_list(const World& world, const SceneDescription& scene, RenderOptions options,
+                        const OutputCheck& output_problem, std::istream& requests, std::ostream& replies,
+                        std::atomic<bool>& waiting) {
+    std::string line;
+    for (;;) {
+        // Step 1: the next request.
+        waiting = true;
+        const bool got = bool(std::getline(requests, line));
+        waiting = false;
+        if (!got) return true;
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        std::vector<int> region;
+        std::string output;
+        auto problem = parse_request(line, region, output);
+        if (!problem) problem = region_problem(region, scene.render);
+        if (!problem) problem = output_problem(output);
+
+        // Step 2: the region, rendered and written, or why not.
+        if (!problem) {
+            options.crop = {region[0], region[1], region[2], region[3]};
+            Image image;
+            RenderStats stats;
+            if (!render(world, scene, options, image, stats)) return false;
+            problem = write_image(output, image);
+        }
+        if (problem)
+            replies << "error" << (output.empty() ? "" : " " + output) << ": " << *problem << std::endl;
+        else
+            replies << "done " << output << std::endl;
+    }
+}
+
+}  // namespace tracer

@@ -1,0 +1,123 @@
+"""The farm's jobs: a scene with its command-line overrides and output, checked once before any tile."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+import subprocess
+from dataclasses import dataclass, field
+
+FLOAT_FORMATS = (".exr", ".hdr", ".pfm")  # as tracer: these get unclamped float pixels, others 8 bits
+OVERRIDES = ("samples", "width", "height", "max_depth")  # job keys passed on as tracer's options
+
+
+class JobError(Exception):
+    """A job that cannot run: the message to print and the exit code (tracer's codes)."""
+
+    def __init__(self, message: str, exit_code: int):
+        super().__init__(message)
+        self.exit_code = exit_code
+
+
+@dataclass
+class Job:
+    scene: str  # absolute path
+    output: str  # absolute path
+    defines: dict[str, str] = field(default_factory=dict)
+    overrides: dict[str, str] = field(default_factory=dict)  # samples, width, height, max_depth
+    width: int = 0  # the frame, as tracer --check reports it
+    height: int = 0
+
+    def tracer_arguments(self) -> list[str]:
+        """The scene and its overrides as tracer's command line."""
+        arguments = [self.scene]
+        for name, value in self.defines.items():
+            arguments += ["-D", f"{name}={value}"]
+        for key, value in self.overrides.items():
+            arguments += ["--" + key.replace("_", "-"), str(value)]
+        return arguments
+
+    def is_float(self) -> bool:
+        return os.path.splitext(self.output)[1].lower() in FLOAT_FORMATS
+
+    def key(self, index: int) -> str:
+        """A name for the job's tracer processes on the workers, unique within one run."""
+        digest = hashlib.sha1(json.dumps([os.getpid(), index, self.tracer_arguments()]).encode()).hexdigest()
+        return f"job-{index}-{digest[:12]}"
+
+
+def jobs_from_file(path: str) -> list[Job]:
+    """The jobs of a JSON file: a list of {"scene", "output", "define": {NAME: VALUE}, "samples", "width",
+    "height", "max_depth"}; paths relative to the file's folder."""
+    try:
+        with open(path, encoding="utf-8") as file:
+            entries = json.load(file)
+    except OSError as error:
+        raise JobError(f"cannot read '{path}': {error.strerror}", 3) from error
+    except (json.JSONDecodeError, UnicodeDecodeError) as error:
+        raise JobError(f"{path}: not a JSON list of jobs: {error}", 2) from error
+    if not isinstance(entries, list) or not entries:
+        raise JobError(f"{path}: expected a non-empty JSON list of jobs", 2)
+    folder = os.path.dirname(os.path.abspath(path))
+    jobs = []
+    for number, entry in enumerate(entries, 1):
+        where = f"{path}: job {number}"
+        if (
+            not isinstance(entry, dict)
+            or not isinstance(entry.get("scene"), str)
+            or not isinstance(entry.get("output"), str)
+        ):
+            raise JobError(f'{where}: each job needs "scene" and "output" paths', 2)
+        unknown = set(entry) - {"scene", "output", "define", *OVERRIDES}
+        if unknown:
+            raise JobError(f"{where}: unknown key(s) {', '.join(sorted(unknown))}", 2)
+        defines = entry.get("define", {})
+        if not isinstance(defines, dict):
+            raise JobError(f'{where}: "define" is an object of NAME: VALUE', 2)
+        jobs.append(
+            Job(
+                scene=os.path.join(folder, entry["scene"]),
+                output=os.path.join(folder, entry["output"]),
+                defines={str(name): str(value) for name, value in defines.items()},
+                overrides={key: str(entry[key]) for key in OVERRIDES if key in entry},
+            )
+        )
+    outputs = [os.path.realpath(job.output) for job in jobs]
+    for output in outputs:
+        if outputs.count(output) > 1:
+            raise JobError(f"{path}: two jobs write '{output}'", 2)
+    return jobs
+
+
+_IMAGE_LINE = re.compile(r"^  image: (\d+) x (\d+) pixels", re.MULTILINE)
+
+
+def check_job(tracer: str, job: Job) -> str:
+    """Checks the job's scene with `tracer --check` (with its overrides) and sets its frame size; raises
+    JobError with tracer's own diagnostics. Returns tracer's warnings (may be empty)."""
+    result = subprocess.run([tracer, "--check", *job.tracer_arguments()], capture_output=True, text=True)
+    if result.returncode != 0:
+        raise JobError(result.stderr.rstrip(), result.returncode)
+    size = _IMAGE_LINE.search(result.stdout)
+    if not size:
+        raise JobError(f"'{tracer} --check' did not report the image size; is it an older tracer?", 3)
+    job.width, job.height = int(size.group(1)), int(size.group(2))
+    return result.stderr
+
+
+def check_output(job: Job) -> None:
+    """Raises JobError if the job's output cannot be written: no such folder, not writable, an unknown
+    format (OpenImageIO's), or the scene file itself."""
+    import OpenImageIO as oiio
+
+    folder = os.path.dirname(job.output) or "."
+    if not os.path.isdir(folder):
+        raise JobError(f"cannot write '{job.output}': no such folder '{folder}'", 3)
+    if not os.access(folder, os.W_OK):
+        raise JobError(f"cannot write '{job.output}': the folder is not writable", 3)
+    if oiio.ImageOutput.create(job.output) is None:
+        raise JobError(f"cannot write '{job.output}': unknown image format (use .png, .exr, .jpg, .tif, ...)", 3)
+    if os.path.exists(job.output) and os.path.samefile(job.output, job.scene):
+        raise JobError(f"-o '{job.output}' is the scene file; choose another output path", 2)
