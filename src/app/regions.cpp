@@ -11,17 +11,16 @@ namespace tracer {
 std::optional<std::string> region_problem(const std::vector<int>& region, const RenderSettings& render) {
     if (region.size() != 4) return "a region is four whole numbers: X0 Y0 W H";
     const int x0 = region[0], y0 = region[1], width = region[2], height = region[3];
-    const std::string frame = std::to_string(render.width) + " x " + std::to_string(render.height);
     const std::string text = "region " + std::to_string(x0) + " " + std::to_string(y0) + " " + std::to_string(width) +
                              " " + std::to_string(height);
-    if (width < 1 || height < 1) return text + " is empty: its width and height must be at least 1";
-    if (x0 < 0 || y0 < 0) return text + " starts outside the image: X0 and Y0 must be 0 or more";
+    const std::string frame =
+        " (the image is " + std::to_string(render.width) + " x " + std::to_string(render.height) + ")";
+    if (width < 1 || height < 1) return text + " is empty: its width and height must be at least 1" + frame;
+    if (x0 < 0 || y0 < 0) return text + " starts outside the image: X0 and Y0 must be 0 or more" + frame;
     if (int64_t(x0) + width > render.width)
-        return text + " reaches past the image's right edge: X0 + W must be at most the width (the image is " + frame +
-               ")";
+        return text + " reaches past the image's right edge: X0 + W must be at most the width" + frame;
     if (int64_t(y0) + height > render.height)
-        return text + " reaches past the image's bottom edge: Y0 + H must be at most the height (the image is " +
-               frame + ")";
+        return text + " reaches past the image's bottom edge: Y0 + H must be at most the height" + frame;
     return std::nullopt;
 }
 

@@ -1,0 +1,178 @@
+"""tools/farm on a local cluster of 2 workers: images identical to tracer's own, faults survived."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import psutil
+import pytest
+from conftest import ROOT, SCENES, farm, read_pixels, render
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+@pytest.mark.parametrize("extension", [".png", ".exr"])
+@pytest.mark.parametrize("scene", ["task2", "bunny_room", "many_spheres"])
+def test_tiled_render_is_identical_to_tracer_alone(tracer_bin, tmp_path, scene, extension):
+    alone = render(tracer_bin, SCENES / f"{scene}.scn", tmp_path / f"alone{extension}", "--width", "600")
+    output = tmp_path / f"farm{extension}"
+    result = farm(
+        SCENES / f"{scene}.scn", "-o", output, "--width", 600, "--workers", 2, "--tile", 90, tracer=tracer_bin
+    )
+    assert result.returncode == 0, result.stderr
+    tiled, spec = read_pixels(output)
+    assert tiled.dtype == alone.dtype and tiled.shape == alone.shape and tiled.shape[1] == 600
+    assert np.array_equal(tiled, alone)
+    assert [name for name in os.listdir(tmp_path) if name.startswith(".")] == []  # no temporary files left
+
+
+def test_jobs_file_renders_a_parameter_sweep(tracer_bin, tmp_path):
+    jobs = [
+        {"scene": str(SCENES / "chessboard.scn"), "output": f"ball{size}.png", "define": {"ball": size}, "width": 200}
+        for size in (0.1, 0.3)
+    ]
+    (tmp_path / "jobs.json").write_text(json.dumps(jobs))
+    result = farm("--jobs", tmp_path / "jobs.json", "--workers", 2, tracer=tracer_bin)
+    assert result.returncode == 0, result.stderr
+    for size in (0.1, 0.3):
+        alone = render(
+            tracer_bin, SCENES / "chessboard.scn", tmp_path / "alone.png", "--width", 200, "-D", f"ball={size}"
+        )
+        assert np.array_equal(read_pixels(tmp_path / f"ball{size}.png")[0], alone)
+    assert not np.array_equal(read_pixels(tmp_path / "ball0.1.png")[0], read_pixels(tmp_path / "ball0.3.png")[0])
+
+
+def flaky(tmp_path, failures):
+    """The environment of a tracer whose first `failures` worker processes crash on their first tile."""
+    return {
+        "REAL_TRACER": os.environ.get("TRACER_BIN", str(ROOT / "build/release/tracer")),
+        "FLAKY_STATE": str(tmp_path / "state"),
+        "FLAKY_FAILURES": str(failures),
+    }
+
+
+def test_failed_tiles_are_retried(tracer_bin, tmp_path):
+    alone = render(tracer_bin, SCENES / "task2.scn", tmp_path / "alone.png", "--width", 300)
+    output = tmp_path / "farm.png"
+    env = flaky(tmp_path, 2)
+    result = farm(
+        SCENES / "task2.scn",
+        "-o",
+        output,
+        "--width",
+        300,
+        "--workers",
+        2,
+        "--tile",
+        100,
+        "--retries",
+        2,
+        tracer=os.path.join(HERE, "flaky_tracer.py"),
+        env={**env, "TRACER_BIN": str(tracer_bin)},
+    )
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "state").read_text() == "xx"  # two tracer processes crashed
+    assert np.array_equal(read_pixels(output)[0], alone)
+
+
+def test_a_tile_that_keeps_failing_fails_the_job_with_tracers_diagnostic(tracer_bin, tmp_path):
+    output = tmp_path / "farm.png"
+    result = farm(
+        SCENES / "task2.scn",
+        "-o",
+        output,
+        "--width",
+        300,
+        "--workers",
+        2,
+        "--retries",
+        1,
+        tracer=os.path.join(HERE, "flaky_tracer.py"),
+        env={**flaky(tmp_path, 1000), "TRACER_BIN": str(tracer_bin)},
+    )
+    assert result.returncode == 1
+    assert "failed 2 times; the last time:\ntracer: error: simulated crash" in result.stderr
+    assert not output.exists() and os.listdir(tmp_path) == ["state"]
+
+
+def test_scene_error_is_reported_once_before_any_tile(tmp_path, tracer_bin):
+    scene = tmp_path / "broken.scn"
+    scene.write_text((SCENES / "task2.scn").read_text().replace("radius", "radios", 1))
+    result = farm(scene, "-o", tmp_path / "out.png", "--workers", 2, tracer=tracer_bin)
+    assert result.returncode == 1
+    assert result.stderr.count("error: unknown key 'radios'") == 1, result.stderr
+    assert "tile" not in result.stderr
+    assert not (tmp_path / "out.png").exists()
+
+
+def region_list_processes(root):
+    """The tracer worker processes under the farm process `root`."""
+    found = []
+    for child in root.children(recursive=True):
+        try:
+            if "--region-list" in child.cmdline():
+                found.append(child)
+        except psutil.NoSuchProcess:
+            pass
+    return found
+
+
+def start_long_farm(output, tracer_bin):
+    """A farm of many small tiles taking a few seconds, and its process."""
+    command = [
+        sys.executable,
+        "-m",
+        "render_farm.farm",
+        str(SCENES / "bunny_room.scn"),
+        "-o",
+        str(output),
+        "--width",
+        "600",
+        "--samples",
+        "36",
+        "--workers",
+        "2",
+        "--tile",
+        "40",
+        "--tracer",
+        str(tracer_bin),
+        "-q",
+    ]
+    process = subprocess.Popen(
+        command, env={**os.environ, "PYTHONPATH": str(ROOT / "tools")}, cwd=ROOT, stderr=subprocess.PIPE, text=True
+    )
+    root = psutil.Process(process.pid)
+    deadline = time.monotonic() + 120
+    while not region_list_processes(root):
+        assert time.monotonic() < deadline and process.poll() is None, "the farm started no worker"
+        time.sleep(0.05)
+    return process, root
+
+
+def test_killed_worker_still_gives_the_identical_image(tracer_bin, tmp_path):
+    alone = render(tracer_bin, SCENES / "bunny_room.scn", tmp_path / "alone.png", "--width", 600, "--samples", 36)
+    output = tmp_path / "farm.png"
+    process, root = start_long_farm(output, tracer_bin)
+    victim = region_list_processes(root)[0].parent()  # the Dask worker process running that tracer
+    victim.kill()
+    assert not output.exists()  # killed mid-job
+    _, errors = process.communicate(timeout=300)
+    assert process.returncode == 0, errors
+    assert np.array_equal(read_pixels(output)[0], alone)
+
+
+def test_interrupted_farm_writes_nothing_and_leaves_no_tracer(tracer_bin, tmp_path):
+    output = tmp_path / "farm.png"
+    process, root = start_long_farm(output, tracer_bin)
+    workers = region_list_processes(root)
+    process.send_signal(signal.SIGINT)
+    _, errors = process.communicate(timeout=120)
+    assert process.returncode == 130, errors
+    assert "interrupted" in errors
+    assert os.listdir(tmp_path) == []
+    psutil.wait_procs(workers, timeout=30)
+    assert not any(worker.is_running() and worker.status() != psutil.STATUS_ZOMBIE for worker in workers)
