@@ -121,8 +121,9 @@ def region_list_processes(root):
     return found
 
 
-def start_long_farm(output, tracer_bin):
-    """A farm of many small tiles taking a few seconds, and its process."""
+def start_long_farm(output, tracer_bin, *extra):
+    """A farm of many small tiles taking a few seconds, and its process (once tracer processes run, for a
+    local cluster)."""
     command = [
         sys.executable,
         "-m",
@@ -134,31 +135,97 @@ def start_long_farm(output, tracer_bin):
         "600",
         "--samples",
         "36",
-        "--workers",
-        "2",
         "--tile",
         "40",
         "--tracer",
         str(tracer_bin),
         "-q",
+        *extra,
     ]
+    if not extra:
+        command += ["--workers", "2"]
     process = subprocess.Popen(
         command, env={**os.environ, "PYTHONPATH": str(ROOT / "tools")}, cwd=ROOT, stderr=subprocess.PIPE, text=True
     )
     root = psutil.Process(process.pid)
     deadline = time.monotonic() + 120
-    while not region_list_processes(root):
+    while not extra and not region_list_processes(root):
         assert time.monotonic() < deadline and process.poll() is None, "the farm started no worker"
         time.sleep(0.05)
     return process, root
 
 
-def test_killed_worker_still_gives_the_identical_image(tracer_bin, tmp_path):
+def test_killed_tracer_mid_tile_still_gives_the_identical_image(tracer_bin, tmp_path):
     alone = render(tracer_bin, SCENES / "bunny_room.scn", tmp_path / "alone.png", "--width", 600, "--samples", 36)
     output = tmp_path / "farm.png"
     process, root = start_long_farm(output, tracer_bin)
-    victim = region_list_processes(root)[0].parent()  # the Dask worker process running that tracer
-    victim.kill()
+    region_list_processes(root)[0].kill()  # a local worker's tracer process, loading or rendering
+    assert not output.exists()  # killed mid-job
+    _, errors = process.communicate(timeout=300)
+    assert process.returncode == 0, errors
+    assert np.array_equal(read_pixels(output)[0], alone)
+
+
+@pytest.fixture
+def dask_cluster(tmp_path):
+    """A Dask scheduler and two single-thread workers (each a process under its nanny), as a cluster
+    would run them; yields the scheduler's address and the process running the workers."""
+    bin_folder = os.path.dirname(sys.executable)
+    scheduler_file = tmp_path / "scheduler.json"
+    scheduler = subprocess.Popen(
+        [
+            os.path.join(bin_folder, "dask"),
+            "scheduler",
+            "--scheduler-file",
+            scheduler_file,
+            "--port",
+            "0",
+            "--no-dashboard",
+            "--host",
+            "127.0.0.1",
+        ],
+        stderr=subprocess.DEVNULL,
+    )
+    workers = subprocess.Popen(
+        [
+            os.path.join(bin_folder, "dask"),
+            "worker",
+            "--scheduler-file",
+            scheduler_file,
+            "--nworkers",
+            "2",
+            "--nthreads",
+            "1",
+            "--no-dashboard",
+            "--host",
+            "127.0.0.1",
+        ],
+        stderr=subprocess.DEVNULL,
+        cwd=tmp_path,
+    )
+    try:
+        deadline = time.monotonic() + 120
+        while len([c for c in psutil.Process(workers.pid).children() if "python" in c.name()]) < 2:
+            assert time.monotonic() < deadline, "the Dask workers did not start"
+            time.sleep(0.1)
+        address = json.loads(scheduler_file.read_text())["address"]
+        yield address, psutil.Process(workers.pid)
+    finally:
+        for process in (workers, scheduler):
+            process.terminate()
+            process.wait(timeout=60)
+
+
+def test_cluster_by_address_survives_a_killed_dask_worker(tracer_bin, tmp_path, dask_cluster):
+    address, workers = dask_cluster
+    alone = render(tracer_bin, SCENES / "bunny_room.scn", tmp_path / "alone.exr", "--width", 600, "--samples", 36)
+    output = tmp_path / "farm.exr"
+    process, _ = start_long_farm(output, tracer_bin, "--address", address)
+    deadline = time.monotonic() + 120
+    while not region_list_processes(workers):
+        assert time.monotonic() < deadline and process.poll() is None, "no tile reached the workers"
+        time.sleep(0.05)
+    region_list_processes(workers)[0].parent().kill()  # the Dask worker process (its nanny starts another)
     assert not output.exists()  # killed mid-job
     _, errors = process.communicate(timeout=300)
     assert process.returncode == 0, errors

@@ -21,11 +21,11 @@ class Region:
         return f"{self.x0} {self.y0} {self.width} {self.height}"
 
 
-def tile_size_for(width: int, height: int, slots: int, tiles_per_slot: int = 4) -> int:
-    """The side of square tiles giving each worker slot about `tiles_per_slot` tiles (enough to even out
-    slow and fast parts of the image, few enough that each tile's fixed cost stays small)."""
+def tile_size_for(width: int, height: int, slots: int, tiles_per_slot: int = 16) -> int:
+    """The side of square tiles giving each worker slot about `tiles_per_slot` tiles: enough that the
+    last tiles leave workers idle briefly, few enough that each tile's fixed cost stays small."""
     wanted = max(1, slots * tiles_per_slot)
-    return max(16, math.ceil(math.sqrt(width * height / wanted)))
+    return max(32, math.ceil(math.sqrt(width * height / wanted)))
 
 
 def split(width: int, height: int, tile: int) -> list[Region]:

@@ -1,6 +1,7 @@
-"""What runs on the workers: one tracer process per job and worker thread, which loads the scene once
-and renders the job's tiles one after another (`tracer --region-list`), each tile returned as the bytes
-of its image file. Sent to the workers by value, so they need Dask and the tracer executable only."""
+"""What runs on the workers: tracer processes (one per job and worker thread) that load the scene once
+and render the job's tiles one after another (`tracer --region-list`), each tile returned as the bytes
+of its image file. Standard library only: tools/farm uploads this file to a cluster's workers, which
+need Dask and the tracer executable, not this folder."""
 
 from __future__ import annotations
 
@@ -11,48 +12,66 @@ import tempfile
 import threading
 import time
 import types
-from dataclasses import dataclass
 
 
-@dataclass(frozen=True)
-class WorkerJob:
-    """How a worker runs tracer for one job: the command that loads the scene and the tile format."""
-
-    key: str  # one job of one farm run
-    command: tuple[str, ...]  # tracer SCENE [overrides] --region-list --threads 1 -q
-    tile_suffix: str  # ".png" for 8-bit outputs, ".exr" for float outputs (both lossless)
-
-
-class TileFailed(Exception):
-    """A tile tracer could not render: the tracer's own diagnostic."""
+def worker_job(key: str, command: list[str], tile_suffix: str) -> dict:
+    """How a worker runs tracer for one job: `key` names one job of one farm run, `command` loads its
+    scene (tracer SCENE [overrides] --region-list ...), tiles come back as `tile_suffix` files (".png"
+    for 8-bit outputs, ".exr" for float ones: both lossless). Plain data: the workers need no module of
+    this folder to read it."""
+    return {"key": key, "command": list(command), "tile_suffix": tile_suffix}
 
 
-def _processes() -> dict:
-    """This worker process's tracer processes, by (job key, thread): kept in sys.modules so that every
-    task sent by value finds the same table."""
+def _processes() -> types.ModuleType:
+    """This worker process's tracer processes: `every[key]` all of a job's, `idle[key]` those waiting
+    for a tile. Kept in sys.modules so that every task sent by value finds the same table."""
     holder = sys.modules.get("_tracer_farm_processes")
     if holder is None:
         holder = types.ModuleType("_tracer_farm_processes")
-        holder.table = {}
+        holder.every, holder.idle = {}, {}
         holder.lock = threading.Lock()
         sys.modules["_tracer_farm_processes"] = holder
     return holder
 
 
-def _tracer_for(job: WorkerJob) -> subprocess.Popen:
-    """The running tracer process of this job and thread, started if missing or dead."""
+def _start(job: dict) -> subprocess.Popen:
+    """A new tracer process of the job (it loads the scene, then waits for regions)."""
+    errors = tempfile.TemporaryFile()
+    process = subprocess.Popen(
+        job["command"], stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=errors, text=True, bufsize=1
+    )
+    process.errors = errors
     holder = _processes()
-    slot = (job.key, threading.get_ident())
     with holder.lock:
-        process = holder.table.get(slot)
-        if process is None or process.poll() is not None:
-            errors = tempfile.TemporaryFile()
-            process = subprocess.Popen(
-                job.command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=errors, text=True, bufsize=1
-            )
-            process.errors = errors
-            holder.table[slot] = process
+        holder.every.setdefault(job["key"], []).append(process)
     return process
+
+
+def _take(job: dict) -> subprocess.Popen:
+    """An idle tracer process of the job that is still running, or a new one."""
+    holder = _processes()
+    with holder.lock:
+        idle = holder.idle.setdefault(job["key"], [])
+        while idle:
+            process = idle.pop()
+            if process.poll() is None:
+                return process
+    return _start(job)
+
+
+def _give_back(job: dict, process: subprocess.Popen) -> None:
+    holder = _processes()
+    with holder.lock:
+        holder.idle.setdefault(job["key"], []).append(process)
+
+
+def start_job(job: dict, dask_worker=None) -> int:
+    """Starts one tracer process per thread of this worker (Dask's client.run gives the worker) ahead of
+    the job's tiles, so that loading the scene overlaps the farm's own start. How many it started."""
+    count = dask_worker.state.nthreads if dask_worker is not None else 1
+    for _ in range(count):
+        _give_back(job, _start(job))
+    return count
 
 
 def _diagnostic(process: subprocess.Popen) -> str:
@@ -63,36 +82,40 @@ def _diagnostic(process: subprocess.Popen) -> str:
     return text or f"tracer stopped with exit code {process.returncode} and no message"
 
 
-def render_tile(job: WorkerJob, region_text: str) -> tuple[bytes, float]:
+def render_tile(job: dict, region_text: str) -> tuple[bytes, float]:
     """Renders one tile ("X0 Y0 W H"): its image file's bytes and the seconds it took here."""
     start = time.perf_counter()
-    process = _tracer_for(job)
+    process = _take(job)
     with tempfile.TemporaryDirectory(prefix="tracer-tile-") as folder:
-        path = os.path.join(folder, "tile" + job.tile_suffix)
+        path = os.path.join(folder, "tile" + job["tile_suffix"])
         try:
             process.stdin.write(f"{region_text} {path}\n")
             process.stdin.flush()
             reply = process.stdout.readline()
-        except (BrokenPipeError, OSError):
+        except (BrokenPipeError, OSError, ValueError):
             reply = ""
         if not reply:
-            raise TileFailed(_diagnostic(process))
+            raise RuntimeError(_diagnostic(process))
+        _give_back(job, process)
         if not reply.startswith("done "):
-            raise TileFailed("tracer: " + reply.strip())
+            raise RuntimeError("tracer: " + reply.strip())
         with open(path, "rb") as tile:
             return tile.read(), time.perf_counter() - start
 
 
-def close_job(key: str) -> int:
-    """Ends this worker's tracer processes of a job (their input closes; they exit). How many there were."""
+def close_job(key: str, at_once: bool = False) -> int:
+    """Ends this worker's tracer processes of a job: their input closes and they exit, or with `at_once`
+    they are stopped in the middle of a tile (tracer writes nothing then). How many there were."""
     holder = _processes()
     with holder.lock:
-        slots = [slot for slot in holder.table if slot[0] == key]
-        for slot in slots:
-            process = holder.table.pop(slot)
-            try:
-                process.stdin.close()
-                process.wait(timeout=10)
-            except (OSError, subprocess.TimeoutExpired):
-                process.kill()
-    return len(slots)
+        processes = holder.every.pop(key, [])
+        holder.idle.pop(key, None)
+    for process in processes:
+        try:
+            if at_once:
+                process.terminate()
+            process.stdin.close()
+            process.wait(timeout=30)
+        except (OSError, subprocess.TimeoutExpired):
+            process.kill()
+    return len(processes)
