@@ -151,7 +151,7 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
         worker.worker_job(
             keys[index],
             [worker_tracer, *job.tracer_arguments(), "--region-list", "--threads", "1", "-q"],
-            ".exr" if job.is_float() else ".png",
+            ".exr" if job.is_float() else ".ppm",
         )
         for index, job in enumerate(jobs)
     ]

@@ -9,8 +9,22 @@ import numpy as np
 import OpenImageIO as oiio
 
 
+def decode_ppm(data: bytes) -> np.ndarray:
+    """A binary 8-bit PPM file's pixels (height x width x 3), read without a copy of the file."""
+    fields = data[:64].split(maxsplit=4)
+    if len(fields) < 4 or fields[0] != b"P6" or fields[3] != b"255":
+        raise ValueError("a tile came back as something other than an 8-bit binary PPM file")
+    width, height = int(fields[1]), int(fields[2])
+    size = width * height * 3
+    if len(data) < size + 11:
+        raise ValueError(f"a {width} x {height} tile came back with only {len(data)} bytes")
+    return np.frombuffer(data, dtype=np.uint8, count=size, offset=len(data) - size).reshape(height, width, 3)
+
+
 def decode_tile(data: bytes, suffix: str, dtype: np.dtype) -> np.ndarray:
     """A tile file's pixels (height x width x 3) in the canvas's type; its data window only."""
+    if suffix == ".ppm":
+        return decode_ppm(data)
     with tempfile.NamedTemporaryFile(suffix=suffix) as file:
         file.write(data)
         file.flush()

@@ -16,9 +16,9 @@ import types
 
 def worker_job(key: str, command: list[str], tile_suffix: str) -> dict:
     """How a worker runs tracer for one job: `key` names one job of one farm run, `command` loads its
-    scene (tracer SCENE [overrides] --region-list ...), tiles come back as `tile_suffix` files (".png"
-    for 8-bit outputs, ".exr" for float ones: both lossless). Plain data: the workers need no module of
-    this folder to read it."""
+    scene (tracer SCENE [overrides] --region-list ...), tiles come back as `tile_suffix` files (".ppm"
+    for 8-bit outputs: raw bytes, quick to read; ".exr" for float ones; both lossless). Plain data:
+    the workers need no module of this folder to read it."""
     return {"key": key, "command": list(command), "tile_suffix": tile_suffix}
 
 
