@@ -37,20 +37,38 @@ static std::optional<std::string> parse_request(const std::string& line, std::ve
     return std::nullopt;
 }
 
+// The next line of `in` (without its newline) if it has at most `limit` characters; a longer one
+// is skipped up to its newline and reported by `too_long`. False at the end of the input.
+static bool read_line(std::istream& in, std::string& line, size_t limit, bool& too_long) {
+    line.clear();
+    too_long = false;
+    for (int c; (c = in.get()) != std::char_traits<char>::eof();) {
+        if (c == '\n') return true;
+        if (line.size() < limit)
+            line.push_back(char(c));
+        else
+            too_long = true;
+    }
+    return !line.empty() || too_long;
+}
+
 bool render_region_list(const World& world, const SceneDescription& scene, RenderOptions options,
                         const OutputCheck& output_problem, std::istream& requests, std::ostream& replies,
                         std::atomic<bool>& waiting) {
     std::string line;
     for (;;) {
         // Step 1: the next request.
+        constexpr size_t kLongestLine = 16384;  // four numbers and a path (PATH_MAX is 4096)
+        bool too_long = false;
         waiting = true;
-        const bool got = bool(std::getline(requests, line));
+        const bool got = read_line(requests, line, kLongestLine, too_long);
         waiting = false;
         if (!got) return true;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        if (!too_long && line.find_first_not_of(" \t\r") == std::string::npos) continue;
         std::vector<int> region;
         std::string output;
-        auto problem = parse_request(line, region, output);
+        auto problem = too_long ? "a request line longer than " + std::to_string(kLongestLine) + " characters"
+                                : parse_request(line, region, output);
         if (!problem) problem = region_problem(region, scene.render);
         if (!problem) problem = output_problem(output);
 

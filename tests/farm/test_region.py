@@ -67,11 +67,12 @@ def test_region_list_renders_each_line_and_answers_it(tracer_bin, tmp_path):
         f"0 0 100 50 {tmp_path / 'a.png'}",
         f"250 150 60 10 {tmp_path / 'b.png'}",
         "not a region",
+        "9" * 100000,
         f"10 20 30 40 {tmp_path / 'c.exr'}",
     ]
     result = subprocess.run(
         [tracer_bin, SCENES / "task2.scn", "--width", "300", "--region-list"],
-        input="\n".join(lines) + "\n",
+        input="\n".join(lines),  # the last line without its newline
         capture_output=True,
         text=True,
     )
@@ -80,7 +81,8 @@ def test_region_list_renders_each_line_and_answers_it(tracer_bin, tmp_path):
     assert replies[0] == f"done {tmp_path / 'a.png'}"
     assert replies[1].startswith(f"error {tmp_path / 'b.png'}: region 250 150 60 10 reaches past the image's right")
     assert replies[2].startswith("error: expected 'X0 Y0 W H OUTPUT'")
-    assert replies[3] == f"done {tmp_path / 'c.exr'}"
+    assert replies[3] == "error: a request line longer than 16384 characters"  # read in bounded memory
+    assert replies[4] == f"done {tmp_path / 'c.exr'}"
     assert np.array_equal(read_pixels(tmp_path / "a.png")[0], full[0:50, 0:100])
     assert not (tmp_path / "b.png").exists()
     assert read_pixels(tmp_path / "c.exr")[1].x == 10
