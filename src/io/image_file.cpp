@@ -50,7 +50,7 @@ std::optional<std::string> write_image(const std::string& path, const Image& ima
     const bool as_float = is_float_format(path);
     OIIO::ImageSpec spec(image.width, image.height, 3, as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     // A window of a larger frame (a render region) keeps its place where the format can say it
-    // (EXR's data window inside the display window, TIFF's position); elsewhere it is just the window.
+    // (EXR's data window inside the display window); elsewhere it is just the window.
     if (image.is_window() && output->supports("displaywindow") && output->supports("origin")) {
         spec.x = image.x0;
         spec.y = image.y0;
