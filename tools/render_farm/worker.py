@@ -1,7 +1,7 @@
 """What runs on the workers: tracer processes (one per job and worker thread) that load the scene once
 and render the job's tiles one after another (`tracer --region-list`), each tile returned as the bytes
-of its image file. Standard library only: tools/farm uploads this file to a cluster's workers, which
-need Dask and the tracer executable, not this folder."""
+of its image file. Standard library and Dask only: tools/farm uploads this file to a cluster's
+workers, which need Dask and the tracer executable, not this folder."""
 
 from __future__ import annotations
 
@@ -82,11 +82,22 @@ def _diagnostic(process: subprocess.Popen) -> str:
     return text or f"tracer stopped with exit code {process.returncode} and no message"
 
 
+def _scratch_folder() -> str | None:
+    """The Dask worker's own scratch folder (its nanny removes it if the worker dies mid-tile), or
+    the system's temporary folder outside a worker."""
+    try:
+        from distributed import get_worker
+
+        return get_worker().local_directory
+    except (ImportError, ValueError):
+        return None
+
+
 def render_tile(job: dict, region_text: str) -> tuple[bytes, float]:
     """Renders one tile ("X0 Y0 W H"): its image file's bytes and the seconds it took here."""
     start = time.perf_counter()
     process = _take(job)
-    with tempfile.TemporaryDirectory(prefix="tracer-tile-") as folder:
+    with tempfile.TemporaryDirectory(prefix="tracer-tile-", dir=_scratch_folder()) as folder:
         path = os.path.join(folder, "tile" + job["tile_suffix"])
         try:
             process.stdin.write(f"{region_text} {path}\n")
