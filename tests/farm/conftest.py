@@ -44,4 +44,4 @@ def farm(*arguments, tracer=None, env=None, **popen):
     if tracer:
         command += ["--tracer", str(tracer)]
     environment = {**os.environ, **(env or {}), "PYTHONPATH": str(ROOT / "tools")}
-    return subprocess.run(command, capture_output=True, text=True, env=environment, cwd=ROOT, **popen)
+    return subprocess.run(command, capture_output=True, text=True, env=environment, **{"cwd": ROOT, **popen})

@@ -1,0 +1,91 @@
+"""The farm's parts on their own: tiles cover the frame once, PPM tiles are read exactly, and a bad
+jobs file or option is refused with a message before any work."""
+
+import json
+
+import numpy as np
+import pytest
+from conftest import SCENES, farm
+from render_farm.images import decode_ppm
+from render_farm.jobs import JobError, jobs_from_file
+from render_farm.tiles import Canvas, Region, split, tile_size_for
+
+
+@pytest.mark.parametrize("width,height,tile", [(1, 1, 1), (1200, 800, 347), (641, 479, 64), (5, 300, 7), (64, 64, 64)])
+def test_tiles_cover_every_pixel_exactly_once(width, height, tile):
+    counts = np.zeros((height, width), dtype=int)
+    for region in split(width, height, tile):
+        assert 1 <= region.width <= tile and 1 <= region.height <= tile
+        counts[region.y0 : region.y0 + region.height, region.x0 : region.x0 + region.width] += 1
+    assert (counts == 1).all()
+
+
+def test_default_tile_size_gives_about_16_tiles_per_worker_and_at_least_32_pixels():
+    assert len(split(1200, 800, tile_size_for(1200, 800, 2))) in range(28, 45)
+    assert tile_size_for(100, 100, 64) == 32
+
+
+def test_canvas_knows_when_complete_and_refuses_a_tile_of_the_wrong_size():
+    canvas = Canvas(4, 2, np.uint8, 2)
+    canvas.paste(Region(0, 0, 2, 2), np.full((2, 2, 3), 7, np.uint8))
+    assert not canvas.complete()
+    with pytest.raises(ValueError, match="came back as 3 x 2"):
+        canvas.paste(Region(2, 0, 2, 2), np.zeros((2, 3, 3), np.uint8))
+    canvas.paste(Region(2, 0, 2, 2), np.full((2, 2, 3), 9, np.uint8))
+    assert canvas.complete() and canvas.pixels[1, 3, 2] == 9 and canvas.pixels[0, 0, 0] == 7
+
+
+def test_ppm_tiles_are_read_exactly_even_when_the_pixels_start_with_whitespace_bytes():
+    pixels = np.arange(2 * 3 * 3, dtype=np.uint8).reshape(2, 3, 3)
+    pixels[0, 0] = [10, 32, 9]  # newline, space and tab bytes right after the header
+    data = b"P6\n3 2\n255\n" + pixels.tobytes()
+    assert np.array_equal(decode_ppm(data), pixels)
+    with pytest.raises(ValueError):
+        decode_ppm(b"P5\n3 2\n255\n" + bytes(6))
+    with pytest.raises(ValueError, match="only"):
+        decode_ppm(b"P6\n3 2\n255\n" + bytes(5))
+
+
+@pytest.mark.parametrize(
+    "content,message",
+    [
+        ("not json", "not a JSON list of jobs"),
+        ("[]", "non-empty JSON list"),
+        ('[{"scene": "a.scn"}]', 'needs "scene" and "output"'),
+        ('[{"scene": "a.scn", "output": "a.png", "sample": 4}]', "unknown key(s) sample"),
+        ('[{"scene": "a.scn", "output": "a.png", "define": [1]}]', '"define" is an object'),
+        ('[{"scene": "a.scn", "output": "a.png"}, {"scene": "b.scn", "output": "a.png"}]', "two jobs write"),
+    ],
+)
+def test_bad_jobs_files_are_refused(tmp_path, content, message):
+    path = tmp_path / "jobs.json"
+    path.write_text(content)
+    with pytest.raises(JobError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        jobs_from_file(str(path))
+
+
+def test_jobs_file_paths_are_relative_to_the_file(tmp_path):
+    (tmp_path / "sub").mkdir()
+    path = tmp_path / "sub" / "jobs.json"
+    path.write_text(json.dumps([{"scene": "../a.scn", "output": "out.png", "samples": 4, "define": {"r": 0.5}}]))
+    (job,) = jobs_from_file(str(path))
+    assert job.scene == str(tmp_path / "sub" / "../a.scn") and job.output == str(tmp_path / "sub" / "out.png")
+    assert job.tracer_arguments()[1:] == ["-D", "r=0.5", "--samples", "4"]
+
+
+@pytest.mark.parametrize(
+    "arguments,code,message",
+    [
+        (["-o", "out.png"], 2, "give one scene"),
+        ([str(SCENES / "task2.scn")], 2, "no output image"),
+        ([str(SCENES / "task2.scn"), "-o", "out.png", "--workers", "0"], 2, "--workers"),
+        ([str(SCENES / "task2.scn"), "-o", "/no/such/folder/out.png"], 3, "no such folder"),
+        ([str(SCENES / "task2.scn"), "-o", "out.unknown"], 3, "unknown image format"),
+        ([str(SCENES / "task2.scn"), "-o", "out.png", "-D", "novalue"], 2, "expected NAME=VALUE"),
+    ],
+)
+def test_bad_command_lines_are_refused_before_any_tile(tracer_bin, tmp_path, arguments, code, message):
+    result = farm(*arguments, tracer=tracer_bin, cwd=tmp_path)
+    assert result.returncode == code, result.stderr
+    assert message in result.stderr
+    assert "tile" not in result.stderr.replace("--tile", "")
