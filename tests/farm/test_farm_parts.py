@@ -82,10 +82,29 @@ def test_jobs_file_paths_are_relative_to_the_file(tmp_path):
         ([str(SCENES / "task2.scn"), "-o", "/no/such/folder/out.png"], 3, "no such folder"),
         ([str(SCENES / "task2.scn"), "-o", "out.unknown"], 3, "unknown image format"),
         ([str(SCENES / "task2.scn"), "-o", "out.png", "-D", "novalue"], 2, "expected NAME=VALUE"),
+        (
+            [str(SCENES / "task2.scn"), "-o", "out.png", "--address", "tcp://127.0.0.1:9", "--connect-timeout", "1"],
+            3,
+            "cannot reach the Dask scheduler at 'tcp://127.0.0.1:9'",
+        ),
     ],
 )
 def test_bad_command_lines_are_refused_before_any_tile(tracer_bin, tmp_path, arguments, code, message):
     result = farm(*arguments, tracer=tracer_bin, cwd=tmp_path)
     assert result.returncode == code, result.stderr
     assert message in result.stderr
-    assert "tile" not in result.stderr.replace("--tile", "")
+    assert "tile" not in result.stderr.replace("--tile", "") and "Traceback" not in result.stderr
+    assert not (tmp_path / "out.png").exists()
+
+
+def test_images_are_written_whole_or_not_at_all(tmp_path):
+    from conftest import read_pixels
+    from render_farm.images import write_atomically
+
+    pixels = np.arange(4 * 5 * 3, dtype=np.uint8).reshape(4, 5, 3)
+    (tmp_path / "out.png").write_bytes(b"the old file")
+    write_atomically(str(tmp_path / "out.png"), pixels)
+    assert np.array_equal(read_pixels(tmp_path / "out.png")[0], pixels)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.png"]  # no temporary file left
+    with pytest.raises(OSError):
+        write_atomically(str(tmp_path / "missing" / "out.png"), pixels)

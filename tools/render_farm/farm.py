@@ -45,6 +45,9 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--tile", type=int, help="tile side in pixels (default: about 4 tiles per worker)")
     parser.add_argument("--workers", type=int, default=os.cpu_count(), help="local cluster's workers (default: cores)")
     parser.add_argument("--address", help="join this Dask scheduler (tcp://host:8786) instead of a local cluster")
+    parser.add_argument(
+        "--connect-timeout", type=float, default=30, help="seconds to wait for --address's scheduler (default 30)"
+    )
     parser.add_argument("--retries", type=int, default=2, help="times a failed tile is tried again (default 2)")
     default_tracer = os.path.join(ROOT, "build", "release", "tracer")
     parser.add_argument("--tracer", default=default_tracer, help="the tracer executable (default: this build's)")
@@ -101,7 +104,10 @@ def start_cluster(arguments: argparse.Namespace):
 
     dask.config.set({"distributed.scheduler.allowed-failures": arguments.retries})
     if arguments.address:
-        return Client(arguments.address, timeout="30s"), None
+        try:
+            return Client(arguments.address, timeout=f"{arguments.connect_timeout}s"), None
+        except (OSError, ValueError, TimeoutError) as error:
+            raise JobError(f"cannot reach the Dask scheduler at '{arguments.address}': {error}", 3) from error
     cluster = LocalCluster(
         n_workers=arguments.workers,
         threads_per_worker=1,
@@ -247,6 +253,9 @@ def main(argv: list[str] | None = None) -> int:
     except JobError as error:
         print(f"farm: error: {error}" if not str(error).startswith("tracer") else str(error), file=sys.stderr)
         return error.exit_code
+    except OSError as error:  # writing an image: disk full, permissions changed meanwhile
+        print(f"farm: error: {error}", file=sys.stderr)
+        return 3
     except KeyboardInterrupt:
         print("farm: interrupted; no unfinished image was written", file=sys.stderr)
         return EXIT_INTERRUPTED
