@@ -105,6 +105,7 @@ def test_scene_error_is_reported_once_before_any_tile(tmp_path, tracer_bin):
     result = farm(scene, "-o", tmp_path / "out.png", "--workers", 2, tracer=tracer_bin)
     assert result.returncode == 1
     assert result.stderr.count("error: unknown key 'radios'") == 1, result.stderr
+    assert result.stderr.startswith(f"{scene}:26:36: error: unknown key"), result.stderr  # tracer's own, as is
     assert "tile" not in result.stderr
     assert not (tmp_path / "out.png").exists()
 

@@ -42,7 +42,7 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("-D", "--define", action="append", default=[], help="NAME=VALUE, as tracer's -D")
     for key in OVERRIDES:
         parser.add_argument("--" + key.replace("_", "-"), help=f"override the scene's {key}, as tracer's option")
-    parser.add_argument("--tile", type=int, help="tile side in pixels (default: about 4 tiles per worker)")
+    parser.add_argument("--tile", type=int, help="tile side in pixels (default: about 16 tiles per worker)")
     parser.add_argument("--workers", type=int, default=os.cpu_count(), help="local cluster's workers (default: cores)")
     parser.add_argument("--address", help="join this Dask scheduler (tcp://host:8786) instead of a local cluster")
     parser.add_argument(
@@ -119,8 +119,8 @@ def start_cluster(arguments: argparse.Namespace):
 
 
 def send_worker_module(client) -> None:
-    """Uploads render_farm.worker (the tasks' code: standard library only) to the cluster's scheduler and
-    workers, which then need Dask and the tracer executable, not this folder."""
+    """Uploads render_farm.worker (the tasks' code: standard library and Dask only) to the cluster's
+    scheduler and workers, which then need Dask and the tracer executable, not this folder."""
     package = os.path.dirname(os.path.abspath(worker.__file__))
     with tempfile.TemporaryDirectory(prefix="tracer-farm-") as folder:
         archive = os.path.join(folder, "tracer_render_farm_worker.zip")
@@ -251,7 +251,7 @@ def main(argv: list[str] | None = None) -> int:
         with ThreadPoolExecutor(1) as pool:
             run_jobs(arguments, jobs, pool.submit(check, jobs), timings)
     except JobError as error:
-        print(f"farm: error: {error}" if not str(error).startswith("tracer") else str(error), file=sys.stderr)
+        print(str(error) if error.tracers_own else f"farm: error: {error}", file=sys.stderr)
         return error.exit_code
     except OSError as error:  # writing an image: disk full, permissions changed meanwhile
         print(f"farm: error: {error}", file=sys.stderr)

@@ -14,11 +14,13 @@ OVERRIDES = ("samples", "width", "height", "max_depth")  # job keys passed on as
 
 
 class JobError(Exception):
-    """A job that cannot run: the message to print and the exit code (tracer's codes)."""
+    """A job that cannot run: the message to print, the exit code (tracer's codes), and whether the
+    message is tracer's own diagnostic (printed as it is, not after "farm: error:")."""
 
-    def __init__(self, message: str, exit_code: int):
+    def __init__(self, message: str, exit_code: int, tracers_own: bool = False):
         super().__init__(message)
         self.exit_code = exit_code
+        self.tracers_own = tracers_own
 
 
 @dataclass
@@ -99,7 +101,7 @@ def check_job(tracer: str, job: Job) -> str:
     JobError with tracer's own diagnostics. Returns tracer's warnings (may be empty)."""
     result = subprocess.run([tracer, "--check", *job.tracer_arguments()], capture_output=True, text=True)
     if result.returncode != 0:
-        raise JobError(result.stderr.rstrip(), result.returncode)
+        raise JobError(result.stderr.rstrip(), result.returncode, tracers_own=True)
     size = _IMAGE_LINE.search(result.stdout)
     if not size:
         raise JobError(f"'{tracer} --check' did not report the image size; is it an older tracer?", 3)
