@@ -46,34 +46,26 @@ def test_jobs_file_renders_a_parameter_sweep(tracer_bin, tmp_path):
     assert not np.array_equal(read_pixels(tmp_path / "ball0.1.png")[0], read_pixels(tmp_path / "ball0.3.png")[0])
 
 
-def flaky(tmp_path, failures):
-    """The environment of a tracer whose first `failures` worker processes crash on their first tile."""
-    return {
-        "REAL_TRACER": os.environ.get("TRACER_BIN", str(ROOT / "build/release/tracer")),
-        "FLAKY_STATE": str(tmp_path / "state"),
-        "FLAKY_FAILURES": str(failures),
-    }
+def flaky_farm(tracer_bin, tmp_path, failures, *arguments):
+    """tools/farm on task2 at 300 px with a tracer whose first `failures` worker processes crash on their
+    first tile (flaky_tracer.py, counting in tmp_path/state)."""
+    env = {"REAL_TRACER": str(tracer_bin), "FLAKY_STATE": str(tmp_path / "state"), "FLAKY_FAILURES": str(failures)}
+    return farm(
+        SCENES / "task2.scn",
+        *arguments,
+        "--width",
+        300,
+        "--workers",
+        2,
+        tracer=os.path.join(HERE, "flaky_tracer.py"),
+        env=env,
+    )
 
 
 def test_failed_tiles_are_retried(tracer_bin, tmp_path):
     alone = render(tracer_bin, SCENES / "task2.scn", tmp_path / "alone.png", "--width", 300)
     output = tmp_path / "farm.png"
-    env = flaky(tmp_path, 2)
-    result = farm(
-        SCENES / "task2.scn",
-        "-o",
-        output,
-        "--width",
-        300,
-        "--workers",
-        2,
-        "--tile",
-        100,
-        "--retries",
-        2,
-        tracer=os.path.join(HERE, "flaky_tracer.py"),
-        env={**env, "TRACER_BIN": str(tracer_bin)},
-    )
+    result = flaky_farm(tracer_bin, tmp_path, 2, "-o", output, "--tile", 100, "--retries", 2)
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "state").read_text() == "xx"  # two tracer processes crashed
     assert np.array_equal(read_pixels(output)[0], alone)
@@ -81,19 +73,7 @@ def test_failed_tiles_are_retried(tracer_bin, tmp_path):
 
 def test_a_tile_that_keeps_failing_fails_the_job_with_tracers_diagnostic(tracer_bin, tmp_path):
     output = tmp_path / "farm.png"
-    result = farm(
-        SCENES / "task2.scn",
-        "-o",
-        output,
-        "--width",
-        300,
-        "--workers",
-        2,
-        "--retries",
-        1,
-        tracer=os.path.join(HERE, "flaky_tracer.py"),
-        env={**flaky(tmp_path, 1000), "TRACER_BIN": str(tracer_bin)},
-    )
+    result = flaky_farm(tracer_bin, tmp_path, 1000, "-o", output, "--retries", 1)
     assert result.returncode == 1
     assert "failed 2 times; the last time:\ntracer: error: simulated crash" in result.stderr
     assert not output.exists() and os.listdir(tmp_path) == ["state"]
@@ -120,6 +100,14 @@ def region_list_processes(root):
         except psutil.NoSuchProcess:
             pass
     return found
+
+
+def wait_until(condition, failure, process=None, seconds=120):
+    """Polls `condition` until it holds; fails with `failure` after `seconds` or if `process` ended."""
+    deadline = time.monotonic() + seconds
+    while not condition():
+        assert time.monotonic() < deadline and (process is None or process.poll() is None), failure
+        time.sleep(0.05)
 
 
 def start_long_farm(output, tracer_bin, *extra):
@@ -149,10 +137,8 @@ def start_long_farm(output, tracer_bin, *extra):
         command, env={**os.environ, "PYTHONPATH": str(ROOT / "tools")}, cwd=ROOT, stderr=subprocess.PIPE, text=True
     )
     root = psutil.Process(process.pid)
-    deadline = time.monotonic() + 120
-    while not extra and not region_list_processes(root):
-        assert time.monotonic() < deadline and process.poll() is None, "the farm started no worker"
-        time.sleep(0.05)
+    if not extra:
+        wait_until(lambda: region_list_processes(root), "the farm started no worker", process)
     return process, root
 
 
@@ -171,44 +157,21 @@ def test_killed_tracer_mid_tile_still_gives_the_identical_image(tracer_bin, tmp_
 def dask_cluster(tmp_path):
     """A Dask scheduler and two single-thread workers (each a process under its nanny), as a cluster
     would run them; yields the scheduler's address and the process running the workers."""
-    bin_folder = os.path.dirname(sys.executable)
     scheduler_file = tmp_path / "scheduler.json"
-    scheduler = subprocess.Popen(
-        [
-            os.path.join(bin_folder, "dask"),
-            "scheduler",
-            "--scheduler-file",
-            scheduler_file,
-            "--port",
-            "0",
-            "--no-dashboard",
-            "--host",
-            "127.0.0.1",
-        ],
-        stderr=subprocess.DEVNULL,
-    )
-    workers = subprocess.Popen(
-        [
-            os.path.join(bin_folder, "dask"),
-            "worker",
-            "--scheduler-file",
-            scheduler_file,
-            "--nworkers",
-            "2",
-            "--nthreads",
-            "1",
-            "--no-dashboard",
-            "--host",
-            "127.0.0.1",
-        ],
-        stderr=subprocess.DEVNULL,
-        cwd=tmp_path,
-    )
+
+    def dask(*arguments):
+        command = [os.path.join(os.path.dirname(sys.executable), "dask"), *arguments, "--scheduler-file"]
+        command += [scheduler_file, "--no-dashboard", "--host", "127.0.0.1"]
+        return subprocess.Popen(command, stderr=subprocess.DEVNULL, cwd=tmp_path)
+
+    scheduler = dask("scheduler", "--port", "0")
+    workers = dask("worker", "--nworkers", "2", "--nthreads", "1")
+
+    def workers_started():
+        return len([c for c in psutil.Process(workers.pid).children() if "python" in c.name()]) >= 2
+
     try:
-        deadline = time.monotonic() + 120
-        while len([c for c in psutil.Process(workers.pid).children() if "python" in c.name()]) < 2:
-            assert time.monotonic() < deadline, "the Dask workers did not start"
-            time.sleep(0.1)
+        wait_until(workers_started, "the Dask workers did not start")
         address = json.loads(scheduler_file.read_text())["address"]
         yield address, psutil.Process(workers.pid)
     finally:
@@ -222,10 +185,7 @@ def test_cluster_by_address_survives_a_killed_dask_worker(tracer_bin, tmp_path, 
     alone = render(tracer_bin, SCENES / "bunny_room.scn", tmp_path / "alone.exr", "--width", 600, "--samples", 36)
     output = tmp_path / "farm.exr"
     process, _ = start_long_farm(output, tracer_bin, "--address", address)
-    deadline = time.monotonic() + 120
-    while not region_list_processes(workers):
-        assert time.monotonic() < deadline and process.poll() is None, "no tile reached the workers"
-        time.sleep(0.05)
+    wait_until(lambda: region_list_processes(workers), "no tile reached the workers", process)
     region_list_processes(workers)[0].parent().kill()  # the Dask worker process (its nanny starts another)
     assert not output.exists()  # killed mid-job
     _, errors = process.communicate(timeout=300)
