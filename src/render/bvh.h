@@ -25,6 +25,18 @@
 
 namespace tracer {
 
+// A test of a leaf's entries [first, first + count) at once, which Bvh::closest and Bvh::any
+// take in place of a test of one entry: test_leaf(first, count, range) returns true on a hit
+// (for closest: shrinking range.max to the nearest).
+template <typename F>
+struct LeafTest {
+    F test_leaf;
+};
+template <typename T>
+constexpr bool kIsLeafTest = false;
+template <typename F>
+constexpr bool kIsLeafTest<LeafTest<F>> = true;
+
 // How a Bvh is built (see the top of this file).
 enum class BvhBuild { Box, Median, Sah };
 
@@ -149,24 +161,36 @@ private:
     template <typename Test>
     static bool nearest_in_leaf(uint32_t first, uint32_t count, Interval& range, TraversalRay& fast,
                                 TraversalCounts& counts, Test& test) {
-        bool found = false;
-        for (uint32_t i = first; i < first + count; ++i) {
-            ++counts.primitive_tests;
-            if (test(i, range)) {
-                found = true;
-                fast.clip(range.max);
+        if constexpr (kIsLeafTest<Test>) {
+            counts.primitive_tests += count;
+            if (!test.test_leaf(first, count, range)) return false;
+            fast.clip(range.max);
+            return true;
+        } else {
+            bool found = false;
+            for (uint32_t i = first; i < first + count; ++i) {
+                ++counts.primitive_tests;
+                if (test(i, range)) {
+                    found = true;
+                    fast.clip(range.max);
+                }
             }
+            return found;
         }
-        return found;
     }
     // True at the leaf's first entry that `test` hits.
     template <typename Test>
     static bool any_in_leaf(uint32_t first, uint32_t count, Interval& range, TraversalCounts& counts, Test& test) {
-        for (uint32_t i = first; i < first + count; ++i) {
-            ++counts.primitive_tests;
-            if (test(i, range)) return true;
+        if constexpr (kIsLeafTest<Test>) {
+            counts.primitive_tests += count;
+            return test.test_leaf(first, count, range);
+        } else {
+            for (uint32_t i = first; i < first + count; ++i) {
+                ++counts.primitive_tests;
+                if (test(i, range)) return true;
+            }
+            return false;
         }
-        return false;
     }
     // Asks for the cache lines of the inner children in `mask` before they are visited.
     void prefetch_children(const WideNode& node, unsigned mask) const {

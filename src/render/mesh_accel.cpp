@@ -1,5 +1,6 @@
 #include "render/mesh_accel.h"
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -122,14 +123,19 @@ MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& s
     if (!brute_force_) bvh_ = Bvh(boxes, settings.build, settings.leaf_size, threads);
 
     // Step 3: the triangles in that order, and their hit records.
-    triangles_.resize(n);
+    triangle_count_ = n;
+    const size_t stride = n + kTriangleLanes - 1;
+    columns_.assign(9 * stride, Real(0));  // the spare entries too: never hit (no area)
+    Real* const columns = columns_.data();
     hit_records_.resize(n);
     parallel_for(
         n,
         [&](size_t i) {
             const uint32_t triangle = brute_force_ ? uint32_t(i) : bvh_.order()[i];
             const auto& v = mesh.triangles[triangle];
-            triangles_[i] = {mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]]};
+            for (int vertex = 0; vertex < 3; ++vertex)
+                for (int axis = 0; axis < 3; ++axis)
+                    columns[size_t(3 * vertex + axis) * stride + i] = mesh.positions[v[vertex]][axis];
             const auto& ids = mesh.normal_ids[triangle];
             const auto [part, number] = mesh.origin[triangle];
             hit_records_[i] = {
@@ -166,10 +172,7 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
     // file (lower part, then lower triangle number), whatever order the search meets them in
     // (docs/robustness.md, hard case D2). So the test admits t up to one Real past r.max.
     Real admit_max = range.max;
-    const TriangleTester tester(ray);
-    auto test = [&](uint32_t i, Interval& r) {
-        TriangleHit hit;
-        if (!tester(triangles_[i], {r.min, admit_max}, hit)) return false;
+    auto take = [&](uint32_t i, const TriangleHit& hit, Interval& r) {
         if (hit.t == r.max) {
             if (!found) return false;  // the range is open: its end is no hit
             const HitRecord &a = hit_records_[i], &b = hit_records_[best];
@@ -185,38 +188,90 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
         __builtin_prefetch(&hit_records_[i].triangle);
         return true;
     };
-    if (brute_force_) {
-        counts.primitive_tests += triangles_.size();
-        for (uint32_t i = 0; i < triangles_.size(); ++i) test(i, range);
+    auto search = [&](auto test_leaf) {
+        if (!brute_force_) return bvh_.closest(ray, range, counts, LeafTest{test_leaf});
+        counts.primitive_tests += triangle_count_;
+        return test_leaf(0, uint32_t(triangle_count_), range);
+    };
+    if constexpr (kRobust) {
+        // Four triangles at a time; those that pass the vector steps are finished in order.
+        const TriangleLaneTester tester(ray, columns());
+        search([&](uint32_t first, uint32_t count, Interval& r) {
+            bool hit_here = false;
+            for (uint32_t chunk = first; chunk < first + count; chunk += kTriangleLanes) {
+                const int lanes = int(std::min<uint32_t>(kTriangleLanes, first + count - chunk));
+                ShearedTriangle sheared[kTriangleLanes];
+                for (unsigned m = tester.candidates(chunk, lanes, {r.min, admit_max}, sheared); m != 0; m &= m - 1) {
+                    const int lane = __builtin_ctz(m);
+                    const Interval admit{r.min, admit_max};
+                    TriangleHit hit;
+                    if (in_scaled_range(sheared[lane], admit) && finish_triangle_hit(sheared[lane], admit, hit))
+                        hit_here |= take(chunk + uint32_t(lane), hit, r);
+                }
+            }
+            return hit_here;
+        });
     } else {
-        bvh_.closest(ray, range, counts, test);
+        const TriangleTester tester(ray);
+        const TriangleColumns triangles = columns();
+        search([&](uint32_t first, uint32_t count, Interval& r) {
+            bool hit_here = false;
+            for (uint32_t i = first; i < first + count; ++i) {
+                TriangleHit hit;
+                if (tester(triangles.triangle(i), {r.min, admit_max}, hit)) hit_here |= take(i, hit, r);
+            }
+            return hit_here;
+        });
     }
     if constexpr (std::is_same_v<Real, float>) {
-        const auto t = found ? plane_t(ray, triangles_[best]) : std::nullopt;
+        const auto t = found ? plane_t(ray, triangle(best)) : std::nullopt;
         if (t && Real(*t) > 0 && asked.contains(Real(*t))) best_hit.t = range.max = Real(*t);
     }
     if (found) out = {best, best_hit};
     return found;
 }
 
-bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts) const {
-    const TriangleTester tester(ray);
-    auto test = [&](uint32_t i, Interval& r) {
-        TriangleHit hit;
-        return tester(triangles_[i], r, hit);
+bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts, uint32_t& blocker) const {
+    auto search = [&](auto test_leaf) {
+        if (!brute_force_) return bvh_.any(ray, range, counts, LeafTest{test_leaf});
+        counts.primitive_tests += triangle_count_;
+        return test_leaf(0, uint32_t(triangle_count_), range);
     };
-    if (brute_force_) {
-        for (uint32_t i = 0; i < triangles_.size(); ++i) {
-            ++counts.primitive_tests;
-            if (test(i, range)) return true;
-        }
-        return false;
+    if constexpr (kRobust) {
+        const TriangleLaneTester tester(ray, columns());
+        return search([&](uint32_t first, uint32_t count, Interval& r) {
+            for (uint32_t chunk = first; chunk < first + count; chunk += kTriangleLanes) {
+                const int lanes = int(std::min<uint32_t>(kTriangleLanes, first + count - chunk));
+                ShearedTriangle sheared[kTriangleLanes];
+                for (unsigned m = tester.candidates(chunk, lanes, r, sheared); m != 0; m &= m - 1) {
+                    const int lane = __builtin_ctz(m);
+                    TriangleHit hit;
+                    if (finish_triangle_hit(sheared[lane], r, hit)) {
+                        blocker = chunk + uint32_t(lane);
+                        return true;
+                    }
+                }
+            }
+            return false;
+        });
+    } else {
+        const TriangleTester tester(ray);
+        const TriangleColumns triangles = columns();
+        return search([&](uint32_t first, uint32_t count, Interval& r) {
+            for (uint32_t i = first; i < first + count; ++i) {
+                TriangleHit hit;
+                if (tester(triangles.triangle(i), r, hit)) {
+                    blocker = i;
+                    return true;
+                }
+            }
+            return false;
+        });
     }
-    return bvh_.any(ray, range, counts, test);
 }
 
 Vec3 MeshAccel::surface_point(uint32_t slot, Real u, Real v, Vec3& error) const {
-    const Triangle& t = triangles_[slot];
+    const Triangle t = triangle(slot);
     const Real w = 1 - u - v;
     const Vec3 a = w * t.v0, b = u * t.v1, c = v * t.v2;
     // The weights sum to 1 only up to the rounding of w: that moves the point by up to
@@ -226,7 +281,7 @@ Vec3 MeshAccel::surface_point(uint32_t slot, Real u, Real v, Vec3& error) const 
 }
 
 Vec3 MeshAccel::geometric_normal(uint32_t slot) const {
-    const Triangle& t = triangles_[slot];
+    const Triangle t = triangle(slot);
     return normalize_or_zero(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
 }
 
@@ -245,7 +300,7 @@ Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const Mat3& normal
 }
 
 size_t MeshAccel::memory_bytes() const {
-    return bvh_.memory_bytes() + triangles_.capacity() * sizeof(Triangle) + hit_records_.capacity() * sizeof(HitRecord);
+    return bvh_.memory_bytes() + columns_.capacity() * sizeof(Real) + hit_records_.capacity() * sizeof(HitRecord);
 }
 
 }  // namespace tracer

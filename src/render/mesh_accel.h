@@ -10,6 +10,7 @@
 
 #include "render/bvh.h"
 #include "render/triangle.h"
+#include "render/triangle_lanes.h"
 #include "scene/placement.h"
 #include "scene/triangle_mesh.h"
 
@@ -47,8 +48,19 @@ public:
 
     // The nearest triangle with t inside `range`; shrinks range.max to it.
     bool intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const;
-    // True if any triangle lies along the ray inside `range`.
-    bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const;
+    // True if any triangle lies along the ray inside `range`; `blocker` is then one such triangle's slot.
+    bool occluded(const Ray& ray, Interval range, TraversalCounts& counts, uint32_t& blocker) const;
+    bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const {
+        uint32_t blocker;
+        return occluded(ray, range, counts, blocker);
+    }
+    // True if the triangle in `slot` lies along the ray inside `range` (the test occluded makes).
+    bool blocks(uint32_t slot, const Ray& ray, Interval range) const {
+        TriangleHit hit;
+        return TriangleTester(ray)(triangle(slot), range, hit);
+    }
+    // The triangle in `slot`, as the mesh places it.
+    Triangle triangle(uint32_t slot) const { return columns().triangle(slot); }
 
     // The point at barycentric (u, v) of the triangle in `slot`, interpolated from its vertices,
     // and a bound on each coordinate's rounding error (pbrt-v4's, grown by the rounding of
@@ -69,7 +81,7 @@ public:
 
     // The box around every triangle.
     const Bounds& bounds() const { return bounds_; }
-    size_t triangle_count() const { return triangles_.size(); }
+    size_t triangle_count() const { return triangle_count_; }
     const Bvh& bvh() const { return bvh_; }
     bool brute_force() const { return brute_force_; }
     // The BVH's build and the triangles' storage in its order (not placing the vertices).
@@ -87,7 +99,11 @@ private:
         uint32_t triangle;  // the file's triangle number
         uint32_t tag;       // its part's
     };
-    LargeArray<Triangle> triangles_;  // entry i is triangle hit_records_[i].triangle
+    TriangleColumns columns() const { return {columns_.data(), triangle_count_ + kTriangleLanes - 1}; }
+    // The triangles (entry i is triangle hit_records_[i].triangle) coordinate by coordinate, for
+    // testing a leaf's triangles side by side (TriangleColumns).
+    LargeArray<Real> columns_;
+    size_t triangle_count_ = 0;
     LargeArray<HitRecord> hit_records_;
     Bounds bounds_;
     double build_seconds_ = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -21,14 +22,27 @@ RayCounts& RayCounts::operator+=(const RayCounts& other) {
     return *this;
 }
 
+// The calling thread's shadow cache for `world`: per light, the shape that blocked its last
+// shadow ray (kept between rays; emptied when the thread meets another world).
+static std::span<Occluder> shadow_cache(const World& world) {
+    thread_local uint64_t serial = 0;
+    thread_local std::vector<Occluder> last;
+    if (serial != world.serial()) {
+        serial = world.serial();
+        last.assign(world.lights().size(), Occluder{});
+    }
+    return last;
+}
+
 // Phong terms of every light that the point sees (no ambient). A light whose unshadowed
 // term is exactly zero (a mirror with kd = ks = 0, a back face without specular) adds
 // nothing either way, so it costs no shadow ray.
 static Color direct_light(const World& world, const RenderSettings& settings, const Material& material,
                           const SurfaceHit& hit, const SpawnPoint& spawn, const Vec3& normal, const Vec3& to_viewer,
-                          RayCounts& counts) {
+                          std::span<Occluder> last_blockers, RayCounts& counts) {
     Color sum(0.0);
-    for (const Light& light : world.lights()) {
+    for (size_t l = 0; l < world.lights().size(); ++l) {
+        const Light& light = world.lights()[l];
         Vec3 to_light = Vec3(light.position) - hit.point;
         const Real distance = glm::length(to_light);
         if (!(distance > 0)) continue;  // a light exactly at the point lights nothing there
@@ -44,7 +58,7 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         if (settings.shadows) {
             ++counts.shadow;
             const SpawnedRay shadow = spawn.ray_to(to_light, distance);
-            if (world.occluded(shadow.ray, shadow.range, counts.traversal)) continue;
+            if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l])) continue;
         }
         sum += term;
     }
@@ -95,6 +109,7 @@ template <bool kRefracts>
                                               RayCounts& counts) {
     Color color(0.0);
     std::vector<Branch>* pending = nullptr;  // this thread's stack, once a branch is made
+    const std::span<Occluder> last_blockers = shadow_cache(world);
     int spawned = 0;
     Branch path{ray, kPrimaryRange, Color(1.0), 0};
     for (;;) {
@@ -115,8 +130,8 @@ template <bool kRefracts>
             const Vec3 normal = glm::dot(hit->normal, ray.direction) > 0 ? -hit->normal : hit->normal;
             const Vec3 to_viewer = -ray.direction;
             const SpawnPoint spawn(*hit);
-            color += weight *
-                     (material.ka + direct_light(world, settings, material, *hit, spawn, normal, to_viewer, counts));
+            color += weight * (material.ka + direct_light(world, settings, material, *hit, spawn, normal, to_viewer,
+                                                          last_blockers, counts));
             if (depth == settings.max_depth) break;
 
             // Step 3: the refracted ray, entering if the ray meets the front of the surface (its

@@ -1,5 +1,6 @@
 #include "render/world.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -57,6 +58,8 @@ Real half_diagonal(const Bounds& box) {
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared)
     : materials_(scene.materials), lights_(scene.lights) {
+    static std::atomic<uint64_t> worlds{0};
+    serial_ = ++worlds;
     for (const Material& material : materials_) refracts_ = refracts_ || material.kt != dvec3(0.0);
     const SearchSettings settings = search_settings(scene.render, threads);
     // Step 1: spheres and planes.

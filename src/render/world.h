@@ -39,6 +39,14 @@ struct SurfaceHit {
     Vec3 geometric_normal{0};  // the surface's own unit normal (for spawning rays off it)
 };
 
+// The shape that blocked a shadow ray (World::occluded): an entry of the top level and, in a
+// mesh, the triangle's slot.
+struct Occluder {
+    static constexpr uint32_t kNone = ~uint32_t(0);
+    uint32_t entry = kNone;
+    uint32_t slot = 0;
+};
+
 // Work done by searches, for --stats: the top level's box tests and object tests, and the
 // box and triangle tests inside meshes.
 struct SearchCounts {
@@ -92,7 +100,16 @@ public:
     // nearest_hit, then surface.
     std::optional<SurfaceHit> intersect(const Ray& ray, Interval range, SearchCounts& counts) const;
     // True if any surface lies along `ray` with t inside `range` (for shadow rays).
-    bool occluded(const Ray& ray, Interval range, SearchCounts& counts) const;
+    bool occluded(const Ray& ray, Interval range, SearchCounts& counts) const {
+        Occluder none;
+        return occluded(ray, range, counts, none);
+    }
+    // occluded, testing `last` first: the shape that blocked an earlier shadow ray towards the
+    // same light, which mostly blocks its neighbours too (Haines & Greenberg's shadow cache).
+    // The answer is the same either way; `last` becomes the shape that blocked this ray, if any.
+    bool occluded(const Ray& ray, Interval range, SearchCounts& counts, Occluder& last) const;
+    // A number no other World of this process has (for caches kept between rays).
+    uint64_t serial() const { return serial_; }
     // False only if the ray's line misses a bounding sphere of every bounded object, and there
     // are no planes.
     bool may_hit(const Ray& ray) const;
@@ -140,7 +157,8 @@ private:
     void build_top_level(const SearchSettings& settings);
     bool hit_instance(uint32_t index, uint32_t object, const Ray& ray, Interval& range, Hit& hit,
                       SearchCounts& counts) const;
-    bool instance_blocks(uint32_t index, const Ray& ray, Interval range, SearchCounts& counts) const;
+    bool instance_blocks(uint32_t entry, const Ray& ray, Interval range, SearchCounts& counts, Occluder& blocker) const;
+    bool occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range, SearchCounts& counts) const;
     bool nearest_plane(const Ray& ray, Interval& range, Hit& hit) const;
     SurfaceHit surface_at(const Ray& ray, const Hit& hit) const;
     bool nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
@@ -160,6 +178,7 @@ private:
     bool refracts_ = false;
     std::vector<Material> materials_;
     std::vector<Light> lights_;
+    uint64_t serial_;
 };
 
 }  // namespace tracer

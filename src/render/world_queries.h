@@ -22,11 +22,28 @@ namespace tracer {
     return found;
 }
 
-inline bool World::instance_blocks(uint32_t index, const Ray& ray, Interval range, SearchCounts& counts) const {
-    const MeshInstance& instance = instances_[index];
+inline bool World::instance_blocks(uint32_t entry, const Ray& ray, Interval range, SearchCounts& counts,
+                                   Occluder& blocker) const {
+    const MeshInstance& instance = instances_[bounded_[entry].index];
     const MeshAccel& mesh = meshes_[instance.mesh];
-    return instance.placed ? mesh.occluded(ray, range, counts.triangles)
-                           : mesh.occluded(instance.to_mesh(ray), range, counts.triangles);
+    const bool blocked = instance.placed ? mesh.occluded(ray, range, counts.triangles, blocker.slot)
+                                         : mesh.occluded(instance.to_mesh(ray), range, counts.triangles, blocker.slot);
+    if (blocked) blocker.entry = entry;
+    return blocked;
+}
+
+inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range,
+                                   SearchCounts& counts) const {
+    const Bounded& b = bounded_[occluder.entry];
+    if (b.kind == ObjectKind::Sphere) {
+        ++counts.objects.primitive_tests;
+        return intersect_sphere(ray, b.centre, b.radius, range).has_value();
+    }
+    ++counts.triangles.primitive_tests;
+    const MeshInstance& instance = instances_[b.index];
+    const MeshAccel& mesh = meshes_[instance.mesh];
+    return instance.placed ? mesh.blocks(occluder.slot, ray, range)
+                           : mesh.blocks(occluder.slot, instance.to_mesh(ray), range);
 }
 
 [[gnu::always_inline]] inline bool World::nearest_plane(const Ray& ray, Interval& range, Hit& hit) const {
@@ -174,10 +191,19 @@ inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
     return surface_at(ray, *hit);
 }
 
-[[gnu::always_inline]] inline bool World::occluded(const Ray& ray, Interval range, SearchCounts& counts) const {
+[[gnu::always_inline]] inline bool World::occluded(const Ray& ray, Interval range, SearchCounts& counts,
+                                                   Occluder& last) const {
+    if (last.entry != Occluder::kNone) {
+        if (occluder_blocks(last, ray, range, counts)) return true;
+        last.entry = Occluder::kNone;
+    }
     if (linear_) {
-        for (const SphereShape& s : spheres_)
-            if (intersect_sphere(ray, s.center, s.radius, range)) return true;
+        for (uint32_t i = 0; i < spheres_.size(); ++i) {
+            if (intersect_sphere(ray, spheres_[i].center, spheres_[i].radius, range)) {
+                last = {i, 0};  // bounded_ lists the spheres first, in order
+                return true;
+            }
+        }
     }
     for (const PlaneShape& p : planes_)
         if (intersect_plane(ray, p.point, p.normal, range)) return true;
@@ -187,7 +213,7 @@ inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
             const Bounded& b = bounded_[i];
             ++counts.objects.primitive_tests;
             if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius) &&
-                instance_blocks(b.index, ray, range, counts))
+                instance_blocks(uint32_t(i), ray, range, counts, last))
                 return true;
         }
         return false;
@@ -196,8 +222,10 @@ inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
     // bounding sphere (which holds the box) would rule nothing out.
     auto test = [&](uint32_t i, Interval& r) {
         const Bounded& b = bounded_[i];
-        if (b.kind == ObjectKind::Sphere) return intersect_sphere(ray, b.centre, b.radius, r).has_value();
-        return instance_blocks(b.index, ray, r, counts);
+        if (b.kind != ObjectKind::Sphere) return instance_blocks(i, ray, r, counts, last);
+        if (!intersect_sphere(ray, b.centre, b.radius, r)) return false;
+        last = {i, 0};
+        return true;
     };
     return top_.any(ray, range, counts.objects, test);
 }

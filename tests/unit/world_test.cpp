@@ -189,6 +189,48 @@ TEST(World, TwoLevelSearchFindsExactlyWhatTestingEveryPrimitiveFinds) {
     EXPECT_GT(instance_hits, 3000);
 }
 
+// The shadow cache (occluded with the shape that blocked an earlier ray) gives every answer
+// that the search alone gives, for the BVH's top level and for the objects one by one, and
+// answers from the cache where neighbouring rays share their blocker.
+TEST(World, ShadowCacheChangesNoAnswer) {
+    for (Accelerator accel : {Accelerator::Sah, Accelerator::None}) {
+        const MixedScene mixed = mixed_scene(400, 6, accel);
+        const World world(mixed.scene, mixed.meshes);
+        std::mt19937 random(9);
+        std::uniform_real_distribution<double> fraction(0, 1.5), jitter(-1e-3, 1e-3);
+        Occluder last;
+        int blocked = 0, from_cache = 0;
+        for (const Ray& first : random_rays(20000, 8)) {
+            // Each ray, then a neighbour of it (as the next pixel's shadow ray).
+            const Ray next{first.origin, glm::normalize(first.direction + Vec3(jitter(random), jitter(random), 0))};
+            for (const Ray& ray : {first, next}) {
+                const Interval part{0, Real(10 * fraction(random))};
+                SearchCounts plain, cached;
+                const bool expected = world.occluded(ray, part, plain);
+                const Occluder before = last;
+                ASSERT_EQ(world.occluded(ray, part, cached, last), expected) << "accel " << int(accel);
+                if (!expected) continue;
+                ++blocked;
+                // Answered by the cached shape alone: one test, no box.
+                auto by_cache = [](const Occluder& o, const SearchCounts& c) {
+                    return o.entry != Occluder::kNone && c.objects.box_tests == 0 &&
+                           c.objects.primitive_tests + c.triangles.primitive_tests == 1;
+                };
+                from_cache += by_cache(before, cached);
+                // A shape the search recorded blocks the ray by itself (planes are not recorded).
+                if (last.entry != Occluder::kNone && (last.entry != before.entry || last.slot != before.slot)) {
+                    Occluder recorded = last;
+                    SearchCounts again;
+                    ASSERT_TRUE(world.occluded(ray, part, again, recorded));
+                    ASSERT_TRUE(by_cache(last, again));
+                }
+            }
+        }
+        EXPECT_GT(blocked, 4000) << "accel " << int(accel);
+        EXPECT_GT(from_cache, blocked / 20) << "accel " << int(accel);
+    }
+}
+
 // Against every primitive placed in world coordinates, without World (3 10^4 rays, as it is
 // slow): the same objects and t up to the rounding of carrying rays into an instance's
 // coordinates. Also with every mesh block flattened into one placed mesh.

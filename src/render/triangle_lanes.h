@@ -1,0 +1,134 @@
+// The watertight triangle test (triangle.h) on four triangles at once, one per vector lane, for
+// a BVH leaf's triangles stored coordinate by coordinate (TriangleColumns). Each lane does the
+// very operations of intersect_triangle, so each gives the same answer bit for bit; the lanes
+// that pass steps 1-3 are finished one by one, in order, by the scalar code.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#if defined(__FMA__)
+#include <immintrin.h>
+#endif
+
+#include "render/triangle.h"
+
+namespace tracer {
+
+constexpr int kTriangleLanes = 4;
+using RealLanes = Real __attribute__((vector_size(kTriangleLanes * sizeof(Real))));
+
+// Every lane x.
+inline RealLanes splat(Real x) {
+    return RealLanes{x, x, x, x};
+}
+
+// a * b + c lane by lane, each rounded once (as std::fma).
+template <typename Lanes>
+inline Lanes fma_lanes(Lanes a, Lanes b, Lanes c) {
+#if defined(__FMA__)
+    if constexpr (sizeof(a[0]) == 8)
+        return Lanes(_mm256_fmadd_pd(__m256d(a), __m256d(b), __m256d(c)));
+    else
+        return Lanes(_mm_fmadd_ps(__m128(a), __m128(b), __m128(c)));
+#else
+    Lanes out;
+    for (int i = 0; i < kTriangleLanes; ++i) out[i] = std::fma(a[i], b[i], c[i]);
+    return out;
+#endif
+}
+
+// difference_of_products lane by lane.
+inline RealLanes difference_of_products_lanes(RealLanes a, RealLanes b, RealLanes c, RealLanes d) {
+    const RealLanes cd = c * d;
+    const RealLanes error = fma_lanes(-c, d, cd);
+    return fma_lanes(a, b, -cd) + error;
+}
+
+// Bit i set where lane i of a comparison's result is true.
+template <typename Mask>
+inline unsigned lanes_true(Mask m) {
+    unsigned bits = 0;
+    for (int i = 0; i < kTriangleLanes; ++i) bits |= unsigned(m[i] != 0) << i;
+    return bits;
+}
+
+// Triangles stored as nine columns (vertex 0-2, axis x-z), each `stride` Reals long: the column
+// of vertex v, axis k starts at base + (3 v + k) stride. Columns end with kTriangleLanes - 1
+// spare entries, so that four lanes can be loaded from any triangle on.
+struct TriangleColumns {
+    const Real* base = nullptr;
+    size_t stride = 0;
+
+    const Real* column(int vertex, int axis) const { return base + size_t(3 * vertex + axis) * stride; }
+    Triangle triangle(uint32_t i) const {
+        auto vertex = [&](int v) { return Vec3(column(v, 0)[i], column(v, 1)[i], column(v, 2)[i]); };
+        return {vertex(0), vertex(1), vertex(2)};
+    }
+};
+
+// What the four-lane test needs of a ray and a mesh, worked out once per ray: the shear, and the
+// columns in the ray's frame (x, y, z = the shear's kx, ky, kz) for each vertex.
+struct TriangleLaneTester {
+    TriangleLaneTester(const Ray& ray, const TriangleColumns& columns) : shear(ray) {
+        const int axes[3] = {shear.kx, shear.ky, shear.kz};
+        for (int v = 0; v < 3; ++v)
+            for (int k = 0; k < 3; ++k) rows[v][k] = columns.column(v, axes[k]);
+    }
+
+    // Steps 1-3 of intersect_triangle for triangles first .. first + 3, of which the first
+    // `lanes` count: bit i of the result is set where triangle first + i passes them, and
+    // `sheared` then holds what finish_triangle_hit needs of it (sheared_lane).
+    unsigned candidates(uint32_t first, int lanes, Interval range, ShearedTriangle (&sheared)[kTriangleLanes]) const;
+
+    RayShear shear;
+    const Real* rows[3][3];  // [vertex][x, y, z in the ray's frame]
+};
+
+// intersect_triangle's range test of step 3, for a triangle that passed steps 1-3 with a wider
+// range: the candidates' check against a range that has shrunk since.
+inline bool in_scaled_range(const ShearedTriangle& s, Interval range) {
+    constexpr Real loose = 8 * std::numeric_limits<Real>::epsilon();
+    const Real abs_det = std::abs(s.det), t_signed = s.det < 0 ? -s.t_scaled : s.t_scaled;
+    return (t_signed > range.min * abs_det * (1 - loose)) & (t_signed < range.max * abs_det * (1 + loose));
+}
+
+inline unsigned TriangleLaneTester::candidates(uint32_t first, int lanes, Interval range,
+                                               ShearedTriangle (&sheared)[kTriangleLanes]) const {
+    auto load = [&](int vertex, int axis) {
+        RealLanes out;
+        std::memcpy(&out, rows[vertex][axis] + first, sizeof out);
+        return out;
+    };
+    // Step 1: translate, permute, shear.
+    RealLanes x[3], y[3], z[3];
+    for (int v = 0; v < 3; ++v) {
+        z[v] = load(v, 2) - shear.origin.z;
+        x[v] = fma_lanes(splat(-shear.sx), z[v], load(v, 0) - shear.origin.x);
+        y[v] = fma_lanes(splat(-shear.sy), z[v], load(v, 1) - shear.origin.y);
+    }
+    // Step 2: the edge functions.
+    const RealLanes e0 = difference_of_products_lanes(x[2], y[1], y[2], x[1]);
+    const RealLanes e1 = difference_of_products_lanes(x[0], y[2], y[0], x[2]);
+    const RealLanes e2 = difference_of_products_lanes(x[1], y[0], y[1], x[0]);
+    const auto some_negative = (e0 < 0) | (e1 < 0) | (e2 < 0);
+    const auto some_positive = (e0 > 0) | (e1 > 0) | (e2 > 0);
+    const RealLanes det = e0 + e1 + e2;
+    // Step 3: t times det against the range times det.
+    for (int v = 0; v < 3; ++v) z[v] = z[v] * shear.sz;
+    const RealLanes t_scaled = fma_lanes(e0, z[0], fma_lanes(e1, z[1], e2 * z[2]));
+    constexpr Real loose = 8 * std::numeric_limits<Real>::epsilon();
+    const RealLanes abs_det = det < 0 ? -det : det, t_signed = det < 0 ? -t_scaled : t_scaled;
+    const auto in_range =
+        (t_signed > range.min * abs_det * (1 - loose)) & (t_signed < range.max * abs_det * (1 + loose));
+    const auto pass = ~(some_negative & some_positive) & (det != 0) & in_range;
+    const unsigned mask = lanes_true(pass) & ((1u << lanes) - 1);
+    for (unsigned m = mask; m != 0; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        sheared[i] = {x[0][i], y[0][i], z[0][i], x[1][i], y[1][i], z[1][i], x[2][i],
+                      y[2][i], z[2][i], e0[i],   e1[i],   e2[i],   det[i],  t_scaled[i]};
+    }
+    return mask;
+}
+
+}  // namespace tracer
