@@ -71,7 +71,7 @@ const BlockSpec kRender{
                    "`none` asks for every one to be tested."),
                {accelerator_name(Accelerator::None), accelerator_name(Accelerator::Box),
                 accelerator_name(Accelerator::Median), accelerator_name(Accelerator::Sah)}),
-        ranged(key("leaf_size", ValueType::Integer, "3",
+        ranged(key("leaf_size", ValueType::Integer, "4",
                    "Most triangles in a BVH leaf (`median` splits every larger node; `sah` may stop "
                    "earlier where splitting does not pay)."), 1, 255),
     },

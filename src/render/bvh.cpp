@@ -111,8 +111,13 @@ Range measure(const PrimRef* refs, uint32_t begin, uint32_t end) {
 // with no copying, and the used slots in increasing order are the tree depth first.
 class BvhBuilder {
 public:
-    BvhBuilder(PrimRef* refs, BvhNode* slots, BvhBuild method, int leaf_size, bool parallel)
-        : refs_(refs), slots_(slots), method_(method), leaf_size_(leaf_size), parallel_(parallel) {}
+    BvhBuilder(PrimRef* refs, BvhNode* slots, BvhBuild method, int leaf_size, int leaf_lanes, bool parallel)
+        : refs_(refs),
+          slots_(slots),
+          method_(method),
+          leaf_size_(leaf_size),
+          leaf_lanes_(uint32_t(leaf_lanes)),
+          parallel_(parallel) {}
 
     // Builds the subtree over `range` with its root in slot `first`.
     void build(const Range& range, int depth, uint32_t first);
@@ -133,7 +138,11 @@ private:
     BvhNode* slots_;
     BvhBuild method_;
     int leaf_size_;
+    uint32_t leaf_lanes_;
     bool parallel_;
+
+    // The SAH's cost of testing n primitives: one per group of leaf_lanes_.
+    double tests(uint32_t n) const { return double((n + leaf_lanes_ - 1) / leaf_lanes_); }
 };
 
 void BvhBuilder::build(const Range& range, int depth, uint32_t first) {
@@ -255,13 +264,13 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
             const uint32_t right_count = total - accumulated.count;
             if (accumulated.count == 0 || right_count == 0) continue;
             const double cost = kTraversalCost + kIntersectionCost *
-                                                     (double(accumulated.half_area()) * accumulated.count +
-                                                      double(right_area[b + 1]) * right_count) /
+                                                     (double(accumulated.half_area()) * tests(accumulated.count) +
+                                                      double(right_area[b + 1]) * tests(right_count)) /
                                                      node_area;
             if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
         }
     }
-    const double leaf_cost = kIntersectionCost * count;
+    const double leaf_cost = kIntersectionCost * tests(count);
     if (count <= uint32_t(leaf_size_) && (best_axis < 0 || leaf_cost <= best_cost)) return false;
     if (best_axis < 0) {  // all centres coincide: any halves will do
         split_at(range, range.begin + count / 2, left, right);
@@ -379,7 +388,7 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
     return wide;
 }
 
-Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, int threads) {
+Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
     const uint32_t n = uint32_t(primitives.size());
     order_.resize(n);
     if (n == 0) return;
@@ -398,7 +407,8 @@ Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, i
     const Range root = measure(refs.data(), 0, n);
 
     NodeArray slots(2 * size_t(n) - 1);  // uninitialised; only the tree's nodes are written
-    BvhBuilder builder(refs.data(), slots.data(), method, leaf_size, thread_count(threads) > 1);
+    BvhBuilder builder(refs.data(), slots.data(), method, leaf_size, std::max(leaf_lanes, 1),
+                       thread_count(threads) > 1);
     builder.build(root, 0, 0);
     if (method == BvhBuild::Sah)
         wide_ = collapse_to_wide(slots);

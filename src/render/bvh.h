@@ -76,7 +76,8 @@ struct BvhStats {
 };
 
 // SAH cost model: cost(node) = kTraversalCost + kIntersectionCost * sum over children of
-// (area(child) / area(node)) * primitives(child). Only their ratio matters.
+// (area(child) / area(node)) * tests(child), tests being the primitives counted in groups of
+// the leaf test's lanes. Only their ratio matters.
 constexpr double kTraversalCost = 1.0;
 constexpr double kIntersectionCost = 1.0;
 constexpr int kSahBins = 16;
@@ -90,8 +91,9 @@ public:
     // Builds over the primitives' bounds. `leaf_size`: Median splits nodes with more primitives
     // than this; Sah never makes larger leaves (and makes smaller ones where the SAH says so).
     // Large inputs are built on `threads` threads (0: one per core), the subtrees near the
-    // root in parallel.
-    Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, int threads = 0);
+    // root in parallel. A leaf's primitives are tested `leaf_lanes` at a time (LeafTest): the
+    // SAH counts a leaf's cost by such groups, which makes fuller leaves.
+    Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1);
 
     // Box's and Median's binary tree, depth first: an inner node's left child follows it, its
     // right child is at `index` (empty for Sah).

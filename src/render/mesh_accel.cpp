@@ -120,7 +120,7 @@ MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& s
         },
         threads);
     for (const Bounds& box : boxes) bounds_.extend(box);
-    if (!brute_force_) bvh_ = Bvh(boxes, settings.build, settings.leaf_size, threads);
+    if (!brute_force_) bvh_ = Bvh(boxes, settings.build, settings.leaf_size, threads, kRobust ? kTriangleLanes : 1);
 
     // Step 3: the triangles in that order, and their hit records.
     triangle_count_ = n;

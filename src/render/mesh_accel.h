@@ -20,7 +20,7 @@ namespace tracer {
 struct SearchSettings {
     bool brute_force = false;  // test every primitive for every ray (no BVH)
     BvhBuild build = BvhBuild::Sah;
-    int leaf_size = 3;
+    int leaf_size = 4;
     int threads = 0;  // build threads (0: one per core)
 };
 

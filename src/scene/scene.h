@@ -57,7 +57,7 @@ struct RenderSettings {
     dvec3 background{0.0};  // colour of rays that leave the scene
     bool shadows = true;    // trace shadow rays to the lights
     Accelerator accel = Accelerator::Sah;
-    int leaf_size = 3;  // most triangles in a BVH leaf (median; sah may make smaller leaves)
+    int leaf_size = 4;  // most triangles in a BVH leaf (median; sah may make smaller leaves)
 };
 
 // The largest image, in pixels (8192 x 8192: 1.6 GB of pixel data in double precision).

@@ -262,7 +262,7 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(scene["source"], str(TASK2))
         self.assertEqual(scene["render"], {"width": 1200, "height": 800, "max_depth": 4, "samples": 1,
                                            "background": [0.0, 0.0, 0.0], "shadows": True,
-                                           "accel": "sah", "leaf_size": 3})
+                                           "accel": "sah", "leaf_size": 4})
         self.assertEqual(scene["camera"]["fovy"], 45.0)
         self.assertEqual(len(scene["spheres"]), 4)
         self.assertEqual(scene["spheres"][3]["radius"], 1.0)
