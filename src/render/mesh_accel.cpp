@@ -231,7 +231,7 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
     return found;
 }
 
-bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts, uint32_t& blocker) const {
+bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts, TriangleRun& blocker) const {
     auto search = [&](auto test_leaf) {
         if (!brute_force_) return bvh_.any(ray, range, counts, LeafTest{test_leaf});
         counts.primitive_tests += triangle_count_;
@@ -247,7 +247,7 @@ bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts
                     const int lane = __builtin_ctz(m);
                     TriangleHit hit;
                     if (finish_triangle_hit(sheared[lane], r, hit)) {
-                        blocker = chunk + uint32_t(lane);
+                        blocker = {chunk, uint32_t(lanes)};
                         return true;
                     }
                 }
@@ -261,12 +261,31 @@ bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts
             for (uint32_t i = first; i < first + count; ++i) {
                 TriangleHit hit;
                 if (tester(triangles.triangle(i), r, hit)) {
-                    blocker = i;
+                    blocker = {i, 1};
                     return true;
                 }
             }
             return false;
         });
+    }
+}
+
+bool MeshAccel::blocks(TriangleRun run, const Ray& ray, Interval range) const {
+    if constexpr (kRobust) {
+        const TriangleLaneTester tester(ray, columns());
+        ShearedTriangle sheared[kTriangleLanes];
+        for (unsigned m = tester.candidates(run.first, int(run.count), range, sheared); m != 0; m &= m - 1) {
+            TriangleHit hit;
+            if (finish_triangle_hit(sheared[__builtin_ctz(m)], range, hit)) return true;
+        }
+        return false;
+    } else {
+        const TriangleTester tester(ray);
+        for (uint32_t i = run.first; i < run.first + run.count; ++i) {
+            TriangleHit hit;
+            if (tester(triangle(i), range, hit)) return true;
+        }
+        return false;
     }
 }
 

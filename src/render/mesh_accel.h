@@ -24,6 +24,12 @@ struct SearchSettings {
     int threads = 0;  // build threads (0: one per core)
 };
 
+// Triangles in slots first .. first + count - 1.
+struct TriangleRun {
+    uint32_t first = 0;
+    uint32_t count = 0;
+};
+
 struct MeshHit {
     uint32_t slot = 0;  // the triangle's place in leaf order, where MeshAccel keeps its data
     TriangleHit hit;
@@ -48,17 +54,15 @@ public:
 
     // The nearest triangle with t inside `range`; shrinks range.max to it.
     bool intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const;
-    // True if any triangle lies along the ray inside `range`; `blocker` is then one such triangle's slot.
-    bool occluded(const Ray& ray, Interval range, TraversalCounts& counts, uint32_t& blocker) const;
+    // True if any triangle lies along the ray inside `range`; `blocker` is then the run of at
+    // most kTriangleLanes triangles tested together that holds one.
+    bool occluded(const Ray& ray, Interval range, TraversalCounts& counts, TriangleRun& blocker) const;
     bool occluded(const Ray& ray, Interval range, TraversalCounts& counts) const {
-        uint32_t blocker;
+        TriangleRun blocker;
         return occluded(ray, range, counts, blocker);
     }
-    // True if the triangle in `slot` lies along the ray inside `range` (the test occluded makes).
-    bool blocks(uint32_t slot, const Ray& ray, Interval range) const {
-        TriangleHit hit;
-        return TriangleTester(ray)(triangle(slot), range, hit);
-    }
+    // True if a triangle of `run` lies along the ray inside `range` (the test occluded makes).
+    bool blocks(TriangleRun run, const Ray& ray, Interval range) const;
     // The triangle in `slot`, as the mesh places it.
     Triangle triangle(uint32_t slot) const { return columns().triangle(slot); }
 

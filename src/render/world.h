@@ -40,11 +40,11 @@ struct SurfaceHit {
 };
 
 // The shape that blocked a shadow ray (World::occluded): an entry of the top level and, in a
-// mesh, the triangle's slot.
+// mesh, the run of triangles tested together that held the blocker.
 struct Occluder {
     static constexpr uint32_t kNone = ~uint32_t(0);
     uint32_t entry = kNone;
-    uint32_t slot = 0;
+    TriangleRun triangles;
 };
 
 // Work done by searches, for --stats: the top level's box tests and object tests, and the

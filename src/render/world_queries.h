@@ -26,8 +26,9 @@ inline bool World::instance_blocks(uint32_t entry, const Ray& ray, Interval rang
                                    Occluder& blocker) const {
     const MeshInstance& instance = instances_[bounded_[entry].index];
     const MeshAccel& mesh = meshes_[instance.mesh];
-    const bool blocked = instance.placed ? mesh.occluded(ray, range, counts.triangles, blocker.slot)
-                                         : mesh.occluded(instance.to_mesh(ray), range, counts.triangles, blocker.slot);
+    const bool blocked = instance.placed
+                             ? mesh.occluded(ray, range, counts.triangles, blocker.triangles)
+                             : mesh.occluded(instance.to_mesh(ray), range, counts.triangles, blocker.triangles);
     if (blocked) blocker.entry = entry;
     return blocked;
 }
@@ -39,11 +40,11 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
         ++counts.objects.primitive_tests;
         return intersect_sphere(ray, b.centre, b.radius, range).has_value();
     }
-    ++counts.triangles.primitive_tests;
+    counts.triangles.primitive_tests += occluder.triangles.count;
     const MeshInstance& instance = instances_[b.index];
     const MeshAccel& mesh = meshes_[instance.mesh];
-    return instance.placed ? mesh.blocks(occluder.slot, ray, range)
-                           : mesh.blocks(occluder.slot, instance.to_mesh(ray), range);
+    return instance.placed ? mesh.blocks(occluder.triangles, ray, range)
+                           : mesh.blocks(occluder.triangles, instance.to_mesh(ray), range);
 }
 
 [[gnu::always_inline]] inline bool World::nearest_plane(const Ray& ray, Interval& range, Hit& hit) const {
@@ -200,7 +201,7 @@ inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
     if (linear_) {
         for (uint32_t i = 0; i < spheres_.size(); ++i) {
             if (intersect_sphere(ray, spheres_[i].center, spheres_[i].radius, range)) {
-                last = {i, 0};  // bounded_ lists the spheres first, in order
+                last = {i, {}};  // bounded_ lists the spheres first, in order
                 return true;
             }
         }
@@ -224,7 +225,7 @@ inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
         const Bounded& b = bounded_[i];
         if (b.kind != ObjectKind::Sphere) return instance_blocks(i, ray, r, counts, last);
         if (!intersect_sphere(ray, b.centre, b.radius, r)) return false;
-        last = {i, 0};
+        last = {i, {}};
         return true;
     };
     return top_.any(ray, range, counts.objects, test);

@@ -211,14 +211,17 @@ TEST(World, ShadowCacheChangesNoAnswer) {
                 ASSERT_EQ(world.occluded(ray, part, cached, last), expected) << "accel " << int(accel);
                 if (!expected) continue;
                 ++blocked;
-                // Answered by the cached shape alone: one test, no box.
+                // Answered by the cached shape alone: a sphere or one run of triangles, no box.
                 auto by_cache = [](const Occluder& o, const SearchCounts& c) {
-                    return o.entry != Occluder::kNone && c.objects.box_tests == 0 &&
-                           c.objects.primitive_tests + c.triangles.primitive_tests == 1;
+                    return o.entry != Occluder::kNone && c.objects.box_tests + c.triangles.box_tests == 0 &&
+                           c.objects.primitive_tests + c.triangles.primitive_tests <= kTriangleLanes;
                 };
                 from_cache += by_cache(before, cached);
                 // A shape the search recorded blocks the ray by itself (planes are not recorded).
-                if (last.entry != Occluder::kNone && (last.entry != before.entry || last.slot != before.slot)) {
+                const bool recorded_now = last.entry != before.entry ||
+                                          last.triangles.first != before.triangles.first ||
+                                          last.triangles.count != before.triangles.count;
+                if (last.entry != Occluder::kNone && recorded_now) {
                     Occluder recorded = last;
                     SearchCounts again;
                     ASSERT_TRUE(world.occluded(ray, part, again, recorded));
