@@ -148,16 +148,20 @@ mesh files without reading them).
 ## Cross-check with Mitsuba 3 (512 x 512, 1 sample at each pixel centre)
 
 `tools/crosscheck` renders the converted scene with tracer (double precision) and with Mitsuba 3
-(float32, the same Whitted integrator as plugins: docs/crosscheck.md). Chains of mirror
-reflections among small spheres are chaotic: a float32 rounding of the first hit point becomes a
-different sphere three bounces later. To tell such pixels from disagreement, tracer also renders
-each scene with the eye moved, in 16 random directions, by as much as the Mitsuba plugins move
-every secondary ray off its surface (64 float32 ulps of the scene's size: 7.6e-6 of the eye's
-distance from the origin); a pixel that changes by more than 2 levels under such a move is
-ill-conditioned at the reference's precision: Mitsuba cannot confirm or refute it. The last
-columns count the disagreement on the well-conditioned pixels only. For comparison, tracer's own
-float build (`-DTRACER_REAL=float`) differs from its double build on balls by 0.36% of the pixels
-and on rings by 0.05% (measured 2026-11-23): float32 rounding alone moves that many pixels.
+(the same Whitted integrator as plugins: docs/crosscheck.md). Chains of mirror reflections among
+small spheres are chaotic: a float32 rounding of the first hit point becomes a different sphere
+three bounces later (tracer's own float build, `-DTRACER_REAL=float`, differs from its double
+build on balls by 0.36% of the pixels and on rings by 0.05%). So the integrator carries each
+mirror chain in float64: the primary ray is tracer's own ray through the pixel centre, Mitsuba's
+float32 search names the shape each ray meets next, and the hit point, normal and mirror
+direction are worked out again in float64 (the sphere's centre and radius as the scene gives
+them, a triangle's plane through Mitsuba's point); only shadow rays, refracted branches and the
+choice of shape on a grazing ray stay float32. To tell the pixels that float32 still decides,
+tracer also renders each scene with the eye moved, in 16 random directions, by as much as the
+plugins move every secondary ray off its surface (64 float32 ulps of the scene's size: 7.6e-6 of
+the eye's distance from the origin); a pixel that changes by more than 2 levels under such a move
+is ill-conditioned at float32's precision. The last columns count the disagreement on the other
+pixels only.
 
 {crosscheck_table(results)}
 

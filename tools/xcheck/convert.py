@@ -230,6 +230,24 @@ def to_mitsuba_xml(scene):
     out.leaf("boolean", name="shadows", value="true" if render["shadows"] else "false")
     out.leaf("rgb", name="background", value=_numbers(render["background"]))
     out.leaf("boolean", name="refracts", value="true" if refracts(scene) else "false")
+    # The camera in double precision, for the integrator's float64 primary rays: eye, lookat,
+    # up, fovy, width, height and the sample grid's side.
+    grid = round(math.sqrt(render["samples"]))
+    numbers = [
+        *camera["eye"],
+        *camera["lookat"],
+        *camera["up"],
+        camera["fovy"],
+        render["width"],
+        render["height"],
+        grid,
+    ]
+    out.leaf("string", name="camera", value=" ".join(repr(float(x)) for x in numbers))
+    # The spheres in double precision, for the integrator's float64 mirror chains (shape
+    # "sphere<i>" is entry i): Mitsuba's own sphere keeps its centre and radius in float32.
+    if scene["spheres"]:
+        numbers = (repr(float(x)) for sphere in scene["spheres"] for x in [*sphere["center"], sphere["radius"]])
+        out.leaf("string", name="spheres", value=" ".join(numbers))
     out.close("integrator")
 
     # Step 2: the camera: vertical field of view; pixel centres (or the centres of an N x N

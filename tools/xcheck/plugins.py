@@ -5,6 +5,8 @@ the Whitted integrator. Neither is a Mitsuba built-in: `register()` must run bef
 that names them is loaded (xcheck.mitsuba_render does it).
 """
 
+import math
+
 import drjit as dr
 import mitsuba as mi
 
@@ -122,6 +124,49 @@ def _refracted(direction, normal, eta):
     return dr.normalize(out), tir
 
 
+class _PinholeCamera:
+    """tracer's camera (src/render/camera.cpp) in float64, from the converter's numbers: eye,
+    lookat, up, fovy, width, height, sample grid side."""
+
+    def __init__(self, text):
+        numbers = [float(x) for x in text.split()]
+        eye, lookat, up = numbers[0:3], numbers[3:6], numbers[6:9]
+        fovy, self.width, self.height, self.grid = numbers[9:13]
+
+        def unit(v):
+            inverse = 1.0 / math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+            return [x * inverse for x in v]
+
+        def cross(a, b):
+            return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+        w = unit([a - b for a, b in zip(eye, lookat, strict=True)])
+        u = unit(cross(up, w))
+        v = cross(w, u)
+        plane_height = 2.0 * math.tan(fovy * 0.017453292519943295 / 2.0)
+        plane_width = plane_height * self.width / self.height
+        self.eye = eye
+        self.basis = u, v, w
+        self.plane = plane_width, plane_height
+        self.step_x = [x * (plane_width / self.width) for x in u]
+        self.step_y = [-x * (plane_height / self.height) for x in v]
+        self.corner = [-0.5 * plane_width * a + 0.5 * plane_height * b - c for a, b, c in zip(u, v, w, strict=True)]
+
+    def exact_ray(self, ray):
+        """(origin, direction) in float64 of tracer's ray through the sample point nearest to
+        where Mitsuba's float32 ray goes: the centre of a cell of the pixel's grid."""
+        u, v, w = (mi.Vector3d(*axis) for axis in self.basis)
+        d = mi.Vector3d(ray.d)
+        depth = -dr.dot(d, w)
+        x = (dr.dot(d, u) / depth / self.plane[0] + 0.5) * self.width
+        y = (0.5 - dr.dot(d, v) / depth / self.plane[1]) * self.height
+        px = (dr.floor(x * self.grid) + 0.5) / self.grid
+        py = (dr.floor(y * self.grid) + 0.5) / self.grid
+        corner, step_x, step_y = mi.Vector3d(*self.corner), mi.Vector3d(*self.step_x), mi.Vector3d(*self.step_y)
+        direction = dr.normalize((corner + px * step_x) + py * step_y)
+        return mi.Point3d(*self.eye), direction
+
+
 class WhittedIntegrator(mi.SamplingIntegrator):
     """Whitted recursion of conventions.md: colour = ka + sum over unblocked point lights of
     light colour * Phong (no fall-off) + km * trace(mirror ray) [+ kt * trace(refracted ray),
@@ -135,16 +180,72 @@ class WhittedIntegrator(mi.SamplingIntegrator):
         self.shadows = props.get("shadows", True)
         self.refracts = props.get("refracts", False)
         self.background = _color(props, "background") if "background" in props else mi.Color3f(0.0)
+        self.sphere_numbers = [float(x) for x in props.get("spheres", "").split()] if "spheres" in props else []
+        self._sphere_table = None
+        self.camera = _PinholeCamera(props.get("camera")) if "camera" in props else None
 
     def sample(self, scene, sampler, ray, medium=None, active=True):
-        color = self._path(scene, mi.Ray3f(ray), mi.Color3f(1.0), 0, mi.Bool(active))
+        ray = mi.Ray3f(ray)
+        exact = self.camera.exact_ray(ray) if self.camera else None
+        color = self._path(scene, ray, mi.Color3f(1.0), 0, mi.Bool(active), exact)
         return color, mi.Bool(True), []
 
-    def _path(self, scene, ray, weight, first_depth, active):
+    def _spheres(self, scene):
+        """The spheres in float64 by shape: (centre x, y, z, radius) arrays indexed by a shape's
+        registry id (radius 0: not a sphere), built once from the converter's list."""
+        if self._sphere_table is None:
+            entries, size = {}, 1
+            for shape in scene.shapes():
+                registry_id = dr.reinterpret_array(mi.UInt32, mi.ShapePtr(shape))[0]
+                size = max(size, registry_id + 1)  # every shape's id indexes the table
+                name = shape.id()
+                if name.startswith("sphere") and name[6:].isdigit() and 4 * int(name[6:]) < len(self.sphere_numbers):
+                    entries[registry_id] = int(name[6:])
+            columns = [[0.0] * size for _ in range(4)]
+            for registry_id, index in entries.items():
+                for k in range(4):
+                    columns[k][registry_id] = self.sphere_numbers[4 * index + k]
+            self._sphere_table = [mi.Float64(column) for column in columns]
+        return self._sphere_table
+
+    def _refine(self, scene, si, ray, origin, direction, active):
+        """The hit in float64: on a sphere, t solved again along the float64 ray (origin,
+        direction) with the sphere's double centre and radius; elsewhere Mitsuba's t along its
+        own ray `ray` (a triangle's float32 corners put Mitsuba's interpolated point, and any
+        plane through it, off by about 6e-8 of their distance from the origin: far over
+        epsilon on the big outer triangles of the plane squares). (point, geometric normal)."""
+        table = self._spheres(scene)
+        registry_id = dr.reinterpret_array(mi.UInt32, si.shape)
+        centre = mi.Point3d(*(dr.gather(mi.Float64, table[k], registry_id, active) for k in range(3)))
+        radius = dr.gather(mi.Float64, table[3], registry_id, active)
+        # Haines' chord form of the discriminant; of the two roots the one nearer Mitsuba's own
+        # t (a ray that starts on the sphere, inside it, has a root at about 0 too).
+        f = origin - centre
+        a = dr.dot(direction, direction)
+        b = dr.dot(f, direction)
+        chord = f - (b / a) * direction
+        discriminant = a * (radius * radius - dr.dot(chord, chord))
+        q = -(b + dr.copysign(dr.sqrt(dr.maximum(discriminant, 0.0)), b))
+        t0, t1 = (dr.dot(f, f) - radius * radius) / q, q / a
+        mitsuba_t = mi.Float64(si.t)
+        t = dr.select(dr.abs(t0 - mitsuba_t) < dr.abs(t1 - mitsuba_t), t0, t1)
+        on_sphere = (radius > 0.0) & (discriminant >= 0.0) & (t > 0.0)
+        along_ray = mi.Point3d(ray.o) + mi.Float64(si.t) * mi.Vector3d(ray.d)
+        point = dr.select(on_sphere, origin + t * direction, along_ray)
+        normal = dr.select(on_sphere, (point - centre) / radius, mi.Vector3d(si.n))
+        return point, normal, on_sphere
+
+    def _path(self, scene, ray, weight, first_depth, active, exact=None):
         """The colour along one path from level first_depth: hits shaded, mirror bounces
         followed; each refraction opens a path of its own (recursion, unrolled)."""
         color = mi.Color3f(0.0)
         ctx = mi.BSDFContext()
+        # The mirror chain's ray in float64 (Mitsuba's own rays are float32): each ray leaves
+        # the exact float64 point it starts from; Mitsuba only names the shape it meets next
+        # (from an origin moved off the surface), and the hit is worked out again in float64.
+        # Along a chain of mirror spheres float32 rounding would otherwise grow from bounce to
+        # bounce (docs/crosscheck.md).
+        origin, direction = exact if exact else (mi.Point3d(ray.o), mi.Vector3d(ray.d))
         for depth in range(first_depth, self.max_depth + 1):
             # Step 1: the nearest surface, or the background.
             si = scene.ray_intersect(ray, active)
@@ -152,10 +253,11 @@ class WhittedIntegrator(mi.SamplingIntegrator):
             color += dr.select(missed, weight * self.background, 0.0)
             active &= si.is_valid()
             bsdf = si.bsdf(ray)
-            # The point as o + t d, as tracer has it: Mitsuba interpolates it from a triangle's
-            # float32 corners, off by about 6e-8 of their distance from the origin: far over
-            # epsilon on the big outer triangles of the plane squares.
-            si.p = ray(si.t)
+            # The point along the float64 ray, as tracer has it: Mitsuba interpolates it from a
+            # triangle's float32 corners, off by about 6e-8 of their distance from the origin:
+            # far over epsilon on the big outer triangles of the plane squares.
+            point, geometric, on_sphere = self._refine(scene, si, ray, origin, direction, active)
+            si.p = mi.Point3f(point)
 
             # Step 2: ambient, then each light that the point sees.
             color += dr.select(active, weight * bsdf.eval_attribute_3("ka", si, active), 0.0)
@@ -180,18 +282,24 @@ class WhittedIntegrator(mi.SamplingIntegrator):
                 eta = dr.select(entering, 1.0 / ior, ior)
                 shading = mi.Vector3f(si.sh_frame.n)
                 normal = dr.select(dr.dot(shading, ray.d) > 0.0, -shading, shading)
-                direction, tir = _refracted(ray.d, normal, eta)
+                refracted, tir = _refracted(ray.d, normal, eta)
                 transmits = active & dr.any(kt != 0.0)
                 reflect += dr.select(transmits & tir, kt, 0.0)
                 branch = weight * kt
                 opens = transmits & ~tir & (dr.max(branch) >= SMALLEST_BRANCH_WEIGHT)
                 if dr.any(opens):
-                    color += self._path(scene, _spawn_ray(si, direction), branch, depth + 1, opens)
+                    color += self._path(scene, _spawn_ray(si, refracted), branch, depth + 1, opens)
 
-            # Step 4: continue along the mirror direction.
+            # Step 4: continue along the mirror direction (about the shading normal, the
+            # sphere's own in float64), from the float64 point.
             weight *= dr.select(active, reflect, 0.0)
             active &= dr.any(weight != 0.0)
-            ray = _spawn_ray(si, si.to_world(bs.wo))
+            shading = dr.select(on_sphere, geometric, mi.Vector3d(si.sh_frame.n))
+            direction = direction - 2.0 * dr.dot(direction, shading) * shading
+            origin = point
+            side = dr.select(dr.dot(geometric, direction) < 0.0, -1.0, 1.0)
+            offset = SPAWN_OFFSET * (1.0 + dr.max(dr.abs(point)))
+            ray = mi.Ray3f(mi.Point3f(point + geometric * (side * offset)), mi.Vector3f(direction))
         return color
 
     def aov_names(self):
