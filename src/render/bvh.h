@@ -32,6 +32,8 @@ template <typename F>
 struct LeafTest {
     F test_leaf;
 };
+template <typename F>
+LeafTest(F) -> LeafTest<F>;  // for compilers without aggregate deduction (Clang before 17)
 template <typename T>
 constexpr bool kIsLeafTest = false;
 template <typename F>
