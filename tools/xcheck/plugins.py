@@ -213,7 +213,8 @@ class WhittedIntegrator(mi.SamplingIntegrator):
         direction) with the sphere's double centre and radius; elsewhere Mitsuba's t along its
         own ray `ray` (a triangle's float32 corners put Mitsuba's interpolated point, and any
         plane through it, off by about 6e-8 of their distance from the origin: far over
-        epsilon on the big outer triangles of the plane squares). (point, geometric normal)."""
+        epsilon on the big outer triangles of the plane squares). (point, geometric normal, on a
+        sphere)."""
         table = self._spheres(scene)
         registry_id = dr.reinterpret_array(mi.UInt32, si.shape)
         centre = mi.Point3d(*(dr.gather(mi.Float64, table[k], registry_id, active) for k in range(3)))
