@@ -188,15 +188,10 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
         __builtin_prefetch(&hit_records_[i].triangle);
         return true;
     };
-    auto search = [&](auto test_leaf) {
-        if (!brute_force_) return bvh_.closest(ray, range, counts, LeafTest{test_leaf});
-        counts.primitive_tests += triangle_count_;
-        return test_leaf(0, uint32_t(triangle_count_), range);
-    };
     if constexpr (kRobust) {
         // Four triangles at a time; those that pass the vector steps are finished in order.
         const TriangleLaneTester tester(ray, columns());
-        search([&](uint32_t first, uint32_t count, Interval& r) {
+        search<false>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
             bool hit_here = false;
             for (uint32_t chunk = first; chunk < first + count; chunk += kTriangleLanes) {
                 const int lanes = int(std::min<uint32_t>(kTriangleLanes, first + count - chunk));
@@ -214,7 +209,7 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
     } else {
         const TriangleTester tester(ray);
         const TriangleColumns triangles = columns();
-        search([&](uint32_t first, uint32_t count, Interval& r) {
+        search<false>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
             bool hit_here = false;
             for (uint32_t i = first; i < first + count; ++i) {
                 TriangleHit hit;
@@ -231,62 +226,62 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
     return found;
 }
 
-bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts, TriangleRun& blocker) const {
-    auto search = [&](auto test_leaf) {
-        if (!brute_force_) return bvh_.any(ray, range, counts, LeafTest{test_leaf});
+template <bool kAny, typename TestLeaf>
+bool MeshAccel::search(const Ray& ray, Interval& range, TraversalCounts& counts, TestLeaf test_leaf) const {
+    if (brute_force_) {
         counts.primitive_tests += triangle_count_;
         return test_leaf(0, uint32_t(triangle_count_), range);
-    };
-    if constexpr (kRobust) {
-        const TriangleLaneTester tester(ray, columns());
-        return search([&](uint32_t first, uint32_t count, Interval& r) {
-            for (uint32_t chunk = first; chunk < first + count; chunk += kTriangleLanes) {
-                const int lanes = int(std::min<uint32_t>(kTriangleLanes, first + count - chunk));
-                ShearedTriangle sheared[kTriangleLanes];
-                for (unsigned m = tester.candidates(chunk, lanes, r, sheared); m != 0; m &= m - 1) {
-                    const int lane = __builtin_ctz(m);
-                    TriangleHit hit;
-                    if (finish_triangle_hit(sheared[lane], r, hit)) {
-                        blocker = {chunk, uint32_t(lanes)};
-                        return true;
-                    }
-                }
-            }
-            return false;
-        });
-    } else {
-        const TriangleTester tester(ray);
-        const TriangleColumns triangles = columns();
-        return search([&](uint32_t first, uint32_t count, Interval& r) {
-            for (uint32_t i = first; i < first + count; ++i) {
-                TriangleHit hit;
-                if (tester(triangles.triangle(i), r, hit)) {
-                    blocker = {i, 1};
+    }
+    if constexpr (kAny)
+        return bvh_.any(ray, range, counts, LeafTest{test_leaf});
+    else
+        return bvh_.closest(ray, range, counts, LeafTest{test_leaf});
+}
+
+[[gnu::always_inline]] inline bool MeshAccel::run_blocks(const TriangleLaneTester& tester, TriangleRun run,
+                                                         Interval range) {
+    ShearedTriangle sheared[kTriangleLanes];
+    for (unsigned m = tester.candidates(run.first, int(run.count), range, sheared); m != 0; m &= m - 1) {
+        TriangleHit hit;
+        if (finish_triangle_hit(sheared[__builtin_ctz(m)], range, hit)) return true;
+    }
+    return false;
+}
+
+[[gnu::always_inline]] inline bool MeshAccel::run_blocks(const TriangleTester& tester, TriangleRun run,
+                                                         Interval range) const {
+    for (uint32_t i = run.first; i < run.first + run.count; ++i) {
+        TriangleHit hit;
+        if (tester(triangle(i), range, hit)) return true;
+    }
+    return false;
+}
+
+bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts, TriangleRun& blocker) const {
+    // Each leaf in runs of as many triangles as one test takes; the run that blocks is kept.
+    auto blocked = [&](const auto& tester, uint32_t run_length) {
+        return search<true>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
+            for (uint32_t start = first; start < first + count; start += run_length) {
+                const TriangleRun run{start, std::min(run_length, first + count - start)};
+                if (run_blocks(tester, run, r)) {
+                    blocker = run;
                     return true;
                 }
             }
             return false;
         });
-    }
+    };
+    if constexpr (kRobust)
+        return blocked(TriangleLaneTester(ray, columns()), uint32_t(kTriangleLanes));
+    else
+        return blocked(TriangleTester(ray), 1u);
 }
 
 bool MeshAccel::blocks(TriangleRun run, const Ray& ray, Interval range) const {
-    if constexpr (kRobust) {
-        const TriangleLaneTester tester(ray, columns());
-        ShearedTriangle sheared[kTriangleLanes];
-        for (unsigned m = tester.candidates(run.first, int(run.count), range, sheared); m != 0; m &= m - 1) {
-            TriangleHit hit;
-            if (finish_triangle_hit(sheared[__builtin_ctz(m)], range, hit)) return true;
-        }
-        return false;
-    } else {
-        const TriangleTester tester(ray);
-        for (uint32_t i = run.first; i < run.first + run.count; ++i) {
-            TriangleHit hit;
-            if (tester(triangle(i), range, hit)) return true;
-        }
-        return false;
-    }
+    if constexpr (kRobust)
+        return run_blocks(TriangleLaneTester(ray, columns()), run, range);
+    else
+        return run_blocks(TriangleTester(ray), run, range);
 }
 
 Vec3 MeshAccel::surface_point(uint32_t slot, Real u, Real v, Vec3& error) const {

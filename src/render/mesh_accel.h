@@ -94,6 +94,15 @@ public:
     size_t memory_bytes() const;
 
 private:
+    // Calls test_leaf(first, count, range) on the leaves the ray enters, or once on every
+    // triangle without a BVH: for the nearest hit (Bvh::closest), or any (kAny, Bvh::any).
+    template <bool kAny, typename TestLeaf>
+    bool search(const Ray& ray, Interval& range, TraversalCounts& counts, TestLeaf test_leaf) const;
+    // True if a triangle of `run` lies along the tester's ray inside `range`: four lanes at
+    // once (run.count at most kTriangleLanes), or one triangle after the other.
+    static bool run_blocks(const TriangleLaneTester& tester, TriangleRun run, Interval range);
+    bool run_blocks(const TriangleTester& tester, TriangleRun run, Interval range) const;
+
     bool brute_force_;
     Bvh bvh_;
     // What shading a hit needs, in leaf order too: read in one or two cache lines, where the

@@ -69,6 +69,19 @@ struct ShearedTriangle {
     Real e0, e1, e2, det, t_scaled;
 };
 
+// How loosely step 3 of the watertight test compares t x det with the range x det: a few ulps,
+// so that no t inside the range is lost to the rounding of range x det (finish_triangle_hit
+// then tests t itself).
+constexpr Real kScaledRangeLoose = 8 * std::numeric_limits<Real>::epsilon();
+
+// Step 3's range test of the watertight test, on a triangle's sheared values: t x det inside
+// the range x det, loosely.
+inline bool in_scaled_range(const ShearedTriangle& s, Interval range) {
+    constexpr Real loose = kScaledRangeLoose;
+    const Real abs_det = std::abs(s.det), t_signed = s.det < 0 ? -s.t_scaled : s.t_scaled;
+    return (t_signed > range.min * abs_det * (1 - loose)) & (t_signed < range.max * abs_det * (1 + loose));
+}
+
 // The hit of a triangle that passed the edge and range tests, unless its t might be <= 0
 // within rounding (pbrt-v4's conservative bound on t, from the magnitudes of the sheared
 // vertices and edge functions). Out of line: it runs for candidate hits only, and inlined into
@@ -126,13 +139,7 @@ inline bool intersect_triangle(const RayShear& shear, const Triangle& tri, Inter
     s.bz *= shear.sz;
     s.cz *= shear.sz;
     s.t_scaled = std::fma(s.e0, s.az, std::fma(s.e1, s.bz, s.e2 * s.cz));
-    // Loose by a few ulps here, so that no t inside the range is lost to the rounding of
-    // range x det; finish_triangle_hit tests t itself.
-    constexpr Real loose = 8 * std::numeric_limits<Real>::epsilon();
-    const Real abs_det = std::abs(s.det), t_signed = s.det < 0 ? -s.t_scaled : s.t_scaled;
-    const bool in_range =
-        (t_signed > range.min * abs_det * (1 - loose)) & (t_signed < range.max * abs_det * (1 + loose));
-    if ((some_negative & some_positive) | (s.det == 0) | !in_range) return false;
+    if ((some_negative & some_positive) | (s.det == 0) | !in_scaled_range(s, range)) return false;
     return finish_triangle_hit(s, range, hit);
 }
 

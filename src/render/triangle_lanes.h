@@ -78,20 +78,13 @@ struct TriangleLaneTester {
 
     // Steps 1-3 of intersect_triangle for triangles first .. first + 3, of which the first
     // `lanes` count: bit i of the result is set where triangle first + i passes them, and
-    // `sheared` then holds what finish_triangle_hit needs of it (sheared_lane).
+    // `sheared` then holds what finish_triangle_hit needs of it (and in_scaled_range, to
+    // check it again against a range that has shrunk since).
     unsigned candidates(uint32_t first, int lanes, Interval range, ShearedTriangle (&sheared)[kTriangleLanes]) const;
 
     RayShear shear;
     const Real* rows[3][3];  // [vertex][x, y, z in the ray's frame]
 };
-
-// intersect_triangle's range test of step 3, for a triangle that passed steps 1-3 with a wider
-// range: the candidates' check against a range that has shrunk since.
-inline bool in_scaled_range(const ShearedTriangle& s, Interval range) {
-    constexpr Real loose = 8 * std::numeric_limits<Real>::epsilon();
-    const Real abs_det = std::abs(s.det), t_signed = s.det < 0 ? -s.t_scaled : s.t_scaled;
-    return (t_signed > range.min * abs_det * (1 - loose)) & (t_signed < range.max * abs_det * (1 + loose));
-}
 
 inline unsigned TriangleLaneTester::candidates(uint32_t first, int lanes, Interval range,
                                                ShearedTriangle (&sheared)[kTriangleLanes]) const {
@@ -114,10 +107,10 @@ inline unsigned TriangleLaneTester::candidates(uint32_t first, int lanes, Interv
     const auto some_negative = (e0 < 0) | (e1 < 0) | (e2 < 0);
     const auto some_positive = (e0 > 0) | (e1 > 0) | (e2 > 0);
     const RealLanes det = e0 + e1 + e2;
-    // Step 3: t times det against the range times det.
+    // Step 3: t times det against the range times det (in_scaled_range, lane by lane).
     for (int v = 0; v < 3; ++v) z[v] = z[v] * shear.sz;
     const RealLanes t_scaled = fma_lanes(e0, z[0], fma_lanes(e1, z[1], e2 * z[2]));
-    constexpr Real loose = 8 * std::numeric_limits<Real>::epsilon();
+    constexpr Real loose = kScaledRangeLoose;
     const RealLanes abs_det = det < 0 ? -det : det, t_signed = det < 0 ? -t_scaled : t_scaled;
     const auto in_range =
         (t_signed > range.min * abs_det * (1 - loose)) & (t_signed < range.max * abs_det * (1 + loose));

@@ -231,7 +231,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
         mitsuba_t = mi.Float64(si.t)
         t = dr.select(dr.abs(t0 - mitsuba_t) < dr.abs(t1 - mitsuba_t), t0, t1)
         on_sphere = (radius > 0.0) & (discriminant >= 0.0) & (t > 0.0)
-        along_ray = mi.Point3d(ray.o) + mi.Float64(si.t) * mi.Vector3d(ray.d)
+        along_ray = mi.Point3d(ray.o) + mitsuba_t * mi.Vector3d(ray.d)
         point = dr.select(on_sphere, origin + t * direction, along_ray)
         normal = dr.select(on_sphere, (point - centre) / radius, mi.Vector3d(si.n))
         return point, normal, on_sphere
