@@ -6,10 +6,8 @@ import sys
 
 import numpy as np
 import pytest
-
 from conftest import HERE, ROOT
-
-from xcheck import convert, mitsuba_render
+from xcheck import convert, exact_meshes, mitsuba_render
 
 mi = mitsuba_render.mi
 ASYMMETRIC = HERE / "asymmetric.scn"
@@ -97,11 +95,11 @@ def test_spheres_planes_and_lights_round_trip(dump, tmp_path):
         heights = (vertices - plane["point"]) @ normal
         assert np.abs(heights).max() <= 1e-6 * np.abs(vertices).max()  # every vertex in the plane
         assert np.abs(vertices - vertices[0]).max() >= convert.plane_extent(scene, plane)
-    for emitter, light in zip(loaded.emitters(), scene["lights"]):
+    for emitter, light in zip(loaded.emitters(), scene["lights"], strict=False):
         interaction = interaction_at_origin()
         sample, spectrum = emitter.sample_direction(interaction, mi.Point2f(0.0))
         np.testing.assert_allclose(np.array(sample.p, dtype=float).ravel(), light["position"], atol=1e-6)
-        colour = np.array(spectrum * sample.dist ** 2, dtype=float).ravel()
+        colour = np.array(spectrum * sample.dist**2, dtype=float).ravel()
         np.testing.assert_allclose(colour, light["color"], rtol=1e-5)
 
 
@@ -117,8 +115,15 @@ def test_plain_mitsuba_without_the_plugins_fails_clearly(dump, tmp_path):
     xml_path = convert.write_mitsuba_scene(scene, tmp_path)
     text = xml_path.read_text()
     assert "tools/crosscheck" in text.splitlines()[1]  # the comment says how to render it
-    result = subprocess.run([sys.executable, "-c", "import mitsuba as mi; mi.set_variant('scalar_rgb'); "
-                             f"mi.load_file({str(xml_path)!r})"], capture_output=True, text=True)
+    result = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "import mitsuba as mi; mi.set_variant('scalar_rgb'); " f"mi.load_file({str(xml_path)!r})",
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert result.returncode != 0
     assert 'Plugin "tracer_whitted" not found' in result.stderr
 
@@ -127,7 +132,7 @@ def test_area_weighted_normals_weigh_faces_by_area():
     # Vertex 0 is shared by a big triangle in z = 0 and a small one in x = 0.
     positions = np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0], [0, 0, -1], [0, 1, 0]], dtype=float)
     faces = np.array([[0, 1, 2], [0, 3, 4]])
-    normals = mitsuba_render.area_weighted_normals(positions, faces)
+    normals = exact_meshes.area_weighted_normals(positions, faces)
     big, small = np.array([0, 0, 16.0]), np.array([1.0, 0, 0])  # cross products: 2 x area x normal
     np.testing.assert_allclose(normals[0], (big + small) / np.linalg.norm(big + small))
     np.testing.assert_allclose(normals[1], [0, 0, 1])
@@ -141,7 +146,7 @@ def test_meshes_without_normals_get_area_weighted_ones(dump, tmp_path):
     positions = np.array(params["mesh0.vertex_positions"], dtype=float).reshape(-1, 3)
     faces = np.array(params["mesh0.faces"]).reshape(-1, 3)
     got = np.array(params["mesh0.vertex_normals"], dtype=float).reshape(-1, 3)
-    np.testing.assert_allclose(got, mitsuba_render.area_weighted_normals(positions, faces), atol=1e-6)
+    np.testing.assert_allclose(got, exact_meshes.area_weighted_normals(positions, faces), atol=1e-6)
 
 
 def test_flat_meshes_use_face_normals_in_mitsuba(dump, tmp_path):
@@ -155,11 +160,13 @@ def test_flat_meshes_use_face_normals_in_mitsuba(dump, tmp_path):
 
 def test_file_normals_count_only_when_every_face_names_them(tmp_path):
     # tracer's rule (io/obj_mesh.cpp): vn lines alone are not enough.
-    cases = {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n": True,
-             "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1\n": True,
-             "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1 2 3\n": False,
-             "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3//1\n": False,
-             "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n": False}
+    cases = {
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n": True,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1\n": True,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1 2 3\n": False,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3//1\n": False,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n": False,
+    }
     for index, (text, expected) in enumerate(cases.items()):
         path = tmp_path / f"case{index}.obj"
         path.write_text(text)
@@ -184,8 +191,11 @@ def test_flat_shapes_become_mitsubas_own_rectangles_and_cubes(dump):
     quad = {"corner": [1.0, 2.0, 3.0], "edge1": [0.0, 0.0, 2.0], "edge2": [4.0, 0.0, 0.0]}
     matrix = np.array(convert.quad_to_rectangle(quad))
     corner, edge1, edge2 = (np.array(quad[k]) for k in ("corner", "edge1", "edge2"))
-    for (x, y), expected in zip(((-1, -1), (1, -1), (1, 1), (-1, 1)),
-                                (corner, corner + edge1, corner + edge1 + edge2, corner + edge2), strict=True):
+    for (x, y), expected in zip(
+        ((-1, -1), (1, -1), (1, 1), (-1, 1)),
+        (corner, corner + edge1, corner + edge1 + edge2, corner + edge2),
+        strict=True,
+    ):
         assert np.allclose((matrix @ [x, y, 0, 1])[:3], expected)
     assert np.allclose(matrix[:3, 2], [0, 1, 0])  # the rectangle's normal becomes edge1 x edge2
     box = {"min": [-1.0, 0.0, 2.0], "max": [1.0, 4.0, 3.0]}

@@ -1,8 +1,9 @@
 """Renders a converted scene with Mitsuba 3 and the plugins of xcheck.plugins."""
 
+import pathlib
 import sys
 
-from . import MitsubaMissing, convert
+from . import MitsubaMissing, convert, exact_meshes
 
 VARIANT = "llvm_ad_rgb"  # vectorised on the CPU through LLVM; scalar_rgb would call Python per ray
 
@@ -13,8 +14,10 @@ try:
 
     mi.set_variant(VARIANT)
 except (ImportError, AttributeError) as error:  # reported by the command-line tools
-    raise MitsubaMissing(f"Mitsuba 3 is not usable in {sys.executable} ({error}); tools/bootstrap "
-                         "--python makes .venv from tools/requirements.txt") from error
+    raise MitsubaMissing(
+        f"Mitsuba 3 is not usable in {sys.executable} ({error}); tools/bootstrap "
+        "--python makes .venv from tools/requirements.txt"
+    ) from error
 from . import plugins  # noqa: E402  (needs the variant)
 
 plugins.register()
@@ -36,30 +39,22 @@ def obj_normals_used(path):
     return has_normals and every_corner_names_one
 
 
-def area_weighted_normals(positions, faces):
-    """Vertex normals: the sum of the adjacent faces' cross products (face normal times twice
-    the area), normalised; conventions.md. Mitsuba's own are angle-weighted."""
-    a, b, c = (positions[faces[:, k]] for k in range(3))
-    face_normals = np.cross(b - a, c - a)
-    sums = np.zeros_like(positions)
-    for k in range(3):
-        np.add.at(sums, faces[:, k], face_normals)
-    lengths = np.linalg.norm(sums, axis=1, keepdims=True)
-    return np.divide(sums, lengths, out=np.zeros_like(sums), where=lengths > 0)
-
-
 def load(xml_path, scene, **parameters):
-    """Loads the XML written for `scene` (the --dump-json dict) and gives every mesh whose
-    file normals tracer does not use area-weighted vertex normals. `parameters` set the XML's defaults
-    (crop_y, crop_height)."""
+    """Loads the XML written for `scene` (the --dump-json dict), gives every mesh whose file
+    normals tracer does not use area-weighted vertex normals, and hands the integrator the
+    meshes in float64 (xcheck.exact_meshes). `parameters` set the XML's defaults (crop_y,
+    crop_height)."""
     mitsuba_scene = mi.load_file(str(xml_path), optimize=False, **parameters)  # optimize would merge shapes
+    integrator = mitsuba_scene.integrator()
+    if isinstance(integrator, plugins.WhittedIntegrator):
+        integrator.use_exact_meshes(mitsuba_scene, *exact_meshes.exact_meshes(scene, pathlib.Path(xml_path).parent))
     params = mi.traverse(mitsuba_scene)
     for index, mesh in enumerate(scene["meshes"]):
         if mesh.get("shading") == "flat" or obj_normals_used(mesh["file"]):
             continue
         positions = np.array(params[f"mesh{index}.vertex_positions"], dtype=np.float64).reshape(-1, 3)
         faces = np.array(params[f"mesh{index}.faces"]).reshape(-1, 3)
-        normals = area_weighted_normals(positions, faces)
+        normals = exact_meshes.area_weighted_normals(positions, faces)
         params[f"mesh{index}.vertex_normals"] = mi.Float(normals.astype(np.float32).ravel())
     params.update()
     return mitsuba_scene
@@ -84,6 +79,8 @@ def render_scene(scene, out_dir):
     rows = max(1, SAMPLES_PER_STRIP // (width * samples))
     if rows >= height:
         return render(load(xml_path, scene))
-    strips = [render(load(xml_path, scene, crop_y=str(top), crop_height=str(min(rows, height - top))))
-              for top in range(0, height, rows)]
+    strips = [
+        render(load(xml_path, scene, crop_y=str(top), crop_height=str(min(rows, height - top))))
+        for top in range(0, height, rows)
+    ]
     return np.concatenate(strips, axis=0)

@@ -9,6 +9,7 @@ import math
 
 import drjit as dr
 import mitsuba as mi
+import numpy as np
 
 from . import PHONG_PLUGIN, WHITTED_PLUGIN
 
@@ -182,6 +183,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
         self.background = _color(props, "background") if "background" in props else mi.Color3f(0.0)
         self.sphere_numbers = [float(x) for x in props.get("spheres", "").split()] if "spheres" in props else []
         self._sphere_table = None
+        self._mesh_table = None  # set by use_exact_meshes
         self.camera = _PinholeCamera(props.get("camera")) if "camera" in props else None
 
     def sample(self, scene, sampler, ray, medium=None, active=True):
@@ -208,13 +210,44 @@ class WhittedIntegrator(mi.SamplingIntegrator):
             self._sphere_table = [mi.Float64(column) for column in columns]
         return self._sphere_table
 
+    def use_exact_meshes(self, scene, shapes, corners, normals):
+        """Takes the triangle meshes in float64 (xcheck.exact_meshes: by shape id, the first
+        triangle, the count, to_object and translation; the corners and normals table): a
+        mirror chain's hit on them is then solved again in float64 too. A shape whose triangle
+        count or float32 corners differ from Mitsuba's is left out."""
+        size = 1 + max(dr.reinterpret_array(mi.UInt32, mi.ShapePtr(shape))[0] for shape in scene.shapes())
+        first, count = [0] * size, [0] * size
+        maps = [[0.0] * size for _ in range(12)]
+        for shape in scene.shapes():
+            entry = shapes.get(shape.id())
+            if entry is None or not shape.is_mesh() or shape.face_count() != entry[1]:
+                continue
+            start, triangles, to_object, translate = entry
+            # The triangles in Mitsuba's order: its float32 corners agree with the placed ones.
+            placed = np.einsum("ij,tkj->tki", np.linalg.inv(to_object), corners[start : start + triangles]) + translate
+            ours = np.array(shape.vertex_positions_buffer(), dtype=np.float64).reshape(-1, 3)
+            ours = ours[np.array(shape.faces_buffer(), dtype=np.int64).reshape(-1, 3)]
+            if not np.allclose(ours, placed, rtol=0.0, atol=1e-5 * (1.0 + np.abs(placed).max())):
+                continue
+            registry_id = dr.reinterpret_array(mi.UInt32, mi.ShapePtr(shape))[0]
+            first[registry_id], count[registry_id] = start, triangles
+            for k, value in enumerate([*np.asarray(to_object).ravel(), *translate]):
+                maps[k][registry_id] = float(value)
+        columns = [
+            mi.Float64(np.ascontiguousarray(table.reshape(-1, 9)[:, k]))
+            for table in (corners, normals)
+            for k in range(9)
+        ]
+        self._mesh_table = (mi.UInt32(first), mi.UInt32(count), [mi.Float64(m) for m in maps], columns)
+
     def _refine(self, scene, si, ray, origin, direction, active):
         """The hit in float64: on a sphere, t solved again along the float64 ray (origin,
-        direction) with the sphere's double centre and radius; elsewhere Mitsuba's t along its
-        own ray `ray` (a triangle's float32 corners put Mitsuba's interpolated point, and any
-        plane through it, off by about 6e-8 of their distance from the origin: far over
-        epsilon on the big outer triangles of the plane squares). (point, geometric normal, on a
-        sphere)."""
+        direction) with the sphere's double centre and radius; on a triangle of an exact mesh
+        (use_exact_meshes), with the triangle's double corners in the mesh's own coordinates;
+        elsewhere Mitsuba's t along its own ray `ray` (a triangle's float32 corners put
+        Mitsuba's interpolated point, and any plane through it, off by about 6e-8 of their
+        distance from the origin: far over epsilon on the big outer triangles of the plane
+        squares). (point, geometric normal, shading normal, solved in float64)."""
         table = self._spheres(scene)
         registry_id = dr.reinterpret_array(mi.UInt32, si.shape)
         centre = mi.Point3d(*(dr.gather(mi.Float64, table[k], registry_id, active) for k in range(3)))
@@ -233,8 +266,56 @@ class WhittedIntegrator(mi.SamplingIntegrator):
         on_sphere = (radius > 0.0) & (discriminant >= 0.0) & (t > 0.0)
         along_ray = mi.Point3d(ray.o) + mitsuba_t * mi.Vector3d(ray.d)
         point = dr.select(on_sphere, origin + t * direction, along_ray)
-        normal = dr.select(on_sphere, (point - centre) / radius, mi.Vector3d(si.n))
-        return point, normal, on_sphere
+        geometric = dr.select(on_sphere, (point - centre) / radius, mi.Vector3d(si.n))
+        shading = dr.select(on_sphere, geometric, mi.Vector3d(si.sh_frame.n))
+        if self._mesh_table is None:
+            return point, geometric, shading, on_sphere
+        mesh_point, mesh_geometric, mesh_shading, on_mesh = self._mesh_hit(si, registry_id, origin, direction, active)
+        point = dr.select(on_mesh, mesh_point, point)
+        geometric = dr.select(on_mesh, mesh_geometric, geometric)
+        shading = dr.select(on_mesh, mesh_shading, shading)
+        return point, geometric, shading, on_sphere | on_mesh
+
+    def _mesh_hit(self, si, registry_id, origin, direction, active):
+        """The hit on the triangle Mitsuba met, in float64, as tracer finds it: the ray carried
+        into the mesh's own coordinates, t and the barycentrics by Moller-Trumbore, the point
+        along the float64 ray, the vertex normals mapped by transpose(to_object), normalised and
+        interpolated (the face's normal where they cancel). (point, geometric normal, shading
+        normal, found)."""
+        first, count, maps, columns = self._mesh_table
+        active = active & (dr.gather(mi.UInt32, count, registry_id, active) > 0)
+        index = dr.gather(mi.UInt32, first, registry_id, active) + si.prim_index
+        value = [dr.gather(mi.Float64, maps[k], registry_id, active) for k in range(12)]
+        to_object = mi.Matrix3f64(*value[:9])
+        translate = mi.Vector3d(*value[9:])
+        corner = [
+            mi.Point3d(*(dr.gather(mi.Float64, columns[3 * c + k], index, active) for k in range(3))) for c in range(3)
+        ]
+        normal = [
+            mi.Vector3d(*(dr.gather(mi.Float64, columns[9 + 3 * c + k], index, active) for k in range(3)))
+            for c in range(3)
+        ]
+        o = to_object @ (origin - translate)
+        d = to_object @ direction
+        e1, e2 = corner[1] - corner[0], corner[2] - corner[0]
+        p = dr.cross(d, e2)
+        det = dr.dot(e1, p)
+        s = o - corner[0]
+        qv = dr.cross(s, e1)
+        u, v, t = dr.dot(s, p) / det, dr.dot(d, qv) / det, dr.dot(e2, qv) / det
+        found = active & (det != 0.0) & (t > 0.0) & dr.isfinite(t)
+        normal_map = to_object.T
+
+        def unit_or_zero(x):
+            length = dr.norm(x)
+            return dr.select(length > 0.0, x / length, 0.0)
+
+        geometric = unit_or_zero(normal_map @ dr.cross(e1, e2))
+        mapped = [unit_or_zero(normal_map @ n) for n in normal]
+        shading = unit_or_zero((1.0 - u - v) * mapped[0] + u * mapped[1] + v * mapped[2])
+        shading = dr.select(dr.norm(shading) > 0.0, shading, geometric)
+        found &= dr.norm(geometric) > 0.0
+        return origin + t * direction, geometric, shading, found
 
     def _path(self, scene, ray, weight, first_depth, active, exact=None):
         """The colour along one path from level first_depth: hits shaded, mirror bounces
@@ -257,7 +338,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
             # The point along the float64 ray, as tracer has it: Mitsuba interpolates it from a
             # triangle's float32 corners, off by about 6e-8 of their distance from the origin:
             # far over epsilon on the big outer triangles of the plane squares.
-            point, geometric, on_sphere = self._refine(scene, si, ray, origin, direction, active)
+            point, geometric, shading, _ = self._refine(scene, si, ray, origin, direction, active)
             si.p = mi.Point3f(point)
 
             # Step 2: ambient, then each light that the point sees.
@@ -291,11 +372,10 @@ class WhittedIntegrator(mi.SamplingIntegrator):
                 if dr.any(opens):
                     color += self._path(scene, _spawn_ray(si, refracted), branch, depth + 1, opens)
 
-            # Step 4: continue along the mirror direction (about the shading normal, the
-            # sphere's own in float64), from the float64 point.
+            # Step 4: continue along the mirror direction (about the shading normal, in float64
+            # on spheres and exact meshes), from the float64 point.
             weight *= dr.select(active, reflect, 0.0)
             active &= dr.any(weight != 0.0)
-            shading = dr.select(on_sphere, geometric, mi.Vector3d(si.sh_frame.n))
             direction = direction - 2.0 * dr.dot(direction, shading) * shading
             origin = point
             side = dr.select(dr.dot(geometric, direction) < 0.0, -1.0, 1.0)

@@ -1,0 +1,171 @@
+"""The triangle meshes of a scene description in float64, as tracer has them, for the Mitsuba
+integrator's float64 mirror chains (xcheck.plugins): Mitsuba keeps a mesh's placed corners and
+normals in float32, and a mirror chain that bounces off a tessellated cylinder (SPD's rings)
+would carry that rounding from bounce to bounce.
+
+Every OBJ shape of the converted scene (mesh blocks, the planes' squares, the flat triangles) is
+listed by its Mitsuba id with the triangles in Mitsuba's order (each face of the file in turn,
+a polygon cut into a fan as Mitsuba's OBJ loader cuts it). As in tracer (src/render/world.cpp,
+src/render/mesh_accel.cpp), a file that one block uses is placed: corners and normals in world
+coordinates; a file that blocks share is kept in its own coordinates, with each block's map.
+Normals: the file's when every face corner names one, else area-weighted over the corners as
+placed (conventions.md); none (zero) under `shading flat` and for the flat shapes.
+"""
+
+import math
+import pathlib
+
+import numpy as np
+
+
+class ObjUnreadable(Exception):
+    """A file this reader does not take (tracer's own reader reports the problem itself)."""
+
+
+def read_obj(path):
+    """(positions (n, 3), normals (m, 3), faces): each face a list of (position index, normal
+    index or -1) from 0, as the file gives them (negative indices counted from the end)."""
+    positions, normals, faces = [], [], []
+
+    def index(text, count):
+        number = int(text)
+        return number - 1 if number > 0 else count + number
+
+    with open(path, encoding="utf-8", errors="replace") as file:
+        for line in file:
+            fields = line.split("#", 1)[0].split()
+            if not fields:
+                continue
+            if fields[0] == "v":
+                positions.append([float(x) for x in fields[1:4]])
+            elif fields[0] == "vn":
+                normals.append([float(x) for x in fields[1:4]])
+            elif fields[0] == "f":
+                face = []
+                for corner in fields[1:]:
+                    parts = corner.split("/")
+                    normal = index(parts[2], len(normals)) if len(parts) == 3 and parts[2] else -1
+                    face.append((index(parts[0], len(positions)), normal))
+                faces.append(face)
+    return (
+        np.array(positions, dtype=np.float64).reshape(-1, 3),
+        np.array(normals, dtype=np.float64).reshape(-1, 3),
+        faces,
+    )
+
+
+def fan_triangles(faces):
+    """Each face cut into a fan from its first corner: (corners (t, 3) position indices, normal
+    indices (t, 3), -1 where a corner names none)."""
+    triangles = [(face[0], face[k], face[k + 1]) for face in faces for k in range(1, len(face) - 1)]
+    corners = np.array([[c[0] for c in t] for t in triangles], dtype=np.int64).reshape(-1, 3)
+    normal_ids = np.array([[c[1] for c in t] for t in triangles], dtype=np.int64).reshape(-1, 3)
+    return corners, normal_ids
+
+
+def _rotation(axis, degrees):
+    """The rotation matrix about `axis` by `degrees` (right-handed, as glm::rotate)."""
+    a = np.array(axis, dtype=np.float64)
+    a /= math.sqrt(a @ a)
+    c, s = math.cos(math.radians(degrees)), math.sin(math.radians(degrees))
+    cross = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+    return c * np.eye(3) + s * cross + (1.0 - c) * np.outer(a, a)
+
+
+def placement(shape):
+    """tracer's Placement (src/scene/placement.h): (linear 3 x 3, translation) of the shape's
+    scale, rotate and translate keys, or of its transform's steps in order."""
+    linear, translate = np.eye(3), np.zeros(3)
+    steps = shape.get("transform") or [
+        {"scale": shape.get("scale", [1, 1, 1])},
+        {"rotate": shape.get("rotate", {"axis": [0, 1, 0], "angle": 0})},
+        {"translate": shape.get("translate", [0, 0, 0])},
+    ]
+    for step in steps:
+        if "scale" in step:
+            linear, translate = np.diag(step["scale"]) @ linear, np.diag(step["scale"]) @ translate
+        elif "rotate" in step and step["rotate"]["angle"] != 0:
+            rotation = _rotation(step["rotate"]["axis"], step["rotate"]["angle"])
+            linear, translate = rotation @ linear, rotation @ translate
+        elif "translate" in step:
+            translate = translate + np.array(step["translate"], dtype=np.float64)
+    return linear, translate
+
+
+def _unit_rows(vectors):
+    lengths = np.linalg.norm(vectors, axis=-1, keepdims=True)
+    return np.divide(vectors, lengths, out=np.zeros_like(vectors), where=lengths > 0)
+
+
+def area_weighted_normals(positions, faces):
+    """Vertex normals: the sum of the adjacent faces' cross products (face normal times twice
+    the area), normalised; conventions.md. Mitsuba's own are angle-weighted."""
+    a, b, c = (positions[faces[:, k]] for k in range(3))
+    face_normals = np.cross(b - a, c - a)
+    sums = np.zeros_like(positions)
+    for k in range(3):
+        np.add.at(sums, faces[:, k], face_normals)
+    return _unit_rows(sums)
+
+
+def _triangles(path, linear, translate, smooth):
+    """(corners (t, 3, 3), normals (t, 3, 3)) of an OBJ file mapped by (linear, translate)."""
+    positions, file_normals, faces = read_obj(path)
+    corners, normal_ids = fan_triangles(faces)
+    if corners.size and (corners.min() < 0 or corners.max() >= len(positions)):
+        raise ObjUnreadable(f"{path}: a face names a vertex the file lacks")
+    placed = positions @ linear.T + translate
+    triangles = placed[corners]
+    if not smooth:
+        return triangles, np.zeros_like(triangles)
+    if len(file_normals) and normal_ids.size and normal_ids.min() >= 0 and normal_ids.max() < len(file_normals):
+        normal_map = np.linalg.inv(linear).T
+        return triangles, _unit_rows(file_normals @ normal_map.T)[normal_ids]
+    return triangles, area_weighted_normals(placed, corners)[corners]
+
+
+def exact_meshes(scene, folder):
+    """{Mitsuba shape id: (first triangle, triangle count, to_object 3 x 3, translation)} and the
+    triangle table (corners (T, 3, 3), normals (T, 3, 3)) of the scene description `scene` as
+    converted into `folder` (xcheck.convert.write_mitsuba_scene). A shape whose file this
+    reader does not take is left out (its hits keep Mitsuba's float32 rounding)."""
+    folder = pathlib.Path(folder)
+    meshes = scene["meshes"]
+    # (path, smooth, linear, translation) by shape id; shared files in their own coordinates.
+    uses = {}
+    for mesh in meshes:
+        key = str(pathlib.Path(mesh["file"]).resolve())
+        uses[key] = uses.get(key, 0) + 1
+    sources = {}
+    for index, mesh in enumerate(meshes):
+        key = str(pathlib.Path(mesh["file"]).resolve())
+        sources[f"mesh{index}"] = (key, mesh.get("shading") != "flat", *placement(mesh), uses[key] > 1)
+    for index in range(len(scene["planes"])):
+        sources[f"plane{index}"] = (str(folder / f"plane{index}.obj"), False, np.eye(3), np.zeros(3), False)
+    for index, triangle in enumerate(scene.get("triangles", [])):
+        sources[f"triangle{index}"] = (str(folder / f"triangle{index}.obj"), False, *placement(triangle), False)
+
+    shapes, corner_parts, normal_parts, first, shared = {}, [], [], 0, {}
+    for name, (path, smooth, linear, translate, instanced) in sources.items():
+        try:
+            if instanced:  # built once in the file's own coordinates; rays carried there
+                if (path, smooth) not in shared:
+                    triangles, normals = _triangles(path, np.eye(3), np.zeros(3), smooth)
+                    shared[(path, smooth)] = (first, len(triangles))
+                    corner_parts.append(triangles)
+                    normal_parts.append(normals)
+                    first += len(triangles)
+                start, count = shared[(path, smooth)]
+                shapes[name] = (start, count, np.linalg.inv(linear), translate)
+            else:
+                triangles, normals = _triangles(path, linear, translate, smooth)
+                shapes[name] = (first, len(triangles), np.eye(3), np.zeros(3))
+                corner_parts.append(triangles)
+                normal_parts.append(normals)
+                first += len(triangles)
+        except (OSError, ValueError, IndexError, ObjUnreadable):
+            continue
+    empty = np.zeros((0, 3, 3))
+    corners = np.concatenate(corner_parts) if corner_parts else empty
+    normals = np.concatenate(normal_parts) if normal_parts else empty
+    return shapes, corners, normals
