@@ -64,16 +64,15 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     // Spheres, planes, then meshes (objects are numbered in this order; bounded_ lists the
     // spheres, then the meshes).
     bool found = false;
-    const uint32_t spheres = uint32_t(spheres_.size());
-    for (uint32_t i = 0; i < spheres; ++i) {
-        if (auto t = intersect_sphere(ray, spheres_[i].center, spheres_[i].radius, range)) {
+    for (const SphereShape& s : spheres_) {
+        if (auto t = intersect_sphere(ray, s.center, s.radius, range)) {
             range.max = *t;
-            hit = {i, 0, *t, 0, 0};
+            hit = {uint32_t(&s - spheres_.data()), 0, *t, 0, 0};
             found = true;
         }
     }
     found = nearest_plane(ray, range, hit) || found;
-    for (size_t i = spheres; i < bounded_.size(); ++i) {
+    for (size_t i = spheres_.size(); i < bounded_.size(); ++i) {
         const Bounded& b = bounded_[i];
         if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
             found = hit_instance(b.index, b.object, ray, range, hit, counts) || found;
@@ -199,9 +198,9 @@ inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
         last.entry = Occluder::kNone;
     }
     if (linear_) {
-        for (uint32_t i = 0; i < spheres_.size(); ++i) {
-            if (intersect_sphere(ray, spheres_[i].center, spheres_[i].radius, range)) {
-                last = {i, {}};  // bounded_ lists the spheres first, in order
+        for (const SphereShape& s : spheres_) {
+            if (intersect_sphere(ray, s.center, s.radius, range)) {
+                last = {uint32_t(&s - spheres_.data()), {}};  // bounded_ lists the spheres first, in order
                 return true;
             }
         }
