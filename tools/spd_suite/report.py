@@ -155,8 +155,8 @@ build on balls by 0.36% of the pixels and on rings by 0.05%). So the integrator 
 mirror chain in float64: the primary ray is tracer's own ray through the pixel centre, Mitsuba's
 float32 search names the shape each ray meets next, and the hit point, normal and mirror
 direction are worked out again in float64 (the sphere's centre and radius as the scene gives
-them, a triangle's plane through Mitsuba's point); only shadow rays, refracted branches and the
-choice of shape on a grazing ray stay float32. To tell the pixels that float32 still decides,
+them, a triangle's corners and normals as tracer reads and places them); only shadow rays,
+refracted branches and the choice of shape on a grazing ray stay float32. To tell the pixels that float32 still decides,
 tracer also renders each scene with the eye moved, in 16 random directions, by as much as the
 plugins move every secondary ray off its surface (64 float32 ulps of the scene's size: 7.6e-6 of
 the eye's distance from the origin); a pixel that changes by more than 2 levels under such a move
