@@ -290,7 +290,7 @@ Vec3 MeshAccel::surface_point(uint32_t slot, Real u, Real v, Vec3& error) const 
     const Vec3 a = w * t.v0, b = u * t.v1, c = v * t.v2;
     // The weights sum to 1 only up to the rounding of w: that moves the point by up to
     // gamma(2) |v0| off the affine combination.
-    error = gamma(7) * (glm::abs(a) + glm::abs(b) + glm::abs(c)) + gamma(3) * glm::abs(t.v0);
+    error = gamma(7) * (abs_each(a) + abs_each(b) + abs_each(c)) + gamma(3) * abs_each(t.v0);
     return a + b + c;
 }
 

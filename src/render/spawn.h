@@ -41,9 +41,9 @@ public:
         if constexpr (kRobust) {
             // The error bound along the normal, grown by what rounding p +- offset can take
             // back (half an ulp of each coordinate), so that no next-float step is needed.
-            const Vec3 abs_n = glm::abs(normal_);
+            const Vec3 abs_n = abs_each(normal_);
             const Real distance =
-                (1 + gamma(2)) * glm::dot(abs_n, hit.error) + gamma(2) * glm::dot(abs_n, glm::abs(hit.point));
+                (1 + gamma(2)) * glm::dot(abs_n, hit.error) + gamma(2) * glm::dot(abs_n, abs_each(hit.point));
             above_ = hit.point + distance * normal_;
             below_ = hit.point - distance * normal_;
         }

@@ -50,7 +50,7 @@ struct RayShear {
 
     // The shear of `ray`; a zero direction gives a shear that no triangle passes.
     explicit RayShear(const Ray& ray) {
-        const Vec3 a = glm::abs(ray.direction);
+        const Vec3 a = abs_each(ray.direction);
         kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
         kx = kz == 2 ? 0 : kz + 1;
         ky = kx == 2 ? 0 : kx + 1;

@@ -29,6 +29,12 @@ constexpr Real gamma(int n) {
     return n * u / (1 - n * u);
 }
 
+// |v| coordinate by coordinate: glm::abs, always inlined (GCC left glm's out of line in the
+// shading loop, a call per use: 1.5% of task2's instructions).
+[[gnu::always_inline]] inline Vec3 abs_each(const Vec3& v) {
+    return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
+}
+
 struct Ray {
     Vec3 origin;
     Vec3 direction;  // unit length

@@ -124,7 +124,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
                 out.normal = length > 0 ? from_centre * (1 / length) : Vec3(0, 0, 1);
                 const Vec3 on_sphere = out.normal * s.radius;
                 out.point = s.center + on_sphere;
-                out.error = gamma(6) * (glm::abs(s.center) + glm::abs(on_sphere));
+                out.error = gamma(6) * (abs_each(s.center) + abs_each(on_sphere));
             } else {
                 out.normal = (out.point - s.center) / s.radius;
             }
@@ -138,7 +138,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
                 // plane test of a ray leaving it.
                 const Vec3 along_ray = ray.at(hit.t);
                 out.point = along_ray - glm::dot(along_ray - p.point, p.normal) * p.normal;
-                out.error = gamma(8) * (glm::abs(out.point) + glm::abs(p.point));
+                out.error = gamma(8) * (abs_each(out.point) + abs_each(p.point));
             }
             out.normal = p.normal;
             out.geometric_normal = p.normal;
@@ -160,9 +160,9 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
                     // The point placed, its error grown by the placing's roundings (pbrt-v4's
                     // transform of a point with an error bound).
                     Mat3 abs_to_world;
-                    for (int c = 0; c < 3; ++c) abs_to_world[c] = glm::abs(instance.to_world[c]);
+                    for (int c = 0; c < 3; ++c) abs_to_world[c] = abs_each(instance.to_world[c]);
                     out.error = (1 + gamma(3)) * (abs_to_world * out.error) +
-                                gamma(3) * (abs_to_world * glm::abs(out.point) + glm::abs(instance.translate));
+                                gamma(3) * (abs_to_world * abs_each(out.point) + abs_each(instance.translate));
                     out.point = instance.to_world * out.point + instance.translate;
                 }
             }
