@@ -141,7 +141,7 @@ def test_area_weighted_normals_weigh_faces_by_area():
 
 def test_meshes_without_normals_get_area_weighted_ones(dump, tmp_path):
     scene, loaded = load(dump, ROOT / "scenes" / "bunny.scn", tmp_path)
-    assert not mitsuba_render.obj_normals_used(scene["meshes"][0]["file"])
+    assert not exact_meshes.obj_normals_used(scene["meshes"][0]["file"])
     params = mi.traverse(loaded)
     positions = np.array(params["mesh0.vertex_positions"], dtype=float).reshape(-1, 3)
     faces = np.array(params["mesh0.faces"]).reshape(-1, 3)
@@ -170,7 +170,7 @@ def test_file_normals_count_only_when_every_face_names_them(tmp_path):
     for index, (text, expected) in enumerate(cases.items()):
         path = tmp_path / f"case{index}.obj"
         path.write_text(text)
-        assert mitsuba_render.obj_normals_used(path) == expected, text
+        assert exact_meshes.obj_normals_used(path) == expected, text
 
 
 def test_refraction_is_carried_over_only_where_a_material_transmits(dump, tmp_path):

@@ -63,6 +63,25 @@ def fan_triangles(faces):
     return corners, normal_ids
 
 
+def uses_file_normals(file_normals, normal_ids):
+    """tracer's rule (src/io/obj_mesh.cpp): a file's own vertex normals count when it has some
+    and every face corner names one (v//vn or v/vt/vn); otherwise normals are area-weighted.
+    (tracer decides after dropping zero-area faces; a zero-area face without normals is the one
+    case where the two could disagree.)"""
+    return bool(
+        len(file_normals) and normal_ids.size and normal_ids.min() >= 0 and normal_ids.max() < len(file_normals)
+    )
+
+
+def obj_normals_used(path):
+    """uses_file_normals for an OBJ file (False for a file this reader does not take)."""
+    try:
+        _, file_normals, faces = read_obj(path)
+        return uses_file_normals(file_normals, fan_triangles(faces)[1])
+    except (ValueError, IndexError):
+        return False
+
+
 def _rotation(axis, degrees):
     """The rotation matrix about `axis` by `degrees` (right-handed, as glm::rotate)."""
     a = np.array(axis, dtype=np.float64)
@@ -118,7 +137,7 @@ def _triangles(path, linear, translate, smooth):
     triangles = placed[corners]
     if not smooth:
         return triangles, np.zeros_like(triangles)
-    if len(file_normals) and normal_ids.size and normal_ids.min() >= 0 and normal_ids.max() < len(file_normals):
+    if uses_file_normals(file_normals, normal_ids):
         normal_map = np.linalg.inv(linear).T
         return triangles, _unit_rows(file_normals @ normal_map.T)[normal_ids]
     return triangles, area_weighted_normals(placed, corners)[corners]

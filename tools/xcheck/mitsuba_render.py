@@ -23,22 +23,6 @@ from . import plugins  # noqa: E402  (needs the variant)
 plugins.register()
 
 
-def obj_normals_used(path):
-    """True when tracer takes an OBJ file's own vertex normals (src/io/obj_mesh.cpp): the
-    file has `vn` lines and every face corner names one (v//vn or v/vt/vn). Otherwise tracer
-    computes area-weighted normals. (tracer decides after dropping zero-area faces; a zero-area
-    face without normals is the one case where the two could disagree.)"""
-    has_normals, every_corner_names_one = False, True
-    with open(path, "rb") as file:
-        for line in file:
-            fields = line.split(b"#", 1)[0].split()
-            if fields and fields[0] == b"vn":
-                has_normals = True
-            elif fields and fields[0] == b"f":
-                every_corner_names_one &= all(c.count(b"/") == 2 and not c.endswith(b"/") for c in fields[1:])
-    return has_normals and every_corner_names_one
-
-
 def load(xml_path, scene, **parameters):
     """Loads the XML written for `scene` (the --dump-json dict), gives every mesh whose file
     normals tracer does not use area-weighted vertex normals, and hands the integrator the
@@ -49,8 +33,11 @@ def load(xml_path, scene, **parameters):
     if isinstance(integrator, plugins.WhittedIntegrator):
         integrator.use_exact_meshes(mitsuba_scene, *exact_meshes.exact_meshes(scene, pathlib.Path(xml_path).parent))
     params = mi.traverse(mitsuba_scene)
+    normals_used = {}  # by file: blocks that share one read it once
     for index, mesh in enumerate(scene["meshes"]):
-        if mesh.get("shading") == "flat" or obj_normals_used(mesh["file"]):
+        if mesh["file"] not in normals_used:
+            normals_used[mesh["file"]] = exact_meshes.obj_normals_used(mesh["file"])
+        if mesh.get("shading") == "flat" or normals_used[mesh["file"]]:
             continue
         positions = np.array(params[f"mesh{index}.vertex_positions"], dtype=np.float64).reshape(-1, 3)
         faces = np.array(params[f"mesh{index}.faces"]).reshape(-1, 3)

@@ -168,6 +168,12 @@ class _PinholeCamera:
         return mi.Point3d(*self.eye), direction
 
 
+def _registry_id(shape):
+    """The number Mitsuba gives a shape in its registry: what a SurfaceInteraction's `shape`
+    holds, used here to index per-shape tables."""
+    return dr.reinterpret_array(mi.UInt32, mi.ShapePtr(shape))[0]
+
+
 class WhittedIntegrator(mi.SamplingIntegrator):
     """Whitted recursion of conventions.md: colour = ka + sum over unblocked point lights of
     light colour * Phong (no fall-off) + km * trace(mirror ray) [+ kt * trace(refracted ray),
@@ -198,7 +204,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
         if self._sphere_table is None:
             entries, size = {}, 1
             for shape in scene.shapes():
-                registry_id = dr.reinterpret_array(mi.UInt32, mi.ShapePtr(shape))[0]
+                registry_id = _registry_id(shape)
                 size = max(size, registry_id + 1)  # every shape's id indexes the table
                 name = shape.id()
                 if name.startswith("sphere") and name[6:].isdigit() and 4 * int(name[6:]) < len(self.sphere_numbers):
@@ -215,7 +221,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
         triangle, the count, to_object and translation; the corners and normals table): a
         mirror chain's hit on them is then solved again in float64 too. A shape whose triangle
         count or float32 corners differ from Mitsuba's is left out."""
-        size = 1 + max(dr.reinterpret_array(mi.UInt32, mi.ShapePtr(shape))[0] for shape in scene.shapes())
+        size = 1 + max(_registry_id(shape) for shape in scene.shapes())
         first, count = [0] * size, [0] * size
         maps = [[0.0] * size for _ in range(12)]
         for shape in scene.shapes():
@@ -229,7 +235,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
             ours = ours[np.array(shape.faces_buffer(), dtype=np.int64).reshape(-1, 3)]
             if not np.allclose(ours, placed, rtol=0.0, atol=1e-5 * (1.0 + np.abs(placed).max())):
                 continue
-            registry_id = dr.reinterpret_array(mi.UInt32, mi.ShapePtr(shape))[0]
+            registry_id = _registry_id(shape)
             first[registry_id], count[registry_id] = start, triangles
             for k, value in enumerate([*np.asarray(to_object).ravel(), *translate]):
                 maps[k][registry_id] = float(value)
