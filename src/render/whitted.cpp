@@ -43,10 +43,10 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
     Color sum(0.0);
     for (size_t l = 0; l < world.lights().size(); ++l) {
         const Light& light = world.lights()[l];
-        Vec3 to_light = Vec3(light.position) - hit.point;
-        const Real distance = glm::length(to_light);
+        const Vec3 light_offset = Vec3(light.position) - hit.point;
+        const Real distance = glm::length(light_offset);
         if (!(distance > 0)) continue;  // a light exactly at the point lights nothing there
-        to_light /= distance;
+        const Vec3 to_light = light_offset / distance;
         const Real n_dot_l = glm::dot(normal, to_light);
         const Vec3 reflected_light = 2 * n_dot_l * normal - to_light;  // R = 2(N.L)N - L
         const Real r_dot_v = std::max(Real(0), glm::dot(reflected_light, to_viewer));
@@ -57,7 +57,7 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         if (term == Color(0.0)) continue;
         if (settings.shadows) {
             ++counts.shadow;
-            const SpawnedRay shadow = spawn.ray_to(to_light, distance);
+            const SpawnedRay shadow = spawn.ray_to(light_offset, distance);
             if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l])) continue;
         }
         sum += term;
