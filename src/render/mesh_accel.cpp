@@ -120,7 +120,7 @@ MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& s
         },
         threads);
     for (const Bounds& box : boxes) bounds_.extend(box);
-    if (!brute_force_) bvh_ = Bvh(boxes, settings.build, settings.leaf_size, threads, kRobust ? kTriangleLanes : 1);
+    if (!brute_force_) bvh_ = Bvh(boxes, settings.build, settings.leaf_size, threads, kTriangleLanes);
 
     // Step 3: the triangles in that order, and their hit records.
     triangle_count_ = n;
@@ -188,36 +188,22 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
         __builtin_prefetch(&hit_records_[i].triangle);
         return true;
     };
-    if constexpr (kRobust) {
-        // Four triangles at a time; those that pass the vector steps are finished in order.
-        const TriangleLaneTester tester(ray, columns());
-        search<false>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
-            bool hit_here = false;
-            for (uint32_t chunk = first; chunk < first + count; chunk += kTriangleLanes) {
-                const int lanes = int(std::min<uint32_t>(kTriangleLanes, first + count - chunk));
-                ShearedTriangle sheared[kTriangleLanes];
-                for (unsigned m = tester.candidates(chunk, lanes, {r.min, admit_max}, sheared); m != 0; m &= m - 1) {
-                    const int lane = __builtin_ctz(m);
-                    const Interval admit{r.min, admit_max};
-                    TriangleHit hit;
-                    if (in_scaled_range(sheared[lane], admit) && finish_triangle_hit(sheared[lane], admit, hit))
-                        hit_here |= take(chunk + uint32_t(lane), hit, r);
-                }
-            }
-            return hit_here;
-        });
-    } else {
-        const TriangleTester tester(ray);
-        const TriangleColumns triangles = columns();
-        search<false>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
-            bool hit_here = false;
-            for (uint32_t i = first; i < first + count; ++i) {
+    // Four triangles at a time; those that pass the vector steps are finished in order.
+    const LaneTester tester(ray, columns());
+    search<false>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
+        bool hit_here = false;
+        for (uint32_t chunk = first; chunk < first + count; chunk += kTriangleLanes) {
+            const int lanes = int(std::min<uint32_t>(kTriangleLanes, first + count - chunk));
+            LaneTester::Candidate candidates[kTriangleLanes];
+            for (unsigned m = tester.candidates(chunk, lanes, {r.min, admit_max}, candidates); m != 0; m &= m - 1) {
+                const int lane = __builtin_ctz(m);
                 TriangleHit hit;
-                if (tester(triangles.triangle(i), {r.min, admit_max}, hit)) hit_here |= take(i, hit, r);
+                if (LaneTester::finish(candidates, lane, {r.min, admit_max}, hit))
+                    hit_here |= take(chunk + uint32_t(lane), hit, r);
             }
-            return hit_here;
-        });
-    }
+        }
+        return hit_here;
+    });
     if constexpr (std::is_same_v<Real, float>) {
         const auto t = found ? plane_t(ray, triangle(best)) : std::nullopt;
         if (t && Real(*t) > 0 && asked.contains(Real(*t))) best_hit.t = range.max = Real(*t);
@@ -238,50 +224,32 @@ bool MeshAccel::search(const Ray& ray, Interval& range, TraversalCounts& counts,
         return bvh_.closest(ray, range, counts, LeafTest{test_leaf});
 }
 
-[[gnu::always_inline]] inline bool MeshAccel::run_blocks(const TriangleLaneTester& tester, TriangleRun run,
-                                                         Interval range) {
-    ShearedTriangle sheared[kTriangleLanes];
-    for (unsigned m = tester.candidates(run.first, int(run.count), range, sheared); m != 0; m &= m - 1) {
+[[gnu::always_inline]] inline bool MeshAccel::run_blocks(const LaneTester& tester, TriangleRun run, Interval range) {
+    LaneTester::Candidate candidates[kTriangleLanes];
+    for (unsigned m = tester.candidates(run.first, int(run.count), range, candidates); m != 0; m &= m - 1) {
         TriangleHit hit;
-        if (finish_triangle_hit(sheared[__builtin_ctz(m)], range, hit)) return true;
-    }
-    return false;
-}
-
-[[gnu::always_inline]] inline bool MeshAccel::run_blocks(const TriangleTester& tester, TriangleRun run,
-                                                         Interval range) const {
-    for (uint32_t i = run.first; i < run.first + run.count; ++i) {
-        TriangleHit hit;
-        if (tester(triangle(i), range, hit)) return true;
+        if (LaneTester::finish(candidates, __builtin_ctz(m), range, hit)) return true;
     }
     return false;
 }
 
 bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts, TriangleRun& blocker) const {
     // Each leaf in runs of as many triangles as one test takes; the run that blocks is kept.
-    auto blocked = [&](const auto& tester, uint32_t run_length) {
-        return search<true>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
-            for (uint32_t start = first; start < first + count; start += run_length) {
-                const TriangleRun run{start, std::min(run_length, first + count - start)};
-                if (run_blocks(tester, run, r)) {
-                    blocker = run;
-                    return true;
-                }
+    const LaneTester tester(ray, columns());
+    return search<true>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
+        for (uint32_t start = first; start < first + count; start += kTriangleLanes) {
+            const TriangleRun run{start, std::min(uint32_t(kTriangleLanes), first + count - start)};
+            if (run_blocks(tester, run, r)) {
+                blocker = run;
+                return true;
             }
-            return false;
-        });
-    };
-    if constexpr (kRobust)
-        return blocked(TriangleLaneTester(ray, columns()), uint32_t(kTriangleLanes));
-    else
-        return blocked(TriangleTester(ray), 1u);
+        }
+        return false;
+    });
 }
 
 bool MeshAccel::blocks(TriangleRun run, const Ray& ray, Interval range) const {
-    if constexpr (kRobust)
-        return run_blocks(TriangleLaneTester(ray, columns()), run, range);
-    else
-        return run_blocks(TriangleTester(ray), run, range);
+    return run_blocks(LaneTester(ray, columns()), run, range);
 }
 
 Vec3 MeshAccel::surface_point(uint32_t slot, Real u, Real v, Vec3& error) const {

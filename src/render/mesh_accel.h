@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "render/bvh.h"
@@ -98,10 +99,11 @@ private:
     // triangle without a BVH: for the nearest hit (Bvh::closest), or any (kAny, Bvh::any).
     template <bool kAny, typename TestLeaf>
     bool search(const Ray& ray, Interval& range, TraversalCounts& counts, TestLeaf test_leaf) const;
-    // True if a triangle of `run` lies along the tester's ray inside `range`: four lanes at
-    // once (run.count at most kTriangleLanes), or one triangle after the other.
-    static bool run_blocks(const TriangleLaneTester& tester, TriangleRun run, Interval range);
-    bool run_blocks(const TriangleTester& tester, TriangleRun run, Interval range) const;
+    // The four-lane test of the build's rules (kRobust): watertight, or Moller-Trumbore.
+    using LaneTester = std::conditional_t<kRobust, TriangleLaneTester, MollerTrumboreLaneTester>;
+    // True if a triangle of `run` (at most kTriangleLanes) lies along the tester's ray inside
+    // `range`.
+    static bool run_blocks(const LaneTester& tester, TriangleRun run, Interval range);
 
     bool brute_force_;
     Bvh bvh_;

@@ -143,25 +143,59 @@ inline bool intersect_triangle(const RayShear& shear, const Triangle& tri, Inter
     return finish_triangle_hit(s, range, hit);
 }
 
+// Moller-Trumbore's determinant, u, v and t for a ray and a triangle given coordinate by
+// coordinate, with R = Real (one triangle) or four vector lanes (triangle_lanes.h): one source
+// for both, so that both round alike. Every quantity is computed before one combined test (a
+// miss usually fails one of the early tests at random, and one branch mispredicts less than
+// four).
+template <typename R>
+struct MollerTrumboreTerms {
+    R det, u, v, t;
+};
+
+template <typename R>
+[[gnu::always_inline]] inline MollerTrumboreTerms<R> moller_trumbore_terms(const R (&origin)[3],
+                                                                           const R (&direction)[3], const R (&v0)[3],
+                                                                           const R (&v1)[3], const R (&v2)[3]) {
+    const R e1[3] = {v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2]};
+    const R e2[3] = {v2[0] - v0[0], v2[1] - v0[1], v2[2] - v0[2]};
+    const R s[3] = {origin[0] - v0[0], origin[1] - v0[1], origin[2] - v0[2]};
+    auto cross = [](const R(&a)[3], const R(&b)[3], R(&out)[3]) {
+        out[0] = a[1] * b[2] - a[2] * b[1];
+        out[1] = a[2] * b[0] - a[0] * b[2];
+        out[2] = a[0] * b[1] - a[1] * b[0];
+    };
+    auto dot = [](const R(&a)[3], const R(&b)[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+    R p[3], q[3];
+    cross(direction, e2, p);
+    cross(s, e1, q);
+    const R det = dot(e1, p);
+    const R inv_det = 1 / det;
+    return {det, dot(s, p) * inv_det, dot(direction, q) * inv_det, dot(e2, q) * inv_det};
+}
+
+// Whether Moller-Trumbore's terms are a hit inside `range`: a bool, or a mask of lanes.
+template <typename R>
+[[gnu::always_inline]] inline auto moller_trumbore_inside(const MollerTrumboreTerms<R>& m, Interval range) {
+    return (m.det != 0) & (m.u >= 0) & (m.u <= 1) & (m.v >= 0) & (m.u + m.v <= 1) & (m.t > range.min) &
+           (m.t < range.max);
+}
+
 // Moller-Trumbore: fewer operations, but not watertight (two triangles sharing an edge can
 // both reject a ray through it: hard-cases.md A1, A3, A5). No epsilon on the determinant:
 // only an exactly parallel ray (or a zero-area triangle) is rejected, so tiny triangles are
 // still found.
 inline bool intersect_triangle_moller_trumbore(const Ray& ray, const Triangle& tri, Interval range, TriangleHit& hit) {
-    // Every quantity is computed before one combined test: a miss usually fails one of the
-    // early tests at random, and one branch mispredicts less than four.
-    const Vec3 e1 = tri.v1 - tri.v0, e2 = tri.v2 - tri.v0;
-    const Vec3 p = glm::cross(ray.direction, e2);
-    const Real det = glm::dot(e1, p);
-    const Real inv_det = 1 / det;
-    const Vec3 s = ray.origin - tri.v0;
-    const Real u = glm::dot(s, p) * inv_det;
-    const Vec3 q = glm::cross(s, e1);
-    const Real v = glm::dot(ray.direction, q) * inv_det;
-    const Real t = glm::dot(e2, q) * inv_det;
-    const bool inside = (det != 0) & (u >= 0) & (u <= 1) & (v >= 0) & (u + v <= 1) & (range.min < t) & (t < range.max);
-    if (!inside) return false;
-    hit = {t, u, v};
+    auto coordinates = [](const Vec3& p, Real(&out)[3]) { out[0] = p.x, out[1] = p.y, out[2] = p.z; };
+    Real origin[3], direction[3], v0[3], v1[3], v2[3];
+    coordinates(ray.origin, origin);
+    coordinates(ray.direction, direction);
+    coordinates(tri.v0, v0);
+    coordinates(tri.v1, v1);
+    coordinates(tri.v2, v2);
+    const MollerTrumboreTerms<Real> m = moller_trumbore_terms(origin, direction, v0, v1, v2);
+    if (!moller_trumbore_inside(m, range)) return false;
+    hit = {m.t, m.u, m.v};
     return true;
 }
 

@@ -82,6 +82,13 @@ struct TriangleLaneTester {
     // check it again against a range that has shrunk since).
     unsigned candidates(uint32_t first, int lanes, Interval range, ShearedTriangle (&sheared)[kTriangleLanes]) const;
 
+    // What candidates leaves of each lane that passes.
+    using Candidate = ShearedTriangle;
+    // The hit of candidate `lane`, if it is one inside `range` (which may have shrunk since).
+    static bool finish(const ShearedTriangle (&sheared)[kTriangleLanes], int lane, Interval range, TriangleHit& hit) {
+        return in_scaled_range(sheared[lane], range) && finish_triangle_hit(sheared[lane], range, hit);
+    }
+
     RayShear shear;
     const Real* rows[3][3];  // [vertex][x, y, z in the ray's frame]
 };
@@ -123,5 +130,44 @@ inline unsigned TriangleLaneTester::candidates(uint32_t first, int lanes, Interv
     }
     return mask;
 }
+
+// Moller-Trumbore (triangle.h) on four triangles at once, for the naive rules (TRACER_ROBUST=OFF):
+// each lane does the very operations of intersect_triangle_moller_trumbore (one source,
+// moller_trumbore_terms), so each gives the same answer bit for bit.
+struct MollerTrumboreLaneTester {
+    MollerTrumboreLaneTester(const Ray& ray, const TriangleColumns& columns) : triangles(columns) {
+        for (int k = 0; k < 3; ++k) {
+            origin[k] = splat(ray.origin[k]);
+            direction[k] = splat(ray.direction[k]);
+        }
+    }
+
+    // Bit i of the result is set where triangle first + i, of the first `lanes`, is hit inside
+    // `range`; hits[i] is then its hit.
+    unsigned candidates(uint32_t first, int lanes, Interval range, TriangleHit (&hits)[kTriangleLanes]) const {
+        RealLanes v[3][3];
+        for (int vertex = 0; vertex < 3; ++vertex)
+            for (int axis = 0; axis < 3; ++axis)
+                std::memcpy(&v[vertex][axis], triangles.column(vertex, axis) + first, sizeof(RealLanes));
+        const MollerTrumboreTerms<RealLanes> m = moller_trumbore_terms(origin, direction, v[0], v[1], v[2]);
+        const unsigned mask = lanes_true(moller_trumbore_inside(m, range)) & ((1u << lanes) - 1);
+        for (unsigned bits = mask; bits != 0; bits &= bits - 1) {
+            const int i = __builtin_ctz(bits);
+            hits[i] = {m.t[i], m.u[i], m.v[i]};
+        }
+        return mask;
+    }
+
+    using Candidate = TriangleHit;
+    // Candidate `lane`'s hit, if still inside `range` (which may have shrunk since).
+    static bool finish(const TriangleHit (&hits)[kTriangleLanes], int lane, Interval range, TriangleHit& hit) {
+        if (!range.contains(hits[lane].t)) return false;
+        hit = hits[lane];
+        return true;
+    }
+
+    RealLanes origin[3], direction[3];
+    TriangleColumns triangles;
+};
 
 }  // namespace tracer

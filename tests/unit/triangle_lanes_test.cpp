@@ -1,5 +1,5 @@
-// The four-lane watertight test (render/triangle_lanes.h) against the scalar one it stands for:
-// the same triangles hit, at the same t, u and v bit for bit.
+// The four-lane tests (render/triangle_lanes.h), watertight and Moller-Trumbore, against the
+// scalar ones they stand for: the same triangles hit, at the same t, u and v bit for bit.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -111,6 +111,46 @@ TEST(TriangleLanes, EachLaneAnswersAsTheScalarTestBitForBit) {
                         ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.t)), std::bit_cast<uint64_t>(double(scalar.t)));
                         ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.u)), std::bit_cast<uint64_t>(double(scalar.u)));
                         ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.v)), std::bit_cast<uint64_t>(double(scalar.v)));
+                    }
+                }
+        }
+    }
+    EXPECT_GT(hits, compared / 200);  // not a test of misses alone
+}
+
+// The same bits, as numbers that compare equal (so that a failure prints the values).
+void expect_same_hit(const TriangleHit& vector, const TriangleHit& scalar) {
+    ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.t)), std::bit_cast<uint64_t>(double(scalar.t)));
+    ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.u)), std::bit_cast<uint64_t>(double(scalar.u)));
+    ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.v)), std::bit_cast<uint64_t>(double(scalar.v)));
+}
+
+TEST(TriangleLanes, MollerTrumboreLanesAnswerAsTheScalarTestBitForBit) {
+    std::mt19937_64 random(13);
+    const std::vector<Triangle> triangles = test_triangles(random);
+    const Columns columns(triangles);
+    const Interval ranges[] = {{0, kInfinity}, {Real(1e-3), Real(4)}, {Real(4), Real(9)}};
+    int hits = 0, compared = 0;
+    for (const Ray& ray : test_rays(random, triangles)) {
+        const MollerTrumboreLaneTester lanes(ray, columns.view());
+        for (uint32_t first = 0; first < triangles.size(); ++first) {
+            const int most = int(std::min<size_t>(kTriangleLanes, triangles.size() - first));
+            for (int count = 1; count <= most; ++count)
+                for (const Interval& range : ranges) {
+                    TriangleHit candidates[kTriangleLanes];
+                    const unsigned mask = lanes.candidates(first, count, range, candidates);
+                    ASSERT_EQ(mask >> count, 0u) << "a lane past the leaf's triangles";
+                    for (int lane = 0; lane < count; ++lane) {
+                        TriangleHit scalar, vector;
+                        const bool scalar_hit =
+                            intersect_triangle_moller_trumbore(ray, triangles[first + lane], range, scalar);
+                        const bool vector_hit =
+                            (mask >> lane & 1) && MollerTrumboreLaneTester::finish(candidates, lane, range, vector);
+                        ASSERT_EQ(vector_hit, scalar_hit) << "triangle " << first + lane;
+                        ++compared;
+                        if (!scalar_hit) continue;
+                        ++hits;
+                        expect_same_hit(vector, scalar);
                     }
                 }
         }
