@@ -83,25 +83,27 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
 
 [[gnu::always_inline]] inline std::optional<Hit> World::nearest_hit(const Ray& ray, Interval range,
                                                                     SearchCounts& counts) const {
-    Hit hit;
-    bool found = false;
+    // Two records, so that the one-by-one search's can stay in registers: the BVH's test, out
+    // of line, holds the address of its own (task2 0.97x, bunny_room 0.97x).
     if (linear_) {
-        found = nearest_one_by_one(ray, range, hit, counts);
-    } else {
-        // Each hit shrinks range.max, so later objects only count when they are nearer. Planes
-        // first: a floor's hit lets the top level skip every box behind it.
-        found = nearest_plane(ray, range, hit);
-        auto test = [&](uint32_t i, Interval& r) {
-            const Bounded& b = bounded_[i];
-            if (b.kind != ObjectKind::Sphere) return hit_instance(b.index, b.object, ray, r, hit, counts);
-            const auto t = intersect_sphere(ray, b.centre, b.radius, r);
-            if (!t) return false;
-            r.max = *t;
-            hit = {b.object, 0, *t, 0, 0};
-            return true;
-        };
-        found = top_.closest(ray, range, counts.objects, test) || found;
+        Hit hit;
+        if (!nearest_one_by_one(ray, range, hit, counts)) return std::nullopt;
+        return hit;
     }
+    // Each hit shrinks range.max, so later objects only count when they are nearer. Planes
+    // first: a floor's hit lets the top level skip every box behind it.
+    Hit hit;
+    bool found = nearest_plane(ray, range, hit);
+    auto test = [&](uint32_t i, Interval& r) {
+        const Bounded& b = bounded_[i];
+        if (b.kind != ObjectKind::Sphere) return hit_instance(b.index, b.object, ray, r, hit, counts);
+        const auto t = intersect_sphere(ray, b.centre, b.radius, r);
+        if (!t) return false;
+        r.max = *t;
+        hit = {b.object, 0, *t, 0, 0};
+        return true;
+    };
+    found = top_.closest(ray, range, counts.objects, test) || found;
     if (!found) return std::nullopt;
     return hit;
 }
