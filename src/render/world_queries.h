@@ -182,7 +182,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     return out;
 }
 
-inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
+[[gnu::always_inline]] inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
     return surface_at(ray, hit);
 }
 
