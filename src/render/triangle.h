@@ -144,40 +144,44 @@ inline bool intersect_triangle(const RayShear& shear, const Triangle& tri, Inter
 }
 
 // Moller-Trumbore's determinant, u, v and t for a ray and a triangle given coordinate by
-// coordinate, with R = Real (one triangle) or four vector lanes (triangle_lanes.h): one source
-// for both, so that both round alike. Every quantity is computed before one combined test (a
-// miss usually fails one of the early tests at random, and one branch mispredicts less than
-// four).
+// coordinate, with R = Real (one triangle) or four vector lanes (triangle_lanes.h), and `fma`
+// the fused multiply-add of R: one source for both, every product that meets a sum fused
+// explicitly (GCC would fuse at will, differently from one call site to the next), so that both
+// round alike (u + v is d.q / det + u, rounded once). Every quantity is computed before one
+// combined test (a miss usually fails one of the early tests at random, and one branch
+// mispredicts less than four).
 template <typename R>
 struct MollerTrumboreTerms {
-    R det, u, v, t;
+    R det, u, v, t, u_plus_v;
 };
 
-template <typename R>
+template <typename R, typename Fma>
 [[gnu::always_inline]] inline MollerTrumboreTerms<R> moller_trumbore_terms(const R (&origin)[3],
                                                                            const R (&direction)[3], const R (&v0)[3],
-                                                                           const R (&v1)[3], const R (&v2)[3]) {
+                                                                           const R (&v1)[3], const R (&v2)[3],
+                                                                           Fma fma) {
     const R e1[3] = {v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2]};
     const R e2[3] = {v2[0] - v0[0], v2[1] - v0[1], v2[2] - v0[2]};
     const R s[3] = {origin[0] - v0[0], origin[1] - v0[1], origin[2] - v0[2]};
-    auto cross = [](const R(&a)[3], const R(&b)[3], R(&out)[3]) {
-        out[0] = a[1] * b[2] - a[2] * b[1];
-        out[1] = a[2] * b[0] - a[0] * b[2];
-        out[2] = a[0] * b[1] - a[1] * b[0];
+    auto cross = [&](const R(&a)[3], const R(&b)[3], R(&out)[3]) {
+        out[0] = fma(a[1], b[2], -(a[2] * b[1]));
+        out[1] = fma(a[2], b[0], -(a[0] * b[2]));
+        out[2] = fma(a[0], b[1], -(a[1] * b[0]));
     };
-    auto dot = [](const R(&a)[3], const R(&b)[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+    auto dot = [&](const R(&a)[3], const R(&b)[3]) { return fma(a[0], b[0], fma(a[1], b[1], a[2] * b[2])); };
     R p[3], q[3];
     cross(direction, e2, p);
     cross(s, e1, q);
     const R det = dot(e1, p);
     const R inv_det = 1 / det;
-    return {det, dot(s, p) * inv_det, dot(direction, q) * inv_det, dot(e2, q) * inv_det};
+    const R u = dot(s, p) * inv_det, d_q = dot(direction, q);
+    return {det, u, d_q * inv_det, dot(e2, q) * inv_det, fma(d_q, inv_det, u)};
 }
 
 // Whether Moller-Trumbore's terms are a hit inside `range`: a bool, or a mask of lanes.
 template <typename R>
 [[gnu::always_inline]] inline auto moller_trumbore_inside(const MollerTrumboreTerms<R>& m, Interval range) {
-    return (m.det != 0) & (m.u >= 0) & (m.u <= 1) & (m.v >= 0) & (m.u + m.v <= 1) & (m.t > range.min) &
+    return (m.det != 0) & (m.u >= 0) & (m.u <= 1) & (m.v >= 0) & (m.u_plus_v <= 1) & (m.t > range.min) &
            (m.t < range.max);
 }
 
@@ -193,7 +197,8 @@ inline bool intersect_triangle_moller_trumbore(const Ray& ray, const Triangle& t
     coordinates(tri.v0, v0);
     coordinates(tri.v1, v1);
     coordinates(tri.v2, v2);
-    const MollerTrumboreTerms<Real> m = moller_trumbore_terms(origin, direction, v0, v1, v2);
+    const auto fma = [](Real a, Real b, Real c) { return std::fma(a, b, c); };
+    const MollerTrumboreTerms<Real> m = moller_trumbore_terms(origin, direction, v0, v1, v2, fma);
     if (!moller_trumbore_inside(m, range)) return false;
     hit = {m.t, m.u, m.v};
     return true;

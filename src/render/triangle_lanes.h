@@ -144,12 +144,14 @@ struct MollerTrumboreLaneTester {
 
     // Bit i of the result is set where triangle first + i, of the first `lanes`, is hit inside
     // `range`; hits[i] is then its hit.
-    unsigned candidates(uint32_t first, int lanes, Interval range, TriangleHit (&hits)[kTriangleLanes]) const {
+    [[gnu::always_inline]] unsigned candidates(uint32_t first, int lanes, Interval range,
+                                               TriangleHit (&hits)[kTriangleLanes]) const {
         RealLanes v[3][3];
         for (int vertex = 0; vertex < 3; ++vertex)
             for (int axis = 0; axis < 3; ++axis)
                 std::memcpy(&v[vertex][axis], triangles.column(vertex, axis) + first, sizeof(RealLanes));
-        const MollerTrumboreTerms<RealLanes> m = moller_trumbore_terms(origin, direction, v[0], v[1], v[2]);
+        const auto fma = [](RealLanes a, RealLanes b, RealLanes c) { return fma_lanes(a, b, c); };
+        const MollerTrumboreTerms<RealLanes> m = moller_trumbore_terms(origin, direction, v[0], v[1], v[2], fma);
         const unsigned mask = lanes_true(moller_trumbore_inside(m, range)) & ((1u << lanes) - 1);
         for (unsigned bits = mask; bits != 0; bits &= bits - 1) {
             const int i = __builtin_ctz(bits);

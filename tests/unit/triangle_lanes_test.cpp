@@ -81,6 +81,13 @@ std::vector<Ray> test_rays(std::mt19937_64& random, const std::vector<Triangle>&
     return out;
 }
 
+// The two hits' t, u and v are the same numbers, bit for bit.
+void expect_same_hit(const TriangleHit& vector, const TriangleHit& scalar) {
+    EXPECT_EQ(std::bit_cast<uint64_t>(double(vector.t)), std::bit_cast<uint64_t>(double(scalar.t)));
+    EXPECT_EQ(std::bit_cast<uint64_t>(double(vector.u)), std::bit_cast<uint64_t>(double(scalar.u)));
+    EXPECT_EQ(std::bit_cast<uint64_t>(double(vector.v)), std::bit_cast<uint64_t>(double(scalar.v)));
+}
+
 TEST(TriangleLanes, EachLaneAnswersAsTheScalarTestBitForBit) {
     std::mt19937_64 random(7);
     const std::vector<Triangle> triangles = test_triangles(random);
@@ -108,21 +115,12 @@ TEST(TriangleLanes, EachLaneAnswersAsTheScalarTestBitForBit) {
                         ++compared;
                         if (!scalar_hit) continue;
                         ++hits;
-                        ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.t)), std::bit_cast<uint64_t>(double(scalar.t)));
-                        ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.u)), std::bit_cast<uint64_t>(double(scalar.u)));
-                        ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.v)), std::bit_cast<uint64_t>(double(scalar.v)));
+                        expect_same_hit(vector, scalar);
                     }
                 }
         }
     }
     EXPECT_GT(hits, compared / 200);  // not a test of misses alone
-}
-
-// The same bits, as numbers that compare equal (so that a failure prints the values).
-void expect_same_hit(const TriangleHit& vector, const TriangleHit& scalar) {
-    ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.t)), std::bit_cast<uint64_t>(double(scalar.t)));
-    ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.u)), std::bit_cast<uint64_t>(double(scalar.u)));
-    ASSERT_EQ(std::bit_cast<uint64_t>(double(vector.v)), std::bit_cast<uint64_t>(double(scalar.v)));
 }
 
 TEST(TriangleLanes, MollerTrumboreLanesAnswerAsTheScalarTestBitForBit) {
