@@ -88,29 +88,33 @@ void expect_same_hit(const TriangleHit& vector, const TriangleHit& scalar) {
     EXPECT_EQ(std::bit_cast<uint64_t>(double(vector.v)), std::bit_cast<uint64_t>(double(scalar.v)));
 }
 
-TEST(TriangleLanes, EachLaneAnswersAsTheScalarTestBitForBit) {
-    std::mt19937_64 random(7);
+// Every lane of LaneTester (its candidates, then finish) answers as `scalar_test(lanes, ray,
+// triangle, range, hit)` on random rays and triangles (seeded by `seed`), from every start, with
+// every lane count and over three ranges: the same triangles hit, at the same t, u and v.
+template <typename LaneTester, typename ScalarTest>
+void expect_each_lane_answers_as(ScalarTest scalar_test, uint64_t seed) {
+    std::mt19937_64 random(seed);
     const std::vector<Triangle> triangles = test_triangles(random);
     const Columns columns(triangles);
     const std::vector<Ray> rays = test_rays(random, triangles);
     const Interval ranges[] = {{0, kInfinity}, {Real(1e-3), Real(4)}, {Real(4), Real(9)}};
     int hits = 0, compared = 0;
     for (const Ray& ray : rays) {
-        const TriangleLaneTester lanes(ray, columns.view());
+        const LaneTester lanes(ray, columns.view());
         for (uint32_t first = 0; first < triangles.size(); ++first) {
             // Every start and every lane count: leaves begin anywhere and hold 1 to 4 here (the
             // lanes past them hold the next leaf's triangles, which must not count).
             const int most = int(std::min<size_t>(kTriangleLanes, triangles.size() - first));
             for (int count = 1; count <= most; ++count)
                 for (const Interval& range : ranges) {
-                    ShearedTriangle sheared[kTriangleLanes];
-                    const unsigned mask = lanes.candidates(first, count, range, sheared);
+                    typename LaneTester::Candidate candidates[kTriangleLanes];
+                    const unsigned mask = lanes.candidates(first, count, range, candidates);
                     ASSERT_EQ(mask >> count, 0u) << "a lane past the leaf's triangles";
                     for (int lane = 0; lane < count; ++lane) {
                         TriangleHit scalar, vector;
-                        const bool scalar_hit = intersect_triangle(lanes.shear, triangles[first + lane], range, scalar);
-                        const bool vector_hit = (mask >> lane & 1) && in_scaled_range(sheared[lane], range) &&
-                                                finish_triangle_hit(sheared[lane], range, vector);
+                        const bool scalar_hit = scalar_test(lanes, ray, triangles[first + lane], range, scalar);
+                        const bool vector_hit =
+                            (mask >> lane & 1) && LaneTester::finish(candidates, lane, range, vector);
                         ASSERT_EQ(vector_hit, scalar_hit) << "triangle " << first + lane;
                         ++compared;
                         if (!scalar_hit) continue;
@@ -123,37 +127,19 @@ TEST(TriangleLanes, EachLaneAnswersAsTheScalarTestBitForBit) {
     EXPECT_GT(hits, compared / 200);  // not a test of misses alone
 }
 
+TEST(TriangleLanes, EachLaneAnswersAsTheScalarTestBitForBit) {
+    expect_each_lane_answers_as<TriangleLaneTester>(
+        [](const TriangleLaneTester& lanes, const Ray&, const Triangle& triangle, Interval range, TriangleHit& hit) {
+            return intersect_triangle(lanes.shear, triangle, range, hit);
+        },
+        7);
+}
+
 TEST(TriangleLanes, MollerTrumboreLanesAnswerAsTheScalarTestBitForBit) {
-    std::mt19937_64 random(13);
-    const std::vector<Triangle> triangles = test_triangles(random);
-    const Columns columns(triangles);
-    const Interval ranges[] = {{0, kInfinity}, {Real(1e-3), Real(4)}, {Real(4), Real(9)}};
-    int hits = 0, compared = 0;
-    for (const Ray& ray : test_rays(random, triangles)) {
-        const MollerTrumboreLaneTester lanes(ray, columns.view());
-        for (uint32_t first = 0; first < triangles.size(); ++first) {
-            const int most = int(std::min<size_t>(kTriangleLanes, triangles.size() - first));
-            for (int count = 1; count <= most; ++count)
-                for (const Interval& range : ranges) {
-                    TriangleHit candidates[kTriangleLanes];
-                    const unsigned mask = lanes.candidates(first, count, range, candidates);
-                    ASSERT_EQ(mask >> count, 0u) << "a lane past the leaf's triangles";
-                    for (int lane = 0; lane < count; ++lane) {
-                        TriangleHit scalar, vector;
-                        const bool scalar_hit =
-                            intersect_triangle_moller_trumbore(ray, triangles[first + lane], range, scalar);
-                        const bool vector_hit =
-                            (mask >> lane & 1) && MollerTrumboreLaneTester::finish(candidates, lane, range, vector);
-                        ASSERT_EQ(vector_hit, scalar_hit) << "triangle " << first + lane;
-                        ++compared;
-                        if (!scalar_hit) continue;
-                        ++hits;
-                        expect_same_hit(vector, scalar);
-                    }
-                }
-        }
-    }
-    EXPECT_GT(hits, compared / 200);  // not a test of misses alone
+    expect_each_lane_answers_as<MollerTrumboreLaneTester>(
+        [](const MollerTrumboreLaneTester&, const Ray& ray, const Triangle& triangle, Interval range,
+           TriangleHit& hit) { return intersect_triangle_moller_trumbore(ray, triangle, range, hit); },
+        13);
 }
 
 TEST(TriangleLanes, CandidatesOfAWiderRangeFinishAsTheNarrowerRangesTest) {
