@@ -17,6 +17,7 @@ side-by-side measurements compare. `none` and `box` are not run
 where one render would take minutes: their times are extrapolated linearly in the triangle
 count from the largest mesh they ran on, and marked so.
 """
+
 import argparse
 import datetime
 import json
@@ -40,8 +41,18 @@ WORKLOADS = {"full": [], "crop": ["--crop", "auto"]}
 def mesh(level: int) -> pathlib.Path:
     path = ROOT / "out" / "bench" / f"bunny_sub{level}.obj"
     if level and not path.exists():
-        subprocess.run([sys.executable, ROOT / "tools" / "subdivide_obj.py", ROOT / "scenes" / "meshes" / "bunny.obj",
-                        path, "--passes", str(level)], check=True, stdout=subprocess.DEVNULL)
+        subprocess.run(
+            [
+                sys.executable,
+                ROOT / "tools" / "subdivide_obj.py",
+                ROOT / "scenes" / "meshes" / "bunny.obj",
+                path,
+                "--passes",
+                str(level),
+            ],
+            check=True,
+            stdout=subprocess.DEVNULL,
+        )
     return path
 
 
@@ -49,7 +60,7 @@ def run_json(command: list) -> dict:
     result = subprocess.run([str(c) for c in command], capture_output=True, text=True, cwd=ROOT)
     if result.returncode != 0:
         sys.exit(f"failed: {' '.join(map(str, command))}\n{result.stderr}")
-    return json.loads([l for l in result.stdout.splitlines() if l.startswith("{")][-1])
+    return json.loads([line for line in result.stdout.splitlines() if line.startswith("{")][-1])
 
 
 def tracer_command(level: int, accel: str, workload: str, threads: int, runs: int) -> list:
@@ -64,7 +75,9 @@ def embree_command(embree: pathlib.Path, level: int, workload: str, threads: int
 
 
 def machine() -> str:
-    model = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
+    model = next(
+        (line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")), "?"
+    )
     compiler = subprocess.run(["c++", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
     return f"{model}, {os.cpu_count()} cores visible, {platform.system()} {platform.release()}, {compiler}"
 
@@ -86,17 +99,27 @@ def measure_accelerators(args, results):
                 if not runs_of_accel:
                     base = results["tracer"][f"{workload}/{accel}/{MAX_LEVEL[accel]}"]
                     scale = TRIANGLES[level] / TRIANGLES[MAX_LEVEL[accel]]
-                    results["tracer"][key] = {"render_ms_median": base["render_ms_median"] * scale,
-                                              "build_ms": base["build_ms"] * scale, "extrapolated": True}
+                    results["tracer"][key] = {
+                        "render_ms_median": base["render_ms_median"] * scale,
+                        "build_ms": base["build_ms"] * scale,
+                        "extrapolated": True,
+                    }
                     continue
                 data = dict(runs_of_accel[-1])
                 data["render_ms_median"] = statistics.median(r["render_ms_median"] for r in runs_of_accel)
                 data["build_ms"] = statistics.median(r["build_ms"] for r in runs_of_accel)
                 results["tracer"][key] = data
-            ratios = [m["render_ms_median"] / s["render_ms_median"] for m, s in zip(rounds["median"], rounds["sah"])]
+            ratios = [
+                m["render_ms_median"] / s["render_ms_median"]
+                for m, s in zip(rounds["median"], rounds["sah"], strict=False)
+            ]
             results["tracer"][f"{workload}/median_over_sah/{level}"] = statistics.median(ratios)
-            print(f"{workload} level {level}: sah {results['tracer'][f'{workload}/sah/{level}']['render_ms_median']:.2f} ms, "
-                  f"median/sah {statistics.median(ratios):.2f}", flush=True)
+            print(
+                f"{workload} level {level}: "
+                f"sah {results['tracer'][f'{workload}/sah/{level}']['render_ms_median']:.2f} ms, "
+                f"median/sah {statistics.median(ratios):.2f}",
+                flush=True,
+            )
 
 
 def measure_embree(args, results, embree):
@@ -109,61 +132,90 @@ def measure_embree(args, results, embree):
                 render_ratios.append(b["render_ms_median"] / a["render_ms_median"])
                 build_ratios.append(b["build_ms"] / a["build_ms"])
             key = f"{workload}/{level}"
-            results["embree"][key] = {"render_ms_median": a["render_ms_median"], "build_ms": a["build_ms"],
-                                      "render_ratio": statistics.median(render_ratios),
-                                      "build_ratio": statistics.median(build_ratios),
-                                      "render_ratios": render_ratios, "build_ratios": build_ratios}
-            print(f"embree {key}: sah/embree render {statistics.median(render_ratios):.2f}x, "
-                  f"build {statistics.median(build_ratios):.2f}x", flush=True)
+            results["embree"][key] = {
+                "render_ms_median": a["render_ms_median"],
+                "build_ms": a["build_ms"],
+                "render_ratio": statistics.median(render_ratios),
+                "build_ratio": statistics.median(build_ratios),
+                "render_ratios": render_ratios,
+                "build_ratios": build_ratios,
+            }
+            print(
+                f"embree {key}: sah/embree render {statistics.median(render_ratios):.2f}x, "
+                f"build {statistics.median(build_ratios):.2f}x",
+                flush=True,
+            )
 
 
 def write_report(results, path_md: pathlib.Path, path_png: pathlib.Path):
     t = results["tracer"]
     e = results["embree"]
-    lines = [f"<!-- Written by tools/bench_bvh.py on {results['date']}; do not edit by hand. -->", "",
-             "## Measured figures", "", f"Machine: {results['machine']}. Threads: {results['threads']}. "
-             f"Medians of {results['runs']} renders per run; ratios to Embree: median of {results['pairs']} "
-             "alternating pairs. Times in ms; *italic* = extrapolated linearly from a smaller mesh.", ""]
-    for workload, title in (("full", "Full frame 1200x800"), ("crop", "Hit-dominated crop (the bunny's projected bounds + 4 px)")):
-        lines += [f"### {title}", "", "| triangles | none | box | median | sah | sah build | sah vs box | sah vs median |"
-                  + (" Embree render | Embree build | sah/Embree render | sah/Embree build |" if e else ""),
-                  "|---:|---:|---:|---:|---:|---:|---:|---:|" + ("---:|---:|---:|---:|" if e else "")]
+    lines = [
+        f"<!-- Written by tools/bench_bvh.py on {results['date']}; do not edit by hand. -->",
+        "",
+        "## Measured figures",
+        "",
+        f"Machine: {results['machine']}. Threads: {results['threads']}. "
+        f"Medians of {results['runs']} renders per run; ratios to Embree: median of {results['pairs']} "
+        "alternating pairs. Times in ms; *italic* = extrapolated linearly from a smaller mesh.",
+        "",
+    ]
+    for workload, title in (
+        ("full", "Full frame 1200x800"),
+        ("crop", "Hit-dominated crop (the bunny's projected bounds + 4 px)"),
+    ):
+        lines += [
+            f"### {title}",
+            "",
+            "| triangles | none | box | median | sah | sah build | sah vs box | sah vs median |"
+            + (" Embree render | Embree build | sah/Embree render | sah/Embree build |" if e else ""),
+            "|---:|---:|---:|---:|---:|---:|---:|---:|" + ("---:|---:|---:|---:|" if e else ""),
+        ]
         for level in LEVELS:
-            def cell(accel, field="render_ms_median"):
+
+            def cell(accel, field="render_ms_median", workload=workload, level=level):
                 r = t[f"{workload}/{accel}/{level}"]
                 text = f"{r[field]:.1f}" if r[field] >= 10 else f"{r[field]:.2f}"
                 return f"*{text}*" if r.get("extrapolated") else text
+
             sah = t[f"{workload}/sah/{level}"]["render_ms_median"]
-            row = (f"| {TRIANGLES[level]:,} | {cell('none')} | {cell('box')} | {cell('median')} | {cell('sah')} | "
-                   f"{cell('sah', 'build_ms')} | {t[f'{workload}/box/{level}']['render_ms_median'] / sah:.0f}x | "
-                   f"{t[f'{workload}/median_over_sah/{level}']:.2f}x |")
+            row = (
+                f"| {TRIANGLES[level]:,} | {cell('none')} | {cell('box')} | {cell('median')} | {cell('sah')} | "
+                f"{cell('sah', 'build_ms')} | {t[f'{workload}/box/{level}']['render_ms_median'] / sah:.0f}x | "
+                f"{t[f'{workload}/median_over_sah/{level}']:.2f}x |"
+            )
             if e:
                 r = e[f"{workload}/{level}"]
-                row += (f" {r['render_ms_median']:.1f} | {r['build_ms']:.1f} | {r['render_ratio']:.2f} | "
-                        f"{r['build_ratio']:.2f} |")
+                row += (
+                    f" {r['render_ms_median']:.1f} | {r['build_ms']:.1f} | {r['render_ratio']:.2f} | "
+                    f"{r['build_ratio']:.2f} |"
+                )
             lines.append(row)
         lines.append("")
     lines.append(f"![render and build time against triangle count](performance-{results['threads']}t.png)")
     path_md.write_text("\n".join(lines) + "\n")
     try:
         import matplotlib
+
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
         print("matplotlib missing (apt-get install python3-matplotlib): no chart written")
         return
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
-    counts = [TRIANGLES[l] for l in LEVELS]
-    for ax, workload, field, title in ((axes[0], "full", "render_ms_median", "render, full frame"),
-                                       (axes[1], "crop", "render_ms_median", "render, crop"),
-                                       (axes[2], "full", "build_ms", "build")):
-        for accel in (["median", "sah"] if field == "build_ms" else ["none", "box", "median", "sah"]):
-            values = [t[f"{workload}/{accel}/{l}"][field] for l in LEVELS]
-            measured = [not t[f"{workload}/{accel}/{l}"].get("extrapolated") for l in LEVELS]
+    counts = [TRIANGLES[level] for level in LEVELS]
+    for ax, workload, field, title in (
+        (axes[0], "full", "render_ms_median", "render, full frame"),
+        (axes[1], "crop", "render_ms_median", "render, crop"),
+        (axes[2], "full", "build_ms", "build"),
+    ):
+        for accel in ["median", "sah"] if field == "build_ms" else ["none", "box", "median", "sah"]:
+            values = [t[f"{workload}/{accel}/{level}"][field] for level in LEVELS]
+            measured = [not t[f"{workload}/{accel}/{level}"].get("extrapolated") for level in LEVELS]
             ax.plot(counts, values, "-" if all(measured) else "--", marker="o", label=accel)
         if e:
             key = "render_ms_median" if field != "build_ms" else "build_ms"
-            ax.plot(counts, [e[f"{workload}/{l}"][key] for l in LEVELS], "k:", marker="s", label="Embree 3")
+            ax.plot(counts, [e[f"{workload}/{level}"][key] for level in LEVELS], "k:", marker="s", label="Embree 3")
         ax.set(xscale="log", yscale="log", xlabel="triangles", ylabel="ms", title=title)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
@@ -188,8 +240,15 @@ def main() -> int:
     else:
         if not BENCH.exists():
             subprocess.run([ROOT / "tools" / "bootstrap"], check=True)
-        results = {"date": datetime.date.today().isoformat(), "machine": machine(), "threads": args.threads,
-                   "runs": args.runs, "pairs": args.pairs, "tracer": {}, "embree": {}}
+        results = {
+            "date": datetime.date.today().isoformat(),
+            "machine": machine(),
+            "threads": args.threads,
+            "runs": args.runs,
+            "pairs": args.pairs,
+            "tracer": {},
+            "embree": {},
+        }
         embree = args.embree
         if embree is None and (SHARED_EMBREE / "build.sh").exists():
             build_dir = ROOT / "out" / "embree-whitted"
@@ -201,8 +260,12 @@ def main() -> int:
         else:
             print("no embree_bench: the comparison with Embree is skipped")
         data_path.write_text(json.dumps(results, indent=1) + "\n")
-    write_report(results, ROOT / "docs" / f"performance-tables-{suffix}.md", ROOT / "docs" / f"performance-{suffix}.png")
-    print(f"wrote docs/performance-data-{suffix}.json, docs/performance-tables-{suffix}.md, docs/performance-{suffix}.png")
+    write_report(
+        results, ROOT / "docs" / f"performance-tables-{suffix}.md", ROOT / "docs" / f"performance-{suffix}.png"
+    )
+    print(
+        f"wrote docs/performance-data-{suffix}.json, docs/performance-tables-{suffix}.md, docs/performance-{suffix}.png"
+    )
     return 0
 
 

@@ -9,6 +9,7 @@ The package's index.js holds `exports.positions=[[x,y,z],...]` and `exports.cell
 (0-based). Each number is copied as text, exactly as the package writes it; cells become
 1-based `f` lines. Nothing is rescaled: scenes place the mesh with their own transform.
 """
+
 import argparse
 import pathlib
 import re
@@ -34,7 +35,7 @@ def convert(index_js: str) -> str:
         sys.exit(f"unexpected package contents: {len(positions)} vertices, {len(cells)} triangles")
     lines = [
         "# The Stanford bunny (Stanford Computer Graphics Laboratory), from the npm package",
-        "# bunny 1.0.1 by Mikola Lysenko, licence \"Public Domain\". Written by",
+        '# bunny 1.0.1 by Mikola Lysenko, licence "Public Domain". Written by',
         "# tools/make_bunny_obj.py: numbers exactly as index.js has them, cells made 1-based.",
         f"# {len(positions)} vertices, {len(cells)} triangles, closed, no normals.",
     ]

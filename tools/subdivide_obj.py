@@ -9,6 +9,7 @@ a closed mesh stays closed and the surface does not change. Orientation is kept.
 `v` and triangular `f` lines (as tools/make_bunny_obj.py writes them); the bunny's 3,674
 triangles become 14,696 / 58,784 / 235,136 / 940,544 after 1 / 2 / 3 / 4 passes.
 """
+
 import argparse
 import pathlib
 import sys
@@ -38,7 +39,7 @@ def subdivide(vertices, faces):
         key = (a, b) if a < b else (b, a)
         if key not in midpoints:
             pa, pb = vertices[a], vertices[b]
-            vertices.append(tuple((x + y) / 2 for x, y in zip(pa, pb)))
+            vertices.append(tuple((x + y) / 2 for x, y in zip(pa, pb, strict=False)))
             midpoints[key] = len(vertices) - 1
         return midpoints[key]
 
@@ -60,8 +61,10 @@ def main() -> int:
         vertices, faces = subdivide(vertices, faces)
     args.output.parent.mkdir(parents=True, exist_ok=True)
     with args.output.open("w") as out:
-        out.write(f"# {args.input.name} after {args.passes} pass(es) of 1-to-4 midpoint subdivision "
-                  f"(tools/subdivide_obj.py): {len(vertices)} vertices, {len(faces)} triangles\n")
+        out.write(
+            f"# {args.input.name} after {args.passes} pass(es) of 1-to-4 midpoint subdivision "
+            f"(tools/subdivide_obj.py): {len(vertices)} vertices, {len(faces)} triangles\n"
+        )
         out.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in vertices)
         out.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in faces)
     print(f"{args.output}: {len(faces)} triangles")

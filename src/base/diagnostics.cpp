@@ -144,12 +144,9 @@ std::string in_quotes(std::string_view text) {
 
 static const char* severity_name(Severity severity) {
     switch (severity) {
-        case Severity::Error:
-            return "error";
-        case Severity::Warning:
-            return "warning";
-        case Severity::Note:
-            return "note";
+        case Severity::Error: return "error";
+        case Severity::Warning: return "warning";
+        case Severity::Note: return "note";
     }
     return "error";
 }

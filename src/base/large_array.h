@@ -47,10 +47,16 @@ struct LargeArrayAllocator {
     // Elements made without arguments are default-initialised, not zeroed: a large array is
     // filled by its user, often in parallel, and zeroing it first would touch it all twice.
     template <typename U>
-    void construct(U* p) { ::new (static_cast<void*>(p)) U; }
+    void construct(U* p) {
+        ::new (static_cast<void*>(p)) U;
+    }
     template <typename U, typename... Args>
-    void construct(U* p, Args&&... args) { ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...); }
-    bool operator==(const LargeArrayAllocator&) const { return true; }
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+    bool operator==(const LargeArrayAllocator&) const {
+        return true;
+    }
 };
 
 template <typename T>

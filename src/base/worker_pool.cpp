@@ -10,7 +10,9 @@ namespace {
 constexpr auto kSpinTime = std::chrono::milliseconds(20);
 
 // Lets another thread have this core (for when there are more threads than cores).
-void cpu_relax() { std::this_thread::yield(); }
+void cpu_relax() {
+    std::this_thread::yield();
+}
 
 }  // namespace
 

@@ -22,8 +22,8 @@ struct Value {
     double number = 0;               // Number
     std::vector<double> components;  // Vector
     std::vector<Span> component_spans;
-    std::string text;                // String (contents) or Identifier
-    std::shared_ptr<Body> body;      // Block (an inline block such as `material { ... }`)
+    std::string text;            // String (contents) or Identifier
+    std::shared_ptr<Body> body;  // Block (an inline block such as `material { ... }`)
 };
 
 struct Entry {

@@ -48,16 +48,11 @@ Value vector_value(std::vector<double> components, Span span) {
 // "a number", "a vector of 3 numbers", ...
 std::string kind_of(const Value& value) {
     switch (value.kind) {
-        case Value::Kind::Number:
-            return "a number";
-        case Value::Kind::Vector:
-            return "a vector of " + std::to_string(value.components.size()) + " numbers";
-        case Value::Kind::String:
-            return "a string";
-        case Value::Kind::Identifier:
-            return "the word " + in_quotes(value.text);
-        case Value::Kind::Block:
-            return "a block";
+        case Value::Kind::Number: return "a number";
+        case Value::Kind::Vector: return "a vector of " + std::to_string(value.components.size()) + " numbers";
+        case Value::Kind::String: return "a string";
+        case Value::Kind::Identifier: return "the word " + in_quotes(value.text);
+        case Value::Kind::Block: return "a block";
     }
     return "a value";
 }
@@ -199,19 +194,11 @@ void Interpreter::run_statements(const std::vector<Statement>& statements, uint3
     for (const Statement& statement : statements) {
         if (stopped_ || diagnostics_.saturated()) return;
         switch (statement.kind) {
-            case Statement::Kind::Block:
-                run_block(statement, origin);
-                break;
+            case Statement::Kind::Block: run_block(statement, origin); break;
             case Statement::Kind::Let:
-            case Statement::Kind::Param:
-                run_binding(statement, origin);
-                break;
-            case Statement::Kind::For:
-                run_loop(statement, origin);
-                break;
-            case Statement::Kind::Include:
-                run_include(statement, origin);
-                break;
+            case Statement::Kind::Param: run_binding(statement, origin); break;
+            case Statement::Kind::For: run_loop(statement, origin); break;
+            case Statement::Kind::Include: run_include(statement, origin); break;
         }
     }
 }
@@ -438,8 +425,7 @@ const std::vector<double>& Interpreter::vector_operand(const Value& value, const
 Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
     const Span span = at(expr.span, origin);
     switch (expr.kind) {
-        case Expr::Kind::Number:
-            return number_value(expr.number, span);
+        case Expr::Kind::Number: return number_value(expr.number, span);
         case Expr::Kind::String: {
             Value value;
             value.kind = Value::Kind::String;
@@ -447,8 +433,7 @@ Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
             value.span = span;
             return value;
         }
-        case Expr::Kind::Name:
-            return evaluate_name(expr, origin, top);
+        case Expr::Kind::Name: return evaluate_name(expr, origin, top);
         case Expr::Kind::Vector: {
             Value value;
             value.kind = Value::Kind::Vector;
@@ -473,14 +458,10 @@ Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
             if (is_vector(value)) value.component_spans.assign(value.components.size(), span);
             return value;
         }
-        case Expr::Kind::Binary:
-            return evaluate_binary(expr, origin);
-        case Expr::Kind::Call:
-            return evaluate_call(expr, origin);
-        case Expr::Kind::Component:
-            return evaluate_component(expr, origin);
-        case Expr::Kind::Block:
-            fail(span, "a block { ... } is not a value here");
+        case Expr::Kind::Binary: return evaluate_binary(expr, origin);
+        case Expr::Kind::Call: return evaluate_call(expr, origin);
+        case Expr::Kind::Component: return evaluate_component(expr, origin);
+        case Expr::Kind::Block: fail(span, "a block { ... } is not a value here");
     }
     fail(span, "not a value");
 }

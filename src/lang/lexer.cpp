@@ -9,8 +9,12 @@ namespace tracer {
 static bool is_ident_start(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
 }
-static bool is_digit(char c) { return c >= '0' && c <= '9'; }
-static bool is_ident_char(char c) { return is_ident_start(c) || is_digit(c); }
+static bool is_digit(char c) {
+    return c >= '0' && c <= '9';
+}
+static bool is_ident_char(char c) {
+    return is_ident_start(c) || is_digit(c);
+}
 
 std::string describe(TokenKind kind) {
     switch (kind) {
@@ -157,8 +161,7 @@ Token Lexer::lex_number(uint32_t begin) {
         return token;
     }
     std::string_view digits_text = token.text;
-    auto [end, status] = std::from_chars(digits_text.data(), digits_text.data() + digits_text.size(),
-                                         token.number);
+    auto [end, status] = std::from_chars(digits_text.data(), digits_text.data() + digits_text.size(), token.number);
     if (status == std::errc::result_out_of_range && !overflows(digits_text)) {
         token.number = 0;  // underflow: tiny numbers round to zero, as everywhere else
     } else if (status != std::errc() || end != digits_text.data() + digits_text.size() ||
@@ -172,12 +175,9 @@ Token Lexer::lex_number(uint32_t begin) {
 // Other scene languages' directives, written out of habit, are comments here: say so once each.
 void Lexer::warn_about_directive(uint32_t begin) {
     static const std::pair<std::string_view, std::string_view> kHints[] = {
-        {"#include", "write include \"file.scn\""},
-        {"#declare", "write let NAME = value"},
-        {"#local", "write let NAME = value"},
-        {"#for", "write for NAME in A..B { ... }"},
-        {"#while", "write for NAME in A..B { ... }"},
-        {"#if", "tracer has no conditionals"},
+        {"#include", "write include \"file.scn\""},   {"#declare", "write let NAME = value"},
+        {"#local", "write let NAME = value"},         {"#for", "write for NAME in A..B { ... }"},
+        {"#while", "write for NAME in A..B { ... }"}, {"#if", "tracer has no conditionals"},
     };
     const std::string_view rest = text_.substr(begin);
     for (const auto& [directive, instead] : kHints) {
@@ -195,8 +195,7 @@ Token Lexer::lex_string(uint32_t begin) {
     ++pos_;
     std::string value;
     while (pos_ < text_.size() && text_[pos_] != '"' && text_[pos_] != '\n') {
-        if (text_[pos_] == '\\' && pos_ + 1 < text_.size() &&
-            (text_[pos_ + 1] == '"' || text_[pos_ + 1] == '\\'))
+        if (text_[pos_] == '\\' && pos_ + 1 < text_.size() && (text_[pos_ + 1] == '"' || text_[pos_ + 1] == '\\'))
             ++pos_;
         value += text_[pos_++];
     }

@@ -291,7 +291,8 @@ void Parser::parse_body(BodyCode& body, const std::string& owner) {
             const Token& next = peek();
             std::string where = at(TokenKind::End) ? "at end of file" : "before " + describe(next);
             Diagnostic* d = diagnostics_.error(file_, next.span, "expected '}' " + where);
-            Diagnostics::note(d, file_, open_.back().span, "to close the '" + open_.back().owner + "' block opened here");
+            Diagnostics::note(d, file_, open_.back().span,
+                              "to close the '" + open_.back().owner + "' block opened here");
             throw UnclosedBlock{};
         }
         parse_entry(body);
@@ -438,11 +439,8 @@ Expr Parser::parse_primary() {
             if (!at(TokenKind::LParen)) return value;
             value.kind = Expr::Kind::Call;
             break;
-        case TokenKind::LParen:
-            value.kind = Expr::Kind::Vector;
-            break;
-        default:
-            fail(token, "expected a value, found " + describe(token));
+        case TokenKind::LParen: value.kind = Expr::Kind::Vector; break;
+        default: fail(token, "expected a value, found " + describe(token));
     }
     // The parenthesised list of a call or a vector.
     if (++depth_ > kMaxDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");

@@ -27,8 +27,7 @@ std::string allowed_text(const KeySpec& key) {
     if (key.nonzero) text += text.empty() ? "not zero length" : "; not zero length";
     if (key.perfect_square) text += "; a perfect square";
     if (key.mirror_size) text += "not 0, at least 1e-30 in size (each component; negative mirrors)";
-    for (size_t i = 0; i < key.choices.size(); ++i)
-        text += (i == 0 ? "`" : ", `") + std::string(key.choices[i]) + "`";
+    for (size_t i = 0; i < key.choices.size(); ++i) text += (i == 0 ? "`" : ", `") + std::string(key.choices[i]) + "`";
     return text.empty() ? "any" : text;
 }
 
@@ -62,8 +61,8 @@ std::string reference_markdown() {
         out << "| key | type | default | allowed | meaning |\n|---|---|---|---|---|\n";
         for (const KeySpec& key : spec->keys) {
             out << "| `" << key.name << "` | " << describe(key.type) << " | "
-                << (key.required() ? std::string("required") : "`" + std::string(key.default_value) + "`")
-                << " | " << allowed_text(key) << " | " << key.meaning << " |\n";
+                << (key.required() ? std::string("required") : "`" + std::string(key.default_value) + "`") << " | "
+                << allowed_text(key) << " | " << key.meaning << " |\n";
         }
         if (!spec->example.empty()) out << "\nExample:\n\n```scn\n" << spec->example << "```\n";
     }

@@ -11,8 +11,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // Key constructors, so each table row reads: name, type, default, range, meaning.
-KeySpec key(std::string_view name, ValueType type, std::string_view default_value,
-            std::string_view meaning) {
+KeySpec key(std::string_view name, ValueType type, std::string_view default_value, std::string_view meaning) {
     KeySpec spec{};
     spec.name = name;
     spec.type = type;
@@ -48,6 +47,8 @@ KeySpec nested(KeySpec spec, const BlockSpec* block) {
     return spec;
 }
 
+// The block tables, one row per key (clang-format would break each row into one line per field).
+// clang-format off
 const BlockSpec kRender{
     "render", false, true, Occurs::AtMostOnce,
     "Image and tracing settings. The whole block is optional.",
@@ -238,6 +239,7 @@ const BlockSpec kLight{
     },
     "light {\n  position (0, 3, -2)\n  color 0.2\n}\n",
 };
+// clang-format on
 
 }  // namespace
 
@@ -248,9 +250,8 @@ const KeySpec* BlockSpec::find_key(std::string_view key_name) const {
 }
 
 const std::vector<const BlockSpec*>& all_block_specs() {
-    static const std::vector<const BlockSpec*> specs{&kCamera, &kRender,   &kMaterial, &kSphere, &kPlane,
-                                                     &kMesh,   &kTriangle, &kQuad,     &kBox,    &kRotate,
-                                                     &kTransform, &kLight};
+    static const std::vector<const BlockSpec*> specs{&kCamera,   &kRender, &kMaterial, &kSphere, &kPlane,     &kMesh,
+                                                     &kTriangle, &kQuad,   &kBox,      &kRotate, &kTransform, &kLight};
     return specs;
 }
 

@@ -25,17 +25,13 @@ namespace fs = std::filesystem;
 
 std::string describe_found(const Value& value) {
     switch (value.kind) {
-        case Value::Kind::Number:
-            return "the number " + format_number(value.number);
+        case Value::Kind::Number: return "the number " + format_number(value.number);
         case Value::Kind::Vector:
             return "a vector with " + std::to_string(value.components.size()) + " component" +
                    (value.components.size() == 1 ? "" : "s");
-        case Value::Kind::String:
-            return "a string";
-        case Value::Kind::Identifier:
-            return in_quotes(value.text);
-        case Value::Kind::Block:
-            return "a block { ... }";
+        case Value::Kind::String: return "a string";
+        case Value::Kind::Identifier: return in_quotes(value.text);
+        case Value::Kind::Block: return "a block { ... }";
     }
     return "a value";
 }
@@ -217,7 +213,8 @@ void Validator::resolve_later_materials() {
         }
         std::vector<std::string_view> names;
         for (const auto& [name, material] : named_) names.push_back(name);
-        diagnostics_.error(file_, use.span, "undefined material " + in_quotes(use.name) + did_you_mean(use.name, names));
+        diagnostics_.error(file_, use.span,
+                           "undefined material " + in_quotes(use.name) + did_you_mean(use.name, names));
     }
     auto resolve = [&](auto& shapes) {
         for (auto& shape : shapes)
@@ -402,8 +399,7 @@ bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fiel
             if (value.kind == Kind::Identifier && (value.text == "true" || value.text == "false")) return true;
             return type_error(value, key,
                               value.kind == Kind::Identifier ? did_you_mean(value.text, {"true", "false"}) : "");
-        case ValueType::Vector:
-            return value.kind == Kind::Vector ? check_vector() : type_error(value, key);
+        case ValueType::Vector: return value.kind == Kind::Vector ? check_vector() : type_error(value, key);
         case ValueType::Triple:
             if (value.kind == Kind::Number) return check_number(value.number, value.span, key);
             return value.kind == Kind::Vector ? check_vector() : type_error(value, key);
@@ -751,7 +747,9 @@ SceneBuilder::SceneBuilder(const Sources& sources, Diagnostics& diagnostics, con
     : state_(std::make_unique<State>(State{Validator(sources, diagnostics, options)})) {}
 SceneBuilder::~SceneBuilder() = default;
 
-void SceneBuilder::add(const Block& block) { state_->validator.accept(block); }
+void SceneBuilder::add(const Block& block) {
+    state_->validator.accept(block);
+}
 
 std::optional<SceneDescription> SceneBuilder::finish(const std::vector<std::pair<std::string, Value>>& parameters) {
     state_->validator.set_parameters(parameters);

@@ -7,10 +7,10 @@
 #include <string>
 #include <string_view>
 
-#include "lang/ast.h"
 #include "base/diagnostics.h"
-#include "scene/scene.h"
 #include "base/source.h"
+#include "lang/ast.h"
+#include "scene/scene.h"
 
 namespace tracer {
 

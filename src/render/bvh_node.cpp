@@ -14,7 +14,9 @@ float next_up(float f) {
     const uint32_t bits = std::bit_cast<uint32_t>(f);
     return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
 }
-float next_down(float f) { return -next_up(-f); }
+float next_down(float f) {
+    return -next_up(-f);
+}
 
 }  // namespace
 
@@ -57,6 +59,8 @@ TraversalRay::TraversalRay(const Ray& ray, Interval range) {
     t_max = round_up(range.max);
 }
 
-void TraversalRay::clip(Real t) { t_max = std::min(t_max, round_up(t)); }
+void TraversalRay::clip(Real t) {
+    t_max = std::min(t_max, round_up(t));
+}
 
 }  // namespace tracer

@@ -113,15 +113,16 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
         const auto& shapes = mesh["shapes"];
         std::string name = shapes.empty() ? mesh["file"].get<std::string>() : shapes[0].get<std::string>();
         if (shapes.size() > 1) {
-            name += " and " + std::to_string(shapes.size() - 1) + " more" + (mesh["placed"].get<bool>() ? ", merged" : "");
+            name +=
+                " and " + std::to_string(shapes.size() - 1) + " more" + (mesh["placed"].get<bool>() ? ", merged" : "");
             constexpr size_t kNamed = 4;
             for (size_t i = 1; i < std::min(shapes.size(), kNamed); ++i)
                 name += (i == 1 ? " (" : ", ") + shapes[i].get<std::string>();
             name += shapes.size() > kNamed ? ", ...)" : ")";
         }
         std::snprintf(line, sizeof line, "mesh %s: %zu triangles, %s built in %.3f ms", name.c_str(),
-                      mesh["triangles"].get<size_t>(),
-                      s["accel"].get<std::string>().c_str(), mesh["build_seconds"].get<double>() * 1e3);
+                      mesh["triangles"].get<size_t>(), s["accel"].get<std::string>().c_str(),
+                      mesh["build_seconds"].get<double>() * 1e3);
         out += line;
         if (mesh.contains("nodes")) {
             std::snprintf(line, sizeof line, ": %zu nodes, %zu leaves, depth %d, leaf size %zu..%zu (mean %.2f)",

@@ -4,14 +4,10 @@ namespace tracer {
 
 const char* accelerator_name(Accelerator accelerator) {
     switch (accelerator) {
-        case Accelerator::None:
-            return "none";
-        case Accelerator::Box:
-            return "box";
-        case Accelerator::Median:
-            return "median";
-        case Accelerator::Sah:
-            return "sah";
+        case Accelerator::None: return "none";
+        case Accelerator::Box: return "box";
+        case Accelerator::Median: return "median";
+        case Accelerator::Sah: return "sah";
     }
     return "sah";
 }

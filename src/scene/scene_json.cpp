@@ -7,12 +7,14 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json vec(const dvec3& v) { return Json::array({v.x, v.y, v.z}); }
+Json vec(const dvec3& v) {
+    return Json::array({v.x, v.y, v.z});
+}
 
 Json material_json(const SceneDescription& scene, int index) {
     const Material& m = scene.materials.at(size_t(index));
-    return Json{{"name", m.name}, {"ka", vec(m.ka)}, {"kd", vec(m.kd)}, {"ks", vec(m.ks)},
-                {"km", vec(m.km)}, {"n", m.n}, {"kt", vec(m.kt)}, {"ior", m.ior}};
+    return Json{{"name", m.name},  {"ka", vec(m.ka)}, {"kd", vec(m.kd)}, {"ks", vec(m.ks)},
+                {"km", vec(m.km)}, {"n", m.n},        {"kt", vec(m.kt)}, {"ior", m.ior}};
 }
 
 // Where a shape is placed: its scale, rotate and translate keys, or its transform's steps.
@@ -28,8 +30,7 @@ void add_placement(Json& out, const Placed& placed) {
         if (step.kind == TransformStep::Kind::Scale) out["transform"].push_back({{"scale", vec(step.vector)}});
         if (step.kind == TransformStep::Kind::Rotate)
             out["transform"].push_back({{"rotate", {{"axis", vec(step.vector)}, {"angle", step.degrees}}}});
-        if (step.kind == TransformStep::Kind::Translate)
-            out["transform"].push_back({{"translate", vec(step.vector)}});
+        if (step.kind == TransformStep::Kind::Translate) out["transform"].push_back({{"translate", vec(step.vector)}});
     }
 }
 
@@ -53,13 +54,20 @@ Json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes) {
             out["parameters"][p.name] = p.vector ? Json(p.value) : Json(p.value.at(0));
     }
     const RenderSettings& r = scene.render;
-    out["render"] = {{"width", r.width},          {"height", r.height},
-                     {"max_depth", r.max_depth},  {"samples", r.samples},
-                     {"background", vec(r.background)}, {"shadows", r.shadows},
-                     {"accel", accelerator_name(r.accel)}, {"leaf_size", r.leaf_size}};
+    out["render"] = {{"width", r.width},
+                     {"height", r.height},
+                     {"max_depth", r.max_depth},
+                     {"samples", r.samples},
+                     {"background", vec(r.background)},
+                     {"shadows", r.shadows},
+                     {"accel", accelerator_name(r.accel)},
+                     {"leaf_size", r.leaf_size}};
     const Camera& c = scene.camera;
-    out["camera"] = {{"eye", vec(c.eye)}, {"lookat", vec(c.lookat)}, {"up", vec(c.up)},
-                     {"fovy", c.fovy_degrees}, {"focal", c.focal}};
+    out["camera"] = {{"eye", vec(c.eye)},
+                     {"lookat", vec(c.lookat)},
+                     {"up", vec(c.up)},
+                     {"fovy", c.fovy_degrees},
+                     {"focal", c.focal}};
     out["spheres"] = Json::array();
     for (const Sphere& s : scene.spheres)
         out["spheres"].push_back(

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
 """The command line's contract: exit codes, nothing written on failure, the JSON dump.
 
-    test_cli.py --tracer build/release/tracer
+test_cli.py --tracer build/release/tracer
 """
+
 import argparse
 import hashlib
 import json
-import os
 import pathlib
 import signal
 import subprocess
@@ -74,7 +74,11 @@ class CommandLine(unittest.TestCase):
 
     def test_size_and_samples_override_the_render_block(self):
         # One of width and height alone keeps the scene's aspect ratio (64 x 48: 4 to 3).
-        for size, expected in ((["--width", "32"], (32, 24)), (["--height", "12"], (16, 12)), (["--width", "7"], (7, 5))):
+        for size, expected in (
+            (["--width", "32"], (32, 24)),
+            (["--height", "12"], (16, 12)),
+            (["--width", "7"], (7, 5)),
+        ):
             render = json.loads(run("--dump-json", self.small, *size).stdout)["render"]
             self.assertEqual((render["width"], render["height"]), expected)
         result = run("--dump-json", self.small, "--width", "30", "--height", "20", "--samples", "9")
@@ -101,7 +105,9 @@ class CommandLine(unittest.TestCase):
             for value in values:
                 with self.subTest(key=key, value=value):
                     scene = self.tmp / "override.scn"
-                    scene.write_text(SMALL_SCENE.replace("render { width 64 height 48 }", f"render {{ {key} {value} }}"))
+                    scene.write_text(
+                        SMALL_SCENE.replace("render { width 64 height 48 }", f"render {{ {key} {value} }}")
+                    )
                     in_scene = run("--check", scene)
                     option = "--" + key.replace("_", "-")
                     on_command_line = run("--check", self.small, option, value)
@@ -162,8 +168,9 @@ class CommandLine(unittest.TestCase):
         result = run("--check", scene)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("1 meshes, 1 quads, 1 lights", result.stdout)
-        self.assertIn("mesh cube.obj (line 3): 12 triangles, 8 vertices, placed within (-2, 0, -1) to (2, 2, 1)",
-                      result.stdout)
+        self.assertIn(
+            "mesh cube.obj (line 3): 12 triangles, 8 vertices, placed within (-2, 0, -1) to (2, 2, 1)", result.stdout
+        )
         dumped = json.loads(run("--dump-json", scene).stdout)
         mesh = dumped["meshes"][0]
         self.assertEqual((mesh["triangles"], mesh["vertices"]), (12, 8))
@@ -260,9 +267,19 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         scene = json.loads(result.stdout)
         self.assertEqual(scene["source"], str(TASK2))
-        self.assertEqual(scene["render"], {"width": 1200, "height": 800, "max_depth": 4, "samples": 1,
-                                           "background": [0.0, 0.0, 0.0], "shadows": True,
-                                           "accel": "sah", "leaf_size": 4})
+        self.assertEqual(
+            scene["render"],
+            {
+                "width": 1200,
+                "height": 800,
+                "max_depth": 4,
+                "samples": 1,
+                "background": [0.0, 0.0, 0.0],
+                "shadows": True,
+                "accel": "sah",
+                "leaf_size": 4,
+            },
+        )
         self.assertEqual(scene["camera"]["fovy"], 45.0)
         self.assertEqual(len(scene["spheres"]), 4)
         self.assertEqual(scene["spheres"][3]["radius"], 1.0)
@@ -279,7 +296,9 @@ class CommandLine(unittest.TestCase):
     def test_stats_and_accelerator_options(self):
         mesh_scene = self.tmp / "mesh.scn"
         obj = ROOT / "scenes" / "meshes" / "tetrahedron.obj"
-        mesh_scene.write_text(SMALL_SCENE.replace("sphere {", f'mesh {{ file "{obj}" material {{ kd 1 }} }}\nsphere {{'))
+        mesh_scene.write_text(
+            SMALL_SCENE.replace("sphere {", f'mesh {{ file "{obj}" material {{ kd 1 }} }}\nsphere {{')
+        )
         stats_path = self.tmp / "stats.json"
         images = {}
         for accel in ("none", "box", "median", "sah"):
@@ -288,8 +307,11 @@ class CommandLine(unittest.TestCase):
             self.assertEqual(result.returncode, 0, result.stderr)
             self.assertRegex(result.stderr, r"mesh tetrahedron.obj \(line 3\): 4 triangles, " + accel)
             self.assertRegex(result.stderr, r"objects: 1 spheres, 0 planes, 1 mesh instances")
-            self.assertRegex(result.stderr, r"per ray [0-9.]+ object box tests, [0-9.]+ object tests, "
-                                            r"[0-9.]+ mesh box tests, [0-9.]+ triangle tests")
+            self.assertRegex(
+                result.stderr,
+                r"per ray [0-9.]+ object box tests, [0-9.]+ object tests, "
+                r"[0-9.]+ mesh box tests, [0-9.]+ triangle tests",
+            )
             stats = json.loads(stats_path.read_text())
             self.assertEqual(stats["accel"], accel)
             self.assertEqual(stats["meshes"][0]["triangles"], 4)

@@ -171,9 +171,7 @@ class Hangs(Hostile):
         self.write("big.scn", "# " + "x" * 1_000_000 + "\n")
         scene = self.write("loop.scn", SMALL_SCENE + 'for i in 0..100000 { include "big.scn" }\n')
         limits = [] if sanitized() else [(resource.RLIMIT_AS, 1 << 30)]
-        self.assertError(
-            run("--check", scene, limits=limits), 1, "the scene includes more than 256 MiB of text in all"
-        )
+        self.assertError(run("--check", scene, limits=limits), 1, "the scene includes more than 256 MiB of text in all")
 
     def test_fifo_and_devices_as_inputs(self):
         fifo = self.tmp / "pipe.obj"

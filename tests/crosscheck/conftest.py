@@ -25,8 +25,10 @@ def tracer_bin():
 @pytest.fixture(scope="session")
 def dump(tracer_bin):
     """dump(scene, *extra_args) -> the scene description dict from `tracer --dump-json`."""
+
     def run(scene, *extra):
         return json.loads(subprocess.check_output([tracer_bin, str(scene), "--dump-json", *extra]))
+
     return run
 
 
@@ -34,5 +36,10 @@ def run_tool(module, *args, env=None):
     """Runs `python -m xcheck.<module> args` as the launcher does; returns CompletedProcess."""
     paths = [env["PYTHONPATH"]] if env and "PYTHONPATH" in env else []
     environment = {**os.environ, **(env or {}), "PYTHONPATH": os.pathsep.join(paths + [str(ROOT / "tools")])}
-    return subprocess.run([sys.executable, "-m", f"xcheck.{module}", *map(str, args)],
-                          capture_output=True, text=True, env=environment, cwd=ROOT)
+    return subprocess.run(
+        [sys.executable, "-m", f"xcheck.{module}", *map(str, args)],
+        capture_output=True,
+        text=True,
+        env=environment,
+        cwd=ROOT,
+    )

@@ -14,8 +14,18 @@ SMALL = ["--width", "300"]  # 300 x 200 for the 1200 x 800 scenes
 
 @pytest.mark.parametrize("scene", ["task2", "bunny", "glass", "cubes", "room"])
 def test_tracer_and_mitsuba_agree_at_reduced_resolution(tracer_bin, tmp_path, scene):
-    result = run_tool("crosscheck", ROOT / "scenes" / f"{scene}.scn", *SMALL, "--out", tmp_path,
-                      "--max-over-2", "0.1", "--max-over-8", "0.05", "--json")
+    result = run_tool(
+        "crosscheck",
+        ROOT / "scenes" / f"{scene}.scn",
+        *SMALL,
+        "--out",
+        tmp_path,
+        "--max-over-2",
+        "0.1",
+        "--max-over-8",
+        "0.05",
+        "--json",
+    )
     assert result.returncode == 0, result.stdout + result.stderr
     report = json.loads(result.stdout)
     assert (report["width"], report["samples"]) == (300, 1)  # the height keeps the scene's aspect ratio
@@ -28,8 +38,17 @@ def test_tracer_and_mitsuba_agree_at_reduced_resolution(tracer_bin, tmp_path, sc
 def test_spd_scenes_agree_at_reduced_resolution(tracer_bin, tmp_path, scene):
     """The converted SPD scenes whose pixels are well-conditioned in float32 (docs/spd.md: balls,
     rings and tree are at full size in tools/spd, with their conditioning measured)."""
-    result = run_tool("crosscheck", ROOT / "scenes" / "spd" / f"{scene}.scn", "--width", "256", "--out", tmp_path,
-                      "--max-over-2", "0.1", "--json")
+    result = run_tool(
+        "crosscheck",
+        ROOT / "scenes" / "spd" / f"{scene}.scn",
+        "--width",
+        "256",
+        "--out",
+        tmp_path,
+        "--max-over-2",
+        "0.1",
+        "--json",
+    )
     assert result.returncode == 0, result.stdout + result.stderr
     assert json.loads(result.stdout)["over_2"] <= 0.001
 
@@ -97,8 +116,7 @@ def test_missing_mitsuba_exits_4_with_a_clear_message(tracer_bin, tmp_path):
     hidden = tmp_path / "hide"
     (hidden / "mitsuba").mkdir(parents=True)
     (hidden / "mitsuba" / "__init__.py").write_text("raise ImportError(\"No module named 'mitsuba'\")\n")
-    result = run_tool("crosscheck", HERE / "asymmetric.scn", "--out", tmp_path / "out",
-                      env={"PYTHONPATH": str(hidden)})
+    result = run_tool("crosscheck", HERE / "asymmetric.scn", "--out", tmp_path / "out", env={"PYTHONPATH": str(hidden)})
     assert result.returncode == 4
     assert "Mitsuba 3 is not usable" in result.stderr and "tools/bootstrap --python" in result.stderr
 
@@ -119,9 +137,9 @@ def test_metrics_of_identical_images():
 def test_metrics_count_levels_per_pixel():
     reference = np.full((10, 10, 3), 100 / 255, dtype=np.float32)
     test = reference.copy()
-    test[0, 0, 1] += 3 / 255   # one pixel 3 levels off (in green only)
-    test[5, 5] += 9 / 255      # one pixel 9 levels off
-    test[9, 9, 2] += 2 / 255   # one pixel 2 levels off: not over 2
+    test[0, 0, 1] += 3 / 255  # one pixel 3 levels off (in green only)
+    test[5, 5] += 9 / 255  # one pixel 9 levels off
+    test[9, 9, 2] += 2 / 255  # one pixel 2 levels off: not over 2
     result = metrics.compare(reference, test)
     assert (result.over_1, result.over_2, result.over_8) == (0.03, 0.02, 0.01)
     assert result.max_levels == 9
@@ -148,8 +166,10 @@ def test_a_real_difference_is_caught(dump, tmp_path):
 
 def test_a_scene_mitsuba_cannot_take_exits_5_before_rendering(tracer_bin, tmp_path):
     deep = tmp_path / "deep.scn"
-    deep.write_text("render { max_depth 65 }\ncamera { eye (0, 0, 5)  lookat (0, 0, 0) }\n"
-                    "sphere { center (0, 0, 0)  radius 1  material { kd 1 } }\nlight { position (1, 1, 3) }\n")
+    deep.write_text(
+        "render { max_depth 65 }\ncamera { eye (0, 0, 5)  lookat (0, 0, 0) }\n"
+        "sphere { center (0, 0, 0)  radius 1  material { kd 1 } }\nlight { position (1, 1, 3) }\n"
+    )
     result = run_tool("crosscheck", deep, "--out", tmp_path / "out")
     assert result.returncode == 5
     assert "max_depth 65" in result.stderr and "at most 64" in result.stderr

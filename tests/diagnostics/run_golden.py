@@ -5,6 +5,7 @@ CASE.expected on stderr (its first line is the expected exit code, "exit N").
     run_golden.py --tracer build/release/tracer tests/diagnostics/*.scn
     run_golden.py --tracer build/release/tracer --update tests/diagnostics/*.scn   # rewrite
 """
+
 import argparse
 import difflib
 import pathlib
@@ -13,8 +14,7 @@ import sys
 
 
 def actual_output(tracer: str, case: pathlib.Path) -> str:
-    proc = subprocess.run([tracer, "--check", case.name], cwd=case.parent,
-                          capture_output=True, text=True, timeout=60)
+    proc = subprocess.run([tracer, "--check", case.name], cwd=case.parent, capture_output=True, text=True, timeout=60)
     # Absolute paths differ between checkouts.
     stderr = proc.stderr.replace(str(case.parent.resolve()), "<dir>")
     return f"exit {proc.returncode}\n{stderr}"
@@ -37,8 +37,9 @@ def main() -> int:
         expected = expected_path.read_text() if expected_path.exists() else "(missing .expected file)\n"
         if actual != expected:
             failures += 1
-            sys.stdout.writelines(difflib.unified_diff(expected.splitlines(True), actual.splitlines(True),
-                                                       str(expected_path), "actual"))
+            sys.stdout.writelines(
+                difflib.unified_diff(expected.splitlines(True), actual.splitlines(True), str(expected_path), "actual")
+            )
     return 1 if failures else 0
 
 

@@ -31,9 +31,9 @@ Case random_case(std::mt19937& random, bool outside) {
         // One box in ten is flat along the axis (a triangle in an axis-parallel plane).
         c.upper[axis] = unit(random) < 0.1 ? c.lower[axis] : float(c.lower[axis] + size * unit(random));
         const int where = third(random);  // on the lower plane, on the upper one, or between
-        target[axis] = where == 0 ? c.lower[axis]
-                     : where == 1 ? c.upper[axis]
-                                  : double(c.lower[axis]) + (double(c.upper[axis]) - c.lower[axis]) * unit(random);
+        target[axis] = where == 0   ? c.lower[axis]
+                       : where == 1 ? c.upper[axis]
+                                    : double(c.lower[axis]) + (double(c.upper[axis]) - c.lower[axis]) * unit(random);
     }
     // The point must lie on the surface: put one axis on a plane.
     const int face_axis = third(random);

@@ -66,18 +66,10 @@ TEST(Fuzz, RandomEditsOfAProgramNeverCrashAndAreConsistent) {
         for (int e = 0; e < edits && !text.empty(); ++e) {
             size_t at = random() % text.size();
             switch (random() % 4) {
-                case 0:
-                    text.erase(at, 1 + random() % 8);
-                    break;
-                case 1:
-                    text.insert(at, 1, alphabet[random() % alphabet.size()]);
-                    break;
-                case 2:
-                    text.insert(at, words[random() % std::size(words)]);
-                    break;
-                default:
-                    text[at] = alphabet[random() % alphabet.size()];
-                    break;
+                case 0: text.erase(at, 1 + random() % 8); break;
+                case 1: text.insert(at, 1, alphabet[random() % alphabet.size()]); break;
+                case 2: text.insert(at, words[random() % std::size(words)]); break;
+                default: text[at] = alphabet[random() % alphabet.size()]; break;
             }
         }
         LoadResult result = load_scene_text("fuzz.scn", text, false, limits);

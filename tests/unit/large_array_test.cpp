@@ -11,7 +11,9 @@
 namespace tracer {
 namespace {
 
-bool aligned(const void* p, uintptr_t alignment) { return reinterpret_cast<uintptr_t>(p) % alignment == 0; }
+bool aligned(const void* p, uintptr_t alignment) {
+    return reinterpret_cast<uintptr_t>(p) % alignment == 0;
+}
 
 TEST(LargeArray, SmallArraysStartOnACacheLine) {
     for (size_t n : {1, 3, 1000, 100000}) {

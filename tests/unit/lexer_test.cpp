@@ -93,8 +93,8 @@ TEST(Lexer, PunctuationIdentifiersStringsAndComments) {
     std::vector<TokenKind> kinds;
     for (const Token& t : lexed.tokens) kinds.push_back(t.kind);
     using K = TokenKind;
-    EXPECT_EQ(kinds, (std::vector<K>{K::Identifier, K::LBrace, K::LParen, K::Number, K::Comma, K::String,
-                                     K::RParen, K::RBrace, K::End}));
+    EXPECT_EQ(kinds, (std::vector<K>{K::Identifier, K::LBrace, K::LParen, K::Number, K::Comma, K::String, K::RParen,
+                                     K::RBrace, K::End}));
     EXPECT_EQ(lexed.tokens[5].string, "a \"b\" \\c");
     EXPECT_FALSE(lexed.diagnostics.has_errors());
 }

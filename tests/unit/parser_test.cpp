@@ -19,8 +19,9 @@ Parsed parse(const std::string& text) {
 }
 
 TEST(Parser, BlocksEntriesAndEveryKindOfValue) {
-    Parsed p = parse("material shiny { kd (0.2, 1, 0.2) n 100 }\n"
-                     "mesh { file \"a.obj\" rotate { axis (0, 1, 0) angle 30 } material shiny }");
+    Parsed p = parse(
+        "material shiny { kd (0.2, 1, 0.2) n 100 }\n"
+        "mesh { file \"a.obj\" rotate { axis (0, 1, 0) angle 30 } material shiny }");
     ASSERT_FALSE(p.diagnostics.has_errors());
     ASSERT_EQ(p.ast.blocks.size(), 2u);
     const Block& material = p.ast.blocks[0];
@@ -39,10 +40,11 @@ TEST(Parser, BlocksEntriesAndEveryKindOfValue) {
 }
 
 TEST(Parser, RecoversAtBlockBoundariesWithOneErrorPerBrokenBlock) {
-    Parsed p = parse("sphere { center (0, 0 0) radius 1 }\n"  // missing comma
-                     "light { position (0, 1, 2) }\n"
-                     "plane { point (0, 0, 0) normal }\n"     // missing value
-                     "light { position (1, 1, 2) }\n");
+    Parsed p = parse(
+        "sphere { center (0, 0 0) radius 1 }\n"  // missing comma
+        "light { position (0, 1, 2) }\n"
+        "plane { point (0, 0, 0) normal }\n"  // missing value
+        "light { position (1, 1, 2) }\n");
     EXPECT_EQ(p.diagnostics.error_count(), 2);
     ASSERT_EQ(p.ast.blocks.size(), 4u);
     EXPECT_TRUE(p.ast.blocks[0].broken);
@@ -65,7 +67,7 @@ TEST(Parser, ANewBlockInsideABlockMeansAMissingBrace) {
     Parsed p = parse("camera { eye (0, 0, 7)\nsphere { radius 1 }\nmaterial m { }\n");
     ASSERT_EQ(p.diagnostics.error_count(), 1);
     EXPECT_EQ(p.diagnostics.all()[0].message, "expected '}' before 'sphere'");
-    ASSERT_EQ(p.ast.blocks.size(), 3u);  // the sphere and the material still parse
+    ASSERT_EQ(p.ast.blocks.size(), 3u);    // the sphere and the material still parse
     EXPECT_FALSE(p.ast.blocks[0].broken);  // its entries were complete
     EXPECT_EQ(p.ast.blocks[1].kind, "sphere");
 }

@@ -44,7 +44,8 @@ TEST(Reference, EveryDefaultPassesItsOwnChecks) {
         LoadResult result = load_scene_text("defaults.scn", text, /*fragment=*/true);
         for (const Diagnostic& d : result.diagnostics.all())
             EXPECT_NE(d.message.find("missing the required key"), std::string::npos)
-                << "default of a '" << spec->kind << "' key fails its own check:\n" << format_diagnostic(d);
+                << "default of a '" << spec->kind << "' key fails its own check:\n"
+                << format_diagnostic(d);
     }
 }
 

@@ -63,17 +63,10 @@ std::vector<Ray> test_rays(std::mt19937_64& random, const std::vector<Triangle>&
         const Triangle& t = triangles[pick(random)];
         Vec3 target;
         switch (i % 4) {
-            case 0:
-                target = t.v0;
-                break;
-            case 1:
-                target = (t.v0 + t.v1) * Real(0.5);
-                break;
-            case 2:
-                target = (t.v0 + t.v1 + t.v2) / Real(3);
-                break;
-            default:
-                target = Vec3(unit(random), unit(random), unit(random)) * Real(3);
+            case 0: target = t.v0; break;
+            case 1: target = (t.v0 + t.v1) * Real(0.5); break;
+            case 2: target = (t.v0 + t.v1 + t.v2) / Real(3); break;
+            default: target = Vec3(unit(random), unit(random), unit(random)) * Real(3);
         }
         if (target == origin) continue;
         out.push_back({origin, glm::normalize(target - origin)});

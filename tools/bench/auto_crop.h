@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "render/camera.h"
-#include "scene/placement.h"
 #include "render/renderer.h"
+#include "scene/placement.h"
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
 

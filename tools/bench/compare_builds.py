@@ -7,6 +7,7 @@ machine only such side-by-side runs compare; 11-15 rounds bring the ratio's nois
 
 ARGS go to every build (for instance --full).
 """
+
 import argparse
 import re
 import statistics
@@ -20,8 +21,11 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("builds", nargs="+")
     parser.add_argument("--rounds", type=int, default=15)
-    ours, extra = (sys.argv[1:], []) if "--" not in sys.argv else (
-        sys.argv[1:sys.argv.index("--")], sys.argv[sys.argv.index("--") + 1:])
+    ours, extra = (
+        (sys.argv[1:], [])
+        if "--" not in sys.argv
+        else (sys.argv[1 : sys.argv.index("--")], sys.argv[sys.argv.index("--") + 1 :])
+    )
     options = parser.parse_args(ours)
     times = {build: {} for build in options.builds}
     for _ in range(options.rounds):
@@ -30,10 +34,12 @@ def main() -> None:
             for part, ms in LINE.findall(output):
                 times[build].setdefault(part, []).append(float(ms))
     first, last = options.builds[0], options.builds[-1]
-    print(f"{'part':16}" + "".join(f"{'build ' + str(i + 1):>12}" for i in range(len(options.builds))) + "   last/first")
+    print(
+        f"{'part':16}" + "".join(f"{'build ' + str(i + 1):>12}" for i in range(len(options.builds))) + "   last/first"
+    )
     for part in times[first]:
         medians = "".join(f"{statistics.median(times[b][part]):12.2f}" for b in options.builds)
-        ratio = statistics.median(b / a for a, b in zip(times[first][part], times[last][part]))
+        ratio = statistics.median(b / a for a, b in zip(times[first][part], times[last][part], strict=False))
         print(f"{part:16}{medians}   {ratio:.3f}")
 
 

@@ -21,8 +21,8 @@
 
 #include "auto_crop.h"
 #include "bench_scene.h"
-#include "render/camera.h"
 #include "io/obj_mesh.h"
+#include "render/camera.h"
 #include "render/renderer.h"
 #include "render/spawn.h"
 #include "render/whitted.h"
@@ -43,7 +43,8 @@ double fastest_ms(F f) {
             best = std::min(best, f());
         } else {
             f();
-            best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+            best = std::min(
+                best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         }
     }
     return best;
@@ -103,52 +104,59 @@ int main(int argc, char** argv) {
 
     // Step 2: each part on its own.
     report("TraversalRay   ", fastest_ms([&] {
-        float sum = 0;
-        for (const Ray& ray : primary) sum += TraversalRay(ray, kPrimaryRange).inv_dir[1];
-        sink = sum;
-    }), primary.size());
+               float sum = 0;
+               for (const Ray& ray : primary) sum += TraversalRay(ray, kPrimaryRange).inv_dir[1];
+               sink = sum;
+           }),
+           primary.size());
     TraversalCounts mesh_counts;
     report("mesh.intersect ", fastest_ms([&] {
-        double sum = 0;
-        mesh_counts = {};
-        for (const Ray& ray : primary) {
-            Interval range = kPrimaryRange;
-            MeshHit hit;
-            if (world.may_hit(ray) && mesh.intersect(ray, range, hit, mesh_counts)) sum += range.max;
-        }
-        sink = sum;
-    }), primary.size());
+               double sum = 0;
+               mesh_counts = {};
+               for (const Ray& ray : primary) {
+                   Interval range = kPrimaryRange;
+                   MeshHit hit;
+                   if (world.may_hit(ray) && mesh.intersect(ray, range, hit, mesh_counts)) sum += range.max;
+               }
+               sink = sum;
+           }),
+           primary.size());
     report_work(mesh_counts, primary.size());
     std::cout << '\n';
     if (repeat > 1) return 0;
     report("world.intersect", fastest_ms([&] {
-        double sum = 0;
-        for (const Ray& ray : primary)
-            if (const auto hit = world.intersect(ray, kPrimaryRange, counts)) sum += hit->t;
-        sink = sum;
-    }), primary.size());
+               double sum = 0;
+               for (const Ray& ray : primary)
+                   if (const auto hit = world.intersect(ray, kPrimaryRange, counts)) sum += hit->t;
+               sink = sum;
+           }),
+           primary.size());
     report("world.nearest  ", fastest_ms([&] {
-        double sum = 0;
-        for (const Ray& ray : primary)
-            if (const auto hit = world.nearest_hit(ray, kPrimaryRange, counts)) sum += hit->t;
-        sink = sum;
-    }), primary.size());
+               double sum = 0;
+               for (const Ray& ray : primary)
+                   if (const auto hit = world.nearest_hit(ray, kPrimaryRange, counts)) sum += hit->t;
+               sink = sum;
+           }),
+           primary.size());
     TraversalCounts shadow_counts;
     int blocked = 0;
     report("mesh.occluded  ", fastest_ms([&] {
-        blocked = 0;
-        shadow_counts = {};
-        for (const auto& [ray, range] : shadow) blocked += world.may_hit(ray) && mesh.occluded(ray, range, shadow_counts);
-        sink = blocked;
-    }), shadow.size());
+               blocked = 0;
+               shadow_counts = {};
+               for (const auto& [ray, range] : shadow)
+                   blocked += world.may_hit(ray) && mesh.occluded(ray, range, shadow_counts);
+               sink = blocked;
+           }),
+           shadow.size());
     report_work(shadow_counts, shadow.size());
     std::cout << "; " << blocked << " blocked\n";
     report("trace          ", fastest_ms([&] {
-        RayCounts ray_counts;
-        double sum = 0;
-        for (const Ray& ray : primary) sum += trace(world, scene.render, ray, ray_counts).b;
-        sink = sum;
-    }), primary.size());
+               RayCounts ray_counts;
+               double sum = 0;
+               for (const Ray& ray : primary) sum += trace(world, scene.render, ray, ray_counts).b;
+               sink = sum;
+           }),
+           primary.size());
     Image image;
     RenderStats stats;
     RenderOptions options;
@@ -157,8 +165,9 @@ int main(int argc, char** argv) {
     // The render loop's own time (RenderStats::seconds), as tracer_bench reports it: without
     // clearing the image around the crop.
     report("render         ", fastest_ms([&] {
-        render(world, scene, options, image, stats);
-        return stats.seconds * 1e3;
-    }), primary.size());
+               render(world, scene, options, image, stats);
+               return stats.seconds * 1e3;
+           }),
+           primary.size());
     return 0;
 }

@@ -20,22 +20,36 @@ def parse_args(argv):
     parser = argparse.ArgumentParser(
         prog="tools/crosscheck",
         description="Render SCENE with tracer and with Mitsuba 3 at the same resolution and samples "
-                    "per pixel; print RMSE, PSNR, FLIP and the share of pixels more than 1, 2 and 8 "
-                    "levels apart; write the images, a heat map and a side-by-side PNG.",
+        "per pixel; print RMSE, PSNR, FLIP and the share of pixels more than 1, 2 and 8 "
+        "levels apart; write the images, a heat map and a side-by-side PNG.",
         epilog="Exit codes: 0 agree, 1 over a threshold, 2 bad command line, 3 scene errors, "
-               "4 Mitsuba missing, 5 other failures.")
+        "4 Mitsuba missing, 5 other failures.",
+    )
     parser.add_argument("scene", type=pathlib.Path, help="the scene file (.scn)")
-    parser.add_argument("--width", type=int, help="image width (default: the scene's); alone, "
-                        "the height follows the scene's aspect ratio")
+    parser.add_argument(
+        "--width",
+        type=int,
+        help="image width (default: the scene's); alone, " "the height follows the scene's aspect ratio",
+    )
     parser.add_argument("--height", type=int, help="image height (default: the scene's)")
     parser.add_argument("--samples", type=int, help="samples per pixel, N*N (default: the scene's)")
-    parser.add_argument("--out", type=pathlib.Path, help="folder for the images and report "
-                        "(default: out/crosscheck/<scene name>)")
-    parser.add_argument("--max-over-2", type=float, default=DEFAULT_MAX_OVER_2, metavar="PERCENT",
-                        help=f"fail when more than PERCENT %% of the pixels differ by more than 2 "
-                             f"levels (default {DEFAULT_MAX_OVER_2})")
-    parser.add_argument("--max-over-8", type=float, metavar="PERCENT",
-                        help="fail when more than PERCENT %% differ by more than 8 levels")
+    parser.add_argument(
+        "--out", type=pathlib.Path, help="folder for the images and report " "(default: out/crosscheck/<scene name>)"
+    )
+    parser.add_argument(
+        "--max-over-2",
+        type=float,
+        default=DEFAULT_MAX_OVER_2,
+        metavar="PERCENT",
+        help=f"fail when more than PERCENT %% of the pixels differ by more than 2 "
+        f"levels (default {DEFAULT_MAX_OVER_2})",
+    )
+    parser.add_argument(
+        "--max-over-8",
+        type=float,
+        metavar="PERCENT",
+        help="fail when more than PERCENT %% differ by more than 8 levels",
+    )
     parser.add_argument("--max-rmse", type=float, help="fail when the RMSE is above this")
     parser.add_argument("--max-flip", type=float, help="fail when the FLIP mean is above this")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
@@ -54,12 +68,17 @@ def resolution_args(args):
 
 def failures(comparison, args):
     """The thresholds the comparison exceeds, as sentences."""
-    checks = [("pixels over 2 levels", comparison.over_2 * 100, args.max_over_2, "%"),
-              ("pixels over 8 levels", comparison.over_8 * 100, args.max_over_8, "%"),
-              ("RMSE", comparison.rmse, args.max_rmse, ""),
-              ("FLIP mean", comparison.flip_mean, args.max_flip, "")]
-    return [f"{name} {value:.6g}{unit} > {limit:g}{unit}" for name, value, limit, unit in checks
-            if limit is not None and value > limit]
+    checks = [
+        ("pixels over 2 levels", comparison.over_2 * 100, args.max_over_2, "%"),
+        ("pixels over 8 levels", comparison.over_8 * 100, args.max_over_8, "%"),
+        ("RMSE", comparison.rmse, args.max_rmse, ""),
+        ("FLIP mean", comparison.flip_mean, args.max_flip, ""),
+    ]
+    return [
+        f"{name} {value:.6g}{unit} > {limit:g}{unit}"
+        for name, value, limit, unit in checks
+        if limit is not None and value > limit
+    ]
 
 
 def crosscheck(args):
@@ -71,8 +90,11 @@ def crosscheck(args):
     out.mkdir(parents=True, exist_ok=True)
 
     # Step 2: both renders, as floats.
-    from . import mitsuba_render  # first: it says clearly when Mitsuba is missing
-    from . import images, metrics
+    from . import (
+        images,
+        metrics,
+        mitsuba_render,  # first: it says clearly when Mitsuba is missing
+    )
 
     mitsuba_image = mitsuba_render.render_scene(scene, out)  # first: it may refuse the scene
     tracer_cli.render(args.scene, out / "tracer.exr", extra)
@@ -83,19 +105,26 @@ def crosscheck(args):
     images.write_png(out / "tracer.png", tracer_image)
     images.write_png(out / "mitsuba.png", mitsuba_image)
     images.write_png(out / "heatmap.png", metrics.heat_map(mitsuba_image, tracer_image))
-    images.write_png(out / "side_by_side.png",
-                     metrics.side_by_side(mitsuba_image, tracer_image, "Mitsuba 3", "tracer"))
+    images.write_png(out / "side_by_side.png", metrics.side_by_side(mitsuba_image, tracer_image, "Mitsuba 3", "tracer"))
     failed = failures(comparison, args)
-    report = {"scene": str(args.scene), "width": scene["render"]["width"], "height": scene["render"]["height"],
-              "samples": scene["render"]["samples"], **comparison.as_dict(), "failed": failed,
-              "output": str(out)}
+    report = {
+        "scene": str(args.scene),
+        "width": scene["render"]["width"],
+        "height": scene["render"]["height"],
+        "samples": scene["render"]["samples"],
+        **comparison.as_dict(),
+        "failed": failed,
+        "output": str(out),
+    }
     (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
     if args.json:
         print(json.dumps(report, indent=2))
     else:
         render = scene["render"]
-        print(f"{args.scene}: tracer vs Mitsuba 3 at {render['width']}x{render['height']}, "
-              f"{render['samples']} spp\n{comparison.summary()}\nimages: {out}")
+        print(
+            f"{args.scene}: tracer vs Mitsuba 3 at {render['width']}x{render['height']}, "
+            f"{render['samples']} spp\n{comparison.summary()}\nimages: {out}"
+        )
         print("FAIL: " + "; ".join(failed) if failed else "ok: within the thresholds")
     return 1 if failed else 0
 

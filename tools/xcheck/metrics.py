@@ -38,9 +38,11 @@ class Comparison:
         """A few lines for people."""
         psnr = "inf" if math.isinf(self.psnr) else f"{self.psnr:.2f}"
         count = lambda share: f"{share * 100:.4f}% ({round(share * self.pixels)} px)"  # noqa: E731
-        return (f"RMSE {self.rmse:.6f}   PSNR {psnr} dB   FLIP mean {self.flip_mean:.6f}\n"
-                f"pixels over 1 level: {count(self.over_1)}   over 2: {count(self.over_2)}   "
-                f"over 8: {count(self.over_8)}   largest: {self.max_levels} levels")
+        return (
+            f"RMSE {self.rmse:.6f}   PSNR {psnr} dB   FLIP mean {self.flip_mean:.6f}\n"
+            f"pixels over 1 level: {count(self.over_1)}   over 2: {count(self.over_2)}   "
+            f"over 8: {count(self.over_8)}   largest: {self.max_levels} levels"
+        )
 
 
 def level_differences(reference, test):
@@ -52,9 +54,9 @@ def flip_mean(reference, test):
     """Mean FLIP error of the clamped images, read as display values (tracer writes no gamma)."""
     import flip_evaluator
 
-    _, mean, _ = flip_evaluator.evaluate(np.clip(reference, 0, 1).astype(np.float32),
-                                         np.clip(test, 0, 1).astype(np.float32), "LDR",
-                                         applyMagma=False)
+    _, mean, _ = flip_evaluator.evaluate(
+        np.clip(reference, 0, 1).astype(np.float32), np.clip(test, 0, 1).astype(np.float32), "LDR", applyMagma=False
+    )
     return float(mean)
 
 
@@ -94,8 +96,9 @@ def _font(height):
 
 def _labelled(picture, label):
     image = Image.fromarray(picture, "RGB")
-    ImageDraw.Draw(image).text((6, 4), label, fill=(255, 255, 255), font=_font(image.height),
-                               stroke_width=2, stroke_fill=(0, 0, 0))
+    ImageDraw.Draw(image).text(
+        (6, 4), label, fill=(255, 255, 255), font=_font(image.height), stroke_width=2, stroke_fill=(0, 0, 0)
+    )
     return image
 
 

@@ -13,8 +13,10 @@ from . import run_reporting_errors, tracer_cli
 def render(args):
     """Renders and writes the image and its XML; returns the exit code."""
     scene = tracer_cli.dump_json(args.scene, tracer_cli.overrides(args.width, args.height, args.samples))
-    from . import mitsuba_render  # first: it says clearly when Mitsuba is missing
-    from . import images
+    from . import (
+        images,
+        mitsuba_render,  # first: it says clearly when Mitsuba is missing
+    )
 
     with tempfile.TemporaryDirectory() as folder:
         image = mitsuba_render.render_scene(scene, folder)

@@ -65,15 +65,21 @@ def machine():
 def pareto_front(rows, error_key):
     """Marks rows that no other row beats on both time and error."""
     for row in rows:
-        row["pareto"] = not any(other["seconds"] <= row["seconds"] and other[error_key] <= row[error_key]
-                                and (other["seconds"], other[error_key]) != (row["seconds"], row[error_key])
-                                for other in rows)
+        row["pareto"] = not any(
+            other["seconds"] <= row["seconds"]
+            and other[error_key] <= row[error_key]
+            and (other["seconds"], other[error_key]) != (row["seconds"], row[error_key])
+            for other in rows
+        )
 
 
 def measure_scene(name, repeats, work):
     """Reference and every variant for one scene; a dict for the JSON file."""
-    from . import mitsuba_render  # first: it says clearly when Mitsuba is missing
-    from . import images, metrics
+    from . import (
+        images,
+        metrics,
+        mitsuba_render,  # first: it says clearly when Mitsuba is missing
+    )
 
     path = tracer_cli.ROOT / "scenes" / f"{name}.scn"
     scene = tracer_cli.dump_json(path, tracer_cli.overrides(samples=REFERENCE_SAMPLES))
@@ -88,30 +94,57 @@ def measure_scene(name, repeats, work):
             stats = tracer_cli.render(path, image_path, variant.tracer_args())
             seconds.append(stats["render_seconds"] + sum(m["build_seconds"] for m in stats.get("meshes", [])))
         comparison = metrics.compare(reference, images.read_exr(image_path))
-        rows.append({"variant": variant.label, "samples": variant.samples, "args": list(variant.args),
-                     "seconds": statistics.median(seconds), "seconds_all": seconds,
-                     "rmse": comparison.rmse, "flip_mean": comparison.flip_mean,
-                     "over_2": comparison.over_2})
-        print(f"  {variant.label}: {rows[-1]['seconds']:.3f} s, RMSE {comparison.rmse:.5f}, "
-              f"FLIP {comparison.flip_mean:.5f}", file=sys.stderr)
+        rows.append(
+            {
+                "variant": variant.label,
+                "samples": variant.samples,
+                "args": list(variant.args),
+                "seconds": statistics.median(seconds),
+                "seconds_all": seconds,
+                "rmse": comparison.rmse,
+                "flip_mean": comparison.flip_mean,
+                "over_2": comparison.over_2,
+            }
+        )
+        print(
+            f"  {variant.label}: {rows[-1]['seconds']:.3f} s, RMSE {comparison.rmse:.5f}, "
+            f"FLIP {comparison.flip_mean:.5f}",
+            file=sys.stderr,
+        )
     pareto_front(rows, "flip_mean")
-    return {"scene": name, "width": scene["render"]["width"], "height": scene["render"]["height"],
-            "reference_samples": REFERENCE_SAMPLES, "rows": rows}
+    return {
+        "scene": name,
+        "width": scene["render"]["width"],
+        "height": scene["render"]["height"],
+        "reference_samples": REFERENCE_SAMPLES,
+        "rows": rows,
+    }
 
 
 def markdown(data):
     """The generated part of docs/speed-vs-error.md."""
-    lines = [BEGIN, "", f"Machine: {data['machine']}; tracer with {data['threads']} threads; "
-             f"median of {data['repeats']} runs each; time = BVH build + render, without process start.",
-             "Error against Mitsuba 3 at 16x16 samples per pixel; * marks the Pareto front "
-             "(FLIP mean against time).", "", "![time against error](speed-vs-error.png)", ""]
+    lines = [
+        BEGIN,
+        "",
+        f"Machine: {data['machine']}; tracer with {data['threads']} threads; "
+        f"median of {data['repeats']} runs each; time = BVH build + render, without process start.",
+        "Error against Mitsuba 3 at 16x16 samples per pixel; * marks the Pareto front " "(FLIP mean against time).",
+        "",
+        "![time against error](speed-vs-error.png)",
+        "",
+    ]
     for result in data["scenes"]:
-        lines += [f"### {result['scene']} ({result['width']}x{result['height']})", "",
-                  "| variant | time (s) | RMSE | FLIP mean | pixels over 2 levels | front |",
-                  "|---|---:|---:|---:|---:|:-:|"]
+        lines += [
+            f"### {result['scene']} ({result['width']}x{result['height']})",
+            "",
+            "| variant | time (s) | RMSE | FLIP mean | pixels over 2 levels | front |",
+            "|---|---:|---:|---:|---:|:-:|",
+        ]
         for row in result["rows"]:
-            lines.append(f"| {row['variant']} | {row['seconds']:.3f} | {row['rmse']:.5f} | {row['flip_mean']:.5f} "
-                         f"| {row['over_2'] * 100:.2f}% | {'*' if row['pareto'] else ''} |")
+            lines.append(
+                f"| {row['variant']} | {row['seconds']:.3f} | {row['rmse']:.5f} | {row['flip_mean']:.5f} "
+                f"| {row['over_2'] * 100:.2f}% | {'*' if row['pareto'] else ''} |"
+            )
         lines.append("")
     lines.append(END)
     return "\n".join(lines)
@@ -127,17 +160,34 @@ def plot(data, path):
     figure, axes = plt.subplots(figsize=(7.5, 4.8))
     for result in data["scenes"]:
         samples_rows = [r for r in result["rows"] if not r["args"]]
-        line, = axes.plot([r["seconds"] for r in samples_rows], [r["flip_mean"] for r in samples_rows],
-                          marker="o", label=result["scene"])
+        (line,) = axes.plot(
+            [r["seconds"] for r in samples_rows],
+            [r["flip_mean"] for r in samples_rows],
+            marker="o",
+            label=result["scene"],
+        )
         for row in samples_rows:
-            axes.annotate(f"{row['samples']}", (row["seconds"], row["flip_mean"]), textcoords="offset points",
-                          xytext=(4, 4), fontsize=7, color=line.get_color())
+            axes.annotate(
+                f"{row['samples']}",
+                (row["seconds"], row["flip_mean"]),
+                textcoords="offset points",
+                xytext=(4, 4),
+                fontsize=7,
+                color=line.get_color(),
+            )
         others = [r for r in result["rows"] if r["args"]]
-        axes.scatter([r["seconds"] for r in others], [r["flip_mean"] for r in others], marker="x",
-                     color=line.get_color())
+        axes.scatter(
+            [r["seconds"] for r in others], [r["flip_mean"] for r in others], marker="x", color=line.get_color()
+        )
         for row in others:
-            axes.annotate(row["args"][-1], (row["seconds"], row["flip_mean"]), textcoords="offset points",
-                          xytext=(4, -9), fontsize=7, color=line.get_color())
+            axes.annotate(
+                row["args"][-1],
+                (row["seconds"], row["flip_mean"]),
+                textcoords="offset points",
+                xytext=(4, -9),
+                fontsize=7,
+                color=line.get_color(),
+            )
     axes.set_xscale("log")
     axes.set_yscale("log")
     axes.set_xlabel("time (s): BVH build + render, median")

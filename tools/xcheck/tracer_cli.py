@@ -36,8 +36,9 @@ def overrides(width=None, height=None, samples=None, accel=None):
 def dump_json(scene_path, extra_args=()):
     """The scene description as tracer resolves it (`tracer --dump-json`), as a dict. Scene
     errors are printed by tracer itself, then raised as SceneError."""
-    result = subprocess.run([executable(), str(scene_path), "--dump-json", *extra_args],
-                            stdout=subprocess.PIPE, text=True)
+    result = subprocess.run(
+        [executable(), str(scene_path), "--dump-json", *extra_args], stdout=subprocess.PIPE, text=True
+    )
     if result.returncode != 0:
         raise SceneError(f"tracer could not load {scene_path} (exit code {result.returncode})")
     return json.loads(result.stdout)
@@ -47,8 +48,9 @@ def render(scene_path, output, extra_args=()):
     """Renders with tracer to `output` (.exr keeps floats); returns tracer's statistics
     (--stats-json: render_seconds without process start-up, build times, ray counts)."""
     stats_path = pathlib.Path(output).with_suffix(".stats.json")
-    result = subprocess.run([executable(), str(scene_path), "-o", str(output), "--quiet",
-                             "--stats-json", str(stats_path), *extra_args])
+    result = subprocess.run(
+        [executable(), str(scene_path), "-o", str(output), "--quiet", "--stats-json", str(stats_path), *extra_args]
+    )
     if result.returncode != 0:
         raise SceneError(f"tracer could not render {scene_path} (exit code {result.returncode})")
     stats = json.loads(stats_path.read_text())
