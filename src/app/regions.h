@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "accel/world.h"
 #include "render/renderer.h"
-#include "render/world.h"
 #include "scene/scene.h"
 
 namespace tracer {

@@ -2,7 +2,7 @@
 // v = w x u; an image plane at distance 1 (the scene's focal does not change the rays) whose height is 2 tan(fovy / 2).
 #pragma once
 
-#include "render/types.h"
+#include "accel/types.h"
 #include "scene/scene.h"
 
 namespace tracer {

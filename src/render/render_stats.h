@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "accel/world.h"
 #include "render/renderer.h"
-#include "render/world.h"
 
 namespace tracer {
 

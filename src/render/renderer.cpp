@@ -5,9 +5,9 @@
 #include <cmath>
 #include <mutex>
 
+#include "accel/world.h"
 #include "base/parallel.h"
 #include "render/camera.h"
-#include "render/world.h"
 
 namespace tracer {
 

@@ -6,10 +6,10 @@
 #include <functional>
 #include <vector>
 
+#include "accel/world.h"
 #include "base/image.h"
 #include "base/worker_pool.h"
 #include "render/whitted.h"
-#include "render/world.h"
 #include "scene/scene.h"
 
 namespace tracer {

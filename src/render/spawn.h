@@ -12,9 +12,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/triangle.h"
-#include "render/types.h"
-#include "render/world.h"
+#include "accel/triangle.h"
+#include "accel/types.h"
+#include "accel/world.h"
 
 namespace tracer {
 

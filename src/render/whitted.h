@@ -6,8 +6,8 @@
 
 #include <cstdint>
 
-#include "render/types.h"
-#include "render/world.h"
+#include "accel/types.h"
+#include "accel/world.h"
 #include "scene/scene.h"
 
 namespace tracer {

@@ -5,9 +5,9 @@
 
 #include <algorithm>
 
+#include "accel/world.h"
 #include "base/image.h"
 #include "render/renderer.h"
-#include "render/world.h"
 #include "scene/scene.h"
 
 namespace tracer {

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <random>
 
+#include "accel/world.h"
 #include "hard_cases.h"
 #include "render/renderer.h"
-#include "render/world.h"
 
 namespace tracer::hard_cases {
 namespace {

@@ -12,9 +12,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "accel/mesh_accel.h"
+#include "accel/triangle.h"
 #include "io/obj_mesh.h"
-#include "render/mesh_accel.h"
-#include "render/triangle.h"
 
 namespace tracer::hard_cases {
 

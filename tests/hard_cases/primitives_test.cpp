@@ -4,10 +4,10 @@
 #include <random>
 
 #include "../common/flat_grid.h"
+#include "accel/world.h"
 #include "hard_cases.h"
 #include "render/spawn.h"
 #include "render/whitted.h"
-#include "render/world.h"
 
 namespace tracer::hard_cases {
 namespace {

@@ -1,10 +1,10 @@
 // Hard cases B4 and E1 (hard-cases.md): point lights lying on surfaces, and a Whitted scene
 // (bunny, floor, mirror sphere) translated 10^4 away from the origin.
+#include "accel/world.h"
 #include "hard_cases.h"
 #include "render/camera.h"
 #include "render/spawn.h"
 #include "render/whitted.h"
-#include "render/world.h"
 
 namespace tracer::hard_cases {
 namespace {

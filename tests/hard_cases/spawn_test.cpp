@@ -3,11 +3,11 @@
 // any scale and any distance from the origin.
 #include <random>
 
+#include "accel/world.h"
 #include "hard_cases.h"
 #include "render/camera.h"
 #include "render/spawn.h"
 #include "render/whitted.h"
-#include "render/world.h"
 
 namespace tracer::hard_cases {
 namespace {

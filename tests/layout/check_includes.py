@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """The source layout's one rule: a stage includes only the stages below it.
 
-    base  <  scene  <  lang, io, render  <  app
+    base  <  scene  <  lang, io, accel  <  render  <  app
 
-lang, io and render are siblings and include none of each other (the renderer knows nothing
-of the language or of files). Fails, naming each offending line, otherwise.
+lang, io and accel are siblings and include none of each other; render sits on accel (the
+renderer and its acceleration structures know nothing of the language or of files).
+Fails, naming each offending line, otherwise.
 Usage: check_includes.py SRC_DIR"""
 
 import pathlib
@@ -16,8 +17,9 @@ ALLOWED = {
     "scene": {"base", "scene"},
     "lang": {"base", "scene", "lang"},
     "io": {"base", "scene", "io"},
-    "render": {"base", "scene", "render"},
-    "app": {"base", "scene", "lang", "io", "render", "app"},
+    "accel": {"base", "scene", "accel"},
+    "render": {"base", "scene", "accel", "render"},
+    "app": {"base", "scene", "lang", "io", "accel", "render", "app"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
 
@@ -26,7 +28,7 @@ def main() -> int:
     src = pathlib.Path(sys.argv[1])
     problems, checked = [], 0
     for path in sorted(src.rglob("*")):
-        if path.suffix not in (".h", ".cpp"):
+        if path.suffix not in (".h", ".cpp", ".inl"):
             continue
         stage = path.relative_to(src).parts[0]
         if stage not in ALLOWED:

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "render/bvh_node.h"
+#include "accel/bvh_node.h"
 
 namespace tracer {
 namespace {

@@ -11,9 +11,9 @@
 #include <glm/geometric.hpp>
 
 #include "../common/flat_grid.h"
+#include "accel/mesh_accel.h"
+#include "accel/world.h"
 #include "io/obj_mesh.h"
-#include "render/mesh_accel.h"
-#include "render/world.h"
 
 namespace tracer {
 namespace {

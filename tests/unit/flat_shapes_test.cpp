@@ -7,7 +7,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/world.h"
+#include "accel/world.h"
 #include "scene/flat_shapes.h"
 #include "scene/placement.h"
 

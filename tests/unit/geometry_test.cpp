@@ -4,7 +4,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/geometry.h"
+#include "accel/geometry.h"
 
 namespace tracer {
 namespace {

@@ -1,4 +1,4 @@
-// The four-lane tests (render/triangle_lanes.h), watertight and Moller-Trumbore, against the
+// The four-lane tests (accel/triangle_lanes.h), watertight and Moller-Trumbore, against the
 // scalar ones they stand for: the same triangles hit, at the same t, u and v bit for bit.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/triangle_lanes.h"
+#include "accel/triangle_lanes.h"
 
 namespace tracer {
 namespace {

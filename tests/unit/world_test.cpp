@@ -7,10 +7,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "accel/geometry.h"
+#include "accel/triangle.h"
+#include "accel/world.h"
 #include "io/obj_mesh.h"
-#include "render/geometry.h"
-#include "render/triangle.h"
-#include "render/world.h"
 #include "scene/placement.h"
 
 namespace tracer {

@@ -19,6 +19,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
 
+#include "accel/world.h"
 #include "auto_crop.h"
 #include "bench_scene.h"
 #include "io/obj_mesh.h"
@@ -26,7 +27,6 @@
 #include "render/renderer.h"
 #include "render/spawn.h"
 #include "render/whitted.h"
-#include "render/world.h"
 
 namespace {
 

@@ -5,8 +5,8 @@ would carry that rounding from bounce to bounce.
 
 Every OBJ shape of the converted scene (mesh blocks, the planes' squares, the flat triangles) is
 listed by its Mitsuba id with the triangles in Mitsuba's order (each face of the file in turn,
-a polygon cut into a fan as Mitsuba's OBJ loader cuts it). As in tracer (src/render/world.cpp,
-src/render/mesh_accel.cpp), a file that one block uses is placed: corners and normals in world
+a polygon cut into a fan as Mitsuba's OBJ loader cuts it). As in tracer (src/accel/world.cpp,
+src/accel/mesh_accel.cpp), a file that one block uses is placed: corners and normals in world
 coordinates; a file that blocks share is kept in its own coordinates, with each block's map.
 Normals: the file's when every face corner names one, else area-weighted over the corners as
 placed (conventions.md); none (zero) under `shading flat` and for the flat shapes.

@@ -1,4 +1,4 @@
-#include "render/mesh_accel.h"
+#include "accel/mesh_accel.h"
 
 #include <algorithm>
 #include <bit>

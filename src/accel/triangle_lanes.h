@@ -11,7 +11,7 @@
 #include <immintrin.h>
 #endif
 
-#include "render/triangle.h"
+#include "accel/triangle.h"
 
 namespace tracer {
 

@@ -1,4 +1,4 @@
-#include "render/bvh.h"
+#include "accel/bvh.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,8 +11,8 @@
 #include <immintrin.h>
 #endif
 
+#include "accel/types.h"
 #include "base/large_array.h"
-#include "render/types.h"
 
 namespace tracer {
 

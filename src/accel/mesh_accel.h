@@ -9,9 +9,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "render/bvh.h"
-#include "render/triangle.h"
-#include "render/triangle_lanes.h"
+#include "accel/bvh.h"
+#include "accel/triangle.h"
+#include "accel/triangle_lanes.h"
 #include "scene/placement.h"
 #include "scene/triangle_mesh.h"
 

@@ -10,9 +10,9 @@
 #include <optional>
 #include <vector>
 
-#include "render/bvh.h"
-#include "render/mesh_accel.h"
-#include "render/types.h"
+#include "accel/bvh.h"
+#include "accel/mesh_accel.h"
+#include "accel/types.h"
 #include "scene/placement.h"
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
@@ -183,4 +183,4 @@ private:
 
 }  // namespace tracer
 
-#include "render/world_queries.h"  // the queries' inline definitions
+#include "accel/world_queries.inl"  // the queries' inline definitions

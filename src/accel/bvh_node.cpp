@@ -1,4 +1,4 @@
-#include "render/bvh_node.h"
+#include "accel/bvh_node.h"
 
 #include <algorithm>
 #include <bit>

@@ -3,9 +3,9 @@
 // tools/bench/trace_parts: results passed through memory, spheres tested out of line).
 #pragma once
 
-#include "render/geometry.h"
-#include "render/triangle.h"
-#include "render/world.h"
+#include "accel/geometry.h"
+#include "accel/triangle.h"
+#include "accel/world.h"
 
 namespace tracer {
 

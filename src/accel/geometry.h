@@ -11,7 +11,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/types.h"
+#include "accel/types.h"
 
 namespace tracer {
 

@@ -1,4 +1,4 @@
-#include "render/world.h"
+#include "accel/world.h"
 
 #include <atomic>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
-#include "render/geometry.h"
+#include "accel/geometry.h"
 #include "scene/flat_shapes.h"
 
 namespace tracer {

@@ -12,7 +12,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "render/types.h"
+#include "accel/types.h"
 
 namespace tracer {
 
