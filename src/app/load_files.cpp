@@ -10,8 +10,8 @@ namespace tracer {
 std::optional<LoadedScene> load_scene_with_meshes(const std::string& path,
                                                   const std::function<void(SceneDescription&)>& adjust,
                                                   std::ostream& errors, bool* unreadable,
-                                                  const InterpretOptions& options) {
-    LoadResult loaded = load_scene(path, options);
+                                                  const ParameterValues& parameters) {
+    LoadResult loaded = load_scene(path, parameters);
     std::optional<SceneMeshes> meshes;
     if (loaded.scene) {
         if (adjust) adjust(*loaded.scene);

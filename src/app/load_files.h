@@ -24,6 +24,6 @@ struct LoadedScene {
 std::optional<LoadedScene> load_scene_with_meshes(const std::string& path,
                                                   const std::function<void(SceneDescription&)>& adjust,
                                                   std::ostream& errors, bool* unreadable = nullptr,
-                                                  const InterpretOptions& options = {});
+                                                  const ParameterValues& parameters = {});
 
 }  // namespace tracer

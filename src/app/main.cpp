@@ -72,11 +72,11 @@ struct Options {
 };
 
 // The -D NAME=VALUE definitions (checked to have a '=' when parsed).
-tracer::InterpretOptions interpret_options(const Options& options) {
-    tracer::InterpretOptions out;
+tracer::ParameterValues parameter_values(const Options& options) {
+    tracer::ParameterValues out;
     for (const std::string& define : options.defines) {
         const size_t equals = define.find('=');
-        out.parameters.emplace_back(define.substr(0, equals), define.substr(equals + 1));
+        out.emplace_back(define.substr(0, equals), define.substr(equals + 1));
     }
     return out;
 }
@@ -105,7 +105,7 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
             if (!options.height.empty() && options.width.empty())
                 render.width = std::max(1, int(std::lround(render.height * aspect)));
         },
-        std::cerr, &unreadable, interpret_options(options));
+        std::cerr, &unreadable, parameter_values(options));
     if (!loaded) exit_code = unreadable ? kIoError : kSceneError;
     return loaded;
 }

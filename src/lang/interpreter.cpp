@@ -4,11 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <set>
 
 #include "base/input_file.h"
+#include "lang/builtins.h"
 #include "lang/parser.h"
 #include "lang/schema.h"
 #include "lang/suggest.h"
@@ -20,42 +20,6 @@ namespace fs = std::filesystem;
 
 // Thrown after an error inside an expression has been reported: the entry is dropped.
 struct EvaluationError {};
-
-bool is_vector(const Value& value) {
-    return value.kind == Value::Kind::Vector;
-}
-bool is_number(const Value& value) {
-    return value.kind == Value::Kind::Number;
-}
-
-Value number_value(double number, Span span) {
-    Value value;
-    value.kind = Value::Kind::Number;
-    value.number = number;
-    value.span = span;
-    return value;
-}
-
-Value vector_value(std::vector<double> components, Span span) {
-    Value value;
-    value.kind = Value::Kind::Vector;
-    value.components = std::move(components);
-    value.component_spans.assign(value.components.size(), span);
-    value.span = span;
-    return value;
-}
-
-// "a number", "a vector of 3 numbers", ...
-std::string kind_of(const Value& value) {
-    switch (value.kind) {
-        case Value::Kind::Number: return "a number";
-        case Value::Kind::Vector: return "a vector of " + std::to_string(value.components.size()) + " numbers";
-        case Value::Kind::String: return "a string";
-        case Value::Kind::Identifier: return "the word " + in_quotes(value.text);
-        case Value::Kind::Block: return "a block";
-    }
-    return "a value";
-}
 
 // What a name holds, and where it was defined. A name whose value had an error is `broken`:
 // using it is an error already reported.
@@ -77,9 +41,10 @@ struct Iteration {
 
 class Interpreter {
 public:
-    Interpreter(Sources& sources, Diagnostics& diagnostics) : sources_(sources), diagnostics_(diagnostics) {}
+    Interpreter(Sources& sources, Diagnostics& diagnostics, const InterpretLimits& limits = {}, BlockSink on_block = {})
+        : sources_(sources), diagnostics_(diagnostics), limits_(limits), on_block_(std::move(on_block)) {}
 
-    SceneAst run(const InterpretOptions& options);
+    EvaluatedScene run(const ParameterValues& parameters);
     bool single_value(const Expr& expr, Value& out);
 
 private:
@@ -101,7 +66,6 @@ private:
     Value finite(Value value, Span at);
     [[noreturn]] void fail(Span at, std::string message);
     double number_operand(const Value& value, const std::string& what);
-    const std::vector<double>& vector_operand(const Value& value, const std::string& what, size_t size = 3);
 
     // Names.
     const Binding* find(const std::string& name) const;
@@ -114,7 +78,7 @@ private:
 
     Sources& sources_;
     Diagnostics& diagnostics_;
-    SceneAst scene_;
+    EvaluatedScene scene_;
     std::vector<std::map<std::string, Binding, std::less<>>> scopes_{1};
     std::map<std::string, Value, std::less<>> overrides_;  // -D values, by name
     std::set<std::string, std::less<>> used_overrides_;
@@ -124,7 +88,8 @@ private:
     size_t included_bytes_ = 0;                 // text run through includes, repeats counted
     size_t blocks_ = 0, iterations_run_ = 0;
     bool stopped_ = false;  // a limit was hit: nothing more is generated
-    InterpretOptions limits_;
+    InterpretLimits limits_;
+    BlockSink on_block_;
 };
 
 // The origin for spans evaluated now: the innermost iteration's (created on first use) or else
@@ -152,10 +117,9 @@ void Interpreter::fail(Span span, std::string message) {
     throw EvaluationError{};
 }
 
-SceneAst Interpreter::run(const InterpretOptions& options) {
-    limits_ = options;
+EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
     // Step 1: the command line's parameters, each a value alone.
-    for (const auto& [name, text] : options.parameters) {
+    for (const auto& [name, text] : parameters) {
         SourceFile file("-D " + name, text);
         Diagnostics problems;
         Value value;
@@ -219,8 +183,8 @@ void Interpreter::run_block(const Statement& statement, uint32_t origin) {
     bool failed = false;
     block.body = std::move(*run_body(statement.body, find_block_spec(statement.word), origin, failed));
     block.broken = statement.broken || failed;  // reported: not validated too
-    if (limits_.on_block)
-        limits_.on_block(std::move(block));
+    if (on_block_)
+        on_block_(std::move(block));
     else
         scene_.blocks.push_back(std::move(block));
 }
@@ -416,12 +380,6 @@ double Interpreter::number_operand(const Value& value, const std::string& what) 
     return value.number;
 }
 
-const std::vector<double>& Interpreter::vector_operand(const Value& value, const std::string& what, size_t size) {
-    if (!is_vector(value) || value.components.size() != size)
-        fail(value.span, what + " must be a vector of " + std::to_string(size) + " numbers; this is " + kind_of(value));
-    return value.components;
-}
-
 Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
     const Span span = at(expr.span, origin);
     switch (expr.kind) {
@@ -531,75 +489,21 @@ Value Interpreter::evaluate_call(const Expr& expr, uint32_t origin) {
     const Span span = at(expr.span, origin);
     std::vector<Value> args;
     for (const Expr& operand : expr.operands) args.push_back(evaluate(operand, origin));
-    const FunctionSpec* function = nullptr;
-    for (const FunctionSpec& f : all_functions())
-        if (f.name == expr.text) function = &f;
+    const Builtin* function = find_builtin(expr.text);
     if (!function) {
         std::vector<std::string_view> names;
-        for (const FunctionSpec& f : all_functions()) names.push_back(f.name);
+        for (const Builtin& builtin : all_builtins()) names.push_back(builtin.name);
         fail(at(Span{expr.span.begin, expr.span.begin + uint32_t(expr.text.size()), expr.span.origin}, origin),
              "unknown function " + in_quotes(expr.text) + did_you_mean(expr.text, names));
     }
     if (args.size() != function->arity)
         fail(span, "'" + expr.text + "' takes " + std::to_string(function->arity) + " argument" +
                        (function->arity == 1 ? "" : "s") + ", found " + std::to_string(args.size()));
-    const std::string name = "'" + expr.text + "'";
-    auto number = [&](size_t i) { return number_operand(args[i], name + "'s argument"); };
-    auto vec = [&](size_t i) { return vector_operand(args[i], name + "'s argument"); };
-    constexpr double kRadians = std::numbers::pi / 180;
-    const std::string_view f = expr.text;
-    if (f == "sqrt") {
-        if (number(0) < 0) fail(args[0].span, "sqrt of a negative number (" + format_number(args[0].number) + ")");
-        return number_value(std::sqrt(number(0)), span);
+    try {
+        return finite(function->body(BuiltinArguments(function->name, args), span), span);
+    } catch (const BuiltinError& error) {
+        fail(error.span, error.message);
     }
-    if (f == "sin") return number_value(std::sin(number(0) * kRadians), span);
-    if (f == "cos") return number_value(std::cos(number(0) * kRadians), span);
-    if (f == "tan") return finite(number_value(std::tan(number(0) * kRadians), span), span);
-    if (f == "floor") return number_value(std::floor(number(0)), span);
-    if (f == "min") return number_value(std::min(number(0), number(1)), span);
-    if (f == "max") return number_value(std::max(number(0), number(1)), span);
-    if (f == "mod") {
-        if (number(1) == 0) fail(args[1].span, "mod by zero");
-        const double r = std::fmod(number(0), number(1));
-        return number_value(r != 0 && (r < 0) != (number(1) < 0) ? r + number(1) : r, span);  // the divisor's sign
-    }
-    if (f == "abs") {
-        if (is_vector(args[0])) {
-            std::vector<double> out;
-            for (double c : args[0].components) out.push_back(std::abs(c));
-            return vector_value(out, span);
-        }
-        return number_value(std::abs(number(0)), span);
-    }
-    if (f == "length" || f == "normalize") {
-        const auto& v = vec(0);
-        const double largest = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
-        if (largest == 0) {
-            if (f == "length") return number_value(0, span);
-            fail(args[0].span, "normalize of the zero vector");
-        }
-        const double x = v[0] / largest, y = v[1] / largest, z = v[2] / largest;  // no overflow
-        const double length = std::sqrt(x * x + y * y + z * z);
-        if (f == "length") return finite(number_value(largest * length, span), span);
-        return vector_value({x / length, y / length, z / length}, span);
-    }
-    if (f == "dot") {
-        const auto &a = vec(0), &b = vec(1);
-        return finite(number_value(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], span), span);
-    }
-    if (f == "cross") {
-        const auto &a = vec(0), &b = vec(1);
-        return finite(
-            vector_value({a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}, span),
-            span);
-    }
-    // lerp(a, b, t) = a + (b - a) t, of numbers or of vectors.
-    const double t = number(2);
-    if (is_number(args[0]) && is_number(args[1]))
-        return finite(number_value(args[0].number + (args[1].number - args[0].number) * t, span), span);
-    const auto &a = vec(0), &b = vec(1);
-    return finite(vector_value({a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t}, span),
-                  span);
 }
 
 Value Interpreter::evaluate_component(const Expr& expr, uint32_t origin) {
@@ -635,28 +539,9 @@ bool Interpreter::single_value(const Expr& expr, Value& out) {
 
 }  // namespace
 
-const std::vector<FunctionSpec>& all_functions() {
-    static const std::vector<FunctionSpec> functions = {
-        {"sqrt", 1, "Square root (of a number not below 0)."},
-        {"sin", 1, "Sine of an angle in degrees."},
-        {"cos", 1, "Cosine of an angle in degrees."},
-        {"tan", 1, "Tangent of an angle in degrees."},
-        {"abs", 1, "Absolute value, of a number or of each component of a vector."},
-        {"floor", 1, "The largest whole number not above."},
-        {"min", 2, "The smaller of two numbers."},
-        {"max", 2, "The larger of two numbers."},
-        {"mod", 2, "Remainder of a / b, with b's sign: mod(-1, 3) is 2."},
-        {"length", 1, "Length of a vector."},
-        {"normalize", 1, "The vector scaled to length 1 (not the zero vector)."},
-        {"dot", 2, "Dot product of two vectors."},
-        {"cross", 2, "Cross product of two vectors (right-handed)."},
-        {"lerp", 3, "lerp(a, b, t) = a + (b - a) t, of numbers or of vectors."},
-    };
-    return functions;
-}
-
-SceneAst interpret(Sources& sources, Diagnostics& diagnostics, const InterpretOptions& options) {
-    return Interpreter(sources, diagnostics).run(options);
+EvaluatedScene interpret(Sources& sources, Diagnostics& diagnostics, const ParameterValues& parameters,
+                         const InterpretLimits& limits, const BlockSink& on_block) {
+    return Interpreter(sources, diagnostics, limits, on_block).run(parameters);
 }
 
 bool evaluate_single_value(const SourceFile& file, Diagnostics& diagnostics, Value& out) {

@@ -1,5 +1,5 @@
-// Runs a scene program (program.h) into the blocks of plain values that validation checks
-// (ast.h): expressions computed, names replaced by their values, loops unrolled, included files
+// Runs a scene program (syntax_tree.h) into the blocks of plain values that validation checks
+// (evaluated_scene.h): expressions computed, names replaced by their values, loops unrolled, included files
 // read, parsed and run in place. Every value keeps the span of the expression that made it,
 // tagged with the loop iteration or include it came from (Sources), so that later messages can
 // point at it and say which iteration it was.
@@ -13,8 +13,8 @@
 
 #include "base/diagnostics.h"
 #include "base/source.h"
-#include "lang/ast.h"
-#include "lang/program.h"
+#include "lang/evaluated_scene.h"
+#include "lang/syntax_tree.h"
 
 namespace tracer {
 
@@ -26,28 +26,24 @@ constexpr size_t kMaxLoopIterations = 10'000'000;
 constexpr int kMaxIncludeDepth = 32;
 constexpr size_t kMaxIncludedBytes = size_t(256) << 20;
 
-struct InterpretOptions {
-    // -D NAME=VALUE from the command line, in order: each must name a `param` of the scene.
-    std::vector<std::pair<std::string, std::string>> parameters;
+// -D NAME=VALUE from the command line, in order: each must name a `param` of the scene.
+using ParameterValues = std::vector<std::pair<std::string, std::string>>;
+
+// How much one scene may make: each limit reached is an error at its place.
+struct InterpretLimits {
     size_t max_blocks = kMaxGeneratedBlocks;  // lower for fuzzing, where memory and time are short
     size_t max_iterations = kMaxLoopIterations;
-    // If set, each block is handed over as soon as it is made, not kept in the SceneAst: a
-    // scene of a million blocks is then never held whole.
-    std::function<void(Block&&)> on_block;
 };
 
-// A function expressions may call: its name, how many arguments it takes, what it gives (the
-// one table the interpreter and the reference both read).
-struct FunctionSpec {
-    std::string_view name;
-    size_t arity;
-    std::string_view meaning;
-};
-const std::vector<FunctionSpec>& all_functions();
+// Takes each block as soon as it is made, instead of the EvaluatedScene keeping it: a scene of
+// a million blocks is then never held whole.
+using BlockSink = std::function<void(Block&&)>;
 
-// The scene file `sources.scene()` parsed and run, one statement at a time; problems go to
-// `diagnostics`. Included files are added to `sources`.
-SceneAst interpret(Sources& sources, Diagnostics& diagnostics, const InterpretOptions& options = {});
+// The scene file `sources.scene()` parsed and run, one statement at a time, with the command
+// line's `parameters`; problems go to `diagnostics`. Included files are added to `sources`.
+// Blocks go to `on_block` when it is set, else into the result.
+EvaluatedScene interpret(Sources& sources, Diagnostics& diagnostics, const ParameterValues& parameters = {},
+                         const InterpretLimits& limits = {}, const BlockSink& on_block = {});
 
 // One value alone, with no names defined (a default in the block tables, a setting or a -D
 // value from the command line). False, with the problem in `diagnostics`, if it has none.

@@ -7,29 +7,28 @@
 
 namespace tracer {
 
-LoadResult load_scene_text(const std::string& path, std::string text, bool fragment,
-                           const InterpretOptions& interpret_options) {
+LoadResult load_scene_text(const std::string& path, std::string text, bool fragment, const ParameterValues& parameters,
+                           const InterpretLimits& limits) {
     LoadResult result;
     Sources sources(std::make_unique<SourceFile>(path, std::move(text)));
     // Each block is checked and built as the interpreter makes it.
     ValidateOptions options;
     options.fragment = fragment;
     SceneBuilder builder(sources, result.diagnostics, options);
-    InterpretOptions streaming = interpret_options;
-    streaming.on_block = [&](Block&& block) { builder.add(block); };
-    const SceneAst ast = interpret(sources, result.diagnostics, streaming);
-    result.scene = builder.finish(ast.parameters);
+    const BlockSink check_and_build = [&](Block&& block) { builder.add(block); };
+    const EvaluatedScene evaluated = interpret(sources, result.diagnostics, parameters, limits, check_and_build);
+    result.scene = builder.finish(evaluated.parameters);
     return result;
 }
 
-LoadResult load_scene(const std::string& path, const InterpretOptions& options) {
+LoadResult load_scene(const std::string& path, const ParameterValues& parameters, const InterpretLimits& limits) {
     // "-": standard input, named <stdin> in messages; its mesh paths are relative to the
     // working folder (the folder of a file named <stdin> there).
     const bool standard_input = path == "-";
     const std::string name = standard_input ? std::string(kStandardInputName) : path;
     InputFile input =
         standard_input ? read_standard_input(kMaxSceneFileBytes) : read_input_file(path, kMaxSceneFileBytes);
-    if (input.problem.empty()) return load_scene_text(name, std::move(input.text), false, options);
+    if (input.problem.empty()) return load_scene_text(name, std::move(input.text), false, parameters, limits);
     LoadResult result;
     result.unreadable = true;
     result.diagnostics.report(Severity::Error, Diagnostics::whole_file(name),

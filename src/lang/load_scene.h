@@ -21,11 +21,12 @@ struct LoadResult {
 // "-" reads standard input, named kStandardInputName in messages (mesh paths relative to
 // the working folder).
 inline constexpr std::string_view kStandardInputName = "<stdin>";
-LoadResult load_scene(const std::string& path, const InterpretOptions& options = {});
+LoadResult load_scene(const std::string& path, const ParameterValues& parameters = {},
+                      const InterpretLimits& limits = {});
 
 // Parses and validates scene text held in memory (`path` names it in messages and anchors
-// relative paths).
+// relative paths). A `fragment` (an example of the reference) needs no camera.
 LoadResult load_scene_text(const std::string& path, std::string text, bool fragment = false,
-                           const InterpretOptions& options = {});
+                           const ParameterValues& parameters = {}, const InterpretLimits& limits = {});
 
 }  // namespace tracer

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "lang/interpreter.h"
+#include "lang/builtins.h"
 #include "lang/schema.h"
 
 namespace tracer {
@@ -77,7 +77,7 @@ std::string reference_markdown() {
            "\nValues may be expressions: `+ - * /`, unary minus, parentheses, vectors `(a, b, c)`, components\n"
            "`v.x`, `v.y`, `v.z`, and these functions:\n\n"
            "| function | arguments | gives |\n|---|---|---|\n";
-    for (const FunctionSpec& function : all_functions())
+    for (const Builtin& function : all_builtins())
         out << "| `" << function.name << "` | " << function.arity << " | " << function.meaning << " |\n";
     return out.str();
 }

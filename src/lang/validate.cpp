@@ -109,7 +109,7 @@ public:
         scene_.source_path = fs::absolute(fs::path(sources.scene().path()), ignored).lexically_normal().string();
     }
 
-    std::optional<SceneDescription> run(const SceneAst& ast);
+    std::optional<SceneDescription> run(const EvaluatedScene& evaluated);
     void set_parameters(const std::vector<std::pair<std::string, Value>>& parameters);
     void accept(const Block& block);
     std::optional<SceneDescription> finish();
@@ -176,9 +176,9 @@ void Validator::set_parameters(const std::vector<std::pair<std::string, Value>>&
              value.kind == Value::Kind::Vector});
 }
 
-std::optional<SceneDescription> Validator::run(const SceneAst& ast) {
-    set_parameters(ast.parameters);
-    for (const Block& block : ast.blocks) accept(block);
+std::optional<SceneDescription> Validator::run(const EvaluatedScene& evaluated) {
+    set_parameters(evaluated.parameters);
+    for (const Block& block : evaluated.blocks) accept(block);
     return finish();
 }
 
@@ -756,9 +756,9 @@ std::optional<SceneDescription> SceneBuilder::finish(const std::vector<std::pair
     return state_->validator.finish();
 }
 
-std::optional<SceneDescription> validate_scene(const SceneAst& ast, const Sources& sources, Diagnostics& diagnostics,
-                                               const ValidateOptions& options) {
-    return Validator(sources, diagnostics, options).run(ast);
+std::optional<SceneDescription> validate_scene(const EvaluatedScene& evaluated, const Sources& sources,
+                                               Diagnostics& diagnostics, const ValidateOptions& options) {
+    return Validator(sources, diagnostics, options).run(evaluated);
 }
 
 }  // namespace tracer

@@ -9,7 +9,7 @@
 
 #include "base/diagnostics.h"
 #include "base/source.h"
-#include "lang/ast.h"
+#include "lang/evaluated_scene.h"
 #include "scene/scene.h"
 
 namespace tracer {
@@ -22,8 +22,8 @@ struct ValidateOptions {
 
 // The scene description, or nothing if any error was reported (the errors are in
 // `diagnostics`). Relative paths resolve against the folder of the file they are written in.
-std::optional<SceneDescription> validate_scene(const SceneAst& ast, const Sources& sources, Diagnostics& diagnostics,
-                                               const ValidateOptions& options = {});
+std::optional<SceneDescription> validate_scene(const EvaluatedScene& evaluated, const Sources& sources,
+                                               Diagnostics& diagnostics, const ValidateOptions& options = {});
 
 // The same, a block at a time: blocks are checked and built as they come (the interpreter's
 // on_block), and finish() gives the scene description.

@@ -13,11 +13,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace tracer;
     // Small generation limits: the fuzzer's time and memory per input are short (the real
     // limits are tested in tests/cli).
-    InterpretOptions options;
-    options.max_blocks = 20'000;
-    options.max_iterations = 100'000;
+    InterpretLimits limits;
+    limits.max_blocks = 20'000;
+    limits.max_iterations = 100'000;
     LoadResult loaded =
-        load_scene_text("fuzz.scn", std::string(reinterpret_cast<const char*>(data), size), false, options);
+        load_scene_text("fuzz.scn", std::string(reinterpret_cast<const char*>(data), size), false, {}, limits);
     std::ostringstream messages;
     loaded.diagnostics.print(messages);
     if (!loaded.scene) return 0;

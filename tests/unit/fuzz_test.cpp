@@ -55,7 +55,7 @@ TEST(Fuzz, RandomEditsOfAProgramNeverCrashAndAreConsistent) {
     ASSERT_FALSE(original.empty());
     const std::string alphabet = "{}(),#\"-+*/=.e0123456789 \n\tabcijxyz_\x01\xff";
     const std::string words[] = {"let ", "for ", " in ", "..", "param ", "include \"x.scn\" ", "sqrt(", ".x"};
-    InterpretOptions limits;
+    InterpretLimits limits;
     limits.max_blocks = 5000;
     limits.max_iterations = 20000;
     std::mt19937 random(54321);
@@ -72,7 +72,7 @@ TEST(Fuzz, RandomEditsOfAProgramNeverCrashAndAreConsistent) {
                 default: text[at] = alphabet[random() % alphabet.size()]; break;
             }
         }
-        LoadResult result = load_scene_text("fuzz.scn", text, false, limits);
+        LoadResult result = load_scene_text("fuzz.scn", text, false, {}, limits);
         EXPECT_EQ(bool(result.scene), !result.diagnostics.has_errors()) << text;
         for (const Diagnostic& d : result.diagnostics.all()) format_diagnostic(d);
         rejected += result.scene ? 0 : 1;

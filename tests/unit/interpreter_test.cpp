@@ -12,8 +12,8 @@ namespace {
 
 const std::string kCamera = "camera { eye (0, 0, 7) lookat (0, 0, 0) }\nlight { position (0, 5, 5) }\n";
 
-LoadResult load(const std::string& text, const InterpretOptions& options = {}) {
-    return load_scene_text("/scenes/t.scn", kCamera + text, false, options);
+LoadResult load(const std::string& text, const ParameterValues& parameters = {}, const InterpretLimits& limits = {}) {
+    return load_scene_text("/scenes/t.scn", kCamera + text, false, parameters, limits);
 }
 
 std::vector<std::string> errors(const LoadResult& result) {
@@ -170,26 +170,23 @@ TEST(Interpreter, ParametersTakeTheirValueFromTheCommandLine) {
     LoadResult defaults = load(text);
     ASSERT_TRUE(defaults.scene);
     EXPECT_EQ(defaults.scene->spheres[0].radius, 0.5);
-    InterpretOptions options;
-    options.parameters = {{"r", "0.25 * 2 + 1"}, {"colour", "(1, 0, 0)"}};
-    LoadResult set = load(text, options);
+    LoadResult set = load(text, {{"r", "0.25 * 2 + 1"}, {"colour", "(1, 0, 0)"}});
     ASSERT_TRUE(set.scene) << errors(set)[0];
     EXPECT_EQ(set.scene->spheres[0].radius, 1.5);
     EXPECT_EQ(set.scene->materials.back().kd, dvec3(1, 0, 0));
-    options.parameters = {{"colur", "2"}};
-    EXPECT_EQ(errors(load(text, options)),
+    EXPECT_EQ(errors(load(text, {{"colur", "2"}})),
               std::vector<std::string>{"-D colur: the scene has no 'param colur'; did you mean 'colour'?"});
     EXPECT_EQ(errors(load("for i in 0..2 { param p = 1 }")),
               std::vector<std::string>{"a 'param' is declared at the top level of a file, not inside a loop"});
 }
 
 TEST(Interpreter, LimitsStopRunawayScenes) {
-    InterpretOptions options;
-    options.max_blocks = 100;
-    options.max_iterations = 1000;
-    EXPECT_EQ(errors(load("for i in 0..1000 { sphere { center (0, 0, 0) radius 1 material { kd 1 } } }", options)),
+    InterpretLimits limits;
+    limits.max_blocks = 100;
+    limits.max_iterations = 1000;
+    EXPECT_EQ(errors(load("for i in 0..1000 { sphere { center (0, 0, 0) radius 1 material { kd 1 } } }", {}, limits)),
               std::vector<std::string>{"the scene generates more than 100 blocks (the limit); generate fewer"});
-    EXPECT_EQ(errors(load("for i in 0..100 { for j in 0..100 { } }", options)),
+    EXPECT_EQ(errors(load("for i in 0..100 { for j in 0..100 { } }", {}, limits)),
               std::vector<std::string>{"the scene runs more than 1000 loop iterations (the limit)"});
 }
 

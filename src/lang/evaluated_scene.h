@@ -1,6 +1,6 @@
 // The scene as evaluated: blocks of `key value` entries holding plain values (numbers, vectors,
 // strings, words, nested blocks), before any meaning is given to them. The interpreter builds
-// it from the program as written (program.h); validation checks it against the block tables
+// it from the program as written (syntax_tree.h); validation checks it against the block tables
 // (schema.h) and produces the scene description.
 #pragma once
 
@@ -26,6 +26,18 @@ struct Value {
     std::shared_ptr<Body> body;  // Block (an inline block such as `material { ... }`)
 };
 
+inline bool is_number(const Value& value) {
+    return value.kind == Value::Kind::Number;
+}
+inline bool is_vector(const Value& value) {
+    return value.kind == Value::Kind::Vector;
+}
+// A number or a vector made by an expression at `span` (each component spanning it too).
+Value number_value(double number, Span span);
+Value vector_value(std::vector<double> components, Span span);
+// What a value is, for messages: "a number", "a vector of 3 numbers", "the word 'sah'".
+std::string kind_of(const Value& value);
+
 struct Entry {
     std::string key;
     Span key_span;
@@ -47,7 +59,7 @@ struct Block {
     bool broken = false;  // a syntax error was reported inside; do not validate further
 };
 
-struct SceneAst {
+struct EvaluatedScene {
     std::vector<Block> blocks;
     std::vector<std::pair<std::string, Value>> parameters;  // each `param` and the value it took
 };

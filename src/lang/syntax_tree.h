@@ -1,6 +1,6 @@
-// A scene file as written: statements (blocks, names, loops, includes) whose values are
+// The syntax tree: a scene file as written: statements (blocks, names, loops, includes) whose values are
 // expressions. The parser builds it; the interpreter (interpreter.h) evaluates it into the
-// blocks of plain values (ast.h) that validation checks.
+// blocks of plain values (evaluated_scene.h) that validation checks.
 #pragma once
 
 #include <memory>

@@ -1,0 +1,127 @@
+#include "lang/builtins.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "lang/schema.h"
+
+namespace tracer {
+
+double BuiltinArguments::number(size_t i) const {
+    const Value& value = values_[i];
+    if (!is_number(value))
+        throw BuiltinError{value.span,
+                           "'" + std::string(function_) + "''s argument must be a number; this is " + kind_of(value)};
+    return value.number;
+}
+
+const std::vector<double>& BuiltinArguments::vector(size_t i) const {
+    const Value& value = values_[i];
+    if (!is_vector(value) || value.components.size() != 3)
+        throw BuiltinError{value.span, "'" + std::string(function_) +
+                                           "''s argument must be a vector of 3 numbers; this is " + kind_of(value)};
+    return value.components;
+}
+
+namespace {
+
+constexpr double kRadians = std::numbers::pi / 180;
+
+// The length of v, computed without overflow, and v scaled by 1/largest component (zero: 0).
+double scaled_length(const std::vector<double>& v, double& largest) {
+    largest = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+    if (largest == 0) return 0;
+    const double x = v[0] / largest, y = v[1] / largest, z = v[2] / largest;
+    return std::sqrt(x * x + y * y + z * z);
+}
+
+Value sqrt_of(const BuiltinArguments& args, Span at) {
+    const double x = args.number(0);
+    if (x < 0) throw BuiltinError{args[0].span, "sqrt of a negative number (" + format_number(x) + ")"};
+    return number_value(std::sqrt(x), at);
+}
+
+Value mod_of(const BuiltinArguments& args, Span at) {
+    const double a = args.number(0), b = args.number(1);
+    if (b == 0) throw BuiltinError{args[1].span, "mod by zero"};
+    const double r = std::fmod(a, b);
+    return number_value(r != 0 && (r < 0) != (b < 0) ? r + b : r, at);  // the divisor's sign
+}
+
+Value abs_of(const BuiltinArguments& args, Span at) {
+    if (!is_vector(args[0])) return number_value(std::abs(args.number(0)), at);
+    std::vector<double> out;
+    for (double c : args[0].components) out.push_back(std::abs(c));
+    return vector_value(out, at);
+}
+
+Value length_of(const BuiltinArguments& args, Span at) {
+    double largest;
+    const double length = scaled_length(args.vector(0), largest);
+    return number_value(largest * length, at);
+}
+
+Value normalize_of(const BuiltinArguments& args, Span at) {
+    const std::vector<double>& v = args.vector(0);
+    double largest;
+    const double length = scaled_length(v, largest);
+    if (largest == 0) throw BuiltinError{args[0].span, "normalize of the zero vector"};
+    return vector_value({v[0] / largest / length, v[1] / largest / length, v[2] / largest / length}, at);
+}
+
+Value cross_of(const BuiltinArguments& args, Span at) {
+    const std::vector<double>&a = args.vector(0), &b = args.vector(1);
+    return vector_value({a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}, at);
+}
+
+Value lerp_of(const BuiltinArguments& args, Span at) {
+    const double t = args.number(2);
+    if (is_number(args[0]) && is_number(args[1]))
+        return number_value(args[0].number + (args[1].number - args[0].number) * t, at);
+    const std::vector<double>&a = args.vector(0), &b = args.vector(1);
+    return vector_value({a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t}, at);
+}
+
+}  // namespace
+
+const std::vector<Builtin>& all_builtins() {
+    using Args = const BuiltinArguments&;
+    // clang-format off
+    static const std::vector<Builtin> builtins = {
+        {"sqrt", 1, "Square root (of a number not below 0).", sqrt_of},
+        {"sin", 1, "Sine of an angle in degrees.",
+         [](Args args, Span at) { return number_value(std::sin(args.number(0) * kRadians), at); }},
+        {"cos", 1, "Cosine of an angle in degrees.",
+         [](Args args, Span at) { return number_value(std::cos(args.number(0) * kRadians), at); }},
+        {"tan", 1, "Tangent of an angle in degrees.",
+         [](Args args, Span at) { return number_value(std::tan(args.number(0) * kRadians), at); }},
+        {"abs", 1, "Absolute value, of a number or of each component of a vector.", abs_of},
+        {"floor", 1, "The largest whole number not above.",
+         [](Args args, Span at) { return number_value(std::floor(args.number(0)), at); }},
+        {"min", 2, "The smaller of two numbers.",
+         [](Args args, Span at) { return number_value(std::min(args.number(0), args.number(1)), at); }},
+        {"max", 2, "The larger of two numbers.",
+         [](Args args, Span at) { return number_value(std::max(args.number(0), args.number(1)), at); }},
+        {"mod", 2, "Remainder of a / b, with b's sign: mod(-1, 3) is 2.", mod_of},
+        {"length", 1, "Length of a vector.", length_of},
+        {"normalize", 1, "The vector scaled to length 1 (not the zero vector).", normalize_of},
+        {"dot", 2, "Dot product of two vectors.",
+         [](Args args, Span at) {
+             const std::vector<double>&a = args.vector(0), &b = args.vector(1);
+             return number_value(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], at);
+         }},
+        {"cross", 2, "Cross product of two vectors (right-handed).", cross_of},
+        {"lerp", 3, "lerp(a, b, t) = a + (b - a) t, of numbers or of vectors.", lerp_of},
+    };
+    // clang-format on
+    return builtins;
+}
+
+const Builtin* find_builtin(std::string_view name) {
+    for (const Builtin& builtin : all_builtins())
+        if (builtin.name == name) return &builtin;
+    return nullptr;
+}
+
+}  // namespace tracer

@@ -1,0 +1,50 @@
+// The built-in functions of the scene language: one table, one row per function with its name,
+// arity, meaning and body (Lua's luaL_Reg is the model). The interpreter calls through it and
+// the reference (grammar/reference.md) is generated from it, so a function cannot exist
+// without its body or its documentation.
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lang/evaluated_scene.h"
+
+namespace tracer {
+
+// Thrown by a body for an argument it cannot take: the interpreter reports `message` at `span`.
+struct BuiltinError {
+    Span span;
+    std::string message;
+};
+
+// A call's evaluated arguments (their number already checked against the arity), as a body
+// reads them: number(i) and vector(i) throw BuiltinError when argument i is of another kind.
+class BuiltinArguments {
+public:
+    BuiltinArguments(std::string_view function, std::span<const Value> values) : function_(function), values_(values) {}
+    const Value& operator[](size_t i) const { return values_[i]; }
+    double number(size_t i) const;
+    const std::vector<double>& vector(size_t i) const;  // of 3 components
+
+private:
+    std::string_view function_;
+    std::span<const Value> values_;
+};
+
+// One built-in function. The body returns its result at span `at` (the call), or throws
+// BuiltinError; the interpreter checks that the result is finite.
+struct Builtin {
+    std::string_view name;
+    size_t arity;
+    std::string_view meaning;  // one sentence for the reference
+    Value (*body)(const BuiltinArguments& args, Span at);
+};
+
+// Every built-in, in the order the reference lists them.
+const std::vector<Builtin>& all_builtins();
+// The built-in called `name`, or nullptr.
+const Builtin* find_builtin(std::string_view name);
+
+}  // namespace tracer

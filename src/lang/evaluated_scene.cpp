@@ -1,0 +1,35 @@
+#include "lang/evaluated_scene.h"
+
+#include "base/diagnostics.h"
+
+namespace tracer {
+
+Value number_value(double number, Span span) {
+    Value value;
+    value.kind = Value::Kind::Number;
+    value.number = number;
+    value.span = span;
+    return value;
+}
+
+Value vector_value(std::vector<double> components, Span span) {
+    Value value;
+    value.kind = Value::Kind::Vector;
+    value.components = std::move(components);
+    value.component_spans.assign(value.components.size(), span);
+    value.span = span;
+    return value;
+}
+
+std::string kind_of(const Value& value) {
+    switch (value.kind) {
+        case Value::Kind::Number: return "a number";
+        case Value::Kind::Vector: return "a vector of " + std::to_string(value.components.size()) + " numbers";
+        case Value::Kind::String: return "a string";
+        case Value::Kind::Identifier: return "the word " + in_quotes(value.text);
+        case Value::Kind::Block: return "a block";
+    }
+    return "a value";
+}
+
+}  // namespace tracer
