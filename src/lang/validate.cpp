@@ -1,3 +1,4 @@
+// The validator's checks, driven by the block tables (schema.h), and the entry points.
 #include "lang/validate.h"
 
 #include <algorithm>
@@ -7,7 +8,6 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <mutex>
 
 #include <glm/geometric.hpp>
 
@@ -15,8 +15,7 @@
 #include "lang/interpreter.h"
 #include "lang/schema.h"
 #include "lang/suggest.h"
-#include "scene/flat_shapes.h"
-#include "scene/placement.h"
+#include "lang/validator.h"
 
 namespace tracer {
 namespace {
@@ -36,137 +35,7 @@ std::string describe_found(const Value& value) {
     return "a value";
 }
 
-// A key's default, parsed once from the scene syntax written in its table row.
-const Value& default_of(const KeySpec& key) {
-    static std::mutex mutex;
-    static std::map<const KeySpec*, Value> cache;
-    std::lock_guard lock(mutex);
-    auto found = cache.find(&key);
-    if (found != cache.end()) return found->second;
-    SourceFile file("<default>", std::string(key.default_value));
-    Diagnostics ignored;
-    Value value;
-    if (!evaluate_single_value(file, ignored, value)) std::abort();  // a broken table: a bug
-    return cache.emplace(&key, std::move(value)).first->second;
-}
-
-// Scales a vector to unit length without overflow or underflow; zero stays zero.
-dvec3 normalized(dvec3 v) {
-    double largest = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-    if (largest == 0 || !std::isfinite(largest)) return dvec3(0.0);
-    return glm::normalize(v / largest);
-}
-
-// The checked values of one block, with table defaults behind them.
-class Fields {
-public:
-    explicit Fields(const BlockSpec& spec) : spec_(&spec) {}
-
-    void set(const KeySpec& key, const Value& value, Span key_span) { given_[key.name] = {&value, key_span}; }
-    void set_child(const KeySpec& key, std::unique_ptr<Fields> child) { children_[key.name] = std::move(child); }
-    bool has(std::string_view name) const { return given_.count(name) > 0; }
-    Span key_span(std::string_view name) const { return given_.at(name).key_span; }
-    Span value_span(std::string_view name) const { return has(name) ? given_.at(name).value->span : Span{}; }
-
-    const Value& get(std::string_view name) const {
-        auto found = given_.find(name);
-        return found != given_.end() ? *found->second.value : default_of(*spec_->find_key(name));
-    }
-    double number(std::string_view name) const { return get(name).number; }
-    int integer(std::string_view name) const { return int(get(name).number); }
-    bool boolean(std::string_view name) const { return get(name).text == "true"; }
-    std::string text(std::string_view name) const { return get(name).text; }
-    dvec3 triple(std::string_view name) const {
-        const Value& value = get(name);
-        if (value.kind == Value::Kind::Number) return dvec3(value.number);
-        return {value.components[0], value.components[1], value.components[2]};
-    }
-    // The checked fields of a nested block (written, or the table's default).
-    const Fields* child(std::string_view name) const {
-        auto found = children_.find(name);
-        return found != children_.end() ? found->second.get() : nullptr;
-    }
-    // An ordered block's steps (transform), each with its one key, in the order written.
-    void add_step(std::unique_ptr<Fields> step) { steps_.push_back(std::move(step)); }
-    const std::vector<std::unique_ptr<Fields>>& steps() const { return steps_; }
-
-private:
-    struct Given {
-        const Value* value;
-        Span key_span;
-    };
-    const BlockSpec* spec_;
-    std::map<std::string_view, Given> given_;
-    std::map<std::string_view, std::unique_ptr<Fields>> children_;
-    std::vector<std::unique_ptr<Fields>> steps_;
-};
-
-class Validator {
-public:
-    Validator(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& options)
-        : file_(sources), diagnostics_(diagnostics), options_(options) {
-        std::error_code ignored;
-        scene_.source_path = fs::absolute(fs::path(sources.scene().path()), ignored).lexically_normal().string();
-    }
-
-    std::optional<SceneDescription> run(const EvaluatedScene& evaluated);
-    void set_parameters(const std::vector<std::pair<std::string, Value>>& parameters);
-    void accept(const Block& block);
-    std::optional<SceneDescription> finish();
-    // Checks one value of `key` as a scene's block would (its type, range and other rules).
-    bool check_setting(const Value& value, const KeySpec& key, const BlockSpec& spec) {
-        Fields fields(spec);
-        fields.set(key, value, value.span);
-        return check_value(value, key, fields);
-    }
-
-private:
-    // Generic checks driven by the tables.
-    bool check_block_header(const Block& block, const BlockSpec& spec);
-    bool check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields);
-    bool check_steps(const Body& body, const BlockSpec& spec, Fields& fields);
-    bool unknown_key(const Entry& entry, const BlockSpec& spec, std::vector<std::string>& suggested);
-    bool check_value(const Value& value, const KeySpec& key, Fields& fields);
-    bool check_number(double number, Span span, const KeySpec& key);
-    bool check_perfect_square(double number, Span span, const KeySpec& key);
-    bool type_error(const Value& value, const KeySpec& key, const std::string& extra = "");
-
-    // Builders: checked fields -> scene description.
-    void add_named_material(const Block& block);
-    int material_index(const Fields& fields);
-    bool check_material_name(const Value& value);
-    Material build_material(const Fields& fields, std::string name);
-    void build(const Block& block, const Fields& fields);
-    void build_render(const Block& block, const Fields& fields);
-    void build_camera(const Block& block, const Fields& fields);
-    bool build_placed(const Block& block, const Fields& fields, Placed& out);
-    void build_mesh(const Block& block, const Fields& fields);
-    void build_flat_shape(const Block& block, const Fields& fields);
-    bool check_reach(const Block& block, const Placed& placed, const TriangleMesh& mesh);
-    void warn_about_the_picture();
-
-    const Sources& file_;  // the scene file and those it includes
-    Diagnostics& diagnostics_;
-    ValidateOptions options_;
-    SceneDescription scene_;
-
-    struct NamedMaterial {
-        int index = -1;  // -1: the material's own block had errors
-        Span name_span;
-        bool used = false;
-    };
-    std::map<std::string, NamedMaterial, std::less<>> named_;
-    std::map<std::string_view, Span> first_of_kind_;  // each kind's first block
-    // Materials used by name before their block, resolved by finish(): a shape's material index
-    // kLaterMaterial - i stands for later_uses_[i].
-    struct LaterUse {
-        std::string name;
-        Span span;
-    };
-    static constexpr int kLaterMaterial = -2;
-    std::vector<LaterUse> later_uses_;
-    void resolve_later_materials();
-};
+}  // namespace
 
 // Takes a scene's parameters, as the interpreter found them.
 void Validator::set_parameters(const std::vector<std::pair<std::string, Value>>& parameters) {
@@ -479,88 +348,6 @@ bool Validator::check_number(double number, Span span, const KeySpec& key) {
     return false;
 }
 
-void Validator::add_named_material(const Block& block) {
-    auto [entry, inserted] = named_.try_emplace(block.name);
-    if (!inserted) {
-        Diagnostic* d = diagnostics_.error(file_, block.name_span, "material '" + block.name + "' is defined twice");
-        Diagnostics::note(d, file_, entry->second.name_span, "the first definition is here");
-        return;
-    }
-    entry->second.name_span = block.name_span;
-    if (block.broken) return;  // already reported; keep the name so uses of it are not errors too
-    Fields fields(*find_block_spec("material"));
-    if (!check_body(block.body, *find_block_spec("material"), block.kind_span, fields)) return;
-    entry->second.index = int(scene_.materials.size());
-    scene_.materials.push_back(build_material(fields, block.name));
-}
-
-Material Validator::build_material(const Fields& fields, std::string name) {
-    Material material;
-    material.name = std::move(name);
-    material.ka = fields.triple("ka");
-    material.kd = fields.triple("kd");
-    material.ks = fields.triple("ks");
-    material.km = fields.triple("km");
-    material.n = fields.number("n");
-    material.kt = fields.triple("kt");
-    material.ior = fields.number("ior");
-    return material;
-}
-
-// The index of the shape's material: a named one, or its inline block added to the list.
-int Validator::material_index(const Fields& fields) {
-    const Value& value = fields.get("material");
-    if (value.kind == Value::Kind::Block) {
-        scene_.materials.push_back(build_material(*fields.child("material"), ""));
-        return int(scene_.materials.size()) - 1;
-    }
-    auto found = named_.find(value.text);
-    if (found != named_.end()) return found->second.index;
-    return kLaterMaterial - int(later_uses_.size() - 1);  // this block's use, just recorded by check_material_name
-}
-
-// A material used by name must be defined somewhere in the scene: marks it used, or records
-// the use to be resolved once every block is in (it may be defined further down).
-bool Validator::check_material_name(const Value& value) {
-    auto found = named_.find(value.text);
-    if (found != named_.end()) {
-        found->second.used = true;
-        return true;
-    }
-    later_uses_.push_back({value.text, value.span});
-    return true;
-}
-
-void Validator::build(const Block& block, const Fields& fields) {
-    const std::string& kind = block.kind;
-    if (kind == "render") return build_render(block, fields);
-    if (kind == "camera") return build_camera(block, fields);
-    if (kind == "mesh") return build_mesh(block, fields);
-    if (kind == "triangle" || kind == "quad" || kind == "box") return build_flat_shape(block, fields);
-    if (kind == "light") {
-        scene_.lights.push_back({fields.triple("position"), fields.triple("color")});
-    } else if (kind == "sphere") {
-        scene_.spheres.push_back({fields.triple("center"), fields.number("radius"), material_index(fields)});
-    } else if (kind == "plane") {
-        scene_.planes.push_back({fields.triple("point"), normalized(fields.triple("normal")), material_index(fields)});
-    }
-}
-
-void Validator::build_render(const Block& block, const Fields& fields) {
-    RenderSettings& render = scene_.render;
-    render.width = fields.integer("width");
-    render.height = fields.integer("height");
-    render.max_depth = fields.integer("max_depth");
-    render.samples = fields.integer("samples");
-    render.background = fields.triple("background");
-    render.shadows = fields.boolean("shadows");
-    accelerator_from_name(fields.text("accel"), render.accel);
-    render.leaf_size = fields.integer("leaf_size");
-
-    if (const std::string problem = render_settings_problem(render); !problem.empty())
-        diagnostics_.error(file_, block.kind_span, problem);
-}
-
 // A whole number that must be N * N (checked with the key's other rules, so that it is
 // reported even when another key of the block is wrong).
 bool Validator::check_perfect_square(double number, Span span, const KeySpec& key) {
@@ -573,156 +360,6 @@ bool Validator::check_perfect_square(double number, Span span, const KeySpec& ke
                            std::to_string(lower * lower) + " or " + std::to_string((lower + 1) * (lower + 1)));
     return false;
 }
-
-void Validator::build_camera(const Block& block, const Fields& fields) {
-    Camera& camera = scene_.camera;
-    camera.eye = fields.triple("eye");
-    camera.lookat = fields.triple("lookat");
-    camera.up = fields.triple("up");
-    camera.fovy_degrees = fields.number("fovy");
-    camera.focal = fields.number("focal");
-
-    dvec3 forward = normalized(camera.lookat - camera.eye);
-    if (forward == dvec3(0.0)) {
-        diagnostics_.error(file_, fields.value_span("lookat"),
-                           "'lookat' must differ from 'eye' (they set the viewing direction)");
-        return;
-    }
-    if (glm::length(glm::cross(forward, normalized(camera.up))) < 1e-9) {
-        Span at = fields.has("up") ? fields.value_span("up") : block.kind_span;
-        diagnostics_.error(file_, at,
-                           std::string("'up'") + (fields.has("up") ? "" : " (by default (0, 1, 0))") +
-                               " is parallel to the viewing direction; choose an 'up' that is not");
-    }
-}
-
-// The placement and material of a mesh or flat shape: its scale, rotate and translate keys, or
-// the steps of its transform block (not both). False if the placement is refused.
-bool Validator::build_placed(const Block& block, const Fields& fields, Placed& out) {
-    out.at = Diagnostics::locate(file_, block.kind_span);
-    out.material = material_index(fields);
-    out.scale = fields.triple("scale");
-    const Fields& rotate = *fields.child("rotate");
-    out.rotate_axis = normalized(rotate.triple("axis"));
-    out.rotate_degrees = rotate.number("angle");
-    out.translate = fields.triple("translate");
-    if (!fields.has("transform")) return true;
-
-    for (std::string_view own : {"scale", "rotate", "translate"}) {
-        if (!fields.has(own)) continue;
-        Diagnostic* d = diagnostics_.error(
-            file_, fields.key_span("transform"),
-            "'transform' cannot be combined with 'scale', 'rotate' or 'translate' in one block; write those "
-            "steps inside the transform, in the order they apply");
-        Diagnostics::note(d, file_, fields.key_span(own), "'" + std::string(own) + "' is set here");
-        return false;
-    }
-    // The steps, and how much they scale in all (each factor is in range; their product must be too).
-    double smallest = 1, largest = 1;
-    for (const auto& step : fields.child("transform")->steps()) {
-        TransformStep out_step;
-        if (step->has("scale")) {
-            out_step.kind = TransformStep::Kind::Scale;
-            out_step.vector = step->triple("scale");
-            const dvec3 size = glm::abs(out_step.vector);
-            smallest *= std::min({size.x, size.y, size.z});
-            largest *= std::max({size.x, size.y, size.z});
-        } else if (step->has("rotate")) {
-            const Fields& turn = *step->child("rotate");
-            out_step.kind = TransformStep::Kind::Rotate;
-            out_step.vector = normalized(turn.triple("axis"));
-            out_step.degrees = turn.number("angle");
-        } else {
-            out_step.kind = TransformStep::Kind::Translate;
-            out_step.vector = step->triple("translate");
-        }
-        out.steps.push_back(out_step);
-    }
-    if (smallest < kSmallestSize || largest > kLargestMagnitude) {
-        char text[64];
-        std::snprintf(text, sizeof text, "%.3g", smallest < kSmallestSize ? smallest : largest);
-        diagnostics_.error(file_, fields.key_span("transform"),
-                           std::string("the transform's scale steps multiply to ") + text +
-                               " on some axis; sizes must stay between 1e-30 and 1e30");
-        return false;
-    }
-    return true;
-}
-
-void Validator::build_mesh(const Block& block, const Fields& fields) {
-    Mesh mesh;
-    // Relative to the folder of the file the path is written in (the scene or an included file).
-    fs::path path = fields.text("file");
-    std::error_code ignored;
-    if (path.is_relative())
-        path = fs::absolute(fs::path(file_.file(fields.value_span("file")).path()), ignored).parent_path() / path;
-    mesh.path = path.lexically_normal().string();
-    mesh.named_at = Diagnostics::locate(file_, fields.value_span("file"));
-    const std::string problem = input_file_problem(mesh.path, kMaxMeshFileBytes);  // looks, never opens
-    if (!problem.empty())
-        diagnostics_.error(file_, fields.value_span("file"), "cannot read mesh file '" + mesh.path + "': " + problem);
-    mesh.flat = fields.text("shading") == "flat";
-    if (build_placed(block, fields, mesh)) scene_.meshes.push_back(mesh);
-}
-
-// Placed, no corner of a flat shape may leave the renderer's range.
-bool Validator::check_reach(const Block& block, const Placed& placed, const TriangleMesh& mesh) {
-    const Placement placement(placed);
-    double reach = 0;
-    for (const dvec3& corner : mesh.positions) {
-        const dvec3 p = glm::abs(placement.point(corner));
-        reach = std::max({reach, p.x, p.y, p.z});
-    }
-    const std::string problem = placed_reach_problem(block.kind, reach);
-    if (problem.empty()) return true;
-    diagnostics_.error(file_, block.kind_span, problem);
-    return false;
-}
-
-// True if two edges are parallel, to within 1e-12 radians, and so span no area (computed on
-// unit edges, so that neither tiny nor huge lengths underflow or overflow).
-bool parallel(const dvec3& edge1, const dvec3& edge2) {
-    return glm::length(glm::cross(normalized(edge1), normalized(edge2))) < 1e-12;
-}
-
-void Validator::build_flat_shape(const Block& block, const Fields& fields) {
-    const std::string& kind = block.kind;
-    if (kind == "triangle") {
-        FlatTriangle shape;
-        shape.a = fields.triple("a");
-        shape.b = fields.triple("b");
-        shape.c = fields.triple("c");
-        const dvec3 side1 = shape.b - shape.a, side2 = shape.c - shape.a;
-        if (parallel(side1, side2))
-            return (void)diagnostics_.error(file_, block.kind_span,
-                                            "the triangle's corners lie on one line: it has no area");
-        if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
-            scene_.triangles.push_back(shape);
-    } else if (kind == "quad") {
-        Quad shape;
-        shape.corner = fields.triple("corner"), shape.edge1 = fields.triple("edge1");
-        shape.edge2 = fields.triple("edge2");
-        if (parallel(shape.edge1, shape.edge2))
-            return (void)diagnostics_.error(file_, fields.value_span("edge2"),
-                                            "'edge2' is parallel to 'edge1': the quad has no area");
-        if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
-            scene_.quads.push_back(shape);
-    } else {
-        Box shape;
-        shape.min = fields.triple("min"), shape.max = fields.triple("max");
-        for (int axis = 0; axis < 3; ++axis) {
-            if (shape.max[axis] > shape.min[axis]) continue;
-            return (void)diagnostics_.error(file_, fields.value_span("max"),
-                                            std::string("'max' must be greater than 'min' on every axis; on ") +
-                                                "xyz"[axis] + ", " + format_number(shape.max[axis]) +
-                                                " is not greater than " + format_number(shape.min[axis]));
-        }
-        if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
-            scene_.boxes.push_back(shape);
-    }
-}
-
-}  // namespace
 
 std::string setting_problem(std::string_view block, std::string_view key, const std::string& text) {
     const BlockSpec* spec = find_block_spec(block);

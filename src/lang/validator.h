@@ -1,0 +1,96 @@
+// The validator's state and steps, shared by its two halves: validate.cpp (the table-driven
+// checks, block by block, and the public entry points) and build_scene.cpp (the builders that
+// turn checked fields into the scene description). Internal to lang/.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "base/diagnostics.h"
+#include "base/source.h"
+#include "lang/checked_fields.h"
+#include "lang/evaluated_scene.h"
+#include "lang/schema.h"
+#include "lang/validate.h"
+#include "scene/scene.h"
+#include "scene/triangle_mesh.h"
+
+namespace tracer {
+
+// Scales a vector to unit length without overflow or underflow; zero stays zero.
+dvec3 normalized(dvec3 v);
+
+class Validator {
+public:
+    Validator(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& options)
+        : file_(sources), diagnostics_(diagnostics), options_(options) {
+        std::error_code ignored;
+        const std::filesystem::path scene_file(sources.scene().path());
+        scene_.source_path = std::filesystem::absolute(scene_file, ignored).lexically_normal().string();
+    }
+
+    std::optional<SceneDescription> run(const EvaluatedScene& evaluated);
+    void set_parameters(const std::vector<std::pair<std::string, Value>>& parameters);
+    void accept(const Block& block);
+    std::optional<SceneDescription> finish();
+    // Checks one value of `key` as a scene's block would (its type, range and other rules).
+    bool check_setting(const Value& value, const KeySpec& key, const BlockSpec& spec) {
+        Fields fields(spec);
+        fields.set(key, value, value.span);
+        return check_value(value, key, fields);
+    }
+
+private:
+    // Generic checks driven by the tables.
+    bool check_block_header(const Block& block, const BlockSpec& spec);
+    bool check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields);
+    bool check_steps(const Body& body, const BlockSpec& spec, Fields& fields);
+    bool unknown_key(const Entry& entry, const BlockSpec& spec, std::vector<std::string>& suggested);
+    bool check_value(const Value& value, const KeySpec& key, Fields& fields);
+    bool check_number(double number, Span span, const KeySpec& key);
+    bool check_perfect_square(double number, Span span, const KeySpec& key);
+    bool type_error(const Value& value, const KeySpec& key, const std::string& extra = "");
+
+    // Builders: checked fields -> scene description.
+    void add_named_material(const Block& block);
+    int material_index(const Fields& fields);
+    bool check_material_name(const Value& value);
+    Material build_material(const Fields& fields, std::string name);
+    void build(const Block& block, const Fields& fields);
+    void build_render(const Block& block, const Fields& fields);
+    void build_camera(const Block& block, const Fields& fields);
+    bool build_placed(const Block& block, const Fields& fields, Placed& out);
+    void build_mesh(const Block& block, const Fields& fields);
+    void build_flat_shape(const Block& block, const Fields& fields);
+    bool check_reach(const Block& block, const Placed& placed, const TriangleMesh& mesh);
+    void warn_about_the_picture();
+
+    const Sources& file_;  // the scene file and those it includes
+    Diagnostics& diagnostics_;
+    ValidateOptions options_;
+    SceneDescription scene_;
+
+    struct NamedMaterial {
+        int index = -1;  // -1: the material's own block had errors
+        Span name_span;
+        bool used = false;
+    };
+    std::map<std::string, NamedMaterial, std::less<>> named_;
+    std::map<std::string_view, Span> first_of_kind_;  // each kind's first block
+    // Materials used by name before their block, resolved by finish(): a shape's material index
+    // kLaterMaterial - i stands for later_uses_[i].
+    struct LaterUse {
+        std::string name;
+        Span span;
+    };
+    static constexpr int kLaterMaterial = -2;
+    std::vector<LaterUse> later_uses_;
+    void resolve_later_materials();
+};
+
+}  // namespace tracer
