@@ -1,6 +1,6 @@
 // World's ray queries, defined inline (included by world.h): they are the innermost loop of
 // every ray, and as calls of their own they cost the bunny room's rays 10% (measured with
-// tools/bench/trace_parts: results passed through memory, spheres tested out of line).
+// tools/tracer_bench/trace_parts: results passed through memory, spheres tested out of line).
 #pragma once
 
 #include "accel/geometry.h"

@@ -37,7 +37,7 @@ def run_tool(module, *args, env=None):
     paths = [env["PYTHONPATH"]] if env and "PYTHONPATH" in env else []
     environment = {**os.environ, **(env or {}), "PYTHONPATH": os.pathsep.join(paths + [str(ROOT / "tools")])}
     return subprocess.run(
-        [sys.executable, "-m", f"xcheck.{module}", *map(str, args)],
+        [sys.executable, "-m", f"tracer_tools.xcheck.{module}", *map(str, args)],
         capture_output=True,
         text=True,
         env=environment,

@@ -7,7 +7,8 @@ import sys
 import numpy as np
 import pytest
 from conftest import HERE, ROOT
-from xcheck import convert, exact_meshes, mitsuba_render
+
+from tracer_tools.xcheck import convert, exact_meshes, mitsuba_render
 
 mi = mitsuba_render.mi
 ASYMMETRIC = HERE / "asymmetric.scn"

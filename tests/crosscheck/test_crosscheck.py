@@ -6,8 +6,9 @@ import subprocess
 import numpy as np
 import pytest
 from conftest import HERE, ROOT, run_tool
-from xcheck import metrics
-from xcheck.images import read_exr
+
+from tracer_tools.xcheck import metrics
+from tracer_tools.xcheck.images import read_exr
 
 SMALL = ["--width", "300"]  # 300 x 200 for the 1200 x 800 scenes
 
@@ -152,7 +153,7 @@ def test_metrics_count_levels_per_pixel():
 
 def test_a_real_difference_is_caught(dump, tmp_path):
     # The same scene with the light moved a little: the check must see it.
-    from xcheck import mitsuba_render
+    from tracer_tools.xcheck import mitsuba_render
 
     scene = dump(HERE / "asymmetric.scn")
     moved = json.loads(json.dumps(scene))

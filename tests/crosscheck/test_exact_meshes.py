@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 from conftest import HERE, ROOT
 from test_convert import obj_vertices, rotation
-from xcheck import convert, exact_meshes, mitsuba_render
+
+from tracer_tools.xcheck import convert, exact_meshes, mitsuba_render
 
 mi = mitsuba_render.mi
 ASYMMETRIC = HERE / "asymmetric.scn"

@@ -40,7 +40,7 @@ def render(tracer, scene, output, *arguments):
 
 def farm(*arguments, tracer=None, env=None, **popen):
     """tools/farm ARGUMENTS (run with this Python, as the launcher does); the CompletedProcess."""
-    command = [sys.executable, "-m", "render_farm.farm", *map(str, arguments)]
+    command = [sys.executable, "-m", "tracer_tools.farm.farm", *map(str, arguments)]
     if tracer:
         command += ["--tracer", str(tracer)]
     environment = {**os.environ, **(env or {}), "PYTHONPATH": str(ROOT / "tools")}

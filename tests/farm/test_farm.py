@@ -116,7 +116,7 @@ def start_long_farm(output, tracer_bin, *extra):
     command = [
         sys.executable,
         "-m",
-        "render_farm.farm",
+        "tracer_tools.farm.farm",
         str(SCENES / "bunny_room.scn"),
         "-o",
         str(output),

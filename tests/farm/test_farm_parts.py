@@ -6,9 +6,10 @@ import json
 import numpy as np
 import pytest
 from conftest import SCENES, farm
-from render_farm.images import decode_ppm
-from render_farm.jobs import JobError, jobs_from_file
-from render_farm.tiles import Canvas, Region, split, tile_size_for
+
+from tracer_tools.farm.images import decode_ppm
+from tracer_tools.farm.jobs import JobError, jobs_from_file
+from tracer_tools.farm.tiles import Canvas, Region, split, tile_size_for
 
 
 @pytest.mark.parametrize("width,height,tile", [(1, 1, 1), (1200, 800, 347), (641, 479, 64), (5, 300, 7), (64, 64, 64)])
@@ -99,7 +100,8 @@ def test_bad_command_lines_are_refused_before_any_tile(tracer_bin, tmp_path, arg
 
 def test_images_are_written_whole_or_not_at_all(tmp_path):
     from conftest import read_pixels
-    from render_farm.images import write_atomically
+
+    from tracer_tools.farm.images import write_atomically
 
     pixels = np.arange(4 * 5 * 3, dtype=np.uint8).reshape(4, 5, 3)
     (tmp_path / "out.png").write_bytes(b"the old file")

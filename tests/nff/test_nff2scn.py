@@ -13,7 +13,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 
-from nff import convert, geometry, nff2scn, reader  # noqa: E402
+from tracer_tools.nff import convert, geometry, nff2scn, reader  # noqa: E402
 
 VIEW = """v
 from 0 0 0
@@ -36,7 +36,7 @@ def run_nff2scn(tmp_path, text, *options, name="scene"):
     output = tmp_path / f"{name}.scn"
     environment = {**os.environ, "PYTHONPATH": str(ROOT / "tools")}
     done = subprocess.run(
-        [sys.executable, "-m", "nff.nff2scn", str(source), "-o", str(output), *options],
+        [sys.executable, "-m", "tracer_tools.nff.nff2scn", str(source), "-o", str(output), *options],
         capture_output=True,
         text=True,
         env=environment,
@@ -278,7 +278,7 @@ def test_a_fifo_is_refused_without_waiting_for_a_writer(tmp_path):
     os.mkfifo(fifo)
     environment = {**os.environ, "PYTHONPATH": str(ROOT / "tools")}
     done = subprocess.run(
-        [sys.executable, "-m", "nff.nff2scn", str(fifo), "-o", str(tmp_path / "x.scn")],
+        [sys.executable, "-m", "tracer_tools.nff.nff2scn", str(fifo), "-o", str(tmp_path / "x.scn")],
         capture_output=True,
         text=True,
         env=environment,

@@ -21,7 +21,7 @@ def test_the_suite_builds_generates_converts_renders_and_reports(tmp_path):
     command = [
         sys.executable,
         "-m",
-        "spd_suite.suite",
+        "tracer_tools.spd.suite",
         "--scenes",
         "tetra",
         "--no-crosscheck",

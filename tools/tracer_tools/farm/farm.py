@@ -1,0 +1,273 @@
+"""tools/farm: renders one scene split into tiles, or a list of jobs, with tracer on a Dask cluster
+(a local one on this machine's cores unless --address names a scheduler), and writes each image
+atomically once all its tiles are in. Every pixel is the one `tracer` alone would give.
+
+    tools/farm scenes/task2.scn -o out.png
+    tools/farm scenes/bunny_room.scn -o poster.exr --samples 16 --width 4800
+    tools/farm --jobs sweep.json --address tcp://scheduler:8786
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import os
+import signal
+import sys
+import tempfile
+import time
+import zipfile
+from concurrent.futures import Future, ThreadPoolExecutor
+
+import numpy as np
+
+import tracer_tools
+from tracer_tools.farm import worker
+from tracer_tools.farm.images import decode_tile, write_atomically
+from tracer_tools.farm.jobs import OVERRIDES, Job, JobError, check_job, check_output, jobs_from_file
+from tracer_tools.farm.progress import Progress
+from tracer_tools.farm.tiles import Canvas, Region, split, tile_size_for
+
+ROOT = str(tracer_tools.ROOT)
+EXIT_INTERRUPTED = 130
+
+
+def parse_arguments(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(
+        prog="tools/farm", description=__doc__.split("\n\n")[0], formatter_class=argparse.RawTextHelpFormatter
+    )
+    parser.add_argument("scene", nargs="?", help="the scene file (.scn)")
+    parser.add_argument("-o", "--output", help="the image to write (.png, .exr, ...)")
+    parser.add_argument("--jobs", help='a JSON list of jobs: {"scene", "output", "define", ' + ", ".join(OVERRIDES))
+    parser.add_argument("-D", "--define", action="append", default=[], help="NAME=VALUE, as tracer's -D")
+    for key in OVERRIDES:
+        parser.add_argument("--" + key.replace("_", "-"), help=f"override the scene's {key}, as tracer's option")
+    parser.add_argument("--tile", type=int, help="tile side in pixels (default: about 16 tiles per worker)")
+    parser.add_argument("--workers", type=int, default=os.cpu_count(), help="local cluster's workers (default: cores)")
+    parser.add_argument("--address", help="join this Dask scheduler (tcp://host:8786) instead of a local cluster")
+    parser.add_argument(
+        "--connect-timeout", type=float, default=30, help="seconds to wait for --address's scheduler (default 30)"
+    )
+    parser.add_argument("--retries", type=int, default=2, help="times a failed tile is tried again (default 2)")
+    default_tracer = os.path.join(ROOT, "build", "release", "tracer")
+    parser.add_argument("--tracer", default=default_tracer, help="the tracer executable (default: this build's)")
+    parser.add_argument("--worker-tracer", help="tracer's path on the workers (default: --tracer's)")
+    parser.add_argument("--timings", help="write the time split (start-up, tiles, assembly) as JSON here")
+    parser.add_argument("-q", "--quiet", action="store_true", help="no progress line")
+    arguments = parser.parse_args(argv)
+    if bool(arguments.jobs) == bool(arguments.scene):
+        parser.error("give one scene (with -o) or --jobs FILE")
+    if arguments.scene and not arguments.output:
+        parser.error("no output image given (-o out.png)")
+    if arguments.jobs and (arguments.output or arguments.define or any(getattr(arguments, k) for k in OVERRIDES)):
+        parser.error("--jobs gives each job's output and settings; -o, -D and overrides are for one scene")
+    if arguments.retries < 0 or arguments.workers < 1 or (arguments.tile is not None and arguments.tile < 1):
+        parser.error("--retries must be 0 or more, --workers and --tile 1 or more")
+    return arguments
+
+
+def jobs_of(arguments: argparse.Namespace) -> list[Job]:
+    """The jobs to run, as the command line or the jobs file gives them (not checked yet)."""
+    if arguments.jobs:
+        return jobs_from_file(arguments.jobs)
+    if arguments.scene == "-":
+        raise JobError("the farm needs a scene file; standard input cannot be sent to workers", 2)
+    defines = {}
+    for text in arguments.define:
+        name, equals, value = text.partition("=")
+        if not equals or not name:
+            raise JobError(f"-D {text}: expected NAME=VALUE, e.g. -D radius=0.3", 2)
+        defines[name] = value
+    overrides = {key: getattr(arguments, key) for key in OVERRIDES if getattr(arguments, key) is not None}
+    return [Job(os.path.abspath(arguments.scene), os.path.abspath(arguments.output), defines, overrides)]
+
+
+def check_jobs(tracer: str, jobs: list[Job]) -> None:
+    """Checks every job's scene with tracer and its output path (each scene error is reported once, by
+    the JobError raised, before any tile is sent); prints tracer's warnings."""
+    if not os.access(tracer, os.X_OK):
+        raise JobError(f"no tracer executable at '{tracer}' (build it: tools/bootstrap)", 3)
+    for job in jobs:
+        warnings = check_job(tracer, job)
+        if warnings:
+            sys.stderr.write(warnings)
+        check_output(job)
+
+
+def start_cluster(arguments: argparse.Namespace):
+    """A Dask client on the scheduler named, or on a local cluster of one single-thread worker per core.
+    Local workers are threads of this process: each only drives its own tracer process, which does the
+    work, so separate worker processes would add their start-up (0.35 to 0.7 s measured) and nothing else.
+    A worker that dies counts against the tile's retries."""
+    import dask
+    from distributed import Client, LocalCluster
+
+    dask.config.set({"distributed.scheduler.allowed-failures": arguments.retries})
+    if arguments.address:
+        try:
+            return Client(arguments.address, timeout=f"{arguments.connect_timeout}s"), None
+        except (OSError, ValueError, TimeoutError) as error:
+            raise JobError(f"cannot reach the Dask scheduler at '{arguments.address}': {error}", 3) from error
+    cluster = LocalCluster(
+        n_workers=arguments.workers,
+        threads_per_worker=1,
+        processes=False,
+        dashboard_address=None,
+        silence_logs=logging.CRITICAL,
+    )
+    return Client(cluster), cluster
+
+
+def send_worker_module(client) -> None:
+    """Uploads tracer_tools.farm.worker (the tasks' code: standard library and Dask only) to the cluster's
+    scheduler and workers, which then need Dask and the tracer executable, not this folder."""
+    package = os.path.dirname(os.path.abspath(worker.__file__))
+    tools = os.path.dirname(package)
+    with tempfile.TemporaryDirectory(prefix="tracer-farm-") as folder:
+        archive = os.path.join(folder, "tracer_render_farm_worker.zip")
+        with zipfile.ZipFile(archive, "w") as zipped:
+            zipped.write(os.path.join(tools, "__init__.py"), "tracer_tools/__init__.py")
+            for name in ("__init__.py", "worker.py"):
+                zipped.write(os.path.join(package, name), f"tracer_tools/farm/{name}")
+        client.upload_file(archive)
+
+
+def tile_failure(job: Job, region: Region, error: BaseException, retries: int) -> str:
+    """The message for a tile that failed on every try: tracer's own diagnostic where there is one."""
+    tries = f"{retries + 1} time{'s' if retries else ''}"
+    if type(error).__name__ == "KilledWorker":
+        reason = "the workers running it died"
+    else:
+        reason = str(error) or type(error).__name__
+    return f"tile {region.text()} of {job.scene} failed {tries}; the last time:\n{reason}"
+
+
+def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, timings: dict) -> None:
+    """Starts the cluster and the workers' tracer processes of the first job while the jobs are checked
+    (`checking`: no tile is sent before every scene passed), sends every tile of every job, pastes them as
+    they come back and writes each finished image."""
+    start = time.perf_counter()
+    from distributed import as_completed
+
+    client, cluster = start_cluster(arguments)
+    if arguments.address:
+        send_worker_module(client)
+    timings["cluster_start_s"] = time.perf_counter() - start
+    worker_tracer = arguments.worker_tracer or os.path.abspath(arguments.tracer)
+    keys = [job.key(index) for index, job in enumerate(jobs)]
+    worker_jobs = [
+        worker.worker_job(
+            keys[index],
+            [worker_tracer, *job.tracer_arguments(), "--region-list", "--threads", "1", "-q"],
+            ".exr" if job.is_float() else ".ppm",
+        )
+        for index, job in enumerate(jobs)
+    ]
+    pending = {}
+    try:
+        client.run(worker.start_job, worker_jobs[0])  # the first scene loads on the workers meanwhile
+        checking.result()
+        slots = sum(client.nthreads().values()) or arguments.workers
+
+        # Step 1: every tile of every job, in order.
+        start = time.perf_counter()
+        canvases = []
+        for index, job in enumerate(jobs):
+            tile = arguments.tile or tile_size_for(job.width, job.height, slots)
+            regions = split(job.width, job.height, tile)
+            worker_job = worker_jobs[index]
+            suffix = worker_job["tile_suffix"]
+            canvases.append(Canvas(job.width, job.height, np.float32 if job.is_float() else np.uint8, len(regions)))
+            for number, region in enumerate(regions):
+                future = client.submit(
+                    worker.render_tile,
+                    worker_job,
+                    region.text(),
+                    retries=arguments.retries,
+                    pure=False,
+                    key=f"{keys[index]}-tile-{number}",
+                )
+                pending[future] = (index, region, suffix)
+
+        # Step 2: tiles pasted as they arrive; each image written when complete.
+        progress = Progress(len(pending), quiet=arguments.quiet)
+        assembly = writing = work = 0.0
+        transferred = 0
+        for future in as_completed(list(pending)):
+            index, region, suffix = pending[future]
+            if future.status != "finished":
+                raise JobError(tile_failure(jobs[index], region, future.exception(), arguments.retries), 1)
+            data, seconds = future.result()
+            work += seconds
+            transferred += len(data)
+            moment = time.perf_counter()
+            canvas = canvases[index]
+            canvas.paste(region, decode_tile(data, suffix, canvas.pixels.dtype))
+            assembly += time.perf_counter() - moment
+            if canvas.complete():
+                moment = time.perf_counter()
+                write_atomically(jobs[index].output, canvas.pixels)
+                writing += time.perf_counter() - moment
+                canvases[index] = None
+            progress.tile_done()
+        progress.finish()
+        timings.update(
+            tiles=len(pending),
+            workers=slots,
+            tiles_s=time.perf_counter() - start,
+            tile_work_s=work,
+            tile_bytes=transferred,
+            assembly_s=assembly,
+            write_s=writing,
+        )
+    finally:
+        # Step 3: the workers' tracer processes end (at once if the job stopped early), then the cluster.
+        start = time.perf_counter()
+        stopped_early = not pending or any(not future.done() for future in pending)
+        for future in pending:
+            future.cancel()
+        for key in keys:
+            try:
+                client.run(worker.close_job, key, stopped_early)
+            except Exception:  # a worker that is gone has nothing to close
+                pass
+        client.close()
+        if cluster is not None:
+            cluster.close()
+        timings["shutdown_s"] = time.perf_counter() - start
+
+
+def main(argv: list[str] | None = None) -> int:
+    arguments = parse_arguments(sys.argv[1:] if argv is None else argv)
+    # SIGTERM stops the farm as Ctrl-C does: nothing unfinished is written.
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    timings: dict = {}
+    start = time.perf_counter()
+
+    def check(jobs: list[Job]) -> None:
+        check_jobs(arguments.tracer, jobs)
+        timings["check_s"] = time.perf_counter() - start
+
+    try:
+        jobs = jobs_of(arguments)
+        with ThreadPoolExecutor(1) as pool:
+            run_jobs(arguments, jobs, pool.submit(check, jobs), timings)
+    except JobError as error:
+        print(str(error) if error.tracers_own else f"farm: error: {error}", file=sys.stderr)
+        return error.exit_code
+    except OSError as error:  # writing an image: disk full, permissions changed meanwhile
+        print(f"farm: error: {error}", file=sys.stderr)
+        return 3
+    except KeyboardInterrupt:
+        print("farm: interrupted; no unfinished image was written", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    timings["total_s"] = time.perf_counter() - start
+    if arguments.timings:
+        with open(arguments.timings, "w", encoding="utf-8") as file:
+            json.dump({key: round(value, 4) for key, value in timings.items()}, file, indent=2)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Generators of test scenes and meshes: `tools/make-scene NAME` runs one (see __main__.GENERATORS)."""
