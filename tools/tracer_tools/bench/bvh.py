@@ -17,6 +17,8 @@ where one render would take minutes: their times are extrapolated linearly in th
 count from the largest mesh they ran on, and marked so.
 """
 
+from __future__ import annotations
+
 import argparse
 import datetime
 import json
@@ -66,7 +68,7 @@ def embree_command(embree: pathlib.Path, level: int, workload: str, threads: int
     return [embree, "--subdiv", level, "--threads", threads, "--runs", runs, "--json"] + WORKLOADS[workload]
 
 
-def measure_accelerators(args, results):
+def measure_accelerators(args: argparse.Namespace, results: dict) -> None:
     """Every accelerator on every mesh; median and sah alternate round by round (the machine's
     speed drifts from minute to minute), and their ratios are medians of per-round ratios."""
     for workload in WORKLOADS:
@@ -106,7 +108,7 @@ def measure_accelerators(args, results):
             )
 
 
-def measure_embree(args, results, embree):
+def measure_embree(args: argparse.Namespace, results: dict, embree: pathlib.Path) -> None:
     for workload in WORKLOADS:
         for level in LEVELS:
             render_ratios, build_ratios = [], []
@@ -131,7 +133,7 @@ def measure_embree(args, results, embree):
             )
 
 
-def write_report(results, path_md: pathlib.Path, path_png: pathlib.Path):
+def write_report(results: dict, path_md: pathlib.Path, path_png: pathlib.Path) -> None:
     t = results["tracer"]
     e = results["embree"]
     lines = [
@@ -157,7 +159,7 @@ def write_report(results, path_md: pathlib.Path, path_png: pathlib.Path):
         ]
         for level in LEVELS:
 
-            def cell(accel, field="render_ms_median", workload=workload, level=level):
+            def cell(accel: str, field: str = "render_ms_median", workload: str = workload, level: int = level) -> str:
                 r = t[f"{workload}/{accel}/{level}"]
                 text = f"{r[field]:.1f}" if r[field] >= 10 else f"{r[field]:.2f}"
                 return f"*{text}*" if r.get("extrapolated") else text

@@ -9,6 +9,8 @@ Python of an environment that has the engine (the numbers are in docs/farm.md):
     tools/bench farm-engines dask-threads    # tools/farm's local default
 """
 
+from __future__ import annotations
+
 import argparse
 import json
 import logging
@@ -16,15 +18,16 @@ import statistics
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 
 import psutil
 
 
-def noop(value):
+def noop(value: int) -> int:
     return value
 
 
-def run_program(value):
+def run_program(value: int) -> int:
     subprocess.run(["true"], check=True)
     return value
 
@@ -47,11 +50,11 @@ def measure(engine: str, tasks: int, rounds: int) -> dict:
         remote_noop, remote_program = ray.remote(noop), ray.remote(run_program)
         ray.get(remote_noop.remote(0))
 
-        def submit(function, count):
+        def submit(function: Callable[[int], int], count: int) -> None:
             remote = remote_noop if function is noop else remote_program
             ray.get([remote.remote(i) for i in range(count)])
 
-        def shut_down():
+        def shut_down() -> None:
             ray.shutdown()
     else:
         from distributed import Client, LocalCluster
@@ -68,10 +71,10 @@ def measure(engine: str, tasks: int, rounds: int) -> dict:
         client = Client(cluster)
         client.submit(noop, 0).result()
 
-        def submit(function, count):
+        def submit(function: Callable[[int], int], count: int) -> None:
             client.gather(client.map(function, range(count), pure=False))
 
-        def shut_down():
+        def shut_down() -> None:
             client.close()
             cluster.close()
 

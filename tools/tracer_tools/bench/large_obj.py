@@ -9,6 +9,8 @@ The mesh is a wavy height field of 1,119 x 1,119 vertices (2,499,848 triangles) 
 out/bench/large/wave.obj, standing behind task2's spheres in task2's 1200 x 800 frame.
 """
 
+from __future__ import annotations
+
 import argparse
 import datetime
 import math
@@ -25,7 +27,7 @@ OUT = ROOT / "out" / "bench" / "large"
 SIDE = 1119  # vertices per side: 2 (SIDE - 1)^2 = 2,499,848 triangles
 
 
-def write_mesh(path: pathlib.Path):
+def write_mesh(path: pathlib.Path) -> None:
     with open(path, "w") as f:
         f.write(f"# wavy height field, {SIDE} x {SIDE} vertices (tools/bench large-obj)\n")
         for j in range(SIDE):
@@ -44,7 +46,7 @@ def write_mesh(path: pathlib.Path):
             f.write("".join(rows))
 
 
-def timed(args):
+def timed(args: list) -> tuple[int, float, int]:
     """(exit code, wall seconds, peak resident MB) of one tracer run in a fresh process."""
     code = (
         "import resource, subprocess, sys, time\n"
@@ -56,7 +58,7 @@ def timed(args):
     return int(rc), float(seconds), int(megabytes)
 
 
-def main():
+def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", type=int, default=3)
     args = parser.parse_args()

@@ -24,6 +24,8 @@ reports it. Without embree_scene (no ../shared, or no Debian Embree) the Embree 
 left empty and said so.
 """
 
+from __future__ import annotations
+
 import argparse
 import datetime
 import json
@@ -70,7 +72,7 @@ def scene(kind: str, count: int) -> tuple:
     return path, dump
 
 
-def measure(args, kind: str, count: int, embree) -> dict:
+def measure(args: argparse.Namespace, kind: str, count: int, embree: pathlib.Path | None) -> dict:
     """Pairs of runs: tracer (instanced), tracer --flatten (bunnies only), Embree."""
     path, dump = scene(kind, count)
     heavy = (kind == "bunnies" and count >= 1000) or count >= 100000
@@ -119,11 +121,11 @@ def measure(args, kind: str, count: int, embree) -> dict:
     return result
 
 
-def cell(value, form="{:.2f}"):
+def cell(value: float | None, form: str = "{:.2f}") -> str:
     return "-" if value is None else form.format(value)
 
 
-def write_report(results, path_md: pathlib.Path, path_png: pathlib.Path):
+def write_report(results: dict, path_md: pathlib.Path, path_png: pathlib.Path) -> None:
     lines = [
         f"<!-- Written by tools/bench many on {results['date']}; do not edit by hand. -->",
         "",
@@ -205,7 +207,7 @@ def write_report(results, path_md: pathlib.Path, path_png: pathlib.Path):
     fig.savefig(path_png, dpi=90)
 
 
-def find_embree(args):
+def find_embree(args: argparse.Namespace) -> pathlib.Path | None:
     if args.embree:
         return args.embree
     build_sh = args.shared / "bench" / "embree-whitted" / "build.sh"

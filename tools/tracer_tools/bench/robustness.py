@@ -12,6 +12,8 @@ docs/robustness-g1-table.md (copied into docs/speed-vs-error.md) and docs/robust
     tools/bench robustness --report-only  # redraw from the JSON
 """
 
+from __future__ import annotations
+
 import argparse
 import datetime
 import json
@@ -128,7 +130,7 @@ def hard_case_figures(variant: str) -> dict:
     return {"figures": figures, "failed_tests": failed, "tests": tests}
 
 
-def measure_times(args) -> dict:
+def measure_times(args: argparse.Namespace) -> dict:
     """Render times: every variant once per round, rounds alternating."""
     times = {v: {f"{s}/{t}t": [] for s in SCENES for t in args.threads} for v in VARIANTS}
     for _ in range(args.rounds):

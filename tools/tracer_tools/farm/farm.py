@@ -19,6 +19,7 @@ import tempfile
 import time
 import zipfile
 from concurrent.futures import Future, ThreadPoolExecutor
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -28,6 +29,9 @@ from tracer_tools.farm.images import decode_tile, write_atomically
 from tracer_tools.farm.jobs import OVERRIDES, Job, JobError, check_job, check_output, jobs_from_file
 from tracer_tools.farm.progress import Progress
 from tracer_tools.farm.tiles import Canvas, Region, split, tile_size_for
+
+if TYPE_CHECKING:
+    from distributed import Client, LocalCluster
 
 ROOT = str(tracer_tools.ROOT)
 EXIT_INTERRUPTED = 130
@@ -95,7 +99,7 @@ def check_jobs(tracer: str, jobs: list[Job]) -> None:
         check_output(job)
 
 
-def start_cluster(arguments: argparse.Namespace):
+def start_cluster(arguments: argparse.Namespace) -> tuple[Client, LocalCluster | None]:
     """A Dask client on the scheduler named, or on a local cluster of one single-thread worker per core.
     Local workers are threads of this process: each only drives its own tracer process, which does the
     work, so separate worker processes would add their start-up (0.35 to 0.7 s measured) and nothing else.
@@ -119,7 +123,7 @@ def start_cluster(arguments: argparse.Namespace):
     return Client(cluster), cluster
 
 
-def send_worker_module(client) -> None:
+def send_worker_module(client: Client) -> None:
     """Uploads tracer_tools.farm.worker (the tasks' code: standard library and Dask only) to the cluster's
     scheduler and workers, which then need Dask and the tracer executable, not this folder."""
     package = os.path.dirname(os.path.abspath(worker.__file__))

@@ -17,7 +17,7 @@ class JobError(Exception):
     """A job that cannot run: the message to print, the exit code (tracer's codes), and whether the
     message is tracer's own diagnostic (printed as it is, not after "farm: error:")."""
 
-    def __init__(self, message: str, exit_code: int, tracers_own: bool = False):
+    def __init__(self, message: str, exit_code: int, tracers_own: bool = False) -> None:
         super().__init__(message)
         self.exit_code = exit_code
         self.tracers_own = tracers_own

@@ -9,7 +9,7 @@ import time
 class Progress:
     """One line redrawn in place on a terminal; elsewhere a line at most every few seconds."""
 
-    def __init__(self, tiles: int, quiet: bool = False, every_s: float = 5.0):
+    def __init__(self, tiles: int, quiet: bool = False, every_s: float = 5.0) -> None:
         self.tiles, self.done, self.quiet, self.every_s = tiles, 0, quiet, every_s
         self.start = self.shown = time.perf_counter()
         self.terminal = sys.stderr.isatty()

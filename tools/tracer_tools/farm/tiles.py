@@ -42,7 +42,7 @@ def split(width: int, height: int, tile: int) -> list[Region]:
 class Canvas:
     """The whole frame, filled tile by tile; knows when every pixel has arrived."""
 
-    def __init__(self, width: int, height: int, dtype: np.dtype, tiles: int):
+    def __init__(self, width: int, height: int, dtype: np.dtype, tiles: int) -> None:
         self.pixels = np.zeros((height, width, 3), dtype=dtype)
         self.missing = tiles
 

@@ -65,7 +65,7 @@ def _give_back(job: dict, process: subprocess.Popen) -> None:
         holder.idle.setdefault(job["key"], []).append(process)
 
 
-def start_job(job: dict, dask_worker=None) -> int:
+def start_job(job: dict, dask_worker: object = None) -> int:
     """Starts one tracer process per thread of this worker (Dask's client.run gives the worker) ahead of
     the job's tiles, so that loading the scene overlaps the farm's own start. How many it started."""
     count = dask_worker.state.nthreads if dask_worker is not None else 1

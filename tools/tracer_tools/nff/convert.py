@@ -20,14 +20,18 @@ The rules, each a choice NFF leaves open (docs/spd.md gives the reasons):
   cone is tessellated in place into its material's OBJ instead.
 """
 
+from __future__ import annotations
+
 import dataclasses
 import math
+import pathlib
 import shutil
+from collections.abc import Sequence
 
 import numpy as np
 
 from . import geometry
-from .reader import TooManyMaterials
+from .reader import Cone, Fill, Polygon, Scene, Sphere, TooManyMaterials, View, Word
 
 MAX_MATERIALS = 65_536  # different `f` lines: each may become an OBJ file of its own
 MAX_CONE_MESHES = 1_024  # different cone radius ratios given a unit mesh of their own
@@ -35,27 +39,27 @@ MAX_WARNINGS = 20  # shown; more are counted
 BUFFERED_LINES = 200_000  # OBJ lines held before they are appended to their files
 
 
-def _num(value):
+def _num(value: float) -> str:
     text = f"{float(value):.9g}"
     return "0" if text == "-0" else text
 
 
-def _vec(values):
+def _vec(values: Sequence[float]) -> str:
     return "(" + ", ".join(_num(v) for v in values) + ")"
 
 
-def _colour(values):
+def _colour(values: Sequence[float]) -> str:
     return _num(values[0]) if values[0] == values[1] == values[2] else _vec(values)
 
 
-def _scale(values, factor):
+def _scale(values: Sequence[float], factor: float) -> tuple[float, ...]:
     return tuple(factor * v for v in values)
 
 
 class _Camera:
     """The tracer camera of an NFF view, and what a length at some depth measures in pixels."""
 
-    def __init__(self, view, corner_rays):
+    def __init__(self, view: View, corner_rays: bool) -> None:
         width, height = view.resolution
         half = math.tan(math.radians(view.angle) / 2)
         rows = height + 1 if corner_rays else height
@@ -73,7 +77,7 @@ class _Camera:
         self.hither = max(view.hither, 1e-6)
 
 
-def _material_text(name, fill, ambient):
+def _material_text(name: str, fill: Fill, ambient: float) -> str:
     kd = _scale(fill.color, fill.kd)
     keys = [f"ka {_colour(_scale(kd, ambient))}", f"kd {_colour(kd)}"]
     if fill.ks > 0:
@@ -96,7 +100,9 @@ class Writer:
     """The reader's shape sink: writes shape blocks to staging/shapes.part and triangles to
     staging/MESHES/*.obj as they come; finish() writes the .scn around them."""
 
-    def __init__(self, staging, meshes_folder, corner_rays=False, max_error_pixels=0.1):
+    def __init__(
+        self, staging: pathlib.Path, meshes_folder: str, corner_rays: bool = False, max_error_pixels: float = 0.1
+    ) -> None:
         self.staging = staging
         self.folder = meshes_folder
         (staging / meshes_folder).mkdir()
@@ -112,7 +118,7 @@ class Writer:
         self.more_warnings = 0
         self.counts = {"spheres": 0, "polygons": 0, "triangles": 0, "cones": 0}
 
-    def material(self, fill, word):
+    def material(self, fill: Fill, word: Word) -> str:
         key = dataclasses.astuple(fill)
         if key not in self.materials:
             if len(self.materials) >= MAX_MATERIALS:
@@ -120,19 +126,19 @@ class Writer:
             self.materials[key] = (f"m{len(self.materials)}", fill)
         return self.materials[key][0]
 
-    def warn(self, word, message):
+    def warn(self, word: Word, message: str) -> None:
         if len(self.warnings) < MAX_WARNINGS:
             self.warnings.append((word, message))
         else:
             self.more_warnings += 1
 
     # --- shapes, as the reader meets them ---------------------------------------------
-    def sphere(self, scene, sphere):
+    def sphere(self, scene: Scene, sphere: Sphere) -> None:
         name = self.material(sphere.fill, sphere.word)
         self.shapes.write(f"sphere {{ center {_vec(sphere.center)}  radius {_num(sphere.radius)}  material {name} }}\n")
         self.counts["spheres"] += 1
 
-    def polygon(self, scene, polygon):
+    def polygon(self, scene: Scene, polygon: Polygon) -> None:
         name = self.material(polygon.fill, polygon.word)
         normal = geometry.polygon_normal(polygon.points)
         if normal is None:
@@ -163,7 +169,7 @@ class Writer:
         self.counts["polygons"] += 1
         self.counts["triangles"] += len(triangles)
 
-    def cone(self, scene, cone):
+    def cone(self, scene: Scene, cone: Cone) -> None:
         name = self.material(cone.fill, cone.word)
         if self.camera is None:
             self.camera = _Camera(scene.view, self.corner_rays)
@@ -190,7 +196,7 @@ class Writer:
         vertices, normals = geometry.placed(vertices, normals, scale, rotation_axis, angle, base)
         self.append(f"polygons-{name}.obj", vertices, normals, faces)
 
-    def sides_for(self, base, apex, radius):
+    def sides_for(self, base: np.ndarray, apex: np.ndarray, radius: float) -> int:
         """Sides a cone needs for its outline to be within the error bound where the eye sees it."""
         camera = self.camera
         depths = [float(np.dot(point - camera.eye, camera.forward)) for point in (base, apex)]
@@ -200,7 +206,7 @@ class Writer:
         return geometry.segments_for_error(radius, depth, camera.pixels_per_unit_depth, self.max_error_pixels)
 
     # --- files -------------------------------------------------------------------------
-    def append(self, file, vertices, normals, faces):
+    def append(self, file: str, vertices: np.ndarray, normals: np.ndarray, faces: np.ndarray) -> None:
         obj = self.objs.setdefault(file, _ObjFile())
         obj.pending.append(geometry.obj_text(vertices, normals, faces, obj.vertices, obj.normals))
         obj.vertices += len(vertices)
@@ -209,7 +215,7 @@ class Writer:
         if self.buffered > BUFFERED_LINES:
             self.flush()
 
-    def flush(self):
+    def flush(self) -> None:
         for file, obj in self.objs.items():
             if obj.pending:
                 with open(self.staging / self.folder / file, "a") as out:
@@ -217,7 +223,7 @@ class Writer:
                 obj.pending.clear()
         self.buffered = 0
 
-    def finish(self, scene, scn_path):
+    def finish(self, scene: Scene, scn_path: pathlib.Path) -> dict:
         """Writes the unit cone meshes and the .scn (header, then the shapes); the summary."""
         self.flush()
         self.shapes.close()
@@ -260,6 +266,6 @@ class Writer:
             "materials": len(self.materials),
         }
 
-    def close(self):
+    def close(self) -> None:
         if not self.shapes.closed:
             self.shapes.close()

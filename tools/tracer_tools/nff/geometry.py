@@ -1,6 +1,9 @@
 """Geometry for NFF import: polygons into triangles (Mapbox Earcut), cones into unit meshes."""
 
+from __future__ import annotations
+
 import math
+from collections.abc import Sequence
 
 import mapbox_earcut
 import numpy as np
@@ -8,7 +11,7 @@ import numpy as np
 LEAST_SIDES = 12  # the coarsest cone, however small or far
 
 
-def polygon_normal(points):
+def polygon_normal(points: Sequence[Sequence[float]]) -> np.ndarray | None:
     """The unit normal of a planar polygon by Newell's method (counter-clockwise: towards the viewer), or None."""
     p = np.asarray(points, dtype=np.float64)
     q = np.roll(p, -1, axis=0)
@@ -26,7 +29,7 @@ def polygon_normal(points):
     return normal / length
 
 
-def triangulate(points, normal):
+def triangulate(points: Sequence[Sequence[float]], normal: np.ndarray) -> np.ndarray:
     """Triangles (index triples into points) covering the planar polygon, each wound like the polygon.
 
     The polygon is projected onto the coordinate plane its normal is closest to and triangulated
@@ -47,7 +50,9 @@ def triangulate(points, normal):
     return triangles
 
 
-def segments_for_error(radius, depth, pixels_per_unit_depth, max_error_pixels, most=4096):
+def segments_for_error(
+    radius: float, depth: float, pixels_per_unit_depth: float, max_error_pixels: float, most: int = 4096
+) -> int:
     """Fewest sides of a polygon whose outline stays within max_error_pixels of a circle of
     `radius` seen at view depth `depth` (pixels_per_unit_depth: pixels per world unit at depth 1).
 
@@ -60,7 +65,7 @@ def segments_for_error(radius, depth, pixels_per_unit_depth, max_error_pixels, m
     return max(LEAST_SIDES, min(most, sides))
 
 
-def frustum_arrays(apex_ratio, sides):
+def frustum_arrays(apex_ratio: float, sides: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """An open cone frustum along +z, radius 1 at z = 0 and apex_ratio at z = 1, as (vertices,
     normals, faces): faces are rows (v0, n0, v1, n1, v2, n2) of 0-based indices.
 
@@ -85,14 +90,16 @@ def frustum_arrays(apex_ratio, sides):
     return vertices, normals, faces
 
 
-def frustum_mesh(apex_ratio, sides):
+def frustum_mesh(apex_ratio: float, sides: int) -> str:
     """OBJ text of the unit frustum of frustum_arrays."""
     vertices, normals, faces = frustum_arrays(apex_ratio, sides)
     header = f"# open cone frustum: radius 1 at z = 0, {apex_ratio:.9g} at z = 1, {sides} sides"
     return header + "\n" + obj_text(vertices, normals, faces)
 
 
-def obj_text(vertices, normals, faces, first_vertex=0, first_normal=0):
+def obj_text(
+    vertices: np.ndarray, normals: np.ndarray, faces: np.ndarray, first_vertex: int = 0, first_normal: int = 0
+) -> str:
     """OBJ lines (v, vn, f v//vn) of triangles; indices in faces are 0-based within these arrays,
     written after first_vertex vertices and first_normal normals already in the file."""
     lines = [f"v {x:.9g} {y:.9g} {z:.9g}" for x, y, z in vertices + 0.0]  # + 0.0: no "-0"
@@ -102,7 +109,7 @@ def obj_text(vertices, normals, faces, first_vertex=0, first_normal=0):
     return "\n".join(lines) + "\n"
 
 
-def rotation_matrix(axis, angle_degrees):
+def rotation_matrix(axis: Sequence[float], angle_degrees: float) -> np.ndarray:
     """The rotation by angle_degrees about the unit axis (counter-clockwise looking down it)."""
     k = np.asarray(axis, dtype=np.float64)
     theta = math.radians(angle_degrees)
@@ -110,7 +117,14 @@ def rotation_matrix(axis, angle_degrees):
     return np.eye(3) + math.sin(theta) * cross + (1 - math.cos(theta)) * cross @ cross
 
 
-def placed(vertices, normals, scale, axis, angle_degrees, translate):
+def placed(
+    vertices: np.ndarray,
+    normals: np.ndarray,
+    scale: Sequence[float],
+    axis: Sequence[float],
+    angle_degrees: float,
+    translate: Sequence[float],
+) -> tuple[np.ndarray, np.ndarray]:
     """Vertices and normals scaled, rotated and translated (tracer's order for a mesh block)."""
     rotation = rotation_matrix(axis, angle_degrees)
     scale = np.asarray(scale, dtype=np.float64)
@@ -119,7 +133,7 @@ def placed(vertices, normals, scale, axis, angle_degrees, translate):
     return moved, turned / np.linalg.norm(turned, axis=1, keepdims=True)
 
 
-def frame_to_axis(direction):
+def frame_to_axis(direction: np.ndarray) -> tuple[tuple[float, float, float], float]:
     """(axis, angle in degrees) of the rotation that takes +z to the unit `direction`."""
     z = np.array([0.0, 0.0, 1.0])
     d = np.asarray(direction, dtype=np.float64)

@@ -7,6 +7,8 @@ by material, one unit cone per radius ratio). The rules are in nff/convert.py. E
 `file:line:col: error: ...` with the line and a caret, exit status 1; nothing is written then.
 """
 
+from __future__ import annotations
+
 import argparse
 import os
 import pathlib
@@ -21,7 +23,7 @@ from . import convert, reader
 MAX_INPUT_BYTES = 1 << 30
 
 
-def _read_input(path):
+def _read_input(path: str) -> str:
     """The file's text; a SystemExit with a message if it is not a readable regular file."""
     try:
         with open(path, "rb", opener=lambda p, flags: os.open(p, flags | os.O_NONBLOCK)) as file:
@@ -42,7 +44,7 @@ def _umask():
     return mask
 
 
-def _publish(staging, scn_path, meshes_name):
+def _publish(staging: pathlib.Path, scn_path: pathlib.Path, meshes_name: str) -> None:
     """Moves the staged meshes folder and .scn into place, each replacing the old one whole."""
     folder = scn_path.parent / meshes_name
     old = None
@@ -58,7 +60,12 @@ def _publish(staging, scn_path, meshes_name):
     os.replace(staged_scn, scn_path)
 
 
-def convert_file(nff_path, scn_path, corner_rays=False, max_error_pixels=0.1):
+def convert_file(
+    nff_path: str | pathlib.Path,
+    scn_path: str | pathlib.Path,
+    corner_rays: bool = False,
+    max_error_pixels: float = 0.1,
+) -> dict:
     """Converts an NFF file, writing scn_path and its meshes folder; prints warnings on stderr.
 
     Returns the conversion's summary (counts, and `seconds`: reading, converting and writing);
@@ -88,7 +95,7 @@ def convert_file(nff_path, scn_path, corner_rays=False, max_error_pixels=0.1):
     return {**summary, "seconds": time.perf_counter() - started}
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/nff2scn", description=__doc__.split("\n")[0])
     parser.add_argument("nff", type=pathlib.Path, help="the NFF file")
     parser.add_argument("-o", "--output", type=pathlib.Path, required=True, help="the .scn file to write")

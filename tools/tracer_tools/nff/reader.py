@@ -4,9 +4,14 @@ NFF is a stream of whitespace-separated words: an entity's numbers may run on ov
 (upstream's generators write `c` on one line or three). `#` starts a comment to the end of the line.
 """
 
+from __future__ import annotations
+
 import dataclasses
 import math
+import pathlib
 import re
+from collections.abc import Iterator
+from typing import Never
 
 MAX_POLYGON_CORNERS = 100_000  # as tracer's OBJ reader (src/io/obj_reader.h), and ...
 MAX_POLYGON_WORK = 2e10  # ... the sum of n^2 over polygons of 5+ corners: Earcut's worst case stays ~30 s
@@ -16,7 +21,7 @@ MAX_ERRORS = 20
 class NffError(Exception):
     """Errors in an NFF file, each already formatted `file:line:col: error: ...` with its line and a caret."""
 
-    def __init__(self, messages):
+    def __init__(self, messages: list[str]) -> None:
         super().__init__("\n".join(messages))
         self.messages = messages
 
@@ -99,7 +104,7 @@ _TOKENS = re.compile(r"(\r\n|\r|\n)|#[^\r\n]*|([^\s#]+)")
 _WINDOW = 160  # characters of a long line shown around the column
 
 
-def _words(text, end):
+def _words(text: str, end: list[int]) -> Iterator[Word]:
     """Every word of the text with its line and column, lazily (comments dropped); at the end,
     end[0] and end[1] are the last line's number and start offset (the last line that has text,
     when the file ends with a line break)."""
@@ -116,14 +121,14 @@ class _Source:
     """The file's words with a one-word lookahead, and the formatting of diagnostics at a word.
     Words are made as they are read: memory holds the text and the scene, not a list of words."""
 
-    def __init__(self, path, text):
+    def __init__(self, path: str, text: str) -> None:
         self.path = path
         self.text = text
         self.end = [1, 0]
         self.words = _words(text, self.end)
         self.ahead = next(self.words, None)
 
-    def diagnostic(self, kind, word, message):
+    def diagnostic(self, kind: str, word: Word | None, message: str) -> str:
         if word is None:  # the end of the file
             line, line_start = self.end
             line_text = self.line_at(line_start)
@@ -136,7 +141,7 @@ class _Source:
         caret = " " * min(column - 1 - first, len(shown)) + "^"
         return f"{self.path}:{line}:{column}: {kind}: {message}\n  {shown}\n  {caret}"
 
-    def line_at(self, start):
+    def line_at(self, start: int) -> str:
         ends = [i for i in (self.text.find("\n", start), self.text.find("\r", start)) if i >= 0]
         return self.text[start : min(ends) if ends else len(self.text)]
 
@@ -157,7 +162,7 @@ class _Abandon(Exception):
 
 
 class _Reader:
-    def __init__(self, path, text, sink):
+    def __init__(self, path: str, text: str, sink: object) -> None:
         self.source = _Source(path, text)
         self.scene = Scene(path, source=self.source)
         self.sink = sink
@@ -166,15 +171,15 @@ class _Reader:
         self.polygon_work = 0.0
 
     # --- words -------------------------------------------------------------------------
-    def error(self, word, message):
+    def error(self, word: Word | None, message: str) -> Never:
         self.errors.append(self.source.diagnostic("error", word, message))
         raise _Abandon
 
-    def warning(self, word, message):
+    def warning(self, word: Word, message: str) -> None:
         if len(self.scene.warnings) < MAX_ERRORS:  # as many warnings as errors are shown
             self.scene.warnings.append(self.source.diagnostic("warning", word, message))
 
-    def number(self, what):
+    def number(self, what: str) -> float:
         word = self.source.take()
         if word is None:
             self.error(None, f"expected {what}, found the end of the file")
@@ -186,17 +191,17 @@ class _Reader:
             self.error(word, f"{what} must be a finite number within ±1e30, found '{word.text}'")
         return value
 
-    def vector(self, what):
+    def vector(self, what: str) -> tuple[float, float, float]:
         return tuple(self.number(f"{what} ({axis})") for axis in "xyz")
 
-    def count(self, what, least, most):
+    def count(self, what: str, least: int, most: int) -> int:
         word = self.source.peek()
         value = self.number(what)
         if value != int(value) or not least <= value <= most:
             self.error(word, f"{what} must be a whole number from {least} to {most:,}, found '{word.text}'")
         return int(value)
 
-    def keyword(self, expected):
+    def keyword(self, expected: str) -> None:
         word = self.source.take()
         if word is None:
             self.error(None, f"expected '{expected}', found the end of the file")
@@ -232,7 +237,7 @@ class _Reader:
             raise NffError(self.errors)
         return self.scene
 
-    def skip_to_entity(self):
+    def skip_to_entity(self) -> None:
         """After an error, resumes at the next word that starts a line and names an entity."""
         entities = {"v", "b", "l", "f", "c", "s", "p", "pp"}
         while not self.source.at_end():
@@ -241,7 +246,7 @@ class _Reader:
                 return
             self.source.take()
 
-    def view(self, word):
+    def view(self, word: Word) -> None:
         if self.scene.view is not None:
             self.error(word, "a second view: NFF has one 'v' per file")
         fields = {}
@@ -261,17 +266,17 @@ class _Reader:
             fields["from"], fields["at"], fields["up"], fields["angle"], fields["hither"], fields["resolution"], word
         )
 
-    def colour(self, what):
+    def colour(self, what: str) -> tuple[float, float, float]:
         word = self.source.peek()
         value = tuple(self.number(f"{what} ({channel})") for channel in ("red", "green", "blue"))
         if min(value) < 0:
             self.error(word, f"{what} must not be negative")
         return value
 
-    def background(self, word):
+    def background(self, word: Word) -> None:
         self.scene.background = self.colour("the background colour")
 
-    def light(self, word):
+    def light(self, word: Word) -> None:
         position = self.vector("the light position")
         color = None
         following = self.source.peek()
@@ -280,14 +285,14 @@ class _Reader:
         self.scene.lights.append(Light(position, color, word))
 
     @staticmethod
-    def _is_number(text):
+    def _is_number(text: str) -> bool:
         try:
             float(text)
         except ValueError:
             return False
         return True
 
-    def fill_line(self, word):
+    def fill_line(self, word: Word) -> None:
         color = self.colour("the colour")
         names = ("Kd", "Ks", "the Phong power", "T (transmittance)")
         kd, ks, shine, t = (self.number(name) for name in names)
@@ -299,14 +304,14 @@ class _Reader:
             self.error(word, f"a transmitting surface (T {t:g}) needs an index of refraction > 0, found {ior:g}")
         self.fill = Fill(color, kd, ks, shine, t, ior)
 
-    def current_fill(self, word):
+    def current_fill(self, word: Word) -> Fill:
         if self.scene.view is None:
             self.error(word, "a shape before the view: NFF defines the view ('v') first")
         if self.fill is None:
             self.error(word, "a shape before any 'f' line: its surface is not defined")
         return self.fill
 
-    def emit(self, method, shape):
+    def emit(self, method: str, shape: Sphere | Cone | Polygon) -> None:
         """Hands a shape to the sink (sink.sphere, .cone or .polygon), unless errors were found
         (nothing will be written then)."""
         if not self.errors:
@@ -315,7 +320,7 @@ class _Reader:
             except TooManyMaterials as error:
                 self.error(*error.args)
 
-    def sphere(self, word):
+    def sphere(self, word: Word) -> None:
         fill = self.current_fill(word)
         center = self.vector("the sphere's centre")
         radius_word = self.source.peek()
@@ -326,7 +331,7 @@ class _Reader:
             self.warning(radius_word, "negative radius (inside visible only): drawn two-sided like every shape")
         self.emit(self.sink.sphere, Sphere(center, abs(radius), fill, word))
 
-    def cone(self, word):
+    def cone(self, word: Word) -> None:
         fill = self.current_fill(word)
         base = self.vector("the base centre")
         base_radius = self.number("the base radius")
@@ -342,7 +347,7 @@ class _Reader:
             self.error(radius_word, "a cone's radii must both be positive (or both negative), one may be 0")
         self.emit(self.sink.cone, Cone(base, base_radius, apex, apex_radius, fill, word))
 
-    def polygon(self, word):
+    def polygon(self, word: Word) -> None:
         fill = self.current_fill(word)
         patch = word.text == "pp"
         corners = self.count("the number of corners", 3, MAX_POLYGON_CORNERS)
@@ -366,7 +371,7 @@ class TooManyMaterials(Exception):
     """Raised by a sink with (word, message) when a shape brings one material too many."""
 
 
-def read_nff(path, text, sink):
+def read_nff(path: str | pathlib.Path, text: str, sink: object) -> Scene:
     """Reads NFF `text` (from `path`, named in diagnostics), handing each shape to the sink as
     it is read (sink.sphere / .cone / .polygon (scene, shape)); returns the Scene (view,
     background, lights, warnings). Raises NffError with every error found (at most 20)."""

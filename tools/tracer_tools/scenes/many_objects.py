@@ -12,6 +12,8 @@ always gives the same file. scenes/many_spheres.scn and scenes/bunnies.scn are t
 tools/bench many writes other sizes.
 """
 
+from __future__ import annotations
+
 import argparse
 import math
 import pathlib
@@ -33,13 +35,13 @@ material floor  { ka 0.1  kd 0.6 }
 COLOURS = ["red", "green", "blue", "gold", "white"]
 
 
-def scene_text(lines):
+def scene_text(lines: list[str]) -> str:
     """The scene's lines as text, its "PALETTE" line replaced by the materials it uses."""
     text = "\n".join(lines) + "\n"
     return text.replace("PALETTE\n", used_materials(text))
 
 
-def used_materials(text):
+def used_materials(text: str) -> str:
     """PALETTE's lines for the materials `text` uses (an unused material is a warning)."""
     return (
         "\n".join(
@@ -51,7 +53,7 @@ def used_materials(text):
     )
 
 
-def spheres(count):
+def spheres(count: int) -> str:
     rng = random.Random(count)
     side = math.ceil(math.sqrt(count))
     half = side / 2
@@ -90,7 +92,7 @@ def spheres(count):
     return scene_text(lines)
 
 
-def bunnies(count, obj):
+def bunnies(count: int, obj: str | pathlib.Path) -> str:
     rng = random.Random(count)
     side = math.ceil(math.sqrt(count))
     pitch = 1.6
@@ -136,7 +138,7 @@ def bunnies(count, obj):
     return scene_text(lines)
 
 
-def main():
+def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("kind", choices=["spheres", "bunnies"])
     parser.add_argument("--count", type=int, default=None, help="objects (default 4096 spheres, 64 bunnies)")

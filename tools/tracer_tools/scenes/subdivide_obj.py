@@ -9,12 +9,14 @@ a closed mesh stays closed and the surface does not change. Orientation is kept.
 triangles become 14,696 / 58,784 / 235,136 / 940,544 after 1 / 2 / 3 / 4 passes.
 """
 
+from __future__ import annotations
+
 import argparse
 import pathlib
 import sys
 
 
-def read_obj(path: pathlib.Path):
+def read_obj(path: pathlib.Path) -> tuple[list, list]:
     vertices, faces = [], []
     for line in path.read_text().splitlines():
         parts = line.split()
@@ -30,11 +32,11 @@ def read_obj(path: pathlib.Path):
     return vertices, faces
 
 
-def subdivide(vertices, faces):
+def subdivide(vertices: list, faces: list) -> tuple[list, list]:
     vertices = list(vertices)
     midpoints = {}
 
-    def midpoint(a, b):
+    def midpoint(a: int, b: int) -> int:
         key = (a, b) if a < b else (b, a)
         if key not in midpoints:
             pa, pb = vertices[a], vertices[b]

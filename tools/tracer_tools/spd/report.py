@@ -1,5 +1,8 @@
 """docs/spd.md from the suite's measurements: tables, and each image beside upstream's."""
 
+from __future__ import annotations
+
+import argparse
 import datetime
 import pathlib
 import subprocess
@@ -15,7 +18,7 @@ SIDE = 320  # pixels of each half of a side-by-side image
 RULES = pathlib.Path(__file__).with_name("rules.md")  # the rule-by-rule section, as written by hand
 
 
-def machine(measured_at):
+def machine(measured_at: str) -> str:
     """The CPU, cores and OS, and the renderer's version: the last commit to src/ before the
     measurement (tools and docs do not change it)."""
     command = ["git", "log", "-1", "--format=%h", f"--before={int(measured_at)}", "--", "src"]
@@ -23,7 +26,7 @@ def machine(measured_at):
     return f"{speed_vs_error.machine()}; tracer's src/ at {commit.stdout.strip()}"
 
 
-def side_by_side(tracer_png, upstream_png, out_png):
+def side_by_side(tracer_png: pathlib.Path, upstream_png: pathlib.Path, out_png: pathlib.Path) -> None:
     ours = Image.open(tracer_png).convert("RGB").resize((SIDE, SIDE), Image.LANCZOS)
     canvas = Image.new("RGB", (2 * SIDE, SIDE))
     canvas.paste(ours, (0, 0))
@@ -32,11 +35,11 @@ def side_by_side(tracer_png, upstream_png, out_png):
     canvas.save(out_png, optimize=True)
 
 
-def _ms(seconds):
+def _ms(seconds: float) -> str:
     return f"{seconds * 1000:,.1f}"
 
 
-def primitives_table(results):
+def primitives_table(results: list[dict]) -> str:
     lines = [
         "| scene | spheres | polygons (triangles) | cones (sides) | lights | NFF | convert | parse + check |",
         "|---|--:|--:|--:|--:|--:|--:|--:|",
@@ -52,7 +55,7 @@ def primitives_table(results):
     return "\n".join(lines)
 
 
-def rays_table(results):
+def rays_table(results: list[dict]) -> str:
     lines = [
         "| scene | eye rays | eye rays that hit | reflection | refraction | shadow | total "
         "| build ms | trace ms | Mrays/s |",
@@ -70,7 +73,7 @@ def rays_table(results):
     return "\n".join(lines)
 
 
-def crosscheck_table(results):
+def crosscheck_table(results: list[dict]) -> str:
     lines = [
         "| scene | over 2 levels | px | ill-conditioned px | over 2 levels on the others | RMSE | FLIP |",
         "|---|--:|--:|--:|--:|--:|--:|",
@@ -88,7 +91,7 @@ def crosscheck_table(results):
     return "\n".join(lines)
 
 
-def embree_table(results):
+def embree_table(results: list[dict]) -> str:
     lines = [
         "| scene | tracer ms | Embree ms | tracer / Embree (min-max) | build tracer / Embree ms | note |",
         "|---|--:|--:|--:|--:|---|",
@@ -109,7 +112,7 @@ def embree_table(results):
     return "\n".join(lines)
 
 
-def write(args, results):
+def write(args: argparse.Namespace, results: list[dict]) -> None:
     images = args.docs.parent / "spd"
     images.mkdir(parents=True, exist_ok=True)
     gallery = []

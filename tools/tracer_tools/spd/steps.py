@@ -1,7 +1,10 @@
 """The suite's steps, one function each: build, generate, convert, render, cross-check, compare."""
 
+from __future__ import annotations
+
 import json
 import os
+import pathlib
 import re
 import shutil
 import statistics
@@ -21,11 +24,11 @@ MITSUBA_SPAWN_OFFSET = 64 * 2.0**-23
 GENERATOR_CC = "cc -O2 -w -std=gnu89 -include compat.h"  # as upstream's build.sh: 1980s C
 
 
-def log(message):
+def log(message: str) -> None:
     print(f"tools/spd: {message}", file=sys.stderr, flush=True)
 
 
-def ensure_debian_packages(packages):
+def ensure_debian_packages(packages: list[str]) -> None:
     """Installs the Debian packages that are missing (as tools/bootstrap does)."""
     missing = [
         package
@@ -47,7 +50,7 @@ def ensure_debian_packages(packages):
     )
 
 
-def build_generators(source, folder):
+def build_generators(source: pathlib.Path, folder: pathlib.Path) -> None:
     """Compiles upstream's generators from `source` (their C files, compat.h and makefile) into folder."""
     ensure_debian_packages(["make", "gcc"])
     folder.mkdir(parents=True, exist_ok=True)
@@ -57,18 +60,18 @@ def build_generators(source, folder):
     subprocess.run(["make", "-s", "-C", str(folder), f"CC={GENERATOR_CC}", *SCENES], check=True, stdout=sys.stderr)
 
 
-def generate(generators, scene, size, nff_path):
+def generate(generators: pathlib.Path, scene: str, size: int | None, nff_path: pathlib.Path) -> None:
     """Runs one generator (size factor `size`, None for its default) into nff_path."""
     command = [str(generators / scene)] + ([] if size is None else ["-s", str(size)])
     with open(nff_path, "w") as output:
         subprocess.run(command, check=True, stdout=output, cwd=generators)
 
 
-def tracer_path(name):
+def tracer_path(name: str) -> pathlib.Path:
     return ROOT / "build" / "release" / name
 
 
-def median_seconds(command, runs):
+def median_seconds(command: list, runs: int) -> float:
     """Median wall time of `runs` runs of a command (which must succeed)."""
     times = []
     for _ in range(runs):
@@ -78,7 +81,9 @@ def median_seconds(command, runs):
     return statistics.median(times)
 
 
-def render_corner_rays(scn_path, image_path, stats_path, threads):
+def render_corner_rays(
+    scn_path: pathlib.Path, image_path: pathlib.Path, stats_path: pathlib.Path, threads: int
+) -> dict:
     """Renders the corner-ray scene (N+1 rays a side) and averages each 2 x 2 block of corner
     samples into a pixel: upstream's procedure. Writes the N x N PNG; returns tracer's stats."""
     from tracer_tools.xcheck import (  # noqa: F401  (mitsuba_render sets the variant images reads with)
@@ -96,14 +101,14 @@ def render_corner_rays(scn_path, image_path, stats_path, threads):
     return json.loads(stats_path.read_text())
 
 
-def bench(scn_path, threads, runs):
+def bench(scn_path: pathlib.Path, threads: int, runs: int) -> dict:
     """tracer_bench's in-process timings (median render, build) of a scene."""
     command = [tracer_path("tracer_bench"), scn_path, "--threads", str(threads), "--runs", str(runs), "--json"]
     done = subprocess.run([str(c) for c in command], check=True, capture_output=True, text=True)
     return json.loads(done.stdout)
 
 
-def crosscheck(scn_path, folder):
+def crosscheck(scn_path: pathlib.Path, folder: pathlib.Path) -> dict:
     """tools/crosscheck's report (tracer against Mitsuba 3 at the scene's size, 1 spp)."""
     environment = {
         **os.environ,
@@ -117,11 +122,11 @@ def crosscheck(scn_path, folder):
     return json.loads(done.stdout)
 
 
-def perturbed_eye_scene(scn_path, out_path, offset):
+def perturbed_eye_scene(scn_path: pathlib.Path, out_path: pathlib.Path, offset: np.ndarray) -> None:
     """A copy of the scene with the camera's eye moved by `offset` (write it beside the scene)."""
     text = scn_path.read_text()
 
-    def moved(match):
+    def moved(match: re.Match) -> str:
         eye = [float(v) + d for v, d in zip(match.group(1).split(","), offset, strict=True)]
         return "eye (" + ", ".join(f"{v:.17g}" for v in eye) + ")"
 
@@ -131,7 +136,9 @@ def perturbed_eye_scene(scn_path, out_path, offset):
     out_path.write_text(text)
 
 
-def unstable_pixels(scn_path, folder, relative, trials=16, threads=2):
+def unstable_pixels(
+    scn_path: pathlib.Path, folder: pathlib.Path, relative: float, trials: int = 16, threads: int = 2
+) -> np.ndarray:
     """Pixels whose 8-bit value moves by more than 2 levels when the eye moves by `relative` times
     its distance from the origin (at least 1), in any of `trials` random directions: there a
     renderer whose rays are moved that far (float32 Mitsuba) cannot be expected to agree."""
@@ -162,7 +169,7 @@ def unstable_pixels(scn_path, folder, relative, trials=16, threads=2):
     return unstable
 
 
-def agreement_on_stable_pixels(folder, unstable):
+def agreement_on_stable_pixels(folder: pathlib.Path, unstable: np.ndarray) -> dict:
     """Share of the well-conditioned pixels where tracer and Mitsuba differ by more than 2 levels."""
     from PIL import Image
 
@@ -178,13 +185,20 @@ def agreement_on_stable_pixels(folder, unstable):
     }
 
 
-def without_refraction(scn_path, out_path):
+def without_refraction(scn_path: pathlib.Path, out_path: pathlib.Path) -> None:
     """A copy of the scene with kt and ior removed, for embree_scene, which has no refraction
     (write it beside the scene)."""
     out_path.write_text(re.sub(r"\s+kt \S+\s+ior \S+", "", scn_path.read_text()))
 
 
-def compare_with_embree(bench_folder, embree, scn_path, pairs, runs, json_path):
+def compare_with_embree(
+    bench_folder: pathlib.Path,
+    embree: pathlib.Path,
+    scn_path: pathlib.Path,
+    pairs: int,
+    runs: int,
+    json_path: pathlib.Path,
+) -> dict:
     """compare_scene.py's summary (tracer / Embree, alternating, 2 threads), or its refusal."""
     json_path.unlink(missing_ok=True)
     command = [
@@ -207,7 +221,7 @@ def compare_with_embree(bench_folder, embree, scn_path, pairs, runs, json_path):
     return json.loads(json_path.read_text().splitlines()[-1])
 
 
-def build_embree(bench_folder, build_folder):
+def build_embree(bench_folder: pathlib.Path, build_folder: pathlib.Path) -> pathlib.Path:
     """embree_scene built by the bench's build.sh (its Debian packages installed first)."""
     ensure_debian_packages(["cmake", "make", "g++", "libembree-dev", "libtbb-dev", "libtinyobjloader-dev"])
     executable = build_folder / "embree_scene"

@@ -12,6 +12,8 @@ Everything else goes to --out (default build/spd). Steps can be left out: --no-c
 --no-embree.
 """
 
+from __future__ import annotations
+
 import argparse
 import json
 import pathlib
@@ -24,7 +26,7 @@ from . import report, steps
 SHARED = steps.ROOT.parent / "shared"
 
 
-def parse_arguments(argv):
+def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog="tools/spd", description=__doc__.split("\n")[0])
     parser.add_argument("--source", type=pathlib.Path, default=SHARED / "spd" / "src", help="the generators' C source")
     parser.add_argument("--images", type=pathlib.Path, default=SHARED / "spd" / "images", help="upstream's images")
@@ -49,7 +51,7 @@ def parse_arguments(argv):
     return args
 
 
-def run_scene(name, args, generators, embree):
+def run_scene(name: str, args: argparse.Namespace, generators: pathlib.Path, embree: pathlib.Path | None) -> dict:
     """Every step for one scene; a dict of what was measured."""
     folder = args.out / name
     folder.mkdir(parents=True, exist_ok=True)
@@ -85,7 +87,7 @@ def run_scene(name, args, generators, embree):
     return result
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
     args = parse_arguments(argv)
     if args.report_only:
         report.write(args, json.loads((args.out / "results.json").read_text()))

@@ -1,7 +1,10 @@
 """xcheck: cross-checks tracer's images against Mitsuba 3 (see docs/crosscheck.md)."""
 
+from __future__ import annotations
+
 import subprocess
 import sys
+from collections.abc import Callable
 
 # The plugin names the converted XML uses and xcheck.plugins registers.
 PHONG_PLUGIN = "tracer_phong"
@@ -23,7 +26,7 @@ class MitsubaMissing(ToolError):
     exit_code = 4
 
 
-def run_reporting_errors(tool, work):
+def run_reporting_errors(tool: str, work: Callable[[], int]) -> int:
     """Runs work() and returns its exit code; a ToolError, OSError or failed subprocess becomes
     one line `tool: error: ...` on stderr and its exit code."""
     try:

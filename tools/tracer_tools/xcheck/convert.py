@@ -5,8 +5,11 @@ error for an unknown plugin type. Planes become squares of half-size `plane_exte
 written as OBJ files beside the XML (write_mitsuba_scene).
 """
 
+from __future__ import annotations
+
 import math
 import pathlib
+from collections.abc import Sequence
 from xml.sax.saxutils import quoteattr
 
 from . import PHONG_PLUGIN, WHITTED_PLUGIN, ToolError
@@ -23,34 +26,34 @@ MAX_DEPTH = 64
 PLANE_MARGIN = 1000.0
 
 
-def _numbers(values):
+def _numbers(values: Sequence[float]) -> str:
     return ", ".join(repr(float(v)) for v in values)
 
 
-def _sub(a, b):
+def _sub(a: Sequence[float], b: Sequence[float]) -> list[float]:
     return [x - y for x, y in zip(a, b, strict=False)]
 
 
-def _dot(a, b):
+def _dot(a: Sequence[float], b: Sequence[float]) -> float:
     return sum(x * y for x, y in zip(a, b, strict=False))
 
 
-def _cross(a, b):
+def _cross(a: Sequence[float], b: Sequence[float]) -> list[float]:
     return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 
 
-def _normalize(a):
+def _normalize(a: Sequence[float]) -> list[float]:
     length = math.sqrt(_dot(a, a))
     return [x / length for x in a]
 
 
-def pixel_angle(scene):
+def pixel_angle(scene: dict) -> float:
     """Angle (radians) one pixel spans vertically at the image centre."""
     camera, render = scene["camera"], scene["render"]
     return 2 * math.tan(math.radians(camera["fovy"]) / 2) / render["height"]
 
 
-def plane_extent(scene, plane):
+def plane_extent(scene: dict, plane: dict) -> float:
     """Half-size of the square that stands in for an infinite plane.
 
     A ray from a point at height h over the plane that misses a square of half-size R
@@ -66,7 +69,7 @@ def plane_extent(scene, plane):
     return PLANE_MARGIN * max(height, 1.0) / pixel_angle(scene)
 
 
-def plane_mesh_obj(scene, plane):
+def plane_mesh_obj(scene: dict, plane: dict) -> str:
     """OBJ text of a square of half-size plane_extent(...) in the plane, centred at the foot of
     the eye: a centre square of half-size h (as in plane_extent) and around it rings, each
     twice as wide as the one inside, so that every triangle is about as large as its distance
@@ -107,47 +110,47 @@ def plane_mesh_obj(scene, plane):
 
 
 class _Writer:
-    def __init__(self):
+    def __init__(self) -> None:
         self.lines = []
         self.indent = 0
 
-    def open(self, tag, **attributes):
+    def open(self, tag: str, **attributes: object) -> None:
         self.line(f"<{tag}{self._attributes(attributes)}>")
         self.indent += 1
 
-    def close(self, tag):
+    def close(self, tag: str) -> None:
         self.indent -= 1
         self.line(f"</{tag}>")
 
-    def leaf(self, tag, **attributes):
+    def leaf(self, tag: str, **attributes: object) -> None:
         self.line(f"<{tag}{self._attributes(attributes)}/>")
 
-    def line(self, text):
+    def line(self, text: str) -> None:
         self.lines.append("    " * self.indent + text)
 
     @staticmethod
-    def _attributes(attributes):
+    def _attributes(attributes: dict) -> str:
         return "".join(f" {name.rstrip('_')}={quoteattr(str(value))}" for name, value in attributes.items())
 
 
-def _material_key(material):
+def _material_key(material: dict) -> tuple[str, str]:
     return (material["name"], repr(sorted(material.items())))
 
 
 SHAPE_KINDS = ("spheres", "planes", "meshes", "triangles", "quads", "boxes")
 
 
-def shapes(scene):
+def shapes(scene: dict) -> list[dict]:
     """Every shape of the scene description, of every kind (older dumps lack the flat shapes)."""
     return [shape for kind in SHAPE_KINDS for shape in scene.get(kind, [])]
 
 
-def refracts(scene):
+def refracts(scene: dict) -> bool:
     """True if some shape's material transmits (kt > 0): the integrator then branches."""
     return any(any(shape["material"].get("kt", [0, 0, 0])) for shape in shapes(scene))
 
 
-def _placement(out, shape, before=None):
+def _placement(out: _Writer, shape: dict, before: list | None = None) -> None:
     """The shape's to_world: an optional matrix of its own (rows), then tracer's placement:
     scale, rotate about the axis, translate, or its transform steps in order (Mitsuba applies a
     transform's children in the order written)."""
@@ -169,7 +172,7 @@ def _placement(out, shape, before=None):
     out.close("transform")
 
 
-def mirrors(shape):
+def mirrors(shape: dict) -> bool:
     """True if the shape's placement turns space inside out (an odd number of negative scale
     factors). tracer keeps such a shape's normals pointing outwards; Mitsuba takes its face
     normals from the placed winding, which a mirror reverses, so the converter flips them back."""
@@ -178,12 +181,12 @@ def mirrors(shape):
     return negative % 2 == 1
 
 
-def _affine(columns, origin):
+def _affine(columns: Sequence[Sequence[float]], origin: Sequence[float]) -> list[list[float]]:
     """A 4 x 4 matrix (rows) mapping the unit axes to `columns` and the origin to `origin`."""
     return [[*(column[row] for column in columns), origin[row]] for row in range(3)] + [[0.0, 0.0, 0.0, 1.0]]
 
 
-def quad_to_rectangle(quad):
+def quad_to_rectangle(quad: dict) -> list[list[float]]:
     """The matrix taking Mitsuba's rectangle ([-1, 1]^2 at z = 0, normal +z) onto the quad:
     half edges as x and y, the unit normal edge1 x edge2 as z, the quad's centre as origin."""
     edge1, edge2 = quad["edge1"], quad["edge2"]
@@ -192,7 +195,7 @@ def quad_to_rectangle(quad):
     return _affine([half1, half2, _normalize(_cross(edge1, edge2))], centre)
 
 
-def box_to_cube(box):
+def box_to_cube(box: dict) -> list[list[float]]:
     """The matrix taking Mitsuba's cube ([-1, 1]^3) onto the box before placing."""
     low, high = box["min"], box["max"]
     half = [0.5 * (b - a) for a, b in zip(low, high, strict=True)]
@@ -201,13 +204,13 @@ def box_to_cube(box):
     )
 
 
-def triangle_obj(triangle):
+def triangle_obj(triangle: dict) -> str:
     """OBJ text of a flat triangle."""
     corners = "".join(f"v {p[0]!r} {p[1]!r} {p[2]!r}\n" for p in (triangle["a"], triangle["b"], triangle["c"]))
     return corners + "f 1 2 3\n"
 
 
-def to_mitsuba_xml(scene):
+def to_mitsuba_xml(scene: dict) -> str:
     """The Mitsuba 3 XML text for a scene description (a dict from `tracer --dump-json`)."""
     render, camera = scene["render"], scene["camera"]
     if render["max_depth"] > MAX_DEPTH:
@@ -347,7 +350,7 @@ def to_mitsuba_xml(scene):
     return "\n".join(out.lines) + "\n"
 
 
-def write_mitsuba_scene(scene, folder):
+def write_mitsuba_scene(scene: dict, folder: pathlib.Path) -> pathlib.Path:
     """Writes folder/scene.xml and the planes' OBJ files; returns the XML's path."""
     folder = pathlib.Path(folder)
     for index, plane in enumerate(scene["planes"]):

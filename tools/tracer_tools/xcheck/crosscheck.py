@@ -6,17 +6,23 @@ Exit codes: 0 the images agree within the thresholds; 1 they do not; 2 bad comma
 failure (a scene the cross-check cannot convert, a file that cannot be written, ...).
 """
 
+from __future__ import annotations
+
 import argparse
 import json
 import pathlib
 import sys
+from typing import TYPE_CHECKING
 
 from . import run_reporting_errors, tracer_cli
+
+if TYPE_CHECKING:
+    from .metrics import Comparison
 
 DEFAULT_MAX_OVER_2 = 0.1  # percent of pixels more than 2 levels apart: the project's target
 
 
-def parse_args(argv):
+def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         prog="tools/crosscheck",
         description="Render SCENE with tracer and with Mitsuba 3 at the same resolution and samples "
@@ -56,7 +62,7 @@ def parse_args(argv):
     return parser.parse_args(argv)
 
 
-def resolution_args(args):
+def resolution_args(args: argparse.Namespace) -> list[str]:
     """tracer overrides for the requested size and samples (width alone keeps the aspect,
     which costs one more --dump-json)."""
     width, height = args.width, args.height
@@ -66,7 +72,7 @@ def resolution_args(args):
     return tracer_cli.overrides(width=width, height=height, samples=args.samples)
 
 
-def failures(comparison, args):
+def failures(comparison: Comparison, args: argparse.Namespace) -> list[str]:
     """The thresholds the comparison exceeds, as sentences."""
     checks = [
         ("pixels over 2 levels", comparison.over_2 * 100, args.max_over_2, "%"),
@@ -81,7 +87,7 @@ def failures(comparison, args):
     ]
 
 
-def crosscheck(args):
+def crosscheck(args: argparse.Namespace) -> int:
     """Runs the whole check; returns the exit code."""
     # Step 1: the scene as tracer resolves it, with the requested size and samples.
     extra = resolution_args(args)
@@ -129,7 +135,7 @@ def crosscheck(args):
     return 1 if failed else 0
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
     args = parse_args(sys.argv[1:] if argv is None else argv)
     return run_reporting_errors("crosscheck", lambda: crosscheck(args))
 

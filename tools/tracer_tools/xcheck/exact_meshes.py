@@ -12,8 +12,11 @@ Normals: the file's when every face corner names one, else area-weighted over th
 placed (conventions.md); none (zero) under `shading flat` and for the flat shapes.
 """
 
+from __future__ import annotations
+
 import math
 import pathlib
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -22,12 +25,12 @@ class ObjUnreadable(Exception):
     """A file this reader does not take (tracer's own reader reports the problem itself)."""
 
 
-def read_obj(path):
+def read_obj(path: str | pathlib.Path) -> tuple[np.ndarray, np.ndarray, list]:
     """(positions (n, 3), normals (m, 3), faces): each face a list of (position index, normal
     index or -1) from 0, as the file gives them (negative indices counted from the end)."""
     positions, normals, faces = [], [], []
 
-    def index(text, count):
+    def index(text: str, count: int) -> int:
         number = int(text)
         return number - 1 if number > 0 else count + number
 
@@ -54,7 +57,7 @@ def read_obj(path):
     )
 
 
-def fan_triangles(faces):
+def fan_triangles(faces: list) -> tuple[np.ndarray, np.ndarray]:
     """Each face cut into a fan from its first corner: (corners (t, 3) position indices, normal
     indices (t, 3), -1 where a corner names none)."""
     triangles = [(face[0], face[k], face[k + 1]) for face in faces for k in range(1, len(face) - 1)]
@@ -63,7 +66,7 @@ def fan_triangles(faces):
     return corners, normal_ids
 
 
-def uses_file_normals(file_normals, normal_ids):
+def uses_file_normals(file_normals: np.ndarray, normal_ids: np.ndarray) -> bool:
     """tracer's rule (src/io/obj_mesh.cpp): a file's own vertex normals count when it has some
     and every face corner names one (v//vn or v/vt/vn); otherwise normals are area-weighted.
     (tracer decides after dropping zero-area faces; a zero-area face without normals is the one
@@ -73,7 +76,7 @@ def uses_file_normals(file_normals, normal_ids):
     )
 
 
-def obj_normals_used(path):
+def obj_normals_used(path: str | pathlib.Path) -> bool:
     """uses_file_normals for an OBJ file (False for a file this reader does not take)."""
     try:
         _, file_normals, faces = read_obj(path)
@@ -82,7 +85,7 @@ def obj_normals_used(path):
         return False
 
 
-def _rotation(axis, degrees):
+def _rotation(axis: Sequence[float], degrees: float) -> np.ndarray:
     """The rotation matrix about `axis` by `degrees` (right-handed, as glm::rotate)."""
     a = np.array(axis, dtype=np.float64)
     a /= math.sqrt(a @ a)
@@ -91,7 +94,7 @@ def _rotation(axis, degrees):
     return c * np.eye(3) + s * cross + (1.0 - c) * np.outer(a, a)
 
 
-def placement(shape):
+def placement(shape: dict) -> tuple[np.ndarray, np.ndarray]:
     """tracer's Placement (src/scene/placement.h): (linear 3 x 3, translation) of the shape's
     scale, rotate and translate keys, or of its transform's steps in order."""
     linear, translate = np.eye(3), np.zeros(3)
@@ -111,12 +114,12 @@ def placement(shape):
     return linear, translate
 
 
-def _unit_rows(vectors):
+def _unit_rows(vectors: np.ndarray) -> np.ndarray:
     lengths = np.linalg.norm(vectors, axis=-1, keepdims=True)
     return np.divide(vectors, lengths, out=np.zeros_like(vectors), where=lengths > 0)
 
 
-def area_weighted_normals(positions, faces):
+def area_weighted_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """Vertex normals: the sum of the adjacent faces' cross products (face normal times twice
     the area), normalised; conventions.md. Mitsuba's own are angle-weighted."""
     a, b, c = (positions[faces[:, k]] for k in range(3))
@@ -127,7 +130,7 @@ def area_weighted_normals(positions, faces):
     return _unit_rows(sums)
 
 
-def _triangles(path, linear, translate, smooth):
+def _triangles(path: str, linear: np.ndarray, translate: np.ndarray, smooth: bool) -> tuple[np.ndarray, np.ndarray]:
     """(corners (t, 3, 3), normals (t, 3, 3)) of an OBJ file mapped by (linear, translate)."""
     positions, file_normals, faces = read_obj(path)
     corners, normal_ids = fan_triangles(faces)
@@ -143,7 +146,7 @@ def _triangles(path, linear, translate, smooth):
     return triangles, area_weighted_normals(placed, corners)[corners]
 
 
-def exact_meshes(scene, folder):
+def exact_meshes(scene: dict, folder: pathlib.Path) -> tuple[list[str], list[np.ndarray], list[np.ndarray]]:
     """{Mitsuba shape id: (first triangle, triangle count, to_object 3 x 3, translation)} and the
     triangle table (corners (T, 3, 3), normals (T, 3, 3)) of the scene description `scene` as
     converted into `folder` (xcheck.convert.write_mitsuba_scene). A shape whose file this

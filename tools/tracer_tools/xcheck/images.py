@@ -1,10 +1,14 @@
 """Image files: tracer's float output (EXR) in, 8-bit PNGs out."""
 
+from __future__ import annotations
+
+import pathlib
+
 import numpy as np
 from PIL import Image
 
 
-def read_exr(path):
+def read_exr(path: str | pathlib.Path) -> np.ndarray:
     """A float image file (tracer writes EXR unclamped) as a float32 H x W x 3 array, top row
     first; read with Mitsuba's Bitmap (OpenEXR inside)."""
     import mitsuba as mi  # a variant is set by whoever imported xcheck.mitsuba_render
@@ -13,19 +17,19 @@ def read_exr(path):
     return np.array(bitmap, dtype=np.float32)
 
 
-def write_exr(path, image):
+def write_exr(path: str | pathlib.Path, image: np.ndarray) -> None:
     """Writes a float H x W x 3 image as EXR (Mitsuba's Bitmap)."""
     import mitsuba as mi
 
     mi.Bitmap(np.ascontiguousarray(image, dtype=np.float32), mi.Bitmap.PixelFormat.RGB).write(str(path))
 
 
-def to_8bit(image):
+def to_8bit(image: np.ndarray) -> np.ndarray:
     """tracer's 8-bit rule: clamp to [0, 1], round(255 v), no gamma."""
     return np.round(np.clip(image, 0.0, 1.0) * 255.0).astype(np.uint8)
 
 
-def write_png(path, image):
+def write_png(path: str | pathlib.Path, image: np.ndarray) -> None:
     """Writes an 8-bit (or float, converted by to_8bit) H x W x 3 image."""
     if image.dtype != np.uint8:
         image = to_8bit(image)

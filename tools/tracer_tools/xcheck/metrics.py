@@ -1,5 +1,7 @@
 """How far one image is from another: error figures, a heat map and a side-by-side picture."""
 
+from __future__ import annotations
+
 import dataclasses
 import math
 
@@ -31,10 +33,10 @@ class Comparison:
     max_levels: int
     flip_mean: float  # NVIDIA FLIP (LDR), mean over the image; 0 = identical
 
-    def as_dict(self):
+    def as_dict(self) -> dict:
         return dataclasses.asdict(self)
 
-    def summary(self):
+    def summary(self) -> str:
         """A few lines for people."""
         psnr = "inf" if math.isinf(self.psnr) else f"{self.psnr:.2f}"
         count = lambda share: f"{share * 100:.4f}% ({round(share * self.pixels)} px)"  # noqa: E731
@@ -45,12 +47,12 @@ class Comparison:
         )
 
 
-def level_differences(reference, test):
+def level_differences(reference: np.ndarray, test: np.ndarray) -> np.ndarray:
     """Per pixel, the largest channel difference between the 8-bit images (H x W ints)."""
     return np.abs(to_8bit(reference).astype(np.int16) - to_8bit(test).astype(np.int16)).max(axis=2)
 
 
-def flip_mean(reference, test):
+def flip_mean(reference: np.ndarray, test: np.ndarray) -> float:
     """Mean FLIP error of the clamped images, read as display values (tracer writes no gamma)."""
     import flip_evaluator
 
@@ -60,7 +62,7 @@ def flip_mean(reference, test):
     return float(mean)
 
 
-def compare(reference, test):
+def compare(reference: np.ndarray, test: np.ndarray) -> Comparison:
     """Comparison of two float H x W x 3 images of the same size."""
     if reference.shape != test.shape:
         raise ValueError(f"image sizes differ: {reference.shape} and {test.shape}")
@@ -80,7 +82,7 @@ def compare(reference, test):
     )
 
 
-def heat_map(reference, test):
+def heat_map(reference: np.ndarray, test: np.ndarray) -> np.ndarray:
     """An 8-bit image: the reference darkened to a quarter, every pixel that differs by more
     than 0 levels painted by HEAT_BINS."""
     levels = level_differences(reference, test)
@@ -90,11 +92,11 @@ def heat_map(reference, test):
     return picture
 
 
-def _font(height):
+def _font(height: int) -> ImageFont.ImageFont:
     return ImageFont.load_default(size=max(10, height // 40))
 
 
-def _labelled(picture, label):
+def _labelled(picture: np.ndarray, label: str) -> np.ndarray:
     image = Image.fromarray(picture, "RGB")
     ImageDraw.Draw(image).text(
         (6, 4), label, fill=(255, 255, 255), font=_font(image.height), stroke_width=2, stroke_fill=(0, 0, 0)
@@ -102,7 +104,7 @@ def _labelled(picture, label):
     return image
 
 
-def side_by_side(reference, test, reference_label, test_label):
+def side_by_side(reference: np.ndarray, test: np.ndarray, reference_label: str, test_label: str) -> np.ndarray:
     """One 8-bit image: reference | test | heat map, labelled, with the heat map's legend."""
     heat = _labelled(heat_map(reference, test), "differences (8-bit levels)")
     draw, font = ImageDraw.Draw(heat), _font(heat.height)

@@ -1,5 +1,7 @@
 """Renders a converted scene with Mitsuba 3 and the plugins of xcheck.plugins."""
 
+from __future__ import annotations
+
 import pathlib
 import sys
 
@@ -23,7 +25,7 @@ from . import plugins  # noqa: E402  (needs the variant)
 plugins.register()
 
 
-def load(xml_path, scene, **parameters):
+def load(xml_path: pathlib.Path, scene: dict, **parameters: object) -> mi.Scene:
     """Loads the XML written for `scene` (the --dump-json dict), gives every mesh whose file
     normals tracer does not use area-weighted vertex normals, and hands the integrator the
     meshes in float64 (xcheck.exact_meshes). `parameters` set the XML's defaults (crop_y,
@@ -47,7 +49,7 @@ def load(xml_path, scene, **parameters):
     return mitsuba_scene
 
 
-def render(mitsuba_scene, seed=0):
+def render(mitsuba_scene: mi.Scene, seed: int = 0) -> np.ndarray:
     """The image as a float32 H x W x 3 array (linear, unclamped, top row first)."""
     image = mi.render(mitsuba_scene, seed=seed)
     dr.eval(image)
@@ -58,7 +60,7 @@ def render(mitsuba_scene, seed=0):
 SAMPLES_PER_STRIP = 1 << 24
 
 
-def render_scene(scene, out_dir):
+def render_scene(scene: dict, out_dir: pathlib.Path) -> np.ndarray:
     """Converts the scene description to out_dir/scene.xml (and the planes' OBJ files) and
     renders it (float image), in strips of rows when there are many samples."""
     xml_path = convert.write_mitsuba_scene(scene, out_dir)

@@ -24,7 +24,7 @@ class PhongBSDF(mi.BSDF):
     """Phong, not Blinn-Phong: eval = kd max(0, N.L) + ks max(0, R.V)^n with the normal turned
     to face the viewer; sample = the mirror direction with weight km; attribute "ka"."""
 
-    def __init__(self, props):
+    def __init__(self, props) -> None:
         mi.BSDF.__init__(self, props)
         self.ka = _color(props, "ka")
         self.kd = _color(props, "kd")
@@ -75,10 +75,10 @@ class PhongBSDF(mi.BSDF):
             raise ValueError(f"{PHONG_PLUGIN} has no attribute '{name}'")
         return dr.select(active, mi.Color3f(values[name]), 0.0)
 
-    def traverse(self, callback):
+    def traverse(self, callback) -> None:
         pass
 
-    def to_string(self):
+    def to_string(self) -> str:
         return f"PhongBSDF[ka={self.ka}, kd={self.kd}, ks={self.ks}, km={self.km}, kt={self.kt}, n={self.n}]"
 
 
@@ -129,7 +129,7 @@ class _PinholeCamera:
     """tracer's camera (src/render/camera.cpp) in float64, from the converter's numbers: eye,
     lookat, up, fovy, width, height, sample grid side."""
 
-    def __init__(self, text):
+    def __init__(self, text) -> None:
         numbers = [float(x) for x in text.split()]
         eye, lookat, up = numbers[0:3], numbers[3:6], numbers[6:9]
         fovy, self.width, self.height, self.grid = numbers[9:13]
@@ -181,7 +181,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
     after max_depth returns black. Unrolled in Python: with `refracts` every level also opens
     a refracted path, 2^(max_depth + 1) path segments in one kernel."""
 
-    def __init__(self, props):
+    def __init__(self, props) -> None:
         mi.SamplingIntegrator.__init__(self, props)
         self.max_depth = props.get("max_depth", 4)
         self.shadows = props.get("shadows", True)
@@ -216,7 +216,7 @@ class WhittedIntegrator(mi.SamplingIntegrator):
             self._sphere_table = [mi.Float64(column) for column in columns]
         return self._sphere_table
 
-    def use_exact_meshes(self, scene, shapes, corners, normals):
+    def use_exact_meshes(self, scene, shapes, corners, normals) -> None:
         """Takes the triangle meshes in float64 (xcheck.exact_meshes: by shape id, the first
         triangle, the count, to_object and translation; the corners and normals table): a
         mirror chain's hit on them is then solved again in float64 too. A shape whose triangle
@@ -392,11 +392,11 @@ class WhittedIntegrator(mi.SamplingIntegrator):
     def aov_names(self):
         return []
 
-    def to_string(self):
+    def to_string(self) -> str:
         return f"WhittedIntegrator[max_depth={self.max_depth}, shadows={self.shadows}, refracts={self.refracts}]"
 
 
-def register():
+def register() -> None:
     """Registers both plugins with the current Mitsuba variant (call after mi.set_variant)."""
     mi.register_bsdf(PHONG_PLUGIN, lambda props: PhongBSDF(props))
     mi.register_integrator(WHITTED_PLUGIN, lambda props: WhittedIntegrator(props))

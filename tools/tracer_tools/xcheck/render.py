@@ -2,6 +2,8 @@
 xcheck.plugins loaded), with the converted XML written beside the image as IMAGE.xml.
 .exr keeps floats; other extensions get tracer's 8-bit rule. Exit codes as tools/crosscheck."""
 
+from __future__ import annotations
+
 import argparse
 import pathlib
 import sys
@@ -10,7 +12,7 @@ import tempfile
 from . import run_reporting_errors, tracer_cli
 
 
-def render(args):
+def render(args: argparse.Namespace) -> int:
     """Renders and writes the image and its XML; returns the exit code."""
     scene = tracer_cli.dump_json(args.scene, tracer_cli.overrides(args.width, args.height, args.samples))
     from . import (
@@ -29,7 +31,7 @@ def render(args):
     return 0
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/mitsuba-render", description=__doc__.split("\n\n")[0])
     parser.add_argument("scene", type=pathlib.Path, help="the scene file (.scn)")
     parser.add_argument("-o", "--output", type=pathlib.Path, required=True, help="the image (.png, .exr)")

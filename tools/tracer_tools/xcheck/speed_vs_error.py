@@ -10,6 +10,8 @@ Writes docs/speed-vs-error.json, docs/speed-vs-error.png and the generated part 
 docs/speed-vs-error.md (between its markers; the text around them is kept).
 """
 
+from __future__ import annotations
+
 import argparse
 import dataclasses
 import json
@@ -36,11 +38,11 @@ class Variant:
     samples: int
     args: tuple = ()
 
-    def tracer_args(self):
+    def tracer_args(self) -> tuple[str, ...]:
         return ("--samples", str(self.samples), *self.args)
 
 
-def default_variants(scene):
+def default_variants(scene: dict) -> list[Variant]:
     """Samples 1, 2x2, 4x4, 8x8 with the scene's accelerator; for mesh scenes also every
     accelerator at 1 sample (same image, other speed)."""
     variants = [Variant(f"{n}x{n} spp" if n > 1 else "1 spp", n * n) for n in (1, 2, 4, 8)]
@@ -49,7 +51,7 @@ def default_variants(scene):
     return variants
 
 
-def machine():
+def machine() -> str:
     """A line naming the CPU, cores and OS."""
     model = platform.processor() or "unknown CPU"
     try:
@@ -62,7 +64,7 @@ def machine():
     return f"{model}, {os.cpu_count()} cores, {platform.system()} {platform.release()}"
 
 
-def pareto_front(rows, error_key):
+def pareto_front(rows: list[dict], error_key: str) -> None:
     """Marks rows that no other row beats on both time and error."""
     for row in rows:
         row["pareto"] = not any(
@@ -73,7 +75,7 @@ def pareto_front(rows, error_key):
         )
 
 
-def measure_scene(name, repeats, work):
+def measure_scene(name: str, repeats: int, work: pathlib.Path) -> dict:
     """Reference and every variant for one scene; a dict for the JSON file."""
     from . import (
         images,
@@ -121,7 +123,7 @@ def measure_scene(name, repeats, work):
     }
 
 
-def markdown(data):
+def markdown(data: dict) -> str:
     """The generated part of docs/speed-vs-error.md."""
     lines = [
         BEGIN,
@@ -150,7 +152,7 @@ def markdown(data):
     return "\n".join(lines)
 
 
-def plot(data, path):
+def plot(data: dict, path: pathlib.Path) -> None:
     """Time against FLIP mean, one curve per scene through its samples-per-pixel variants."""
     import matplotlib
 
@@ -200,7 +202,7 @@ def plot(data, path):
     figure.savefig(path, dpi=110)
 
 
-def write_report(data, docs):
+def write_report(data: dict, docs: pathlib.Path) -> None:
     docs.mkdir(parents=True, exist_ok=True)
     (docs / "speed-vs-error.json").write_text(json.dumps(data, indent=2) + "\n")
     plot(data, docs / "speed-vs-error.png")
@@ -212,7 +214,7 @@ def write_report(data, docs):
     page.write_text(head + markdown(data) + rest.split(END, 1)[1])
 
 
-def report(args):
+def report(args: argparse.Namespace) -> int:
     """Measures (or reloads) and writes the report; returns the exit code."""
     if args.report_only:
         data = json.loads((args.docs / "speed-vs-error.json").read_text())
@@ -224,7 +226,7 @@ def report(args):
     return 0
 
 
-def main(argv=None):
+def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/speed-vs-error", description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", nargs="+", default=SCENES, help=f"scenes/<name>.scn to measure (default: {SCENES})")
     parser.add_argument("--repeats", type=int, default=5, help="tracer runs per variant (median; default 5)")

@@ -1,9 +1,12 @@
 """Runs the tracer executable: the resolved scene as JSON, and renders to float images."""
 
+from __future__ import annotations
+
 import json
 import os
 import pathlib
 import subprocess
+from collections.abc import Sequence
 
 from tracer_tools import ROOT
 
@@ -16,7 +19,7 @@ class SceneError(ToolError):
     exit_code = 3
 
 
-def executable():
+def executable() -> pathlib.Path:
     """The tracer binary: $TRACER_BIN, else build/release/tracer of this checkout."""
     path = pathlib.Path(os.environ.get("TRACER_BIN", ROOT / "build" / "release" / "tracer"))
     if not path.is_file():
@@ -24,7 +27,9 @@ def executable():
     return path
 
 
-def overrides(width=None, height=None, samples=None, accel=None):
+def overrides(
+    width: int | None = None, height: int | None = None, samples: int | None = None, accel: str | None = None
+) -> list[str]:
     """tracer's command-line overrides of the render block, for the values given."""
     args = []
     for flag, value in (("--width", width), ("--height", height), ("--samples", samples), ("--accel", accel)):
@@ -33,7 +38,7 @@ def overrides(width=None, height=None, samples=None, accel=None):
     return args
 
 
-def dump_json(scene_path, extra_args=()):
+def dump_json(scene_path: str | pathlib.Path, extra_args: Sequence[str] = ()) -> dict:
     """The scene description as tracer resolves it (`tracer --dump-json`), as a dict. Scene
     errors are printed by tracer itself, then raised as SceneError."""
     result = subprocess.run(
@@ -44,7 +49,7 @@ def dump_json(scene_path, extra_args=()):
     return json.loads(result.stdout)
 
 
-def render(scene_path, output, extra_args=()):
+def render(scene_path: str | pathlib.Path, output: str | pathlib.Path, extra_args: Sequence[str] = ()) -> dict:
     """Renders with tracer to `output` (.exr keeps floats); returns tracer's statistics
     (--stats-json: render_seconds without process start-up, build times, ray counts)."""
     stats_path = pathlib.Path(output).with_suffix(".stats.json")
