@@ -1,7 +1,9 @@
-// The watertight triangle test (triangle.h) on four triangles at once, one per vector lane, for
-// a BVH leaf's triangles stored coordinate by coordinate (TriangleColumns). Each lane does the
-// very operations of intersect_triangle, so each gives the same answer bit for bit; the lanes
-// that pass steps 1-3 are finished one by one, in order, by the scalar code.
+// The two triangle tests of triangle.h on four triangles at once, one per vector lane, for a BVH
+// leaf's triangles stored coordinate by coordinate (TriangleColumns): the watertight test
+// (TriangleLaneTester, the default rules) and Moller-Trumbore (MollerTrumboreLaneTester, the
+// naive rules). Each lane does the very operations of the scalar test, so each gives the same
+// answer bit for bit; the lanes that pass the tests' early steps are finished one by one, in
+// order, by the scalar code.
 #pragma once
 
 #include <cstdint>

@@ -13,6 +13,7 @@ BENCHMARKS = {
     "large-obj": ("large_obj", "a 2.5M-triangle OBJ read and rendered, and refusals (docs/large-obj.md)"),
     "farm": ("farm", "the render farm's overhead and scaling (docs/farm-bench.md)"),
     "farm-engines": ("farm_engines", "Dask against Ray for the farm's tasks (docs/farm-engines.txt)"),
+    "builds": ("builds", "this tree against an earlier commit on the single-mesh and many-objects scenes"),
     "compare-builds": ("compare_builds", "two builds of trace_parts alternated: time per query"),
 }
 

@@ -3,6 +3,7 @@ tracer_bench's JSON result."""
 
 import json
 import os
+import pathlib
 import platform
 import subprocess
 import sys
@@ -31,3 +32,24 @@ def machine() -> str:
     )
     compiler = subprocess.run(["c++", "--version"], capture_output=True, text=True).stdout.splitlines()[0]
     return f"{model}, {os.cpu_count()} cores visible, {platform.system()} {platform.release()}, {compiler}"
+
+
+def git(*args: str) -> str:
+    """What `git ARGS` prints in the checkout, stripped."""
+    return subprocess.run(["git", *args], cwd=ROOT, check=True, capture_output=True, text=True).stdout.strip()
+
+
+def build(source: pathlib.Path, folder: pathlib.Path, *options: str) -> pathlib.Path:
+    """tracer_bench of the tree at `source`, configured by the release preset, in `folder`."""
+    configure = ["cmake", "--preset", "release", "-B", str(folder), *options]
+    subprocess.run(configure, cwd=source, check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(["cmake", "--build", str(folder), "--target", "tracer_bench"], cwd=source, check=True)
+    return folder / "tracer_bench"
+
+
+def base_build(commit: str) -> pathlib.Path:
+    """tracer_bench of `commit`, checked out in a worktree of its own (kept for later runs) and built there."""
+    tree = ROOT / "build" / f"base-{commit}"
+    if not tree.exists():
+        subprocess.run(["git", "worktree", "add", "--detach", str(tree), commit], cwd=ROOT, check=True)
+    return build(tree, tree / "build" / "release")

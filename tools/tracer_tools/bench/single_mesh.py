@@ -17,13 +17,11 @@ docs/single-mesh-data.json and docs/single-mesh.md.
 import argparse
 import datetime
 import json
-import pathlib
 import statistics
-import subprocess
 import sys
 
 from tracer_tools import ROOT
-from tracer_tools.bench.common import machine, run_json
+from tracer_tools.bench.common import base_build, build, git, machine, run_json
 
 DOCS = ROOT / "docs"
 SCENES = {  # name: tracer_bench arguments
@@ -32,26 +30,6 @@ SCENES = {  # name: tracer_bench arguments
     "bunny, full frame": ["scenes/bunny.scn"],
     "bunny, crop": ["scenes/bunny.scn", "--crop", "auto"],
 }
-
-
-def git(*args: str) -> str:
-    return subprocess.run(["git", *args], cwd=ROOT, check=True, capture_output=True, text=True).stdout.strip()
-
-
-def build(source: pathlib.Path, folder: pathlib.Path, *options: str) -> pathlib.Path:
-    """tracer_bench of the tree at `source`, configured by the release preset, in `folder`."""
-    configure = ["cmake", "--preset", "release", "-B", str(folder), *options]
-    subprocess.run(configure, cwd=source, check=True, stdout=subprocess.DEVNULL)
-    subprocess.run(["cmake", "--build", str(folder), "--target", "tracer_bench"], cwd=source, check=True)
-    return folder / "tracer_bench"
-
-
-def base_build(commit: str) -> pathlib.Path:
-    """BASE checked out in a worktree of its own (kept for later runs) and built there."""
-    tree = ROOT / "build" / f"base-{commit}"
-    if not tree.exists():
-        subprocess.run(["git", "worktree", "add", "--detach", str(tree), commit], cwd=ROOT, check=True)
-    return build(tree, tree / "build" / "release")
 
 
 def measure(builds: dict, rounds: int, runs: int, threads: int) -> dict:
