@@ -1,7 +1,8 @@
 """tools/bench NAME [ARGS...]: runs one benchmark; `tools/bench` alone lists them."""
 
-import importlib
 import sys
+
+from tracer_tools import subcommands
 
 # name: (module of tracer_tools.bench, what it measures and where its report goes)
 BENCHMARKS = {
@@ -19,15 +20,7 @@ BENCHMARKS = {
 
 
 def main() -> int:
-    if len(sys.argv) < 2 or sys.argv[1] not in BENCHMARKS:
-        print("usage: tools/bench NAME [ARGS...]   (tools/bench NAME --help for its options)\n", file=sys.stderr)
-        for name, (_, meaning) in BENCHMARKS.items():
-            print(f"  {name:15} {meaning}", file=sys.stderr)
-        return 0 if len(sys.argv) < 2 else 2
-    name = sys.argv.pop(1)
-    sys.argv[0] = f"tools/bench {name}"
-    module = importlib.import_module(f"tracer_tools.bench.{BENCHMARKS[name][0]}")
-    return module.main() or 0
+    return subcommands.run("tools/bench", "tracer_tools.bench", BENCHMARKS)
 
 
 if __name__ == "__main__":

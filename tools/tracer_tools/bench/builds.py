@@ -8,7 +8,6 @@ move any figure (a refactoring): the report says how far each moved.
 """
 
 import argparse
-import datetime
 import json
 import pathlib
 import statistics
@@ -16,7 +15,7 @@ import subprocess
 import sys
 
 from tracer_tools import ROOT
-from tracer_tools.bench.common import OUT, base_build, build, git, machine, run_json
+from tracer_tools.bench.common import OUT, base_build, build, git, provenance, run_json
 
 # name: (tracer_bench arguments, which benchmark the scene comes from)
 SCENES = {
@@ -94,9 +93,7 @@ def main() -> int:
     base = git("rev-parse", "--short", args.base)
     builds = {f"base {base}": base_build(base), "this tree": build(ROOT, ROOT / "build" / "release")}
     results = {
-        "machine": machine(),
-        "date": datetime.date.today().isoformat(),
-        "commit": git("rev-parse", "--short", "HEAD"),
+        **provenance(),
         "base": base,
         "threads": args.threads,
         "rounds": args.rounds,

@@ -1,6 +1,7 @@
 """What the benchmarks share: the checkout's root, the machine line every report opens with, and
 tracer_bench's JSON result."""
 
+import datetime
 import json
 import os
 import pathlib
@@ -53,3 +54,12 @@ def base_build(commit: str) -> pathlib.Path:
     if not tree.exists():
         subprocess.run(["git", "worktree", "add", "--detach", str(tree), commit], cwd=ROOT, check=True)
     return build(tree, tree / "build" / "release")
+
+
+def provenance() -> dict:
+    """Where a report's figures come from: the machine, the day and the commit measured."""
+    return {
+        "machine": machine(),
+        "date": datetime.date.today().isoformat(),
+        "commit": git("rev-parse", "--short", "HEAD"),
+    }

@@ -15,13 +15,12 @@ docs/single-mesh-data.json and docs/single-mesh.md.
 """
 
 import argparse
-import datetime
 import json
 import statistics
 import sys
 
 from tracer_tools import ROOT
-from tracer_tools.bench.common import base_build, build, git, machine, run_json
+from tracer_tools.bench.common import base_build, build, git, provenance, run_json
 
 DOCS = ROOT / "docs"
 SCENES = {  # name: tracer_bench arguments
@@ -90,9 +89,7 @@ def main() -> int:
         "default (robust rules)": build(ROOT, ROOT / "build" / "release"),
     }
     results = {
-        "machine": machine(),
-        "date": datetime.date.today().isoformat(),
-        "commit": git("rev-parse", "--short", "HEAD"),
+        **provenance(),
         "base": base,
         "threads": args.threads,
         "rounds": args.rounds,

@@ -1,7 +1,8 @@
 """tools/make-scene NAME [ARGS...]: runs one scene or mesh generator; `tools/make-scene` alone lists them."""
 
-import importlib
 import sys
+
+from tracer_tools import subcommands
 
 # name: (module of tracer_tools.scenes, what it makes)
 GENERATORS = {
@@ -12,17 +13,7 @@ GENERATORS = {
 
 
 def main() -> int:
-    if len(sys.argv) < 2 or sys.argv[1] not in GENERATORS:
-        print(
-            "usage: tools/make-scene NAME [ARGS...]   (tools/make-scene NAME --help for its options)\n", file=sys.stderr
-        )
-        for name, (_, meaning) in GENERATORS.items():
-            print(f"  {name:15} {meaning}", file=sys.stderr)
-        return 0 if len(sys.argv) < 2 else 2
-    name = sys.argv.pop(1)
-    sys.argv[0] = f"tools/make-scene {name}"
-    module = importlib.import_module(f"tracer_tools.scenes.{GENERATORS[name][0]}")
-    return module.main() or 0
+    return subcommands.run("tools/make-scene", "tracer_tools.scenes", GENERATORS)
 
 
 if __name__ == "__main__":
