@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numbers>
 
 #include "lang/schema.h"
@@ -70,6 +72,58 @@ Value normalize_of(const BuiltinArguments& args, Span at) {
     return vector_value({v[0] / largest / length, v[1] / largest / length, v[2] / largest / length}, at);
 }
 
+Value pow_of(const BuiltinArguments& args, Span at) {
+    const double base = args.number(0), exponent = args.number(1);
+    if (base < 0 && std::floor(exponent) != exponent)
+        throw BuiltinError{args[1].span, "pow of a negative number (" + format_number(base) +
+                                             ") to a power that is not whole (" + format_number(exponent) + ")"};
+    if (base == 0 && exponent < 0)
+        throw BuiltinError{args[1].span, "pow of 0 to a negative power (" + format_number(exponent) + ")"};
+    return number_value(std::pow(base, exponent), at);
+}
+
+Value log_of(const BuiltinArguments& args, Span at) {
+    const double x = args.number(0);
+    if (x <= 0) throw BuiltinError{args[0].span, "log of a number not above 0 (" + format_number(x) + ")"};
+    return number_value(std::log(x), at);
+}
+
+// asin and acos, in degrees, of a number in [-1, 1].
+Value inverse_sine_or_cosine(const BuiltinArguments& args, Span at, bool sine) {
+    const double x = args.number(0);
+    if (x < -1 || x > 1)
+        throw BuiltinError{args[0].span, std::string(sine ? "asin" : "acos") + " of a number outside -1..1 (" +
+                                             format_number(x) + ")"};
+    return number_value((sine ? std::asin(x) : std::acos(x)) / kRadians, at);
+}
+
+Value atan2_of(const BuiltinArguments& args, Span at) {
+    const double y = args.number(0), x = args.number(1);
+    if (x == 0 && y == 0) throw BuiltinError{at, "atan2 of (0, 0): the angle of the zero vector"};
+    return number_value(std::atan2(y, x) / kRadians, at);
+}
+
+// SplitMix64's finaliser (Steele, Lea and Flood 2014): a bijection of 64-bit words whose
+// outputs pass BigCrush; integer arithmetic only, so every machine gives the same bits.
+uint64_t mix64(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+// The IEEE-754 bits of a number, with -0 taken as 0.
+uint64_t bits_of(double x) {
+    if (x == 0) x = 0;
+    uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    return bits;
+}
+
+Value random_of(const BuiltinArguments& args, Span at) {
+    const uint64_t word = mix64(bits_of(args.number(0)) ^ mix64(bits_of(args.number(1)) + 0x9e3779b97f4a7c15ULL));
+    return number_value(double(word >> 11) * 0x1.0p-53, at);  // the top 53 bits: [0, 1)
+}
+
 Value cross_of(const BuiltinArguments& args, Span at) {
     const std::vector<double>&a = args.vector(0), &b = args.vector(1);
     return vector_value({a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}, at);
@@ -113,9 +167,38 @@ const std::vector<Builtin>& all_builtins() {
          }},
         {"cross", 2, "Cross product of two vectors (right-handed).", cross_of},
         {"lerp", 3, "lerp(a, b, t) = a + (b - a) t, of numbers or of vectors.", lerp_of},
+        {"pow", 2, "pow(a, b) = a to the power b (a negative a takes a whole b; 0 takes b >= 0).", pow_of},
+        {"exp", 1, "e to the power of a number.",
+         [](Args args, Span at) { return number_value(std::exp(args.number(0)), at); }},
+        {"log", 1, "Natural logarithm of a number above 0.", log_of},
+        {"asin", 1, "Inverse sine, in degrees (-90 to 90), of a number in -1..1.",
+         [](Args args, Span at) { return inverse_sine_or_cosine(args, at, true); }},
+        {"acos", 1, "Inverse cosine, in degrees (0 to 180), of a number in -1..1.",
+         [](Args args, Span at) { return inverse_sine_or_cosine(args, at, false); }},
+        {"atan", 1, "Inverse tangent, in degrees (-90 to 90).",
+         [](Args args, Span at) { return number_value(std::atan(args.number(0)) / kRadians, at); }},
+        {"atan2", 2, "atan2(y, x): the angle of the point (x, y) from the x axis, in degrees (-180 to 180].",
+         atan2_of},
+        {"random", 2,
+         "random(seed, i): a number in [0, 1), the same for the same two numbers on every machine, "
+         "unrelated for different ones (SplitMix64 of their bits; see grammar/README.md).",
+         random_of},
     };
     // clang-format on
     return builtins;
+}
+
+const std::vector<BuiltinConstant>& all_constants() {
+    static const std::vector<BuiltinConstant> constants = {
+        {"pi", std::numbers::pi, "The ratio of a circle's circumference to its diameter, 3.14159..."},
+    };
+    return constants;
+}
+
+const BuiltinConstant* find_constant(std::string_view name) {
+    for (const BuiltinConstant& constant : all_constants())
+        if (constant.name == name) return &constant;
+    return nullptr;
 }
 
 const Builtin* find_builtin(std::string_view name) {

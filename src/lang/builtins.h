@@ -42,6 +42,16 @@ struct Builtin {
     Value (*body)(const BuiltinArguments& args, Span at);
 };
 
+// A name with a fixed number (pi): found after the scene's own names, before a word.
+struct BuiltinConstant {
+    std::string_view name;
+    double value;
+    std::string_view meaning;
+};
+const std::vector<BuiltinConstant>& all_constants();
+// The constant called `name`, or nullptr.
+const BuiltinConstant* find_constant(std::string_view name);
+
 // Every built-in, in the order the reference lists them.
 const std::vector<Builtin>& all_builtins();
 // The built-in called `name`, or nullptr.

@@ -58,8 +58,11 @@ private:
     std::shared_ptr<Body> run_body(const BodyCode& code, const BlockSpec* spec, uint32_t origin, bool& failed);
 
     // Expressions.
-    Value evaluate(const Expr& expr, uint32_t origin, bool top = false);
-    Value evaluate_name(const Expr& expr, uint32_t origin, bool top);
+    // `top`: the whole value of an entry, where an unknown name is a word (`accel sah`);
+    // `word_key`: the entry's key takes a word (a material name, a choice), which then comes
+    // before a built-in constant of the same name.
+    Value evaluate(const Expr& expr, uint32_t origin, bool top = false, bool word_key = false);
+    Value evaluate_name(const Expr& expr, uint32_t origin, bool top, bool word_key);
     Value evaluate_binary(const Expr& expr, uint32_t origin);
     Value evaluate_call(const Expr& expr, uint32_t origin);
     Value evaluate_component(const Expr& expr, uint32_t origin);
@@ -216,7 +219,8 @@ std::shared_ptr<Body> Interpreter::run_body(const BodyCode& code, const BlockSpe
                     fail(span, "'" + entry.key + "' expects a file path in double quotes: " + entry.key + " \"" +
                                    std::string(sources_.file(span).slice(span)) + "\"");
                 }
-                out.value = evaluate(entry.value, origin, true);
+                const bool word_key = key && (key->type == ValueType::MaterialRef || key->type == ValueType::Choice);
+                out.value = evaluate(entry.value, origin, true, word_key);
             } catch (const EvaluationError&) {
                 failed = true;
                 continue;
@@ -380,7 +384,7 @@ double Interpreter::number_operand(const Value& value, const std::string& what) 
     return value.number;
 }
 
-Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
+Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top, bool word_key) {
     const Span span = at(expr.span, origin);
     switch (expr.kind) {
         case Expr::Kind::Number: return number_value(expr.number, span);
@@ -391,7 +395,7 @@ Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
             value.span = span;
             return value;
         }
-        case Expr::Kind::Name: return evaluate_name(expr, origin, top);
+        case Expr::Kind::Name: return evaluate_name(expr, origin, top, word_key);
         case Expr::Kind::Vector: {
             Value value;
             value.kind = Value::Kind::Vector;
@@ -427,7 +431,7 @@ Value Interpreter::evaluate(const Expr& expr, uint32_t origin, bool top) {
 // A bound name gives its value (at this span); an unbound one at the top of an entry is a word
 // for the validator (a material, `sah`, `true`), unless it is close to a name in scope, which
 // makes it a misspelled name.
-Value Interpreter::evaluate_name(const Expr& expr, uint32_t origin, bool top) {
+Value Interpreter::evaluate_name(const Expr& expr, uint32_t origin, bool top, bool word_key) {
     const Span span = at(expr.span, origin);
     if (const Binding* binding = find(expr.text)) {
         if (binding->broken) throw EvaluationError{};  // its definition's error is reported
@@ -436,6 +440,8 @@ Value Interpreter::evaluate_name(const Expr& expr, uint32_t origin, bool top) {
         value.component_spans.assign(value.components.size(), span);
         return value;
     }
+    const BuiltinConstant* constant = word_key ? nullptr : find_constant(expr.text);
+    if (constant) return number_value(constant->value, span);
     const std::string suggestion =
         scopes_.size() == 1 && scopes_[0].empty() ? "" : did_you_mean(expr.text, names_in_scope());
     if (top && (names_nan_or_infinity(expr.text) || suggestion.empty())) {

@@ -75,7 +75,11 @@ std::string reference_markdown() {
            "| `for NAME in A..B { ... }` | runs its statements for NAME = A, A + 1, ..., B - 1 |\n"
            "| `include \"file.scn\"` | runs another file in place (path relative to this file) |\n"
            "\nValues may be expressions: `+ - * /`, unary minus, parentheses, vectors `(a, b, c)`, components\n"
-           "`v.x`, `v.y`, `v.z`, and these functions:\n\n"
+           "`v.x`, `v.y`, `v.z`, these names:\n\n"
+           "| name | value |\n|---|---|\n";
+    for (const BuiltinConstant& constant : all_constants())
+        out << "| `" << constant.name << "` | " << constant.meaning << " |\n";
+    out << "\nand these functions (angles in degrees):\n\n"
            "| function | arguments | gives |\n|---|---|---|\n";
     for (const Builtin& function : all_builtins())
         out << "| `" << function.name << "` | " << function.arity << " | " << function.meaning << " |\n";

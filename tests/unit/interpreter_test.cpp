@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 
 #include "lang/load_scene.h"
 
@@ -71,6 +72,18 @@ TEST(Interpreter, FunctionsUseDegreesForAngles) {
     EXPECT_EQ(centre_of("", "normalize((0, 3, 4))"), dvec3(0, 0.6, 0.8));
     EXPECT_EQ(centre_of("", "lerp((0, 0, 0), (2, 4, 6), 0.5)"), dvec3(1, 2, 3));
     EXPECT_EQ(centre_of("", "abs((-1, 2, -3))"), dvec3(1, 2, 3));
+    EXPECT_NEAR(radius_of("", "pow(2, 3) + exp(0) + log(1)"), 9, 1e-15);
+    EXPECT_NEAR(radius_of("", "asin(1) + acos(0) + atan(1) + atan2(1, 0)"), 315, 1e-12);
+    EXPECT_NEAR(radius_of("", "1 + random(1, 2)"), 1.5, 0.5);
+}
+
+TEST(Interpreter, PiIsAConstantUnlessTheSceneNamesItOrAWordIsMeant) {
+    EXPECT_EQ(radius_of("", "pi / 2"), std::numbers::pi / 2);
+    EXPECT_EQ(radius_of("let pi = 3\n", "pi"), 3);  // the scene's own names come first
+    // A key that takes a word (a material, a choice) reads `pi` as the word.
+    LoadResult result = load("material pi { kd 1 }\nsphere { center (0, 0, 0) radius 1 material pi }");
+    ASSERT_TRUE(result.scene) << errors(result)[0];
+    EXPECT_EQ(result.scene->materials[result.scene->spheres[0].material].name, "pi");
 }
 
 TEST(Interpreter, LoopsRunFromTheFirstNumberUpToButNotIncludingTheEnd) {
