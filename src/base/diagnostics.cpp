@@ -95,14 +95,32 @@ static void add_context(Diagnostic* diagnostic, const Sources& sources, Span spa
     for (const auto& [at, text] : sources.context(span)) Diagnostics::note(diagnostic, sources, at, text);
 }
 
+Diagnostic* Diagnostics::repeat_of(const Sources& sources, Span span, Severity severity) {
+    const auto found = first_at_.find({&sources.file(span), span.begin, span.end, severity});
+    if (found == first_at_.end() || found->second.origin == span.origin) return nullptr;
+    ++found->second.diagnostic->repeats;
+    return found->second.diagnostic;
+}
+
+void Diagnostics::remember(const Sources& sources, Span span, Severity severity, Diagnostic* diagnostic) {
+    if (!diagnostic) return;
+    const auto context = sources.context(span);
+    diagnostic->repeats_in_iterations = !context.empty() && context.front().second.starts_with("in iteration");
+    first_at_.emplace(Place{&sources.file(span), span.begin, span.end, severity}, FirstAt{diagnostic, span.origin});
+}
+
 Diagnostic* Diagnostics::error(const Sources& sources, Span span, std::string message) {
+    if (repeat_of(sources, span, Severity::Error)) return nullptr;
     Diagnostic* d = error(sources.file(span), span, std::move(message));
+    remember(sources, span, Severity::Error, d);
     add_context(d, sources, span);
     return d;
 }
 
 Diagnostic* Diagnostics::warning(const Sources& sources, Span span, std::string message) {
+    if (repeat_of(sources, span, Severity::Warning)) return nullptr;
     Diagnostic* d = warning(sources.file(span), span, std::move(message));
+    remember(sources, span, Severity::Warning, d);
     add_context(d, sources, span);
     return d;
 }
@@ -170,6 +188,14 @@ std::string format_diagnostic(const Diagnostic& diagnostic) {
     std::ostringstream out;
     format_one(out, diagnostic);
     for (const Diagnostic& note : diagnostic.notes) format_one(out, note);
+    if (diagnostic.repeats > 0) {  // the count, at the first one's place, without its line again
+        const Location& at = diagnostic.location;
+        const int n = diagnostic.repeats;
+        out << at.path << ':' << at.line << ':' << at.column << ": note: the same "
+            << severity_name(diagnostic.severity) << (diagnostic.repeats_in_iterations ? " in " : " ") << n
+            << (diagnostic.repeats_in_iterations ? " more iteration" : " more time") << (n == 1 ? "" : "s")
+            << (diagnostic.repeats_in_iterations ? "" : " (the file is included again)") << '\n';
+    }
     return out.str();
 }
 

@@ -7,6 +7,7 @@
 
 #include <deque>
 #include <iosfwd>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -33,6 +34,10 @@ struct Diagnostic {
     Location location;
     std::string message;
     std::vector<Diagnostic> notes;
+    // The same diagnostic at the same place in other loop iterations or inclusions, reported
+    // once (with the first one's values) and counted here.
+    int repeats = 0;
+    bool repeats_in_iterations = false;  // else the file was included again
 };
 
 class Diagnostics {
@@ -54,7 +59,9 @@ public:
     // Attaches a note pointing at `span` to `parent` (no-op when parent is null).
     static void note(Diagnostic* parent, const SourceFile& file, Span span, std::string message);
     // The same for spans of a whole scene (its included files, its loops): located in their
-    // own file, errors and warnings followed by notes saying where the text came from.
+    // own file, errors and warnings followed by notes saying where the text came from. One
+    // raised again at the same place in another iteration or inclusion only counts as a repeat
+    // of the first (returning nullptr): the error limits count distinct places.
     static Location locate(const Sources& sources, Span span);
     Diagnostic* error(const Sources& sources, Span span, std::string message);
     Diagnostic* warning(const Sources& sources, Span span, std::string message);
@@ -78,7 +85,23 @@ public:
     void print(std::ostream& out) const;
 
 private:
+    // The diagnostic first reported at a place of a scene's text, and the origin it came from.
+    struct Place {
+        const SourceFile* file;
+        uint32_t begin, end;
+        Severity severity;
+        auto operator<=>(const Place&) const = default;
+    };
+    struct FirstAt {
+        Diagnostic* diagnostic;
+        uint32_t origin;
+    };
+    // The first diagnostic at `span`'s place from another origin (now counted a repeat), or null.
+    Diagnostic* repeat_of(const Sources& sources, Span span, Severity severity);
+    void remember(const Sources& sources, Span span, Severity severity, Diagnostic* diagnostic);
+
     std::deque<Diagnostic> list_;  // a deque: returned pointers stay valid
+    std::map<Place, FirstAt> first_at_;
     int errors_ = 0;
     int warnings_ = 0;
 };

@@ -168,12 +168,13 @@ TEST(Interpreter, ExpressionErrorsAreReportedWhereTheyHappen) {
 TEST(Interpreter, ErrorsInALoopNameTheIteration) {
     LoadResult r = load("for i in 0..3 { sphere { center (0, 0, 0) radius 1 - i material { kd 1 } } }");
     ASSERT_FALSE(r.scene);
-    ASSERT_EQ(errors(r).size(), 2u);  // i = 1 and i = 2
-    const Diagnostic& second = r.diagnostics.all().back();
-    EXPECT_EQ(second.message, "'radius' must be greater than 0, found -1");
-    ASSERT_EQ(second.notes.size(), 1u);
-    EXPECT_EQ(second.notes[0].message, "in iteration i = 2 of this loop");
-    EXPECT_EQ(second.notes[0].location.column, 1);
+    ASSERT_EQ(errors(r).size(), 1u);  // i = 1, with i = 2 counted as a repeat
+    const Diagnostic& first = r.diagnostics.all().back();
+    EXPECT_EQ(first.message, "'radius' must be greater than 0, found 0");
+    ASSERT_EQ(first.notes.size(), 1u);
+    EXPECT_EQ(first.notes[0].message, "in iteration i = 1 of this loop");
+    EXPECT_EQ(first.notes[0].location.column, 1);
+    EXPECT_EQ(first.repeats, 1);
 }
 
 TEST(Interpreter, ParametersTakeTheirValueFromTheCommandLine) {
@@ -191,6 +192,20 @@ TEST(Interpreter, ParametersTakeTheirValueFromTheCommandLine) {
               std::vector<std::string>{"-D colur: the scene has no 'param colur'; did you mean 'colour'?"});
     EXPECT_EQ(errors(load("for i in 0..2 { param p = 1 }")),
               std::vector<std::string>{"a 'param' is declared at the top level of a file, not inside a loop"});
+}
+
+TEST(Interpreter, AnErrorRepeatedByALoopIsOnePlaceCountedOnce) {
+    // 25 mistakes, each in all 100 iterations: 25 errors kept, each with 99 repeats; the limit
+    // of errors shown counts the 25 places.
+    std::string body;
+    for (int k = 0; k < 25; ++k)
+        body += "sphere { center (i, " + std::to_string(k) + ", 0) radius 0 material { kd 1 } }\n";
+    LoadResult result = load("for i in 0..100 {\n" + body + "}");
+    EXPECT_EQ(result.diagnostics.error_count(), 25);
+    for (const Diagnostic& d : result.diagnostics.all()) {
+        EXPECT_EQ(d.repeats, 99) << d.message;
+        EXPECT_TRUE(d.repeats_in_iterations);
+    }
 }
 
 TEST(Interpreter, LimitsStopRunawayScenes) {
