@@ -286,6 +286,16 @@ void Interpreter::run_loop(const Statement& statement, uint32_t origin) {
     } catch (const EvaluationError&) {
         return;
     }
+    if (end <= first) {
+        // Outside other loops only: inside one, a range empty in some iterations is common
+        // (for j in 0..i) and meant.
+        if (!iterations_.empty()) return;
+        const Span range{statement.value.span.begin, statement.end.span.end, statement.value.span.origin};
+        diagnostics_.warning(sources_, at(range, origin),
+                             "this loop runs no iterations: " + format_number(first) + ".." + format_number(end) +
+                                 " is empty (a range A..B counts up, from A to B - 1)");
+        return;
+    }
     // The name as the source text holds it: the statement itself is gone once it has run, and
     // the iterations' notes are written later.
     const std::string_view name = sources_.file(at(statement.name_span, origin)).slice(statement.name_span);

@@ -119,7 +119,11 @@ Token Lexer::next() {
     ++pos_;
     while (pos_ < text_.size() && (static_cast<unsigned char>(text_[pos_]) & 0xC0) == 0x80) ++pos_;
     Token bad = make(TokenKind::Error, begin);
-    report(bad.span, "unexpected character " + in_quotes(bad.text));
+    // Operators of other languages, with the way to write them here.
+    const std::string hint = bad.text == "%"   ? "; for the remainder of a / b write mod(a, b)"
+                             : bad.text == "^" ? "; for a to the power b write pow(a, b)"
+                                               : "";
+    report(bad.span, "unexpected character " + in_quotes(bad.text) + hint);
     return bad;
 }
 

@@ -62,6 +62,8 @@ private:
     bool starts_new_block();
     bool starts_statement();
     void skip_to_next_statement();
+    void skip_broken_loop(Span keyword);
+    std::string range_call_hint(const Expr& call, const std::string& name) const;
     [[noreturn]] void fail(const Token& token, std::string message);
     void skip_to_block_end();
 
@@ -208,14 +210,23 @@ void Parser::parse_loop(std::vector<Statement>& out) {
     Span open_brace;
     try {
         if (!(at(TokenKind::Identifier) && peek().text == "in"))
-            fail(peek(), "expected 'in' after 'for " + loop.name + "', found " + describe(peek()));
+            fail(peek(),
+                 "expected 'in' after 'for " + loop.name + "', found " + describe(peek()) +
+                     (at(TokenKind::Equals) ? "; a loop is written 'for " + loop.name + " in A..B' (from A up to B - 1)"
+                                            : ""));
         take();
         loop.value = parse_expression();
+        if (!at(TokenKind::DotDot) && loop.value.kind == Expr::Kind::Call && loop.value.text == "range") {
+            diagnostics_.error(file_, loop.value.span, range_call_hint(loop.value, loop.name));
+            throw SyntaxError{};
+        }
         expect(TokenKind::DotDot, "'..' between the first and the end of the range");
+        if (at(TokenKind::Equals))
+            fail(peek(), "'..=' is not a range: A..B already stops before B; to include B write A..B + 1");
         loop.end = parse_expression();
         open_brace = expect(TokenKind::LBrace, "'{' to open the loop's body").span;
     } catch (const SyntaxError&) {
-        skip_to_next_statement();
+        skip_broken_loop(loop.keyword);
         return;
     } catch (const UnclosedBlock&) {
         return;
@@ -440,7 +451,10 @@ Expr Parser::parse_primary() {
             value.kind = Expr::Kind::Call;
             break;
         case TokenKind::LParen: value.kind = Expr::Kind::Vector; break;
-        default: fail(token, "expected a value, found " + describe(token));
+        default:
+            if (token.kind == TokenKind::Star && token.span.begin > 0 && file_.text()[token.span.begin - 1] == '*')
+                fail(token, "'**' is not an operator; for a to the power b write pow(a, b)");
+            fail(token, "expected a value, found " + describe(token));
     }
     // The parenthesised list of a call or a vector.
     if (++depth_ > kMaxDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");
@@ -508,6 +522,35 @@ bool Parser::parse_lone_value(Expr& out) {
         return false;
     }
     return at(TokenKind::End);
+}
+
+// `range(...)` where a range belongs: the way to write it here, from the call's own arguments.
+std::string Parser::range_call_hint(const Expr& call, const std::string& name) const {
+    auto text = [&](const Expr& e) { return std::string(file_.slice(e.span)); };
+    const auto& args = call.operands;
+    const std::string range = args.size() == 1   ? "0.." + text(args[0])
+                              : args.size() == 2 ? text(args[0]) + ".." + text(args[1])
+                                                 : "A..B";
+    return "'range(...)' is not a function here: a loop is written 'for " + name + " in " + range +
+           "' (from the first number up to the end - 1)";
+}
+
+// After an error in a loop's header: skip the loop, body and all, when its '{' is on the
+// keyword's line (so that the body's statements and '}' raise no errors of their own); else
+// as after any broken statement.
+void Parser::skip_broken_loop(Span keyword) {
+    const int line = file_.locate(keyword.begin).line;
+    lexer_.set_quiet(true);
+    while (!at(TokenKind::End) && !at(TokenKind::LBrace) && file_.locate(peek().span.begin).line == line) take();
+    lexer_.set_quiet(false);
+    if (!at(TokenKind::LBrace)) return skip_to_next_statement();
+    lexer_.set_quiet(true);
+    for (int depth = 0; !at(TokenKind::End);) {
+        const TokenKind kind = take().kind;
+        depth += kind == TokenKind::LBrace ? 1 : kind == TokenKind::RBrace ? -1 : 0;
+        if (depth == 0) break;
+    }
+    lexer_.set_quiet(false);
 }
 
 // After a broken statement: skip to what can start the next one (a statement keyword, a block
