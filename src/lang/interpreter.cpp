@@ -64,6 +64,8 @@ private:
     Value evaluate(const Expr& expr, uint32_t origin, bool top = false, bool word_key = false);
     Value evaluate_name(const Expr& expr, uint32_t origin, bool top, bool word_key);
     Value evaluate_binary(const Expr& expr, uint32_t origin);
+    // a `operation` b, the result spanning `span`.
+    Value apply_binary(char operation, const Value& a, const Value& b, Span span);
     Value evaluate_call(const Expr& expr, uint32_t origin);
     Value evaluate_component(const Expr& expr, uint32_t origin);
     Value finite(Value value, Span at);
@@ -466,38 +468,51 @@ Value Interpreter::evaluate_name(const Expr& expr, uint32_t origin, bool top, bo
     fail(span, "undefined name " + in_quotes(expr.text) + suggestion);
 }
 
+// A chain a + b - c * d ... is a tree as deep as it is long, on its left side: it is walked
+// down that side iteratively and folded from the innermost operation out, so that no length of
+// chain can exhaust the native stack (right operands are bounded by the parentheses' limit).
 Value Interpreter::evaluate_binary(const Expr& expr, uint32_t origin) {
-    const Span span = at(expr.span, origin);
-    const Value a = evaluate(expr.operands[0], origin), b = evaluate(expr.operands[1], origin);
-    const std::string op = std::string("'") + expr.op + "'";
+    std::vector<const Expr*> chain;  // the operations down the left side, outermost first
+    const Expr* leftmost = &expr;
+    for (; leftmost->kind == Expr::Kind::Binary; leftmost = &leftmost->operands[0]) chain.push_back(leftmost);
+    Value result = evaluate(*leftmost, origin);
+    for (auto operation = chain.rbegin(); operation != chain.rend(); ++operation) {
+        const Expr& e = **operation;
+        result = apply_binary(e.op, result, evaluate(e.operands[1], origin), at(e.span, origin));
+    }
+    return result;
+}
+
+Value Interpreter::apply_binary(char operation, const Value& a, const Value& b, Span span) {
+    const std::string op = std::string("'") + operation + "'";
     for (const Value* operand : {&a, &b})
         if (!is_number(*operand) && !is_vector(*operand))
             fail(operand->span, op + " applies to numbers and vectors; this is " + kind_of(*operand));
     if (is_number(a) && is_number(b)) {
-        if (expr.op == '/' && b.number == 0) fail(b.span, "division by zero");
+        if (operation == '/' && b.number == 0) fail(b.span, "division by zero");
         const double x = a.number, y = b.number;
-        const double result = expr.op == '+' ? x + y : expr.op == '-' ? x - y : expr.op == '*' ? x * y : x / y;
+        const double result = operation == '+' ? x + y : operation == '-' ? x - y : operation == '*' ? x * y : x / y;
         return finite(number_value(result, span), span);
     }
     std::vector<double> out;
     if (is_vector(a) && is_vector(b)) {
-        if (expr.op == '*' || expr.op == '/')
+        if (operation == '*' || operation == '/')
             fail(span, op + " does not multiply two vectors; use dot(a, b) or cross(a, b)");
         if (a.components.size() != b.components.size())
             fail(span, "the vectors have " + std::to_string(a.components.size()) + " and " +
                            std::to_string(b.components.size()) + " components");
         for (size_t i = 0; i < a.components.size(); ++i)
-            out.push_back(expr.op == '+' ? a.components[i] + b.components[i] : a.components[i] - b.components[i]);
+            out.push_back(operation == '+' ? a.components[i] + b.components[i] : a.components[i] - b.components[i]);
         return finite(vector_value(out, span), span);
     }
     // A vector and a number: scaled (v * s, s * v, v / s); adding them is an error.
-    if (expr.op == '+' || expr.op == '-')
+    if (operation == '+' || operation == '-')
         fail(span, op + " needs two numbers or two vectors; this is a number and a vector");
     const Value& vector = is_vector(a) ? a : b;
     const double scalar = is_vector(a) ? b.number : a.number;
-    if (expr.op == '/' && is_number(a)) fail(span, "a number cannot be divided by a vector");
-    if (expr.op == '/' && scalar == 0) fail(b.span, "division by zero");
-    for (double c : vector.components) out.push_back(expr.op == '*' ? c * scalar : c / scalar);
+    if (operation == '/' && is_number(a)) fail(span, "a number cannot be divided by a vector");
+    if (operation == '/' && scalar == 0) fail(b.span, "division by zero");
+    for (double c : vector.components) out.push_back(operation == '*' ? c * scalar : c / scalar);
     return finite(vector_value(out, span), span);
 }
 

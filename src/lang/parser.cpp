@@ -416,7 +416,9 @@ Expr Parser::parse_unary() {
 // postfix = primary { "." identifier } ;
 Expr Parser::parse_postfix() {
     Expr value = parse_primary();
-    while (at(TokenKind::Dot)) {
+    for (int components = 0; at(TokenKind::Dot); ++components) {
+        // A component of a number is an error: a long chain is a broken or hostile file.
+        if (components == kMaxDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");
         take();
         Token component = expect(TokenKind::Identifier, "a component name (x, y or z) after '.'");
         Expr access;

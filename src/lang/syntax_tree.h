@@ -32,7 +32,27 @@ struct Expr {
     char op = 0;
     std::vector<Expr> operands;
     std::shared_ptr<BodyCode> body;
+
+    Expr() = default;
+    Expr(Expr&&) noexcept = default;
+    Expr& operator=(Expr&&) noexcept = default;
+    Expr(const Expr&) = delete;  // a copy would recurse down a chain as long as the file
+    Expr& operator=(const Expr&) = delete;
+    // Takes the tree apart iteratively: a chain a + b + ... of a million terms is a million
+    // levels deep, too deep for a recursive destruction.
+    ~Expr();
 };
+
+inline Expr::~Expr() {
+    if (operands.empty()) return;
+    std::vector<Expr> pending = std::move(operands);
+    while (!pending.empty()) {
+        Expr last = std::move(pending.back());
+        pending.pop_back();
+        for (Expr& operand : last.operands) pending.push_back(std::move(operand));
+        last.operands.clear();  // moved-from shells: their destruction goes no deeper
+    }
+}
 
 struct EntryCode {
     std::string key;

@@ -166,6 +166,30 @@ class Hangs(Hostile):
             run("--check", scene, limits=limits), 1, "the scene generates more than 2000000 blocks (the limit)"
         )
 
+    def test_expressions_a_million_terms_long_evaluate_without_exhausting_the_stack(self):
+        # a + b + ... is a tree as deep as it is long: evaluated and taken apart iteratively
+        # (before: a segmentation fault from 30,000 terms). In a value, a let and a loop bound;
+        # a million components (.x.x...) are refused as nested too deeply. Measured: 0.7 s,
+        # 352 MB at a million terms on the reference machine.
+        limits = [] if sanitized() else [(resource.RLIMIT_AS, 2 << 30)]
+        for n in (30_000, 1_000_000):
+            chain = "+".join(["1"] * n)
+            product = "*".join(["1"] * n)
+            cases = {
+                "radius": f"sphere {{ center (0, 0, 0) radius {chain} - {n - 1} material {{ kd 1 }} }}\n",
+                "let": f"let r = {product}\nsphere {{ center (0, 0, 0) radius r material {{ kd 1 }} }}\n",
+                "loop": f"for i in 0..({chain}) - {n - 1} {{ sphere {{ center (0, 0, 0) radius 1 material m }} }}\n",
+            }
+            for name, text in cases.items():
+                with self.subTest(terms=n, where=name):
+                    scene = self.write(
+                        "chain.scn", CAMERA + "light { position (0, 5, 5) }\nmaterial m { kd 1 }\n" + text
+                    )
+                    result = run("--check", scene, limits=limits)
+                    self.assertEqual(result.returncode, 0, result.stderr.decode(errors="replace")[-500:])
+            scene = self.write("dots.scn", CAMERA + "let v = (1, 2, 3)" + ".x" * n + "\n")
+            self.assertError(run("--check", scene, limits=limits), 1, "the expression is nested too deeply")
+
     def test_a_loop_including_a_big_file_stops_at_the_included_text_limit(self):
         # Each inclusion counts; the file's text is held once: bounded time and memory.
         self.write("big.scn", "# " + "x" * 1_000_000 + "\n")
