@@ -16,6 +16,18 @@ static bool is_ident_char(char c) {
     return is_ident_start(c) || is_digit(c);
 }
 
+// The length of the UTF-8 letter at the start of `text` (Latin, Greek or Cyrillic, as in a name
+// written in another language: 'größe', 'é', 'радиус'), or 0 if it starts with anything else.
+static size_t utf8_letter_length(std::string_view text) {
+    if (text.size() < 2) return 0;
+    const unsigned char a = static_cast<unsigned char>(text[0]), b = static_cast<unsigned char>(text[1]);
+    if ((a & 0xE0) != 0xC0 || (b & 0xC0) != 0x80) return 0;
+    const unsigned code = (unsigned(a & 0x1F) << 6) | unsigned(b & 0x3F);
+    const bool letter = (code >= 0xC0 && code <= 0x24F && code != 0xD7 && code != 0xF7) ||  // not x and /
+                        (code >= 0x370 && code <= 0x4FF);
+    return letter ? 2 : 0;
+}
+
 std::string describe(TokenKind kind) {
     switch (kind) {
         case TokenKind::Identifier: return "a name";
@@ -99,9 +111,22 @@ Token Lexer::next() {
         case '"': return lex_string(begin);
         default: break;
     }
-    if (is_ident_start(c)) {
-        while (pos_ < text_.size() && is_ident_char(text_[pos_])) ++pos_;
-        return make(TokenKind::Identifier, begin);
+    if (is_ident_start(c) || utf8_letter_length(text_.substr(begin))) {
+        bool ascii = true;
+        while (pos_ < text_.size()) {
+            if (is_ident_char(text_[pos_])) {
+                ++pos_;
+            } else if (const size_t letter = utf8_letter_length(text_.substr(pos_))) {
+                pos_ += letter;
+                ascii = false;
+            } else {
+                break;
+            }
+        }
+        if (ascii) return make(TokenKind::Identifier, begin);
+        Token bad = make(TokenKind::Error, begin);
+        report(bad.span, in_quotes(bad.text) + ": names are ASCII letters, digits and _");
+        return bad;
     }
     if (c == '.' && !(pos_ + 1 < text_.size() && is_digit(text_[pos_ + 1]))) {
         pos_ += pos_ + 1 < text_.size() && text_[pos_ + 1] == '.' ? 2 : 1;

@@ -141,6 +141,21 @@ void Parser::parse_statement(std::vector<Statement>& out) {
     if (word == "param" && at(TokenKind::Identifier, 1)) return parse_binding(out, Statement::Kind::Param);
     if (word == "for" && at(TokenKind::Identifier, 1)) return parse_loop(out);
     if (word == "include" && at(TokenKind::String, 1)) return parse_include(out);
+    if (is_statement_keyword(word)) {  // a statement whose name (or path) is missing or broken
+        const bool loop = word == "for";
+        const Span keyword = take().span;
+        if (!at(TokenKind::Error))  // else the lexer has said what is wrong with it
+            diagnostics_.error(file_, peek().span,
+                               std::string("expected ") + (word == "include" ? "a file path in quotes" : "a name") +
+                                   " after '" + std::string(word) + "', found " + describe(peek()));
+        if (loop) return skip_broken_loop(keyword);
+        // The offending word is part of this statement, not the start of the next.
+        if (!at(TokenKind::End) && !at(TokenKind::RBrace) &&
+            file_.locate(peek().span.begin).line == file_.locate(keyword.begin).line)
+            take();
+        skip_to_next_statement();
+        return;
+    }
     parse_block(out);
 }
 
