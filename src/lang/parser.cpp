@@ -72,7 +72,7 @@ private:
     Lexer lexer_;
     std::deque<Token> lookahead_;
     std::vector<OpenBrace> open_;  // braces opened inside the current block
-    int depth_ = 0;                // expressions and loops nested: a bound against stack overflow
+    int depth_ = 0;                // expressions nested: a bound against stack overflow (so is loops_)
     int loops_ = 0;                // loops around the statement being parsed
 };
 
@@ -246,7 +246,7 @@ void Parser::parse_loop(std::vector<Statement>& out) {
     } catch (const UnclosedBlock&) {
         return;
     }
-    if (depth_ + 1 > kMaxDepth) {
+    if (loops_ + 1 > kMaxDepth) {
         // Deeper is a generated or broken file: report once and skip the rest of it.
         diagnostics_.error(file_, loop.keyword, "loops are nested too deeply (more than 200 levels)");
         lexer_.set_quiet(true);
@@ -254,11 +254,9 @@ void Parser::parse_loop(std::vector<Statement>& out) {
         lexer_.set_quiet(false);
         return;
     }
-    ++depth_;
     ++loops_;
     parse_statements(loop.statements, true);
     --loops_;
-    --depth_;
     if (at(TokenKind::End)) {
         Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
         Diagnostics::note(d, file_, open_brace, "to close the 'for' loop opened here");

@@ -97,6 +97,23 @@ TEST(Fuzz, DeeplyNestedExpressionsAndLoopsAreAnError) {
     }
 }
 
+// The limits count loops and expressions apart: 200 nested loops around a parenthesised
+// expression are within them (they were refused as "the expression is nested too deeply").
+TEST(Fuzz, TwoHundredNestedLoopsAroundAnExpressionAreWithinTheLimits) {
+    auto nested = [](int loops) {
+        std::string text = "camera { eye (0, 0, 7) lookat (0, 0, 0) }\nlight { position (0, 5, 5) }\n";
+        for (int i = 0; i < loops; ++i) text += "for i" + std::to_string(i) + " in 0..1 {\n";
+        text += "sphere { center ((i0 + 1) * 2, 0, 0) radius 1 material { kd 1 } }\n";
+        for (int i = 0; i < loops; ++i) text += "}\n";
+        return text;
+    };
+    LoadResult within = load_scene_text("deep.scn", nested(200));
+    EXPECT_TRUE(within.scene) << within.diagnostics.all()[0].message;
+    LoadResult beyond = load_scene_text("deep.scn", nested(201));
+    ASSERT_FALSE(beyond.scene);
+    EXPECT_EQ(beyond.diagnostics.all()[0].message, "loops are nested too deeply (more than 200 levels)");
+}
+
 TEST(Fuzz, DeeplyNestedBracesAreAnErrorNotAStackOverflow) {
     std::string text = "sphere ";
     for (int i = 0; i < 100000; ++i) text += "{ a ";
