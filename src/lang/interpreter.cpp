@@ -136,8 +136,12 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
         }
         overrides_[name] = value;
     }
-    // Step 2: the scene file, statement by statement.
+    // Step 2: the scene file, statement by statement (on the include stack itself, so that a
+    // scene including itself is caught at that include, before its blocks are run again).
+    std::error_code unresolved;
+    include_stack_.push_back(fs::weakly_canonical(fs::path(sources_.scene().path()), unresolved).string());
     run_file(sources_.scene(), 0);
+    include_stack_.pop_back();
     // Step 3: -D names the scene does not declare.
     for (const auto& [name, value] : overrides_) {
         if (used_overrides_.count(name)) continue;
@@ -333,7 +337,7 @@ void Interpreter::run_include(const Statement& statement, uint32_t origin) {
         diagnostics_.error(sources_, path_span, "'" + statement.word + "' includes itself (through the files noted)");
         return;
     }
-    if (int(include_stack_.size()) >= kMaxIncludeDepth) {
+    if (int(include_stack_.size()) > kMaxIncludeDepth) {  // the scene and 32 includes below it
         diagnostics_.error(sources_, path_span, "includes are nested too deeply (more than 32 files)");
         return;
     }

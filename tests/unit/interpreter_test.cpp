@@ -275,6 +275,29 @@ TEST_F(Includes, CyclesAndMissingFilesAreErrors) {
     EXPECT_NE(found[1].find("cannot include"), std::string::npos);
 }
 
+// A scene that includes itself is caught at that include, before its blocks run again (they
+// would first be reported as a second render and camera block).
+TEST_F(Includes, ASceneIncludingItselfIsOneErrorAtTheInclude) {
+    write("self.scn", "render { width 10 height 10 }\n" + kCamera + "include \"self.scn\"\n");
+    EXPECT_EQ(errors(load_file("self.scn")),
+              std::vector<std::string>{"'self.scn' includes itself (through the files noted)"});
+}
+
+// 32 files may be included one inside another below the scene; the 33rd is refused.
+TEST_F(Includes, ThirtyTwoNestedIncludesAreTheLimit) {
+    for (int depth : {32, 33}) {
+        for (int i = 1; i <= depth; ++i)
+            write("n" + std::to_string(i) + ".scn",
+                  i < depth ? "include \"n" + std::to_string(i + 1) + ".scn\"\n" : "");
+        write("main.scn", kCamera + "include \"n1.scn\"\n");
+        const auto found = errors(load_file("main.scn"));
+        if (depth == 32)
+            EXPECT_TRUE(found.empty()) << found[0];
+        else
+            EXPECT_EQ(found, std::vector<std::string>{"includes are nested too deeply (more than 32 files)"});
+    }
+}
+
 TEST_F(Includes, MeshPathsAreRelativeToTheFileTheyAreWrittenIn) {
     write("lib/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     write("lib/mesh.scn", "mesh { file \"tri.obj\" material { kd 1 } }\n");
