@@ -476,12 +476,24 @@ Value Interpreter::evaluate_name(const Expr& expr, uint32_t origin, bool top, bo
 // down that side iteratively and folded from the innermost operation out, so that no length of
 // chain can exhaust the native stack (right operands are bounded by the parentheses' limit).
 Value Interpreter::evaluate_binary(const Expr& expr, uint32_t origin) {
-    std::vector<const Expr*> chain;  // the operations down the left side, outermost first
+    // The operations down the left side, outermost first: on the native stack for the few a
+    // written expression has (no allocation per evaluation), on the heap past that.
+    const Expr* chain_on_stack[16];
+    std::vector<const Expr*> chain_on_heap;
+    size_t length = 0;
     const Expr* leftmost = &expr;
-    for (; leftmost->kind == Expr::Kind::Binary; leftmost = &leftmost->operands[0]) chain.push_back(leftmost);
+    for (; leftmost->kind == Expr::Kind::Binary; leftmost = &leftmost->operands[0], ++length) {
+        if (length == std::size(chain_on_stack))
+            chain_on_heap.assign(std::begin(chain_on_stack), std::end(chain_on_stack));
+        if (length < std::size(chain_on_stack))
+            chain_on_stack[length] = leftmost;
+        else
+            chain_on_heap.push_back(leftmost);
+    }
+    const Expr* const* chain = length <= std::size(chain_on_stack) ? chain_on_stack : chain_on_heap.data();
     Value result = evaluate(*leftmost, origin);
-    for (auto operation = chain.rbegin(); operation != chain.rend(); ++operation) {
-        const Expr& e = **operation;
+    for (size_t k = length; k-- > 0;) {
+        const Expr& e = *chain[k];
         result = apply_binary(e.op, result, evaluate(e.operands[1], origin), at(e.span, origin));
     }
     return result;
