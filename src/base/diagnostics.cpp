@@ -104,8 +104,7 @@ Diagnostic* Diagnostics::repeat_of(const Sources& sources, Span span, Severity s
 
 void Diagnostics::remember(const Sources& sources, Span span, Severity severity, Diagnostic* diagnostic) {
     if (!diagnostic) return;
-    const auto context = sources.context(span);
-    diagnostic->repeats_in_iterations = !context.empty() && context.front().second.starts_with("in iteration");
+    diagnostic->repeats_in_iterations = sources.is_iteration(span.origin);
     first_at_.emplace(Place{&sources.file(span), span.begin, span.end, severity}, FirstAt{diagnostic, span.origin});
 }
 

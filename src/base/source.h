@@ -71,6 +71,8 @@ public:
     // The spans of the include statements above `origin`'s file, innermost first.
     std::vector<Span> include_chain(uint32_t origin) const;
     size_t origins() const { return origins_.size(); }
+    // True if `origin` is a loop iteration (else a file, the scene or an include).
+    bool is_iteration(uint32_t origin) const { return origins_[origin].iteration; }
 
 private:
     struct Origin {
