@@ -90,9 +90,21 @@ Location Diagnostics::locate(const Sources& sources, Span span) {
 }
 
 // The notes saying where a span's text came from: each loop iteration and include around it.
+// A chain deeper than a screenful (a recursion) shows its innermost and outermost levels.
 static void add_context(Diagnostic* diagnostic, const Sources& sources, Span span) {
     if (!diagnostic) return;
-    for (const auto& [at, text] : sources.context(span)) Diagnostics::note(diagnostic, sources, at, text);
+    constexpr size_t kInnermost = 5, kOutermost = 4;
+    const auto context = sources.context(span);
+    for (size_t i = 0; i < context.size(); ++i) {
+        const auto& [at, text] = context[i];
+        if (context.size() <= kInnermost + kOutermost + 1 || i < kInnermost || i >= context.size() - kOutermost) {
+            Diagnostics::note(diagnostic, sources, at, text);
+        } else if (i == kInnermost) {
+            const size_t left_out = context.size() - kInnermost - kOutermost;
+            Diagnostics::note(diagnostic, sources, at,
+                              "... and " + std::to_string(left_out) + " more levels of calls and loops ...");
+        }
+    }
 }
 
 Diagnostic* Diagnostics::repeat_of(const Sources& sources, Span span, Severity severity) {
@@ -104,7 +116,9 @@ Diagnostic* Diagnostics::repeat_of(const Sources& sources, Span span, Severity s
 
 void Diagnostics::remember(const Sources& sources, Span span, Severity severity, Diagnostic* diagnostic) {
     if (!diagnostic) return;
-    diagnostic->repeats_in_iterations = sources.is_iteration(span.origin);
+    diagnostic->repeated_in = sources.is_iteration(span.origin) ? Diagnostic::RepeatedIn::Iterations
+                              : sources.is_call(span.origin)    ? Diagnostic::RepeatedIn::Calls
+                                                                : Diagnostic::RepeatedIn::Inclusions;
     first_at_.emplace(Place{&sources.file(span), span.begin, span.end, severity}, FirstAt{diagnostic, span.origin});
 }
 
@@ -190,10 +204,15 @@ std::string format_diagnostic(const Diagnostic& diagnostic) {
     if (diagnostic.repeats > 0) {  // the count, at the first one's place, without its line again
         const Location& at = diagnostic.location;
         const int n = diagnostic.repeats;
+        const char* unit = diagnostic.repeated_in == Diagnostic::RepeatedIn::Iterations ? " in %d more iteration"
+                           : diagnostic.repeated_in == Diagnostic::RepeatedIn::Calls    ? " in %d more call"
+                                                                                        : " %d more time";
+        char count[48];
+        std::snprintf(count, sizeof count, unit, n);
         out << at.path << ':' << at.line << ':' << at.column << ": note: the same "
-            << severity_name(diagnostic.severity) << (diagnostic.repeats_in_iterations ? " in " : " ") << n
-            << (diagnostic.repeats_in_iterations ? " more iteration" : " more time") << (n == 1 ? "" : "s")
-            << (diagnostic.repeats_in_iterations ? "" : " (the file is included again)") << '\n';
+            << severity_name(diagnostic.severity) << count << (n == 1 ? "" : "s")
+            << (diagnostic.repeated_in == Diagnostic::RepeatedIn::Inclusions ? " (the file is included again)" : "")
+            << '\n';
     }
     return out.str();
 }

@@ -34,10 +34,11 @@ struct Diagnostic {
     Location location;
     std::string message;
     std::vector<Diagnostic> notes;
-    // The same diagnostic at the same place in other loop iterations or inclusions, reported
-    // once (with the first one's values) and counted here.
+    // The same diagnostic at the same place in other loop iterations, calls or inclusions,
+    // reported once (with the first one's values) and counted here.
     int repeats = 0;
-    bool repeats_in_iterations = false;  // else the file was included again
+    enum class RepeatedIn : uint8_t { Inclusions, Iterations, Calls };
+    RepeatedIn repeated_in = RepeatedIn::Inclusions;
 };
 
 class Diagnostics {

@@ -42,17 +42,22 @@ Sources::Sources(std::unique_ptr<SourceFile> scene) {
 
 uint32_t Sources::add_include(std::unique_ptr<SourceFile> file, Span included_at) {
     files_.push_back(std::move(file));
-    origins_.push_back({uint32_t(files_.size() - 1), false, included_at, {}, 0});
+    origins_.push_back({uint32_t(files_.size() - 1), Kind::File, included_at, {}, 0});
     return uint32_t(origins_.size() - 1);
 }
 
 uint32_t Sources::add_include_again(uint32_t origin, Span included_at) {
-    origins_.push_back({origins_[origin].file, false, included_at, {}, 0});
+    origins_.push_back({origins_[origin].file, Kind::File, included_at, {}, 0});
     return uint32_t(origins_.size() - 1);
 }
 
 uint32_t Sources::add_iteration(Span loop, std::string_view name, double value) {
-    origins_.push_back({origins_[loop.origin].file, true, loop, name, value});
+    origins_.push_back({origins_[loop.origin].file, Kind::Iteration, loop, name, value});
+    return uint32_t(origins_.size() - 1);
+}
+
+uint32_t Sources::add_call(uint32_t body_origin, Span called_at, std::string_view name) {
+    origins_.push_back({origins_[body_origin].file, Kind::Call, called_at, name, 0});
     return uint32_t(origins_.size() - 1);
 }
 
@@ -61,9 +66,12 @@ std::vector<std::pair<Span, std::string>> Sources::context(Span span) const {
     for (uint32_t origin = span.origin; origin != 0;) {
         const Origin& o = origins_[origin];
         char text[96];
-        if (o.iteration)
+        if (o.kind == Kind::Iteration)
             std::snprintf(text, sizeof text, "in iteration %.*s = %.17g of this loop",
                           int(std::min<size_t>(o.name.size(), 40)), o.name.data(), o.value);
+        else if (o.kind == Kind::Call)
+            std::snprintf(text, sizeof text, "in this call of '%.*s'", int(std::min<size_t>(o.name.size(), 40)),
+                          o.name.data());
         else
             std::snprintf(text, sizeof text, "included from here");
         out.emplace_back(o.at, std::string(text));
@@ -76,7 +84,7 @@ std::vector<Span> Sources::include_chain(uint32_t origin) const {
     std::vector<Span> out;
     while (origin != 0) {
         const Origin& o = origins_[origin];
-        if (!o.iteration) out.push_back(o.at);
+        if (o.kind == Kind::File) out.push_back(o.at);
         origin = o.at.origin;
     }
     return out;

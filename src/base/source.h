@@ -61,6 +61,10 @@ public:
     // get the returned origin (they lie in the loop's file). `name` must outlive this object
     // (a view of a source text held here).
     uint32_t add_iteration(Span loop, std::string_view name, double value);
+    // A call of the function `name` (whose body lies in the file of `body_origin`) made at
+    // `called_at`: spans of its body evaluated in that call get the returned origin. `name` must
+    // outlive this object, as for add_iteration.
+    uint32_t add_call(uint32_t body_origin, Span called_at, std::string_view name);
 
     const SourceFile& scene() const { return *files_.front(); }
     // The file a span lies in.
@@ -71,15 +75,18 @@ public:
     // The spans of the include statements above `origin`'s file, innermost first.
     std::vector<Span> include_chain(uint32_t origin) const;
     size_t origins() const { return origins_.size(); }
-    // True if `origin` is a loop iteration (else a file, the scene or an include).
-    bool is_iteration(uint32_t origin) const { return origins_[origin].iteration; }
+    // True if `origin` is a loop iteration (else a call, a file, the scene or an include).
+    bool is_iteration(uint32_t origin) const { return origins_[origin].kind == Kind::Iteration; }
+    // True if `origin` is a call of a function.
+    bool is_call(uint32_t origin) const { return origins_[origin].kind == Kind::Call; }
 
 private:
+    enum class Kind : uint8_t { File, Iteration, Call };
     struct Origin {
         uint32_t file = 0;
-        bool iteration = false;  // else the file itself, included at `at` (unless it is the scene)
-        Span at;                 // the loop or the include statement
-        std::string_view name;   // the loop's variable
+        Kind kind = Kind::File;  // File: the file itself, included at `at` (unless it is the scene)
+        Span at;                 // the loop, the call or the include statement
+        std::string_view name;   // the loop's variable, or the function called
         double value = 0;
     };
     std::vector<std::unique_ptr<SourceFile>> files_;

@@ -58,12 +58,17 @@ Material Validator::build_material(const Fields& fields, std::string name) {
     return material;
 }
 
-// The index of the shape's material: a named one, or its inline block added to the list.
+// The index of the shape's material: a named one, or its inline block added to the list (once
+// for a material value that many shapes share: `let m = material { ... }`).
 int Validator::material_index(const Fields& fields) {
     const Value& value = fields.get("material");
     if (value.kind == Value::Kind::Block) {
+        if (auto shared = value_materials_.find(value.body.get()); shared != value_materials_.end())
+            return shared->second.index;
         scene_.materials.push_back(build_material(fields.child("material"), ""));
-        return int(scene_.materials.size()) - 1;
+        const int index = int(scene_.materials.size()) - 1;
+        if (value.body.use_count() > 1) value_materials_.emplace(value.body.get(), SharedMaterial{value.body, index});
+        return index;
     }
     auto found = named_.find(value.text);
     if (found != named_.end()) return found->second.index;

@@ -11,19 +11,27 @@
 namespace tracer {
 
 double BuiltinArguments::number(size_t i) const {
-    const Value& value = values_[i];
-    if (!is_number(value))
-        throw BuiltinError{value.span,
+    const Val& value = values_[i];
+    if (!value.is_number())
+        throw BuiltinError{spans_[i],
                            "'" + std::string(function_) + "''s argument must be a number; this is " + kind_of(value)};
-    return value.number;
+    return value.x[0];
 }
 
-const std::vector<double>& BuiltinArguments::vector(size_t i) const {
-    const Value& value = values_[i];
-    if (!is_vector(value) || value.components.size() != 3)
-        throw BuiltinError{value.span, "'" + std::string(function_) +
-                                           "''s argument must be a vector of 3 numbers; this is " + kind_of(value)};
-    return value.components;
+std::span<const double> BuiltinArguments::vector(size_t i) const {
+    const Val& value = values_[i];
+    if (!value.is_vector() || value.size != 3)
+        throw BuiltinError{spans_[i], "'" + std::string(function_) +
+                                          "''s argument must be a vector of 3 numbers; this is " + kind_of(value)};
+    return value.components();
+}
+
+const std::vector<Val>& BuiltinArguments::list(size_t i) const {
+    const Val& value = values_[i];
+    if (value.kind != Val::Kind::List)
+        throw BuiltinError{spans_[i],
+                           "'" + std::string(function_) + "''s argument must be a list; this is " + kind_of(value)};
+    return value.items();
 }
 
 namespace {
@@ -31,76 +39,76 @@ namespace {
 constexpr double kRadians = std::numbers::pi / 180;
 
 // The length of v, computed without overflow, and v scaled by 1/largest component (zero: 0).
-double scaled_length(const std::vector<double>& v, double& largest) {
+double scaled_length(std::span<const double> v, double& largest) {
     largest = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
     if (largest == 0) return 0;
     const double x = v[0] / largest, y = v[1] / largest, z = v[2] / largest;
     return std::sqrt(x * x + y * y + z * z);
 }
 
-Value sqrt_of(const BuiltinArguments& args, Span at) {
+Val sqrt_of(const BuiltinArguments& args) {
     const double x = args.number(0);
-    if (x < 0) throw BuiltinError{args[0].span, "sqrt of a negative number (" + format_number(x) + ")"};
-    return number_value(std::sqrt(x), at);
+    if (x < 0) throw BuiltinError{args.span(0), "sqrt of a negative number (" + format_number(x) + ")"};
+    return Val::number(std::sqrt(x));
 }
 
-Value mod_of(const BuiltinArguments& args, Span at) {
+Val mod_of(const BuiltinArguments& args) {
     const double a = args.number(0), b = args.number(1);
-    if (b == 0) throw BuiltinError{args[1].span, "mod by zero"};
+    if (b == 0) throw BuiltinError{args.span(1), "mod by zero"};
     const double r = std::fmod(a, b);
-    return number_value(r != 0 && (r < 0) != (b < 0) ? r + b : r, at);  // the divisor's sign
+    return Val::number(r != 0 && (r < 0) != (b < 0) ? r + b : r);  // the divisor's sign
 }
 
-Value abs_of(const BuiltinArguments& args, Span at) {
-    if (!is_vector(args[0])) return number_value(std::abs(args.number(0)), at);
+Val abs_of(const BuiltinArguments& args) {
+    if (!args[0].is_vector()) return Val::number(std::abs(args.number(0)));
     std::vector<double> out;
-    for (double c : args[0].components) out.push_back(std::abs(c));
-    return vector_value(out, at);
+    for (double c : args[0].components()) out.push_back(std::abs(c));
+    return Val::vector(out);
 }
 
-Value length_of(const BuiltinArguments& args, Span at) {
+Val length_of(const BuiltinArguments& args) {
     double largest;
     const double length = scaled_length(args.vector(0), largest);
-    return number_value(largest * length, at);
+    return Val::number(largest * length);
 }
 
-Value normalize_of(const BuiltinArguments& args, Span at) {
-    const std::vector<double>& v = args.vector(0);
+Val normalize_of(const BuiltinArguments& args) {
+    std::span<const double> v = args.vector(0);
     double largest;
     const double length = scaled_length(v, largest);
-    if (largest == 0) throw BuiltinError{args[0].span, "normalize of the zero vector"};
-    return vector_value({v[0] / largest / length, v[1] / largest / length, v[2] / largest / length}, at);
+    if (largest == 0) throw BuiltinError{args.span(0), "normalize of the zero vector"};
+    return Val::vector3(v[0] / largest / length, v[1] / largest / length, v[2] / largest / length);
 }
 
-Value pow_of(const BuiltinArguments& args, Span at) {
+Val pow_of(const BuiltinArguments& args) {
     const double base = args.number(0), exponent = args.number(1);
     if (base < 0 && std::floor(exponent) != exponent)
-        throw BuiltinError{args[1].span, "pow of a negative number (" + format_number(base) +
+        throw BuiltinError{args.span(1), "pow of a negative number (" + format_number(base) +
                                              ") to a power that is not whole (" + format_number(exponent) + ")"};
     if (base == 0 && exponent < 0)
-        throw BuiltinError{args[1].span, "pow of 0 to a negative power (" + format_number(exponent) + ")"};
-    return number_value(std::pow(base, exponent), at);
+        throw BuiltinError{args.span(1), "pow of 0 to a negative power (" + format_number(exponent) + ")"};
+    return Val::number(std::pow(base, exponent));
 }
 
-Value log_of(const BuiltinArguments& args, Span at) {
+Val log_of(const BuiltinArguments& args) {
     const double x = args.number(0);
-    if (x <= 0) throw BuiltinError{args[0].span, "log of a number not above 0 (" + format_number(x) + ")"};
-    return number_value(std::log(x), at);
+    if (x <= 0) throw BuiltinError{args.span(0), "log of a number not above 0 (" + format_number(x) + ")"};
+    return Val::number(std::log(x));
 }
 
 // asin and acos, in degrees, of a number in [-1, 1].
-Value inverse_sine_or_cosine(const BuiltinArguments& args, Span at, bool sine) {
+Val inverse_sine_or_cosine(const BuiltinArguments& args, bool sine) {
     const double x = args.number(0);
     if (x < -1 || x > 1)
-        throw BuiltinError{args[0].span, std::string(sine ? "asin" : "acos") + " of a number outside -1..1 (" +
+        throw BuiltinError{args.span(0), std::string(sine ? "asin" : "acos") + " of a number outside -1..1 (" +
                                              format_number(x) + ")"};
-    return number_value((sine ? std::asin(x) : std::acos(x)) / kRadians, at);
+    return Val::number((sine ? std::asin(x) : std::acos(x)) / kRadians);
 }
 
-Value atan2_of(const BuiltinArguments& args, Span at) {
+Val atan2_of(const BuiltinArguments& args) {
     const double y = args.number(0), x = args.number(1);
-    if (x == 0 && y == 0) throw BuiltinError{at, "atan2 of (0, 0): the angle of the zero vector"};
-    return number_value(std::atan2(y, x) / kRadians, at);
+    if (x == 0 && y == 0) throw BuiltinError{args.call(), "atan2 of (0, 0): the angle of the zero vector"};
+    return Val::number(std::atan2(y, x) / kRadians);
 }
 
 // SplitMix64's finaliser (Steele, Lea and Flood 2014): a bijection of 64-bit words whose
@@ -119,22 +127,22 @@ uint64_t bits_of(double x) {
     return bits;
 }
 
-Value random_of(const BuiltinArguments& args, Span at) {
+Val random_of(const BuiltinArguments& args) {
     const uint64_t word = mix64(bits_of(args.number(0)) ^ mix64(bits_of(args.number(1)) + 0x9e3779b97f4a7c15ULL));
-    return number_value(double(word >> 11) * 0x1.0p-53, at);  // the top 53 bits: [0, 1)
+    return Val::number(double(word >> 11) * 0x1.0p-53);  // the top 53 bits: [0, 1)
 }
 
-Value cross_of(const BuiltinArguments& args, Span at) {
-    const std::vector<double>&a = args.vector(0), &b = args.vector(1);
-    return vector_value({a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}, at);
+Val cross_of(const BuiltinArguments& args) {
+    const std::span<const double> a = args.vector(0), b = args.vector(1);
+    return Val::vector3(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
 }
 
-Value lerp_of(const BuiltinArguments& args, Span at) {
+Val lerp_of(const BuiltinArguments& args) {
     const double t = args.number(2);
-    if (is_number(args[0]) && is_number(args[1]))
-        return number_value(args[0].number + (args[1].number - args[0].number) * t, at);
-    const std::vector<double>&a = args.vector(0), &b = args.vector(1);
-    return vector_value({a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t}, at);
+    if (args[0].is_number() && args[1].is_number())
+        return Val::number(args[0].x[0] + (args[1].x[0] - args[0].x[0]) * t);
+    const std::span<const double> a = args.vector(0), b = args.vector(1);
+    return Val::vector3(a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t);
 }
 
 }  // namespace
@@ -145,44 +153,46 @@ const std::vector<Builtin>& all_builtins() {
     static const std::vector<Builtin> builtins = {
         {"sqrt", 1, "Square root (of a number not below 0).", sqrt_of},
         {"sin", 1, "Sine of an angle in degrees.",
-         [](Args args, Span at) { return number_value(std::sin(args.number(0) * kRadians), at); }},
+         [](Args args) { return Val::number(std::sin(args.number(0) * kRadians)); }},
         {"cos", 1, "Cosine of an angle in degrees.",
-         [](Args args, Span at) { return number_value(std::cos(args.number(0) * kRadians), at); }},
+         [](Args args) { return Val::number(std::cos(args.number(0) * kRadians)); }},
         {"tan", 1, "Tangent of an angle in degrees.",
-         [](Args args, Span at) { return number_value(std::tan(args.number(0) * kRadians), at); }},
+         [](Args args) { return Val::number(std::tan(args.number(0) * kRadians)); }},
         {"abs", 1, "Absolute value, of a number or of each component of a vector.", abs_of},
         {"floor", 1, "The largest whole number not above.",
-         [](Args args, Span at) { return number_value(std::floor(args.number(0)), at); }},
+         [](Args args) { return Val::number(std::floor(args.number(0))); }},
         {"min", 2, "The smaller of two numbers.",
-         [](Args args, Span at) { return number_value(std::min(args.number(0), args.number(1)), at); }},
+         [](Args args) { return Val::number(std::min(args.number(0), args.number(1))); }},
         {"max", 2, "The larger of two numbers.",
-         [](Args args, Span at) { return number_value(std::max(args.number(0), args.number(1)), at); }},
+         [](Args args) { return Val::number(std::max(args.number(0), args.number(1))); }},
         {"mod", 2, "Remainder of a / b, with b's sign: mod(-1, 3) is 2.", mod_of},
         {"length", 1, "Length of a vector.", length_of},
         {"normalize", 1, "The vector scaled to length 1 (not the zero vector).", normalize_of},
         {"dot", 2, "Dot product of two vectors.",
-         [](Args args, Span at) {
-             const std::vector<double>&a = args.vector(0), &b = args.vector(1);
-             return number_value(a[0] * b[0] + a[1] * b[1] + a[2] * b[2], at);
+         [](Args args) {
+             const std::span<const double> a = args.vector(0), b = args.vector(1);
+             return Val::number(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
          }},
         {"cross", 2, "Cross product of two vectors (right-handed).", cross_of},
         {"lerp", 3, "lerp(a, b, t) = a + (b - a) t, of numbers or of vectors.", lerp_of},
         {"pow", 2, "pow(a, b) = a to the power b (a negative a takes a whole b; 0 takes b >= 0).", pow_of},
         {"exp", 1, "e to the power of a number.",
-         [](Args args, Span at) { return number_value(std::exp(args.number(0)), at); }},
+         [](Args args) { return Val::number(std::exp(args.number(0))); }},
         {"log", 1, "Natural logarithm of a number above 0.", log_of},
         {"asin", 1, "Inverse sine, in degrees (-90 to 90), of a number in -1..1.",
-         [](Args args, Span at) { return inverse_sine_or_cosine(args, at, true); }},
+         [](Args args) { return inverse_sine_or_cosine(args, true); }},
         {"acos", 1, "Inverse cosine, in degrees (0 to 180), of a number in -1..1.",
-         [](Args args, Span at) { return inverse_sine_or_cosine(args, at, false); }},
+         [](Args args) { return inverse_sine_or_cosine(args, false); }},
         {"atan", 1, "Inverse tangent, in degrees (-90 to 90).",
-         [](Args args, Span at) { return number_value(std::atan(args.number(0)) / kRadians, at); }},
+         [](Args args) { return Val::number(std::atan(args.number(0)) / kRadians); }},
         {"atan2", 2, "atan2(y, x): the angle of the point (x, y) from the x axis, in degrees (-180 to 180].",
          atan2_of},
         {"random", 2,
          "random(seed, i): a number in [0, 1), the same for the same two numbers on every machine, "
          "unrelated for different ones (SplitMix64 of their bits; see grammar/README.md).",
          random_of},
+        {"len", 1, "The number of values in a list.",
+         [](Args args) { return Val::number(double(args.list(0).size())); }},
     };
     // clang-format on
     return builtins;

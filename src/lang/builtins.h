@@ -9,7 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "lang/evaluated_scene.h"
+#include "base/source.h"
+#include "lang/val.h"
 
 namespace tracer {
 
@@ -23,23 +24,29 @@ struct BuiltinError {
 // reads them: number(i) and vector(i) throw BuiltinError when argument i is of another kind.
 class BuiltinArguments {
 public:
-    BuiltinArguments(std::string_view function, std::span<const Value> values) : function_(function), values_(values) {}
-    const Value& operator[](size_t i) const { return values_[i]; }
+    BuiltinArguments(std::string_view function, std::span<const Val> values, std::span<const Span> spans, Span call)
+        : function_(function), values_(values), spans_(spans), call_(call) {}
+    const Val& operator[](size_t i) const { return values_[i]; }
+    Span span(size_t i) const { return spans_[i]; }  // where argument i is written
+    Span call() const { return call_; }              // the whole call
     double number(size_t i) const;
-    const std::vector<double>& vector(size_t i) const;  // of 3 components
+    std::span<const double> vector(size_t i) const;  // of 3 components
+    const std::vector<Val>& list(size_t i) const;
 
 private:
     std::string_view function_;
-    std::span<const Value> values_;
+    std::span<const Val> values_;
+    std::span<const Span> spans_;
+    Span call_;
 };
 
-// One built-in function. The body returns its result at span `at` (the call), or throws
-// BuiltinError; the interpreter checks that the result is finite.
+// One built-in function. The body returns its result, or throws BuiltinError; the interpreter
+// checks that the result is finite.
 struct Builtin {
     std::string_view name;
     size_t arity;
     std::string_view meaning;  // one sentence for the reference
-    Value (*body)(const BuiltinArguments& args, Span at);
+    Val (*body)(const BuiltinArguments& args);
 };
 
 // A name with a fixed number (pi): found after the scene's own names, before a word.

@@ -50,13 +50,23 @@ struct Body {
     std::vector<Entry> entries;
 };
 
+// The placement of a group around a block: its `group { ... }` keys (scale, rotate, translate or
+// a transform), and the group around it, if any. Shared by every block made inside.
+struct Group {
+    Span keyword;
+    Body placement;
+    bool broken = false;  // its placement had an error (reported)
+    std::shared_ptr<const Group> outer;
+};
+
 struct Block {
     std::string kind;
     Span kind_span;
     std::string name;  // empty when the block has no name
     Span name_span;
     Body body;
-    bool broken = false;  // a syntax error was reported inside; do not validate further
+    bool broken = false;                 // a syntax error was reported inside; do not validate further
+    std::shared_ptr<const Group> group;  // the innermost group it was made in, if any
 };
 
 struct EvaluatedScene {

@@ -1,8 +1,9 @@
-// Runs a scene program (syntax_tree.h) into the blocks of plain values that validation checks
-// (evaluated_scene.h): expressions computed, names replaced by their values, loops unrolled, included files
-// read, parsed and run in place. Every value keeps the span of the expression that made it,
-// tagged with the loop iteration or include it came from (Sources), so that later messages can
-// point at it and say which iteration it was.
+// Runs a scene program into the blocks of plain values that validation checks
+// (evaluated_scene.h): each top-level statement parsed (syntax_tree.h), compiled (code.h) and
+// run in turn, expressions computed, loops unrolled, functions called, included files compiled
+// in place. Every value in a block keeps the span of the expression that made it, tagged with
+// the loop iteration, call or include it came from (Sources), so that later messages can point
+// at it and say which iteration it was.
 #pragma once
 
 #include <functional>
@@ -14,17 +15,16 @@
 #include "base/diagnostics.h"
 #include "base/source.h"
 #include "lang/evaluated_scene.h"
-#include "lang/syntax_tree.h"
 
 namespace tracer {
 
-// Most blocks one scene may generate, and most loop iterations it may run (each an error).
+// Most blocks one scene may generate, most loop iterations and statements it may run, most list
+// items it may make, and the deepest its calls may nest (each an error at its place).
 constexpr size_t kMaxGeneratedBlocks = 2'000'000;
 constexpr size_t kMaxLoopIterations = 10'000'000;
-// Deepest chain of included files, and the most text the includes of one scene may run,
-// counting a file again each time it is included (a loop may include one).
-constexpr int kMaxIncludeDepth = 32;
-constexpr size_t kMaxIncludedBytes = size_t(256) << 20;
+constexpr size_t kMaxStatementsRun = 100'000'000;
+constexpr size_t kMaxListItems = 10'000'000;
+constexpr size_t kMaxCallDepth = 10'000;
 
 // -D NAME=VALUE from the command line, in order: each must name a `param` of the scene.
 using ParameterValues = std::vector<std::pair<std::string, std::string>>;
@@ -33,6 +33,8 @@ using ParameterValues = std::vector<std::pair<std::string, std::string>>;
 struct InterpretLimits {
     size_t max_blocks = kMaxGeneratedBlocks;  // lower for fuzzing, where memory and time are short
     size_t max_iterations = kMaxLoopIterations;
+    size_t max_statements = kMaxStatementsRun;
+    size_t max_list_items = kMaxListItems;
 };
 
 // Takes each block as soon as it is made, instead of the EvaluatedScene keeping it: a scene of

@@ -43,6 +43,14 @@ std::string describe(TokenKind kind) {
         case TokenKind::Star: return "'*'";
         case TokenKind::Slash: return "'/'";
         case TokenKind::Equals: return "'='";
+        case TokenKind::LBracket: return "'['";
+        case TokenKind::RBracket: return "']'";
+        case TokenKind::EqualsEquals: return "'=='";
+        case TokenKind::NotEquals: return "'!='";
+        case TokenKind::Less: return "'<'";
+        case TokenKind::LessEquals: return "'<='";
+        case TokenKind::Greater: return "'>'";
+        case TokenKind::GreaterEquals: return "'>='";
         case TokenKind::Dot: return "'.'";
         case TokenKind::DotDot: return "'..'";
         case TokenKind::End: return "end of file";
@@ -107,7 +115,12 @@ Token Lexer::next() {
         case '-': ++pos_; return make(TokenKind::Minus, begin);
         case '*': ++pos_; return make(TokenKind::Star, begin);
         case '/': ++pos_; return make(TokenKind::Slash, begin);
-        case '=': ++pos_; return make(TokenKind::Equals, begin);
+        case '[': ++pos_; return make(TokenKind::LBracket, begin);
+        case ']': ++pos_; return make(TokenKind::RBracket, begin);
+        case '=':
+        case '<':
+        case '>':
+        case '!': return lex_comparison(begin);
         case '"': return lex_string(begin);
         default: break;
     }
@@ -133,12 +146,6 @@ Token Lexer::next() {
         return make(pos_ - begin == 2 ? TokenKind::DotDot : TokenKind::Dot, begin);
     }
     if (is_digit(c) || c == '.') return lex_number(begin);
-    if (c == '<') {  // POV-Ray's <x, y, z>
-        ++pos_;
-        Token bad = make(TokenKind::Error, begin);
-        report(bad.span, "unexpected character '<'; a vector is written (x, y, z) in parentheses");
-        return bad;
-    }
 
     // Skip a whole UTF-8 sequence so the message shows the character, not one of its bytes.
     ++pos_;
@@ -147,8 +154,27 @@ Token Lexer::next() {
     // Operators of other languages, with the way to write them here.
     const std::string hint = bad.text == "%"   ? "; for the remainder of a / b write mod(a, b)"
                              : bad.text == "^" ? "; for a to the power b write pow(a, b)"
+                             : bad.text == "&" ? "; for both conditions write 'and'"
+                             : bad.text == "|" ? "; for either condition write 'or'"
                                                : "";
     report(bad.span, "unexpected character " + in_quotes(bad.text) + hint);
+    return bad;
+}
+
+// = == < <= > >= != and a lone '!' (an error: 'not' is written as a word).
+Token Lexer::lex_comparison(uint32_t begin) {
+    const char first = text_[pos_++];
+    const bool equals_follows = pos_ < text_.size() && text_[pos_] == '=';
+    if (equals_follows) ++pos_;
+    switch (first) {
+        case '=': return make(equals_follows ? TokenKind::EqualsEquals : TokenKind::Equals, begin);
+        case '<': return make(equals_follows ? TokenKind::LessEquals : TokenKind::Less, begin);
+        case '>': return make(equals_follows ? TokenKind::GreaterEquals : TokenKind::Greater, begin);
+        default: break;
+    }
+    if (equals_follows) return make(TokenKind::NotEquals, begin);
+    Token bad = make(TokenKind::Error, begin);
+    report(bad.span, "unexpected character '!'; a condition is negated by 'not': not (a < b)");
     return bad;
 }
 

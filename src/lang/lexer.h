@@ -1,6 +1,6 @@
 // The scene language's tokens: identifiers, numbers, strings, { } ( ) , and the operators
-// + - * / = . .. Comments run from '#' to the end of the line. Bad characters and malformed numbers are
-// reported once and come back as Error tokens, so the parser never sees them twice.
+// + - * / = [ ] == != < <= > >= . .. Comments run from '#' to the end of the line. Bad characters and malformed numbers
+// are reported once and come back as Error tokens, so the parser never sees them twice.
 #pragma once
 
 #include <string>
@@ -25,6 +25,14 @@ enum class TokenKind {
     Star,
     Slash,
     Equals,
+    LBracket,
+    RBracket,
+    EqualsEquals,  // ==
+    NotEquals,     // !=
+    Less,
+    LessEquals,
+    Greater,
+    GreaterEquals,
     Dot,
     DotDot,
     End,
@@ -60,6 +68,7 @@ private:
     void report(Span span, std::string message);
     Token lex_number(uint32_t begin);
     Token lex_string(uint32_t begin);
+    Token lex_comparison(uint32_t begin);
     void skip_space_and_comments();
 
     const SourceFile& file_;

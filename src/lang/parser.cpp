@@ -1,83 +1,9 @@
 #include "lang/parser.h"
 
-#include <deque>
-
-#include "lang/lexer.h"
+#include "lang/parser_class.h"
 #include "lang/schema.h"
 
 namespace tracer {
-namespace {
-
-// Thrown after a syntax error has been reported, to unwind to the top-level block.
-struct SyntaxError {};
-// Thrown when a new top-level block starts before the current one was closed.
-struct UnclosedBlock {};
-
-struct OpenBrace {
-    Span span;
-    std::string owner;  // what the brace opened, for "to close the 'sphere' block"
-};
-
-// The words that start a statement other than a block.
-bool is_statement_keyword(std::string_view word) {
-    return word == "let" || word == "param" || word == "for" || word == "include";
-}
-
-}  // namespace
-
-class Parser {
-public:
-    Parser(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin)
-        : file_(file), diagnostics_(diagnostics), lexer_(file, diagnostics, origin) {}
-
-    Program parse_program();
-    bool next_statement(std::vector<Statement>& out);
-    bool parse_lone_value(Expr& out);
-
-private:
-    // Token access with two tokens of look-ahead.
-    const Token& peek(size_t ahead = 0);
-    Token take();
-    bool at(TokenKind kind, size_t ahead = 0) { return peek(ahead).kind == kind; }
-
-    void parse_statements(std::vector<Statement>& out, bool in_loop);
-    void parse_statement(std::vector<Statement>& out);
-    void parse_block(std::vector<Statement>& out);
-    void parse_binding(std::vector<Statement>& out, Statement::Kind kind);
-    void parse_named_material(std::vector<Statement>& out, const Statement& let);
-    template <class Parse>
-    void parse_block_guarded(std::vector<Statement>& out, Statement block, Parse parse);
-    void parse_loop(std::vector<Statement>& out);
-    void parse_include(std::vector<Statement>& out);
-    void parse_body(BodyCode& body, const std::string& owner);
-    void parse_entry(BodyCode& body);
-    void parse_value(Expr& value, const std::string& key);
-    Expr parse_expression();
-    Expr parse_term();
-    Expr parse_unary();
-    Expr parse_postfix();
-    Expr parse_primary();
-    Token expect(TokenKind kind, const std::string& what);
-
-    bool starts_new_block();
-    bool starts_statement();
-    void skip_to_next_statement();
-    void skip_broken_loop(Span keyword);
-    std::string range_call_hint(const Expr& call, const std::string& name) const;
-    [[noreturn]] void fail(const Token& token, std::string message);
-    void skip_to_block_end();
-
-    const SourceFile& file_;
-    Diagnostics& diagnostics_;
-    Lexer lexer_;
-    std::deque<Token> lookahead_;
-    std::vector<OpenBrace> open_;  // braces opened inside the current block
-    int depth_ = 0;                // expressions nested: a bound against stack overflow (so is loops_)
-    int loops_ = 0;                // loops around the statement being parsed
-};
-
-// Nesting deeper than this (parentheses, unary minus, loops) is refused: the parser recurses.
-static constexpr int kMaxDepth = 200;
 
 const Token& Parser::peek(size_t ahead) {
     while (lookahead_.size() <= ahead) {
@@ -93,12 +19,6 @@ Token Parser::take() {
     return token;
 }
 
-void Parser::fail(const Token& token, std::string message) {
-    // The lexer has already reported an Error token: one message per mistake.
-    if (token.kind != TokenKind::Error) diagnostics_.error(file_, token.span, std::move(message));
-    throw SyntaxError{};
-}
-
 // scene = { statement } ;
 Program Parser::parse_program() {
     Program program;
@@ -106,10 +26,10 @@ Program Parser::parse_program() {
     return program;
 }
 
-// The statements of the file, or of a loop's body up to its '}'.
-void Parser::parse_statements(std::vector<Statement>& out, bool in_loop) {
+// The statements of the file, or of a body up to its '}' (`nested`).
+void Parser::parse_statements(std::vector<Statement>& out, bool nested) {
     while (!at(TokenKind::End) && !diagnostics_.saturated()) {
-        if (in_loop && at(TokenKind::RBrace)) return;
+        if (nested && at(TokenKind::RBrace)) return;
         next_statement(out);
     }
 }
@@ -118,37 +38,42 @@ void Parser::parse_statements(std::vector<Statement>& out, bool in_loop) {
 // the file or once the errors are too many to go on.
 bool Parser::next_statement(std::vector<Statement>& out) {
     if (at(TokenKind::End) || diagnostics_.saturated()) return false;
-    {
-        if (!at(TokenKind::Identifier)) {
-            Token stray = take();
-            if (stray.kind != TokenKind::Error)
-                diagnostics_.error(file_, stray.span,
-                                   stray.kind == TokenKind::RBrace
-                                       ? "unexpected '}': no block is open here"
-                                       : "expected a block such as 'sphere { ... }', found " + describe(stray));
-            skip_to_next_statement();
-            return true;
-        }
-        parse_statement(out);
+    if (!at(TokenKind::Identifier)) {
+        Token stray = take();
+        if (stray.kind != TokenKind::Error)
+            diagnostics_.error(file_, stray.span,
+                               stray.kind == TokenKind::RBrace
+                                   ? "unexpected '}': no block is open here"
+                                   : "expected a block such as 'sphere { ... }', found " + describe(stray));
+        skip_to_next_statement();
+        return true;
     }
+    parse_statement(out);
     return true;
 }
 
-// statement = block | let | param | for | include ;
+// statement = block | let | param | for | if | function | return | call | group | include ;
 void Parser::parse_statement(std::vector<Statement>& out) {
     const std::string_view word = peek().text;
     if (word == "let" && at(TokenKind::Identifier, 1)) return parse_binding(out, Statement::Kind::Let);
     if (word == "param" && at(TokenKind::Identifier, 1)) return parse_binding(out, Statement::Kind::Param);
     if (word == "for" && at(TokenKind::Identifier, 1)) return parse_loop(out);
     if (word == "include" && at(TokenKind::String, 1)) return parse_include(out);
+    if (word == "fn" && at(TokenKind::Identifier, 1)) return parse_function(out);
+    if (word == "if") return parse_if(out);
+    if (word == "return") return parse_return(out);
+    if (word == "group" && at(TokenKind::LBrace, 1)) return parse_group(out);
+    if (!is_statement_keyword(word) && at(TokenKind::LParen, 1)) return parse_call(out);
     if (is_statement_keyword(word)) {  // a statement whose name (or path) is missing or broken
-        const bool loop = word == "for";
         const Span keyword = take().span;
         if (!at(TokenKind::Error))  // else the lexer has said what is wrong with it
             diagnostics_.error(file_, peek().span,
-                               std::string("expected ") + (word == "include" ? "a file path in quotes" : "a name") +
+                               std::string("expected ") +
+                                   (word == "include" ? "a file path in quotes"
+                                    : word == "group" ? "'{'"
+                                                      : "a name") +
                                    " after '" + std::string(word) + "', found " + describe(peek()));
-        if (loop) return skip_broken_loop(keyword);
+        if (word == "for" || word == "fn" || word == "group") return skip_broken_header(keyword);
         // The offending word is part of this statement, not the start of the next.
         if (!at(TokenKind::End) && !at(TokenKind::RBrace) &&
             file_.locate(peek().span.begin).line == file_.locate(keyword.begin).line)
@@ -169,15 +94,12 @@ void Parser::parse_binding(std::vector<Statement>& out, Statement::Kind kind) {
     statement.name_span = name.span;
     open_.clear();
     try {
-        if (kind == Statement::Kind::Param && loops_ > 0) {
+        if (kind == Statement::Kind::Param && nesting_ > 0) {
             diagnostics_.error(file_, statement.keyword,
-                               "a 'param' is declared at the top level of a file, not inside a loop");
+                               "a 'param' is declared at the top level of a file, not inside braces");
             throw SyntaxError{};
         }
         expect(TokenKind::Equals, "'=' after '" + statement.name + "'");
-        if (kind == Statement::Kind::Let && at(TokenKind::Identifier) && peek().text == "material" &&
-            at(TokenKind::LBrace, 1))
-            return parse_named_material(out, statement);
         statement.value = parse_expression();
     } catch (const SyntaxError&) {
         skip_to_next_statement();
@@ -203,17 +125,26 @@ void Parser::parse_block_guarded(std::vector<Statement>& out, Statement block, P
     out.push_back(std::move(block));
 }
 
-// `let gold = material { ... }` is another way to write `material gold { ... }`.
-void Parser::parse_named_material(std::vector<Statement>& out, const Statement& let) {
-    Statement block;
-    block.word = "material";
-    block.keyword = take().span;
-    block.name = let.name;
-    block.name_span = let.name_span;
-    parse_block_guarded(out, std::move(block), [&](Statement& material) { parse_body(material.body, material.word); });
+bool Parser::parse_braced_statements(Statement& statement, std::vector<Statement>& out, Span open_brace,
+                                     const std::string& owner) {
+    if (nesting_ + 1 > kMaxParseDepth) {
+        diagnostics_.error(file_, statement.keyword, "statements are nested too deeply (more than 200 levels)");
+        skip_rest_of_file();
+        return false;
+    }
+    ++nesting_;
+    parse_statements(out, true);
+    --nesting_;
+    if (at(TokenKind::End)) {
+        Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
+        Diagnostics::note(d, file_, open_brace, "to close the " + owner + " opened here");
+    } else {
+        statement.end_brace = take().span;  // '}'
+    }
+    return true;
 }
 
-// for = "for" identifier "in" expression ".." expression "{" { statement } "}" ;
+// for = "for" identifier "in" ( expression ".." expression | expression ) "{" { statement } "}" ;
 void Parser::parse_loop(std::vector<Statement>& out) {
     Statement loop;
     loop.kind = Statement::Kind::For;
@@ -224,7 +155,7 @@ void Parser::parse_loop(std::vector<Statement>& out) {
     open_.clear();
     Span open_brace;
     try {
-        if (!(at(TokenKind::Identifier) && peek().text == "in"))
+        if (!at_word("in"))
             fail(peek(),
                  "expected 'in' after 'for " + loop.name + "', found " + describe(peek()) +
                      (at(TokenKind::Equals) ? "; a loop is written 'for " + loop.name + " in A..B' (from A up to B - 1)"
@@ -235,35 +166,162 @@ void Parser::parse_loop(std::vector<Statement>& out) {
             diagnostics_.error(file_, loop.value.span, range_call_hint(loop.value, loop.name));
             throw SyntaxError{};
         }
-        expect(TokenKind::DotDot, "'..' between the first and the end of the range");
-        if (at(TokenKind::Equals))
-            fail(peek(), "'..=' is not a range: A..B already stops before B; to include B write A..B + 1");
-        loop.end = parse_expression();
+        if (at(TokenKind::LBrace)) {
+            loop.over_list = true;
+        } else {
+            expect(TokenKind::DotDot, "'..' between the first and the end of the range, or '{' after a list");
+            if (at(TokenKind::Equals))
+                fail(peek(), "'..=' is not a range: A..B already stops before B; to include B write A..B + 1");
+            loop.end = parse_expression();
+        }
         open_brace = expect(TokenKind::LBrace, "'{' to open the loop's body").span;
     } catch (const SyntaxError&) {
-        skip_broken_loop(loop.keyword);
+        skip_broken_header(loop.keyword);
         return;
     } catch (const UnclosedBlock&) {
         return;
     }
-    if (loops_ + 1 > kMaxDepth) {
-        // Deeper is a generated or broken file: report once and skip the rest of it.
-        diagnostics_.error(file_, loop.keyword, "loops are nested too deeply (more than 200 levels)");
-        lexer_.set_quiet(true);
-        while (!at(TokenKind::End)) take();
-        lexer_.set_quiet(false);
+    if (parse_braced_statements(loop, loop.statements, open_brace, "'for' loop")) out.push_back(std::move(loop));
+}
+
+// if = "if" expression "{" { statement } "}" [ "else" ( "{" { statement } "}" | if ) ] ;
+void Parser::parse_if(std::vector<Statement>& out) {
+    Statement condition;
+    condition.kind = Statement::Kind::If;
+    condition.keyword = take().span;
+    open_.clear();
+    Span open_brace;
+    try {
+        condition.value = parse_expression();
+        if (at(TokenKind::Equals)) fail(peek(), "'=' gives a name its value; to compare two values write '=='");
+        open_brace = expect(TokenKind::LBrace, "'{' after the condition").span;
+    } catch (const SyntaxError&) {
+        skip_broken_header(condition.keyword);
+        return;
+    } catch (const UnclosedBlock&) {
         return;
     }
-    ++loops_;
-    parse_statements(loop.statements, true);
-    --loops_;
-    if (at(TokenKind::End)) {
-        Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
-        Diagnostics::note(d, file_, open_brace, "to close the 'for' loop opened here");
-    } else {
-        take();  // '}'
+    if (!parse_braced_statements(condition, condition.statements, open_brace, "'if' body")) return;
+    if (at_word("else")) {
+        const Token word = take();
+        if (at_word("if")) {
+            // else if: an If statement alone in the else branch (nested one level per 'else if').
+            if (nesting_ + 1 > kMaxParseDepth) {
+                diagnostics_.error(file_, word.span, "statements are nested too deeply (more than 200 levels)");
+                skip_rest_of_file();
+                return;
+            }
+            ++nesting_;
+            parse_if(condition.otherwise);
+            --nesting_;
+        } else if (at(TokenKind::LBrace)) {
+            const Span brace = take().span;
+            Statement branch;
+            branch.keyword = word.span;
+            if (!parse_braced_statements(branch, condition.otherwise, brace, "'else' body")) return;
+            condition.end_brace = branch.end_brace;
+        } else {
+            diagnostics_.error(file_, peek().span, "expected '{' or 'if' after 'else', found " + describe(peek()));
+            skip_to_next_statement();
+        }
     }
-    out.push_back(std::move(loop));
+    out.push_back(std::move(condition));
+}
+
+// function = "fn" identifier "(" [ identifier { "," identifier } ] ")" "{" { statement } "}" ;
+void Parser::parse_function(std::vector<Statement>& out) {
+    Statement function;
+    function.kind = Statement::Kind::Function;
+    function.keyword = take().span;
+    Token name = take();
+    function.name = std::string(name.text);
+    function.name_span = name.span;
+    open_.clear();
+    Span open_brace;
+    try {
+        expect(TokenKind::LParen, "'(' and the parameters after 'fn " + function.name + "'");
+        while (!at(TokenKind::RParen)) {
+            const Token parameter = expect(TokenKind::Identifier, "a parameter's name");
+            function.parameters.emplace_back(std::string(parameter.text), parameter.span);
+            if (!at(TokenKind::RParen)) expect(TokenKind::Comma, "',' or ')' after a parameter");
+        }
+        take();
+        open_brace = expect(TokenKind::LBrace, "'{' to open the function's body").span;
+    } catch (const SyntaxError&) {
+        skip_broken_header(function.keyword);
+        return;
+    }
+    ++functions_;
+    const bool parsed = parse_braced_statements(function, function.statements, open_brace, "function 'fn'");
+    --functions_;
+    if (parsed) out.push_back(std::move(function));
+}
+
+// return = "return" [ expression ] ;   (a value only on the keyword's own line)
+void Parser::parse_return(std::vector<Statement>& out) {
+    Statement statement;
+    statement.kind = Statement::Kind::Return;
+    statement.keyword = take().span;
+    open_.clear();
+    try {
+        if (functions_ == 0) {
+            diagnostics_.error(file_, statement.keyword, "'return' is written inside a function's body (fn)");
+            throw SyntaxError{};
+        }
+        statement.has_value = !at(TokenKind::End) && !at(TokenKind::RBrace) &&
+                              file_.locate(peek().span.begin).line == file_.locate(statement.keyword.begin).line;
+        if (statement.has_value) statement.value = parse_expression();
+    } catch (const SyntaxError&) {
+        skip_to_next_statement();
+        return;
+    } catch (const UnclosedBlock&) {
+        return;
+    }
+    out.push_back(std::move(statement));
+}
+
+// call = identifier "(" [ expression { "," expression } ] ")" ;   (a function making blocks)
+void Parser::parse_call(std::vector<Statement>& out) {
+    Statement call;
+    call.kind = Statement::Kind::Call;
+    call.keyword = peek().span;
+    open_.clear();
+    try {
+        call.value = parse_postfix();
+        if (call.value.kind != Expr::Kind::Call)
+            fail(peek(), "expected a block or a statement; a value alone does nothing, found " + describe(peek()));
+    } catch (const SyntaxError&) {
+        skip_to_next_statement();
+        return;
+    } catch (const UnclosedBlock&) {
+        return;
+    }
+    out.push_back(std::move(call));
+}
+
+// group = "group" "{" { placement } { statement } "}" ;   placement = ( "scale" | "rotate" |
+// "translate" | "transform" ) value ;
+void Parser::parse_group(std::vector<Statement>& out) {
+    Statement group;
+    group.kind = Statement::Kind::Group;
+    group.keyword = take().span;
+    const Span open_brace = take().span;
+    group.body.open_brace = open_brace;
+    open_.clear();
+    while (at(TokenKind::Identifier) && is_placement_key(peek().text)) {
+        open_.clear();
+        open_.push_back({open_brace, "group"});
+        try {
+            parse_entry(group.body);
+        } catch (const SyntaxError&) {
+            skip_to_next_statement();
+        } catch (const UnclosedBlock&) {
+        }
+    }
+    open_.clear();
+    if (!parse_braced_statements(group, group.statements, open_brace, "'group' block")) return;
+    group.body.close_brace = group.end_brace;
+    out.push_back(std::move(group));
 }
 
 // include = "include" string ;
@@ -325,33 +383,6 @@ void Parser::parse_body(BodyCode& body, const std::string& owner) {
     open_.pop_back();
 }
 
-// A top-level block written where a key was expected almost always means a missing '}':
-// `sphere {`, `sphere name {` or `material name {` (a plain `material {` is an inline material),
-// and so does a statement (`let x =`, `for i in`, `include "..."`).
-bool Parser::starts_new_block() {
-    if (!at(TokenKind::Identifier)) return false;
-    std::string_view word = peek().text;
-    if (is_statement_keyword(word)) return starts_statement();
-    if (!find_block_spec(word)) return false;
-    if (word != "material" && at(TokenKind::LBrace, 1)) return true;
-    return at(TokenKind::Identifier, 1) && at(TokenKind::LBrace, 2);
-}
-
-// `let x =`, `param x =`, `for x in`, `include "..."`.
-bool Parser::starts_statement() {
-    if (!at(TokenKind::Identifier)) return false;
-    std::string_view word = peek().text;
-    if ((word == "let" || word == "param") && at(TokenKind::Identifier, 1) && at(TokenKind::Equals, 2)) return true;
-    if (word == "for" && at(TokenKind::Identifier, 1) && at(TokenKind::Identifier, 2) && peek(2).text == "in")
-        return true;
-    return word == "include" && at(TokenKind::String, 1);
-}
-
-Token Parser::expect(TokenKind kind, const std::string& what) {
-    if (!at(kind)) fail(peek(), "expected " + what + ", found " + describe(peek()));
-    return take();
-}
-
 // entry = identifier value ;
 void Parser::parse_entry(BodyCode& body) {
     if (!at(TokenKind::Identifier)) fail(peek(), "expected a key or '}', found " + describe(peek()));
@@ -376,156 +407,10 @@ void Parser::parse_value(Expr& value, const std::string& key) {
     }
     const TokenKind kind = peek().kind;
     if (kind != TokenKind::Number && kind != TokenKind::String && kind != TokenKind::Identifier &&
-        kind != TokenKind::LParen && kind != TokenKind::Minus && kind != TokenKind::Plus)
+        kind != TokenKind::LParen && kind != TokenKind::Minus && kind != TokenKind::Plus &&
+        kind != TokenKind::LBracket && kind != TokenKind::Less)
         fail(peek(), "expected a value for '" + key + "', found " + describe(peek()));
     value = parse_expression();
-}
-
-// `left op right`, spanning both.
-static Expr binary_expression(Expr left, char op, Expr right) {
-    Expr binary;
-    binary.kind = Expr::Kind::Binary;
-    binary.op = op;
-    binary.span = {left.span.begin, right.span.end, left.span.origin};
-    binary.operands.push_back(std::move(left));
-    binary.operands.push_back(std::move(right));
-    return binary;
-}
-
-// expression = term { ( "+" | "-" ) term } ;
-Expr Parser::parse_expression() {
-    Expr left = parse_term();
-    while (at(TokenKind::Plus) || at(TokenKind::Minus)) {
-        const char op = take().kind == TokenKind::Plus ? '+' : '-';
-        left = binary_expression(std::move(left), op, parse_term());
-    }
-    return left;
-}
-
-// term = unary { ( "*" | "/" ) unary } ;
-Expr Parser::parse_term() {
-    Expr left = parse_unary();
-    while (at(TokenKind::Star) || at(TokenKind::Slash)) {
-        const char op = take().kind == TokenKind::Star ? '*' : '/';
-        left = binary_expression(std::move(left), op, parse_unary());
-    }
-    return left;
-}
-
-// unary = ( "-" | "+" ) unary | postfix ;
-Expr Parser::parse_unary() {
-    if (!at(TokenKind::Minus) && !at(TokenKind::Plus)) return parse_postfix();
-    if (++depth_ > kMaxDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");
-    Expr unary;
-    unary.kind = Expr::Kind::Unary;
-    const Token sign = take();
-    unary.op = sign.kind == TokenKind::Minus ? '-' : '+';
-    unary.operands.push_back(parse_unary());
-    unary.span = {sign.span.begin, unary.operands[0].span.end, sign.span.origin};
-    --depth_;
-    return unary;
-}
-
-// postfix = primary { "." identifier } ;
-Expr Parser::parse_postfix() {
-    Expr value = parse_primary();
-    for (int components = 0; at(TokenKind::Dot); ++components) {
-        // A component of a number is an error: a long chain is a broken or hostile file.
-        if (components == kMaxDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");
-        take();
-        Token component = expect(TokenKind::Identifier, "a component name (x, y or z) after '.'");
-        Expr access;
-        access.kind = Expr::Kind::Component;
-        access.text = std::string(component.text);
-        access.span = {value.span.begin, component.span.end, value.span.origin};
-        access.operands.push_back(std::move(value));
-        value = std::move(access);
-    }
-    return value;
-}
-
-// primary = number | string | identifier [ "(" [ expression { "," expression } ] ")" ]
-//         | "(" expression { "," expression } ")" ;
-Expr Parser::parse_primary() {
-    Expr value;
-    const Token& token = peek();
-    value.span = token.span;
-    switch (token.kind) {
-        case TokenKind::Number:
-            value.kind = Expr::Kind::Number;
-            value.number = take().number;
-            return value;
-        case TokenKind::String:
-            value.kind = Expr::Kind::String;
-            value.text = take().string;
-            return value;
-        case TokenKind::Identifier:
-            value.kind = Expr::Kind::Name;
-            value.text = std::string(take().text);
-            if (!at(TokenKind::LParen)) return value;
-            value.kind = Expr::Kind::Call;
-            break;
-        case TokenKind::LParen: value.kind = Expr::Kind::Vector; break;
-        default:
-            if (token.kind == TokenKind::Star && token.span.begin > 0 && file_.text()[token.span.begin - 1] == '*')
-                fail(token, "'**' is not an operator; for a to the power b write pow(a, b)");
-            fail(token, "expected a value, found " + describe(token));
-    }
-    // The parenthesised list of a call or a vector.
-    if (++depth_ > kMaxDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");
-    take();  // '('
-    const bool call = value.kind == Expr::Kind::Call;
-    if (!(call && at(TokenKind::RParen))) {
-        for (;;) {
-            value.operands.push_back(parse_expression());
-            if (at(TokenKind::Comma)) {
-                take();
-                continue;
-            }
-            if (at(TokenKind::RParen)) break;
-            fail(peek(), std::string("expected ',' or ')' in ") + (call ? "the call" : "vector") + ", found " +
-                             describe(peek()));
-        }
-    }
-    value.span.end = take().span.end;
-    --depth_;
-    // (a) is a, in parentheses; (a, b, ...) a vector.
-    if (!call && value.operands.size() == 1) {
-        Expr inner = std::move(value.operands[0]);
-        inner.span = value.span;
-        return inner;
-    }
-    return value;
-}
-
-// Skips to the '}' that closes the current top-level block (or the end of the file).
-void Parser::skip_to_block_end() {
-    // The block is already reported: what the lexer finds in the rest of it is no news.
-    lexer_.set_quiet(true);
-    struct LoudAgain {
-        Lexer& lexer;
-        ~LoudAgain() { lexer.set_quiet(false); }
-    } loud_again{lexer_};
-    if (open_.empty()) {
-        // The error came before the block's '{': skip to that brace, unless a block starts first.
-        while (!at(TokenKind::End) && !at(TokenKind::LBrace) &&
-               !(at(TokenKind::Identifier) && find_block_spec(peek().text)))
-            take();
-        if (!at(TokenKind::LBrace)) return;
-        open_.push_back({take().span, "block"});
-    }
-    int depth = int(open_.size());
-    while (depth > 0) {
-        if (at(TokenKind::End)) {
-            Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
-            Diagnostics::note(d, file_, open_.front().span,
-                              "to close the '" + open_.front().owner + "' block opened here");
-            return;
-        }
-        TokenKind kind = take().kind;
-        if (kind == TokenKind::LBrace) ++depth;
-        if (kind == TokenKind::RBrace) --depth;
-    }
 }
 
 bool Parser::parse_lone_value(Expr& out) {
@@ -537,45 +422,6 @@ bool Parser::parse_lone_value(Expr& out) {
         return false;
     }
     return at(TokenKind::End);
-}
-
-// `range(...)` where a range belongs: the way to write it here, from the call's own arguments.
-std::string Parser::range_call_hint(const Expr& call, const std::string& name) const {
-    auto text = [&](const Expr& e) { return std::string(file_.slice(e.span)); };
-    const auto& args = call.operands;
-    const std::string range = args.size() == 1   ? "0.." + text(args[0])
-                              : args.size() == 2 ? text(args[0]) + ".." + text(args[1])
-                                                 : "A..B";
-    return "'range(...)' is not a function here: a loop is written 'for " + name + " in " + range +
-           "' (from the first number up to the end - 1)";
-}
-
-// After an error in a loop's header: skip the loop, body and all, when its '{' is on the
-// keyword's line (so that the body's statements and '}' raise no errors of their own); else
-// as after any broken statement.
-void Parser::skip_broken_loop(Span keyword) {
-    const int line = file_.locate(keyword.begin).line;
-    lexer_.set_quiet(true);
-    while (!at(TokenKind::End) && !at(TokenKind::LBrace) && file_.locate(peek().span.begin).line == line) take();
-    lexer_.set_quiet(false);
-    if (!at(TokenKind::LBrace)) return skip_to_next_statement();
-    lexer_.set_quiet(true);
-    for (int depth = 0; !at(TokenKind::End);) {
-        const TokenKind kind = take().kind;
-        depth += kind == TokenKind::LBrace ? 1 : kind == TokenKind::RBrace ? -1 : 0;
-        if (depth == 0) break;
-    }
-    lexer_.set_quiet(false);
-}
-
-// After a broken statement: skip to what can start the next one (a statement keyword, a block
-// kind, or a loop's closing brace).
-void Parser::skip_to_next_statement() {
-    lexer_.set_quiet(true);
-    while (!at(TokenKind::End) && !at(TokenKind::RBrace) &&
-           !(at(TokenKind::Identifier) && (find_block_spec(peek().text) || is_statement_keyword(peek().text))))
-        take();
-    lexer_.set_quiet(false);
 }
 
 Program parse_program(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin) {

@@ -67,15 +67,25 @@ std::string reference_markdown() {
         if (!spec->example.empty()) out << "\nExample:\n\n```scn\n" << spec->example << "```\n";
     }
     out << "\n## Statements\n\n"
-           "Between blocks (and inside a loop's body) a scene may also have these; what they mean is in\n"
+           "Between blocks (and inside braces) a scene may also have these; what they mean is in\n"
            "[README.md](README.md).\n\n"
            "| statement | what it does |\n|---|---|\n"
-           "| `let NAME = value` | names a number or a vector (`let NAME = material { ... }` names a material) |\n"
+           "| `let NAME = value` | names a value: a number, vector, boolean, string, list, `material { ... }` or "
+           "`transform { ... }` |\n"
            "| `param NAME = value` | a `let` that `-D NAME=VALUE` on the command line may change (top level only) |\n"
            "| `for NAME in A..B { ... }` | runs its statements for NAME = A, A + 1, ..., B - 1 |\n"
+           "| `for NAME in LIST { ... }` | runs its statements for each value of the list, in order |\n"
+           "| `if CONDITION { ... } else { ... }` | runs the first statements if the condition is true, else the "
+           "others (`else` and its braces may be left out; `else if` chains) |\n"
+           "| `fn NAME(A, B) { ... }` | defines a function; `return VALUE` ends it with a value |\n"
+           "| `NAME(a, b)` | calls a function for the blocks it makes |\n"
+           "| `group { translate ... rotate ... scale ... transform ... statements }` | places every block made "
+           "inside by its placement (written first; nested groups compose) |\n"
            "| `include \"file.scn\"` | runs another file in place (path relative to this file) |\n"
            "\nValues may be expressions: `+ - * /`, unary minus, parentheses, vectors `(a, b, c)`, components\n"
-           "`v.x`, `v.y`, `v.z`, these names:\n\n"
+           "`v.x`, `v.y`, `v.z`, lists `[a, b, c]` and their items `list[i]` (from 0), comparisons\n"
+           "`== != < <= > >=`, `and`, `or`, `not`, `true`, `false`, `if CONDITION { A } else { B }`, calls\n"
+           "of the scene's functions, these names:\n\n"
            "| name | value |\n|---|---|\n";
     for (const BuiltinConstant& constant : all_constants())
         out << "| `" << constant.name << "` | " << constant.meaning << " |\n";

@@ -1,6 +1,6 @@
-// The syntax tree: a scene file as written: statements (blocks, names, loops, includes) whose values are
-// expressions. The parser builds it; the interpreter (interpreter.h) evaluates it into the
-// blocks of plain values (evaluated_scene.h) that validation checks.
+// The syntax tree: a scene file as written: statements (blocks, names, loops, conditions,
+// functions, groups, includes) whose values are expressions. The parser builds it; the interpreter (interpreter.h)
+// evaluates it into the blocks of plain values (evaluated_scene.h) that validation checks.
 #pragma once
 
 #include <memory>
@@ -15,15 +15,22 @@ struct BodyCode;
 
 struct Expr {
     enum class Kind {
-        Number,     // a literal: `number`
-        String,     // a literal: `text`
-        Name,       // a let, param or loop name, or else a word (`sah`, `true`, a material): `text`
-        Vector,     // (a, b, c): `operands`
-        Unary,      // `op` ('-' or '+') applied to operands[0]
-        Binary,     // operands[0] `op` operands[1], op one of + - * /
-        Call,       // `text`(operands...)
-        Component,  // operands[0].`text` (x, y or z)
-        Block,      // an inline block `{ ... }`: `body`
+        Number,       // a literal: `number`
+        String,       // a literal: `text`
+        Bool,         // true or false: `number` 1 or 0
+        Name,         // a let, param or loop name, or else a word (`sah`, a material): `text`
+        Vector,       // (a, b, c): `operands`
+        List,         // [a, b, c]: `operands`
+        Unary,        // `op` ('-' or '+') applied to operands[0]
+        Not,          // not operands[0]
+        Binary,       // operands[0] `op` operands[1], op one of + - * /
+        Compare,      // operands[0] `text` operands[1], text one of == != < <= > >=
+        Logical,      // operands[0] `text` operands[1] `text` ..., text "and" or "or" (flat: no depth)
+        Conditional,  // if operands[0] { operands[1] } else { operands[2] }
+        Call,         // `text`(operands...)
+        Component,    // operands[0].`text` (x, y or z)
+        Index,        // operands[0][operands[1]]
+        Block,        // a block `{ ... }`: `body`; `text` its kind when written as a value (material { ... })
     };
     Kind kind = Kind::Number;
     Span span;
@@ -68,22 +75,32 @@ struct BodyCode {
 
 struct Statement {
     enum class Kind {
-        Block,    // kind [name] { entries }
-        Let,      // let name = value
-        Param,    // param name = value (the command line may set it: -D name=value)
-        For,      // for name in value..end { statements }
-        Include,  // include "path"
+        Block,     // kind [name] { entries }
+        Let,       // let name = value
+        Param,     // param name = value (the command line may set it: -D name=value)
+        For,       // for name in value..end { statements }, or for name in value { statements } (a list)
+        If,        // if value { statements } else { otherwise }
+        Function,  // fn name(parameters) { statements }
+        Return,    // return [value]
+        Call,      // value (a call) as a statement: the blocks it makes
+        Group,     // group { body (its placement) statements }
+        Include,   // include "path"
     };
     Kind kind = Kind::Block;
-    Span keyword;                       // the block's kind or the statement's keyword
-    std::string word;                   // Block: its kind; Include: the path
-    std::string name;                   // Block: its name (may be empty); Let, Param, For: the name bound
-    Span name_span;                     // Include: the path's span
-    BodyCode body;                      // Block
-    bool broken = false;                // Block: a syntax error was reported inside; do not validate further
-    Expr value;                         // Let, Param: the value; For: the first number
-    Expr end;                           // For: the end of the range (not included)
-    std::vector<Statement> statements;  // For: the loop's body
+    Span keyword;         // the block's kind or the statement's keyword
+    std::string word;     // Block: its kind; Include: the path
+    std::string name;     // Block: its name (may be empty); Let, Param, For: the name bound
+    Span name_span;       // Include: the path's span
+    BodyCode body;        // Block
+    bool broken = false;  // Block: a syntax error was reported inside; do not validate further
+    Expr value;           // Let, Param, Return, Call: the value; For: the first number or the list; If: the condition
+    Expr end;             // For: the end of the range (not included)
+    bool over_list = false;                                // For: over the elements of a list (no end)
+    bool has_value = false;                                // Return: a value is returned
+    std::vector<Statement> statements;                     // For, If, Function, Group: the body
+    std::vector<Statement> otherwise;                      // If: the else branch (an else-if is one If statement in it)
+    std::vector<std::pair<std::string, Span>> parameters;  // Function
+    Span end_brace;                                        // For, If, Function, Group: the closing '}'
 };
 
 struct Program {

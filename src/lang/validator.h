@@ -81,6 +81,13 @@ private:
         bool used = false;
     };
     std::map<std::string, NamedMaterial, std::less<>> named_;
+    // Material values shared by several shapes, by their body (held, so that no other body can
+    // take its address): each made into one material.
+    struct SharedMaterial {
+        std::shared_ptr<const Body> body;
+        int index;
+    };
+    std::map<const Body*, SharedMaterial> value_materials_;
     std::map<std::string_view, Span> first_of_kind_;  // each kind's first block
     // Materials used by name before their block, resolved by finish(): a shape's material index
     // kLaterMaterial - i stands for later_uses_[i].

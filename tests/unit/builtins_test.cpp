@@ -10,28 +10,30 @@
 namespace tracer {
 namespace {
 
-Value num(double x) {
-    return number_value(x, Span{});
+Val num(double x) {
+    return Val::number(x);
 }
-Value vec(double x, double y, double z) {
-    return vector_value({x, y, z}, Span{});
+Val vec(double x, double y, double z) {
+    return Val::vector3(x, y, z);
 }
 
 // Calls the built-in `name` through the table with `args`.
-Value call(std::string_view name, std::vector<Value> args) {
+Val call(std::string_view name, std::vector<Val> args) {
     const Builtin* builtin = find_builtin(name);
     EXPECT_NE(builtin, nullptr) << name;
     EXPECT_EQ(builtin->arity, args.size()) << name;
-    return builtin->body(BuiltinArguments(builtin->name, args), Span{});
+    const std::vector<Span> spans(args.size());
+    return builtin->body(BuiltinArguments(builtin->name, args, spans, Span{}));
 }
-double number(std::string_view name, std::vector<Value> args) {
-    return call(name, std::move(args)).number;
+double number(std::string_view name, std::vector<Val> args) {
+    return call(name, std::move(args)).x[0];
 }
-std::vector<double> vector(std::string_view name, std::vector<Value> args) {
-    return call(name, std::move(args)).components;
+std::vector<double> vector(std::string_view name, std::vector<Val> args) {
+    const auto c = call(name, std::move(args)).components();
+    return {c.begin(), c.end()};
 }
 // The message of the BuiltinError that calling `name` with `args` throws, or "" if none.
-std::string error(std::string_view name, std::vector<Value> args) {
+std::string error(std::string_view name, std::vector<Val> args) {
     try {
         call(name, std::move(args));
     } catch (const BuiltinError& e) {

@@ -111,7 +111,7 @@ TEST(Fuzz, TwoHundredNestedLoopsAroundAnExpressionAreWithinTheLimits) {
     EXPECT_TRUE(within.scene) << within.diagnostics.all()[0].message;
     LoadResult beyond = load_scene_text("deep.scn", nested(201));
     ASSERT_FALSE(beyond.scene);
-    EXPECT_EQ(beyond.diagnostics.all()[0].message, "loops are nested too deeply (more than 200 levels)");
+    EXPECT_EQ(beyond.diagnostics.all()[0].message, "statements are nested too deeply (more than 200 levels)");
 }
 
 TEST(Fuzz, DeeplyNestedBracesAreAnErrorNotAStackOverflow) {

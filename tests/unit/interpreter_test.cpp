@@ -128,19 +128,30 @@ TEST(Interpreter, WordsThatAreNotNamesReachTheValidator) {
               std::vector<std::string>{"undefined name 'radius2'; did you mean 'radius1'?"});
 }
 
-// `let gold = material { ... }` names a material exactly as `material gold { ... }` does.
-TEST(Interpreter, LetNamesAMaterialAsAMaterialBlockDoes) {
-    LoadResult a =
-        load("let gold = material { kd (1, 0.8, 0.2) ks 0.5 }\nsphere { center (0, 0, 0) radius 1 material gold }");
+// `let gold = material { ... }` is a material value: the shapes using it share one material,
+// equal to the named block's; a loop may pick one by value.
+TEST(Interpreter, LetHoldsAMaterialThatShapesShare) {
+    LoadResult a = load(
+        "let gold = material { kd (1, 0.8, 0.2) ks 0.5 }\nsphere { center (0, 0, 0) radius 1 material gold }\n"
+        "sphere { center (2, 0, 0) radius 1 material gold }");
     LoadResult b =
         load("material gold { kd (1, 0.8, 0.2) ks 0.5 }\nsphere { center (0, 0, 0) radius 1 material gold }");
     ASSERT_TRUE(a.scene && b.scene);
-    EXPECT_EQ(a.scene->materials[0].name, "gold");
+    ASSERT_EQ(a.scene->materials.size(), 1u);
+    EXPECT_EQ(a.scene->spheres[1].material, 0);
     EXPECT_EQ(a.scene->materials[0].kd, b.scene->materials[0].kd);
     EXPECT_EQ(a.scene->materials[0].ks, b.scene->materials[0].ks);
-    EXPECT_EQ(errors(load("let gold = material { kd 1 }\nmaterial gold { kd 2 }\nsphere { center (0, 0, 0) radius 1 "
-                          "material gold }")),
-              std::vector<std::string>{"material 'gold' is defined twice"});
+    LoadResult picked = load(
+        "let red = material { kd (1, 0, 0) }\nlet blue = material { kd (0, 0, 1) }\n"
+        "for i in 0..4 {\n  let m = if mod(i, 2) == 0 { red } else { blue }\n"
+        "  sphere { center (i, 0, 0) radius 0.4 material m }\n}");
+    ASSERT_TRUE(picked.scene) << errors(picked)[0];
+    ASSERT_EQ(picked.scene->materials.size(), 2u);
+    EXPECT_EQ(picked.scene->materials[picked.scene->spheres[2].material].kd, dvec3(1, 0, 0));
+    EXPECT_EQ(picked.scene->materials[picked.scene->spheres[3].material].kd, dvec3(0, 0, 1));
+    EXPECT_EQ(
+        errors(load("let t = transform { translate (1, 0, 0) }\nsphere { center (0, 0, 0) radius 1 material t }")),
+        std::vector<std::string>{"'material' takes a material; this is a transform"});
 }
 
 TEST(Interpreter, ExpressionErrorsAreReportedWhereTheyHappen) {
@@ -160,7 +171,8 @@ TEST(Interpreter, ExpressionErrorsAreReportedWhereTheyHappen) {
     EXPECT_EQ(first_error("let a = (1, 2, 3).w"), "a vector's components are x, y and z; found 'w'");
     EXPECT_EQ(first_error("let a = 2.x"), "malformed number '2.x'");  // the lexer's, once
     EXPECT_EQ(first_error("for i in 0..2.5 { }"), "a range goes from whole number to whole number; this is 2.5");
-    EXPECT_EQ(first_error("let a = \"text\""), "a name holds a number or a vector; this is a string");
+    EXPECT_EQ(first_error("let a = \"text\"\nsphere { center (0, 0, 0) radius a material { kd 1 } }"),
+              "'radius' expects a number, found a string");
     EXPECT_EQ(first_error("sphere { center (0, 0, 0) radius = 1 material { kd 1 } }"),
               "a key takes its value without '=': write 'radius value'");
 }
@@ -191,7 +203,7 @@ TEST(Interpreter, ParametersTakeTheirValueFromTheCommandLine) {
     EXPECT_EQ(errors(load(text, {{"colur", "2"}})),
               std::vector<std::string>{"-D colur: the scene has no 'param colur'; did you mean 'colour'?"});
     EXPECT_EQ(errors(load("for i in 0..2 { param p = 1 }")),
-              std::vector<std::string>{"a 'param' is declared at the top level of a file, not inside a loop"});
+              std::vector<std::string>{"a 'param' is declared at the top level of a file, not inside braces"});
 }
 
 TEST(Interpreter, AnErrorRepeatedByALoopIsOnePlaceCountedOnce) {
@@ -204,7 +216,7 @@ TEST(Interpreter, AnErrorRepeatedByALoopIsOnePlaceCountedOnce) {
     EXPECT_EQ(result.diagnostics.error_count(), 25);
     for (const Diagnostic& d : result.diagnostics.all()) {
         EXPECT_EQ(d.repeats, 99) << d.message;
-        EXPECT_TRUE(d.repeats_in_iterations);
+        EXPECT_EQ(d.repeated_in, Diagnostic::RepeatedIn::Iterations);
     }
 }
 

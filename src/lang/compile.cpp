@@ -1,0 +1,366 @@
+#include "lang/compile.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "base/input_file.h"
+#include "lang/builtins.h"
+#include "lang/parser.h"
+#include "lang/schema.h"
+#include "lang/suggest.h"
+
+namespace tracer {
+
+namespace fs = std::filesystem;
+
+Node::~Node() {
+    if (operands.empty()) return;
+    std::vector<Node> pending = std::move(operands);
+    while (!pending.empty()) {
+        Node last = std::move(pending.back());
+        pending.pop_back();
+        for (Node& operand : last.operands) pending.push_back(std::move(operand));
+        last.operands.clear();
+    }
+}
+
+namespace {
+
+Node leaf(Node::Op op, Span span, uint32_t index = 0) {
+    Node node;
+    node.op = op;
+    node.span = span;
+    node.index = index;
+    return node;
+}
+
+Node constant(Val value, Span span) {
+    Node node = leaf(Node::Op::Constant, span);
+    node.constant = std::move(value);
+    return node;
+}
+
+}  // namespace
+
+Compiler::Compiler(Sources& sources, Diagnostics& diagnostics) : sources_(sources), diagnostics_(diagnostics) {
+    functions_.emplace_back();
+    functions_.back().scopes.emplace_back();
+}
+
+void Compiler::fail(Span span, std::string message) {
+    diagnostics_.error(sources_, span, std::move(message));
+    throw CompileError{};
+}
+
+void Compiler::compile_top_level(const Statement& statement, std::vector<Step>& out) {
+    compile_statement(statement, out);
+}
+
+bool Compiler::compile_lone_value(const Expr& expr, bool top, Node& out) {
+    try {
+        out = compile_expression(expr, top);
+    } catch (const CompileError&) {
+        return false;
+    }
+    return true;
+}
+
+void Compiler::compile_statements(const std::vector<Statement>& statements, std::vector<Step>& out) {
+    for (const Statement& statement : statements) {
+        if (diagnostics_.saturated()) return;
+        compile_statement(statement, out);
+    }
+}
+
+void Compiler::open_scope() {
+    functions_.back().scopes.emplace_back();
+}
+
+void Compiler::close_scope() {
+    FunctionLevel& level = functions_.back();
+    level.next_slot -= uint32_t(level.scopes.back().size());  // the scope's slots are free again
+    level.scopes.pop_back();
+}
+
+void Compiler::compile_scoped(const std::vector<Statement>& statements, std::vector<Step>& out) {
+    open_scope();
+    compile_statements(statements, out);
+    close_scope();
+}
+
+// Binds `name` in the innermost scope to a new slot; a name already bound in that same scope is
+// an error (reported), and the old slot is kept.
+uint32_t Compiler::bind(const std::string& name, Span defined_at) {
+    FunctionLevel& level = functions_.back();
+    Scope& scope = level.scopes.back();
+    if (auto found = scope.find(name); found != scope.end()) {
+        Diagnostic* d = diagnostics_.error(sources_, defined_at, "'" + name + "' is already defined");
+        Diagnostics::note(d, sources_, found->second.defined_at, "'" + name + "' was first defined here");
+        return found->second.slot;
+    }
+    const uint32_t slot = level.next_slot++;
+    level.most_slots = std::max(level.most_slots, level.next_slot);
+    scope.emplace(name, NameInfo{slot, defined_at});
+    return slot;
+}
+
+// The node that reads `name` from the code at `level`: a slot of its frame, a global, the
+// function itself, or a value captured from the levels around it (captured on first use).
+bool Compiler::resolve(const std::string& name, size_t level, Span span, Node& out) {
+    FunctionLevel& here = functions_[level];
+    for (size_t s = here.scopes.size(); s-- > 0;) {
+        auto found = here.scopes[s].find(name);
+        if (found == here.scopes[s].end()) continue;
+        out = leaf(level == 0 && s == 0 ? Node::Op::Global : Node::Op::Local, span, found->second.slot);
+        return true;
+    }
+    if (level == 0) return false;
+    if (here.code->name == name) {
+        out = leaf(Node::Op::Self, span);
+        return true;
+    }
+    if (auto known = here.capture_index.find(name); known != here.capture_index.end()) {
+        out = leaf(Node::Op::Capture, span, known->second);
+        return true;
+    }
+    Node outer;
+    if (!resolve(name, level - 1, span, outer)) return false;
+    if (outer.op == Node::Op::Global) {
+        out = std::move(outer);
+        return true;
+    }
+    const uint32_t index = uint32_t(here.code->captures.size());
+    here.code->captures.push_back(std::move(outer));
+    here.capture_index.emplace(name, index);
+    out = leaf(Node::Op::Capture, span, index);
+    return true;
+}
+
+std::vector<std::string_view> Compiler::names_in_scope() const {
+    std::vector<std::string_view> names;
+    for (const FunctionLevel& level : functions_)
+        for (const Scope& scope : level.scopes)
+            for (const auto& [name, info] : scope) names.push_back(name);
+    return names;
+}
+
+void Compiler::compile_statement(const Statement& statement, std::vector<Step>& out) {
+    Step step;
+    step.keyword = statement.keyword;
+    step.name = statement.name;
+    step.name_span = statement.name_span;
+    step.word = statement.word;
+    switch (statement.kind) {
+        case Statement::Kind::Block: {
+            step.op = Step::Op::Block;
+            step.broken = statement.broken;
+            bool failed = false;
+            step.body = compile_body(statement.body, statement.word, find_block_spec(statement.word), failed);
+            step.broken = step.broken || failed;
+            break;
+        }
+        case Statement::Kind::Let:
+        case Statement::Kind::Param: {
+            step.op = statement.kind == Statement::Kind::Let ? Step::Op::Let : Step::Op::Param;
+            try {
+                step.value = compile_expression(statement.value);
+            } catch (const CompileError&) {
+                step.value = constant(Val::broken(), statement.value.span);  // uses are not errors too
+            }
+            step.slot = bind(statement.name, statement.name_span);
+            if (step.op == Step::Op::Param) parameters_.emplace_back(statement.name, step.slot);
+            break;
+        }
+        case Statement::Kind::For: return compile_loop(statement, out);
+        case Statement::Kind::If: {
+            step.op = Step::Op::If;
+            try {
+                step.value = compile_expression(statement.value);
+            } catch (const CompileError&) {
+                step.value = constant(Val::broken(), statement.value.span);
+            }
+            compile_scoped(statement.statements, step.steps);
+            compile_scoped(statement.otherwise, step.otherwise);
+            break;
+        }
+        case Statement::Kind::Function: return compile_function(statement, out);
+        case Statement::Kind::Return:
+            step.op = Step::Op::Return;
+            step.has_value = statement.has_value;
+            if (step.has_value) {
+                try {
+                    step.value = compile_expression(statement.value);
+                } catch (const CompileError&) {
+                    step.value = constant(Val::broken(), statement.value.span);
+                }
+            }
+            break;
+        case Statement::Kind::Call:
+            step.op = Step::Op::Call;
+            try {
+                step.value = compile_expression(statement.value);
+                if (step.value.op == Node::Op::Builtin)
+                    fail(statement.value.span, "'" + statement.value.text +
+                                                   "' is a built-in function: it gives a value and makes no "
+                                                   "blocks; use its value, as in 'let x = " +
+                                                   statement.value.text + "(...)'");
+            } catch (const CompileError&) {
+                return;
+            }
+            break;
+        case Statement::Kind::Group: {
+            step.op = Step::Op::Group;
+            bool failed = false;
+            step.body = compile_body(statement.body, "group", find_block_spec("group"), failed);
+            step.broken = failed;
+            compile_scoped(statement.statements, step.steps);
+            break;
+        }
+        case Statement::Kind::Include: return compile_include(statement, out);
+    }
+    out.push_back(std::move(step));
+}
+
+void Compiler::compile_loop(const Statement& statement, std::vector<Step>& out) {
+    Step loop;
+    loop.op = statement.over_list ? Step::Op::Each : Step::Op::Range;
+    loop.keyword = statement.keyword;
+    loop.name = statement.name;
+    loop.name_span = statement.name_span;
+    loop.top_level = loops_ == 0;
+    try {
+        loop.value = compile_expression(statement.value);
+        if (!statement.over_list) loop.end = compile_expression(statement.end);
+    } catch (const CompileError&) {
+        return;
+    }
+    open_scope();
+    loop.slot = bind(statement.name, statement.name_span);
+    ++loops_;
+    compile_statements(statement.statements, loop.steps);
+    --loops_;
+    close_scope();
+    out.push_back(std::move(loop));
+}
+
+void Compiler::compile_function(const Statement& statement, std::vector<Step>& out) {
+    Step step;
+    step.op = Step::Op::Function;
+    step.keyword = statement.keyword;
+    step.name = statement.name;
+    step.name_span = statement.name_span;
+    step.slot = bind(statement.name, statement.name_span);
+    auto code = std::make_shared<FunctionCode>();
+    code->name = statement.name;
+    code->name_span = statement.name_span;
+    code->parameters = uint32_t(statement.parameters.size());
+    code->file_origin = statement.keyword.origin;
+    functions_.emplace_back();
+    functions_.back().code = code.get();
+    functions_.back().scopes.emplace_back();
+    for (const auto& [name, span] : statement.parameters) bind(name, span);
+    const int outer_loops = loops_;
+    loops_ = 0;
+    compile_statements(statement.statements, code->steps);
+    loops_ = outer_loops;
+    code->slots = functions_.back().most_slots;
+    functions_.pop_back();
+    step.function = std::move(code);
+    out.push_back(std::move(step));
+}
+
+// The included file read (once: again from the text held), parsed and compiled in place, its
+// names joining the scope of the include.
+void Compiler::compile_include(const Statement& statement, std::vector<Step>& out) {
+    const Span path_span = statement.name_span;
+    const SourceFile& including = sources_.file(path_span);
+    fs::path path = statement.word;
+    if (path.is_relative()) path = fs::path(including.path()).parent_path() / path;
+    std::error_code ignored;
+    const std::string canonical = fs::weakly_canonical(path, ignored).string();
+    if (std::find(include_stack_.begin(), include_stack_.end(), canonical) != include_stack_.end()) {
+        diagnostics_.error(sources_, path_span, "'" + statement.word + "' includes itself (through the files noted)");
+        return;
+    }
+    if (int(include_stack_.size()) > kMaxIncludeDepth) {  // the scene and 32 includes below it
+        diagnostics_.error(sources_, path_span, "includes are nested too deeply (more than 32 files)");
+        return;
+    }
+    uint32_t file_origin = 0;
+    if (auto known = included_.find(canonical); known != included_.end()) {
+        file_origin = sources_.add_include_again(known->second, path_span);
+    } else {
+        InputFile input = read_input_file(path.string(), kMaxSceneFileBytes);
+        if (!input.problem.empty()) {
+            diagnostics_.error(sources_, path_span,
+                               "cannot include '" + path.lexically_normal().string() + "': " + input.problem);
+            return;
+        }
+        file_origin = sources_.add_include(
+            std::make_unique<SourceFile>(path.lexically_normal().string(), std::move(input.text)), path_span);
+        included_.emplace(canonical, file_origin);
+    }
+    const SourceFile& file = sources_.file({0, 0, file_origin});
+    included_bytes_ += file.text().size();
+    if (included_bytes_ > kMaxIncludedBytes) {
+        diagnostics_.error(sources_, path_span,
+                           "the scene includes more than 256 MiB of text in all (each include counted; the limit)");
+        return;
+    }
+    Step step;
+    step.op = Step::Op::Include;
+    step.keyword = statement.keyword;
+    step.name_span = path_span;
+    step.word = statement.word;
+    step.origin = file_origin;
+    include_stack_.push_back(canonical);
+    const Program program = parse_program(file, diagnostics_, file_origin);
+    compile_statements(program.statements, step.steps);
+    include_stack_.pop_back();
+    out.push_back(std::move(step));
+}
+
+// A body's entries compiled, their keys looked up in `spec` (the block's table; none for an
+// unknown block); `failed` is set if an entry had a mistake (reported; the entry is dropped).
+std::shared_ptr<CompiledBody> Compiler::compile_body(const BodyCode& code, const std::string& kind,
+                                                     const BlockSpec* spec, bool& failed) {
+    auto body = std::make_shared<CompiledBody>();
+    body->kind = kind;
+    body->spec = spec;
+    body->open_brace = code.open_brace;
+    body->close_brace = code.close_brace;
+    for (const EntryCode& entry : code.entries) {
+        CompiledEntry out;
+        out.key = entry.key;
+        out.key_span = entry.key_span;
+        out.spec = spec ? spec->find_key(entry.key) : nullptr;
+        const KeySpec* key = out.spec;
+        if (entry.value.kind == Expr::Kind::Block && entry.value.text.empty()) {
+            // A nested block: its own table (rotate, transform), or a material's.
+            const BlockSpec* nested = key && key->block                            ? key->block
+                                      : key && key->type == ValueType::MaterialRef ? find_block_spec("material")
+                                                                                   : nullptr;
+            out.nested = true;
+            out.body = compile_body(*entry.value.body, entry.key, nested, failed);
+        } else {
+            try {
+                Node named;
+                if (key && key->type == ValueType::Path && entry.value.kind != Expr::Kind::String &&
+                    !(entry.value.kind == Expr::Kind::Name &&
+                      resolve(entry.value.text, functions_.size() - 1, entry.value.span, named)))
+                    fail(entry.value.span,
+                         "'" + entry.key + "' expects a file path in double quotes: " + entry.key + " \"" +
+                             std::string(sources_.file(entry.value.span).slice(entry.value.span)) + "\"");
+                const bool word_key = key && (key->type == ValueType::MaterialRef || key->type == ValueType::Choice);
+                out.value = compile_expression(entry.value, true, word_key);
+            } catch (const CompileError&) {
+                failed = true;
+                continue;
+            }
+        }
+        body->entries.push_back(std::move(out));
+    }
+    return body;
+}
+
+}  // namespace tracer

@@ -1,0 +1,97 @@
+// Compiles the syntax tree (syntax_tree.h) into code for the interpreter (code.h): names
+// resolved to slots in lexical scopes, functions' outer names captured, included files read,
+// parsed and compiled in place. Mistakes found here (an undefined name, a name defined twice,
+// an unknown function, an include that cannot be read) are reported once, where written.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "base/diagnostics.h"
+#include "base/source.h"
+#include "lang/code.h"
+#include "lang/syntax_tree.h"
+
+namespace tracer {
+
+// Deepest chain of included files, and the most text the includes of one scene may compile.
+constexpr int kMaxIncludeDepth = 32;
+constexpr size_t kMaxIncludedBytes = size_t(256) << 20;
+
+// Thrown after a mistake in an expression has been reported: the entry or statement is dropped.
+struct CompileError {};
+
+class Compiler {
+public:
+    Compiler(Sources& sources, Diagnostics& diagnostics);
+
+    // One top-level statement of the scene file, its steps appended to `out`.
+    void compile_top_level(const Statement& statement, std::vector<Step>& out);
+    // A value alone, with no names in scope (a -D value, a default): false if it has an error
+    // (reported). `top`: an unbound name is a word.
+    bool compile_lone_value(const Expr& expr, bool top, Node& out);
+    // A block written alone (a default in the block tables), with no table: false if it has an
+    // error (reported).
+    std::shared_ptr<const CompiledBody> compile_lone_block(const BodyCode& code, bool& failed) {
+        return compile_body(code, "default", nullptr, failed);
+    }
+    // Slots the top-level frame needs so far.
+    uint32_t top_level_slots() const { return functions_.front().most_slots; }
+    // The include stack starts with the scene file's canonical path (a scene including itself).
+    void set_scene_path(std::string canonical) { include_stack_ = {std::move(canonical)}; }
+    // The parameters declared so far, by name (their global slots).
+    const std::vector<std::pair<std::string, uint32_t>>& parameters() const { return parameters_; }
+
+private:
+    struct NameInfo {
+        uint32_t slot = 0;
+        Span defined_at;
+    };
+    using Scope = std::unordered_map<std::string, NameInfo>;
+    // The code being compiled at one level: the top level, or a function's body.
+    struct FunctionLevel {
+        FunctionCode* code = nullptr;  // none for the top level
+        std::vector<Scope> scopes;
+        uint32_t next_slot = 0, most_slots = 0;
+        std::map<std::string, uint32_t, std::less<>> capture_index;
+    };
+
+    // Statements.
+    void compile_statements(const std::vector<Statement>& statements, std::vector<Step>& out);
+    void compile_statement(const Statement& statement, std::vector<Step>& out);
+    void compile_loop(const Statement& statement, std::vector<Step>& out);
+    void compile_function(const Statement& statement, std::vector<Step>& out);
+    void compile_include(const Statement& statement, std::vector<Step>& out);
+    // `statements` in a scope of their own (a loop's, a branch's, a group's body).
+    void compile_scoped(const std::vector<Statement>& statements, std::vector<Step>& out);
+    std::shared_ptr<CompiledBody> compile_body(const BodyCode& code, const std::string& kind, const BlockSpec* spec,
+                                               bool& failed);
+
+    // Expressions.
+    Node compile_expression(const Expr& expr, bool top = false, bool word_key = false);
+    Node compile_arithmetic(const Expr& expr);
+    Node compile_name(const Expr& expr, bool top, bool word_key);
+    Node compile_call(const Expr& expr);
+    [[noreturn]] void fail(Span span, std::string message);
+
+    // Names.
+    bool resolve(const std::string& name, size_t level, Span span, Node& out);
+    uint32_t bind(const std::string& name, Span defined_at);
+    void open_scope();
+    void close_scope();
+    std::vector<std::string_view> names_in_scope() const;
+
+    Sources& sources_;
+    Diagnostics& diagnostics_;
+    std::vector<FunctionLevel> functions_;
+    std::vector<std::string> include_stack_;
+    std::map<std::string, uint32_t> included_;  // each file read, by canonical path: its first origin
+    size_t included_bytes_ = 0;
+    std::vector<std::pair<std::string, uint32_t>> parameters_;
+    int loops_ = 0;  // loops around the statement compiled (at the top level of the file or function)
+};
+
+}  // namespace tracer

@@ -1,0 +1,388 @@
+// The interpreter's expressions: values computed from compiled nodes, user functions called,
+// and an entry's value handed to validation with its spans.
+#include <cmath>
+
+#include "base/big_stack.h"
+#include "lang/builtins.h"
+#include "lang/interpreter_class.h"
+#include "lang/schema.h"
+
+namespace tracer {
+
+// Non-finite results (1e300 * 1e300, 0 * huge / tiny) are errors where they happen.
+Val Interpreter::finite(Val value, Span span) {
+    bool ok = true;
+    if (value.is_number()) ok = std::isfinite(value.x[0]);
+    if (value.is_vector())
+        for (double c : value.components()) ok = ok && std::isfinite(c);
+    if (!ok) fail(span, "this expression's value is not finite (too large for a double)");
+    return value;
+}
+
+double Interpreter::number_operand(const Val& value, Span span, const std::string& what) {
+    if (value.kind == Val::Kind::Broken) throw EvaluationError{};
+    if (!value.is_number()) fail(span, what + " must be a number; this is " + kind_of(value));
+    return value.x[0];
+}
+
+bool Interpreter::condition(const Node& node) {
+    const Val value = evaluate(node);
+    if (value.kind != Val::Kind::Bool)
+        fail(node.span, "a condition must be true or false; this is " + kind_of(value) +
+                            (value.is_number() ? " (compare it, as in 'x != 0')" : ""));
+    return value.x[0] != 0;
+}
+
+Val Interpreter::evaluate(const Node& node) {
+    switch (node.op) {
+        case Node::Op::Constant:
+            if (node.constant.kind == Val::Kind::Broken) throw EvaluationError{};  // reported when compiled
+            return node.constant;
+        case Node::Op::Local:
+        case Node::Op::Global: {
+            const Val& value = node.op == Node::Op::Local ? slot(node.index) : stack_[node.index];
+            if (value.kind == Val::Kind::Broken) throw EvaluationError{};  // its definition's error is reported
+            return value;
+        }
+        case Node::Op::Capture: {
+            const Val& value = running_.function().captures[node.index];
+            if (value.kind == Val::Kind::Broken) throw EvaluationError{};
+            return value;
+        }
+        case Node::Op::Self: return running_;
+        case Node::Op::Word: fail(node.span, "undefined name " + in_quotes(node.text));
+        case Node::Op::Vector: {
+            double components[16];
+            std::vector<double> many;
+            for (size_t i = 0; i < node.operands.size(); ++i) {
+                const double c =
+                    number_operand(evaluate(node.operands[i]), node.operands[i].span, "a vector's component");
+                if (i < 16) components[i] = c;
+                if (i == 16) many.assign(components, components + 16);
+                if (i >= 16) many.push_back(c);
+            }
+            if (node.operands.size() > 16) return Val::vector(many);
+            return Val::vector({components, node.operands.size()});
+        }
+        case Node::Op::List: return evaluate_list(node);
+        case Node::Op::Negate:
+        case Node::Op::Plus: {
+            Val value = evaluate(node.operands[0]);
+            if (value.kind == Val::Kind::Broken) throw EvaluationError{};
+            if (!value.is_number() && !value.is_vector())
+                fail(node.operands[0].span, std::string("'") + (node.op == Node::Op::Negate ? '-' : '+') +
+                                                "' applies to numbers and vectors; this is " + kind_of(value));
+            if (node.op == Node::Op::Plus) return value;
+            if (value.object) {
+                std::vector<double> negated;
+                for (double c : value.components()) negated.push_back(-c);
+                return Val::vector(negated);
+            }
+            for (double& c : value.x) c = -c;
+            return value;
+        }
+        case Node::Op::Not: return Val::boolean(!condition(node.operands[0]));
+        case Node::Op::Arithmetic: return evaluate_arithmetic(node);
+        case Node::Op::Compare: return evaluate_compare(node);
+        case Node::Op::And:
+            for (const Node& operand : node.operands)
+                if (!condition(operand)) return Val::boolean(false);
+            return Val::boolean(true);
+        case Node::Op::Or:
+            for (const Node& operand : node.operands)
+                if (condition(operand)) return Val::boolean(true);
+            return Val::boolean(false);
+        case Node::Op::Builtin: return evaluate_builtin(node);
+        case Node::Op::Call: return call(node, true);
+        case Node::Op::Component: {
+            const Val value = evaluate(node.operands[0]);
+            static const char* kNames[] = {"x", "y", "z"};
+            if (!value.is_vector() || value.components().size() <= node.index)
+                fail(node.operands[0].span,
+                     std::string("'.") + kNames[node.index] + "' needs a vector; this is " + kind_of(value));
+            return Val::number(value.components()[node.index]);
+        }
+        case Node::Op::Index: return evaluate_index(node);
+        case Node::Op::Conditional: return evaluate(condition(node.operands[0]) ? node.operands[1] : node.operands[2]);
+        case Node::Op::Block: {
+            bool failed = false;
+            auto block = std::make_shared<BlockObject>();
+            block->kind = node.text;
+            block->body = make_body(*node.block, failed);
+            if (failed) throw EvaluationError{};
+            Val value;
+            value.kind = Val::Kind::Block;
+            value.object = std::move(block);
+            return value;
+        }
+    }
+    fail(node.span, "not a value");
+}
+
+Val Interpreter::evaluate_list(const Node& node) {
+    list_items_ += node.operands.size();
+    if (list_items_ > limits_.max_list_items) {
+        diagnostics_.error(
+            sources_, at(node.span),
+            "the scene makes more than " + std::to_string(limits_.max_list_items) + " list items (the limit)");
+        stopped_ = true;
+        throw EvaluationError{};
+    }
+    std::vector<Val> items;
+    items.reserve(node.operands.size());
+    for (const Node& operand : node.operands) {
+        items.push_back(evaluate(operand));
+        if (items.back().kind == Val::Kind::Broken) throw EvaluationError{};
+    }
+    return Val::list(std::move(items));
+}
+
+Val Interpreter::evaluate_index(const Node& node) {
+    const Val container = evaluate(node.operands[0]);
+    const Node& index_node = node.operands[1];
+    const double index = number_operand(evaluate(index_node), index_node.span, "an index");
+    size_t size = 0;
+    if (container.kind == Val::Kind::List)
+        size = container.items().size();
+    else if (container.is_vector())
+        size = container.components().size();
+    else
+        fail(node.operands[0].span, "'[...]' picks from a list or a vector; this is " + kind_of(container));
+    if (std::floor(index) != index || index < 0)
+        fail(index_node.span, "an index is a whole number from 0; this is " + format_number(index));
+    if (index >= double(size))
+        fail(index_node.span, "index " + format_number(index) + " is past the end: " + kind_of(container) +
+                                  (size == 0 ? " has none" : " has indexes 0 to " + std::to_string(size - 1)));
+    if (container.kind == Val::Kind::List) return container.items()[size_t(index)];
+    return Val::number(container.components()[size_t(index)]);
+}
+
+// A chain a + b - c ... (or a * b / c ...), folded left to right.
+Val Interpreter::evaluate_arithmetic(const Node& node) {
+    Val result = evaluate(node.operands[0]);
+    Span left = node.operands[0].span;
+    for (size_t k = 1; k < node.operands.size(); ++k) {
+        const Node& operand = node.operands[k];
+        const Span span{node.operands[0].span.begin, operand.span.end, node.span.origin};
+        result = arithmetic(node.text[k - 1], result, evaluate(operand), left, operand.span, span);
+        left = span;
+    }
+    return result;
+}
+
+// a `operation` b, the operands written at `a_span` and `b_span`, the whole at `span`.
+Val Interpreter::arithmetic(char operation, const Val& a, const Val& b, Span a_span, Span b_span, Span span) {
+    const std::string op = std::string("'") + operation + "'";
+    for (const auto& [operand, where] : {std::pair{&a, a_span}, std::pair{&b, b_span}}) {
+        if (operand->kind == Val::Kind::Broken) throw EvaluationError{};
+        if (!operand->is_number() && !operand->is_vector())
+            fail(where, op + " applies to numbers and vectors; this is " + kind_of(*operand));
+    }
+    if (a.is_number() && b.is_number()) {
+        if (operation == '/' && b.x[0] == 0) fail(b_span, "division by zero");
+        const double x = a.x[0], y = b.x[0];
+        const double result = operation == '+' ? x + y : operation == '-' ? x - y : operation == '*' ? x * y : x / y;
+        return finite(Val::number(result), span);
+    }
+    std::vector<double> out;
+    if (a.is_vector() && b.is_vector()) {
+        if (operation == '*' || operation == '/')
+            fail(span, op + " does not multiply two vectors; use dot(a, b) or cross(a, b)");
+        const auto u = a.components(), v = b.components();
+        if (u.size() != v.size())
+            fail(span,
+                 "the vectors have " + std::to_string(u.size()) + " and " + std::to_string(v.size()) + " components");
+        for (size_t i = 0; i < u.size(); ++i) out.push_back(operation == '+' ? u[i] + v[i] : u[i] - v[i]);
+        return finite(Val::vector(out), span);
+    }
+    // A vector and a number: scaled (v * s, s * v, v / s); adding them is an error.
+    if (operation == '+' || operation == '-')
+        fail(span, op + " needs two numbers or two vectors; this is a number and a vector");
+    const Val& vector = a.is_vector() ? a : b;
+    const double scalar = a.is_vector() ? b.x[0] : a.x[0];
+    if (operation == '/' && a.is_number()) fail(span, "a number cannot be divided by a vector");
+    if (operation == '/' && scalar == 0) fail(b_span, "division by zero");
+    for (double c : vector.components()) out.push_back(operation == '*' ? c * scalar : c / scalar);
+    return finite(Val::vector(out), span);
+}
+
+Val Interpreter::evaluate_compare(const Node& node) {
+    const Val a = evaluate(node.operands[0]), b = evaluate(node.operands[1]);
+    const std::string& op = node.text;
+    for (const Val* operand : {&a, &b}) {
+        if (operand->kind == Val::Kind::Broken) throw EvaluationError{};
+        const Node& written = node.operands[operand == &a ? 0 : 1];
+        const bool comparable =
+            operand->is_number() ||
+            ((op == "==" || op == "!=") &&
+             (operand->is_vector() || operand->kind == Val::Kind::Bool || operand->kind == Val::Kind::String));
+        if (!comparable)
+            fail(written.span,
+                 "'" + op + "' compares " +
+                     (op == "==" || op == "!=" ? "numbers, vectors, booleans or strings" : std::string("numbers")) +
+                     "; this is " + kind_of(*operand));
+    }
+    if (op == "==" || op == "!=") {
+        if (a.kind != b.kind || (a.is_vector() && a.components().size() != b.components().size()))
+            fail(node.span,
+                 "'" + op + "' compares two values of the same kind; this is " + kind_of(a) + " and " + kind_of(b));
+        return Val::boolean(equal_values(a, b) == (op == "=="));
+    }
+    const double x = a.x[0], y = b.x[0];
+    return Val::boolean(op == "<" ? x < y : op == "<=" ? x <= y : op == ">" ? x > y : x >= y);
+}
+
+Val Interpreter::evaluate_builtin(const Node& node) {
+    Val args[4];
+    Span spans[4];
+    const size_t n = node.operands.size();  // the arity, checked when compiled (at most 3)
+    for (size_t i = 0; i < n; ++i) {
+        args[i] = evaluate(node.operands[i]);
+        if (args[i].kind == Val::Kind::Broken) throw EvaluationError{};
+        spans[i] = node.operands[i].span;
+    }
+    try {
+        return finite(node.builtin->body(BuiltinArguments(node.builtin->name, {args, n}, {spans, n}, node.span)),
+                      node.span);
+    } catch (const BuiltinError& error) {
+        fail(error.span, error.message);
+    }
+}
+
+Val Interpreter::call(const Node& node, bool for_value) {
+    // Step 1: the function and its arguments, in the caller's frame.
+    const Val callee = evaluate(node.operands[0]);
+    if (callee.kind != Val::Kind::Function)
+        fail(node.operands[0].span, in_quotes(node.text) + " is " + kind_of(callee) + ", not a function");
+    const FunctionCode& code = *callee.function().code;
+    const size_t given = node.operands.size() - 1;
+    if (given != code.parameters) {
+        diagnostics_.error(sources_, at(node.span),
+                           in_quotes(code.name) + " takes " + std::to_string(code.parameters) + " argument" +
+                               (code.parameters == 1 ? "" : "s") + ", found " + std::to_string(given));
+        throw EvaluationError{};
+    }
+    if (call_depth_ >= kMaxCallDepth || stack_used_since(stack_top_) > kBigStackBytes / 2)
+        fail(node.span, "calls nest more than " + std::to_string(call_depth_) +
+                            " deep (the limit): a recursion that does not stop?");
+    const size_t base = stack_.size();
+    stack_.resize(base + code.slots);
+    for (size_t i = 0; i < given; ++i) {
+        Val argument = evaluate(node.operands[i + 1]);
+        if (argument.kind == Val::Kind::Broken) {
+            stack_.resize(base);
+            throw EvaluationError{};
+        }
+        stack_[base + i] = std::move(argument);
+    }
+    // Step 2: its body, in a frame of its own.
+    const std::string_view name = sources_.file(code.name_span).slice(code.name_span);
+    bool gave_value = false, failed_inside = false;
+    Val result;
+    {
+        struct Restore {
+            Interpreter& machine;
+            size_t frame_base;
+            Val running;
+            bool making_blocks, step_failed;
+            size_t stack_size;
+            ~Restore() {
+                machine.frame_base_ = frame_base;
+                machine.running_ = std::move(running);
+                machine.making_blocks_ = making_blocks;
+                machine.step_failed_ = machine.step_failed_ || step_failed;
+                machine.stack_.resize(stack_size);
+                machine.contexts_.pop_back();
+                --machine.call_depth_;
+            }
+        } restore{*this, frame_base_, running_, making_blocks_, step_failed_, base};
+        contexts_.push_back({RunContext::Kind::Call, node.span, name, 0, code.file_origin});
+        ++call_depth_;
+        frame_base_ = base;
+        running_ = callee;
+        if (for_value) making_blocks_ = false;
+        returned_value_ = false;
+        step_failed_ = false;
+        const Flow flow = run_steps(code.steps);
+        gave_value = flow == Flow::Return && returned_value_;
+        failed_inside = step_failed_;
+        returned_value_ = false;
+        result = std::move(returned_);
+        returned_ = Val{};
+    }
+    // Step 3: what the caller expected.
+    if (result.kind == Val::Kind::Broken) throw EvaluationError{};  // reported inside
+    if (for_value && !gave_value) {
+        if (failed_inside || stopped_ || diagnostics_.saturated()) throw EvaluationError{};  // reported inside
+        fail(node.span, in_quotes(code.name) + " gives no value here: its body ends without 'return VALUE'");
+    }
+    if (!for_value && gave_value)
+        fail(node.span, in_quotes(code.name) +
+                            " gives a value, which a statement leaves unused; keep it with 'let NAME = " + code.name +
+                            "(...)'");
+    return result;
+}
+
+// An entry's value as validation reads it, with the spans of what wrote it: a word, or the
+// value computed; false if it had an error (reported).
+bool Interpreter::entry_value(const CompiledEntry& entry, Value& out) {
+    const Node& node = entry.value;
+    const KeySpec* key = entry.spec;
+    out.span = at(node.span);
+    if (node.op == Node::Op::Word) {
+        out.kind = Value::Kind::Identifier;
+        out.text = node.text;
+        return true;
+    }
+    const Val value = evaluate(node);
+    if (key && key->type == ValueType::Path && value.kind != Val::Kind::String)
+        fail(node.span, "'" + entry.key + "' expects a file path in double quotes: " + entry.key + " \"" +
+                            std::string(sources_.file(node.span).slice(node.span)) + "\"");
+    switch (value.kind) {
+        case Val::Kind::Number:
+            out.kind = Value::Kind::Number;
+            out.number = value.x[0];
+            return true;
+        case Val::Kind::Vector: {
+            out.kind = Value::Kind::Vector;
+            const auto components = value.components();
+            out.components.assign(components.begin(), components.end());
+            // Written as (a, b, c): each component points at its own expression.
+            const bool literal = node.op == Node::Op::Vector && node.operands.size() == components.size();
+            out.component_spans.reserve(components.size());
+            for (size_t i = 0; i < components.size(); ++i)
+                out.component_spans.push_back(literal ? at(node.operands[i].span) : out.span);
+            return true;
+        }
+        case Val::Kind::Bool:
+            out.kind = Value::Kind::Identifier;
+            out.text = value.x[0] != 0 ? "true" : "false";
+            return true;
+        case Val::Kind::String:
+            out.kind = Value::Kind::String;
+            out.text = value.text();
+            return true;
+        case Val::Kind::Block: {
+            const std::string& kind = value.block().kind;
+            const std::string_view wanted = !key                                  ? std::string_view(kind)
+                                            : key->type == ValueType::MaterialRef ? "material"
+                                            : key->block                          ? key->block->kind
+                                                                                  : std::string_view();
+            if (wanted != kind)
+                fail(node.span, "'" + entry.key + "' takes " +
+                                    (wanted.empty() ? std::string("no block") : "a " + std::string(wanted)) +
+                                    "; this is a " + kind);
+            out.kind = Value::Kind::Block;
+            out.body = value.block().body;
+            return true;
+        }
+        case Val::Kind::List:
+            fail(node.span, "'" + entry.key + "' takes one value, not a list; pick one with [i], as in 'list[0]'");
+        case Val::Kind::Function:
+            fail(node.span, "'" + entry.key + "' takes a value, not a function; call it, as in 'f(...)'");
+        case Val::Kind::Broken: throw EvaluationError{};
+    }
+    return false;
+}
+
+}  // namespace tracer

@@ -1,0 +1,98 @@
+// The interpreter's class, shared by its two files: interpreter.cpp (statements, blocks, the
+// contexts that give spans their origins) and evaluate.cpp (expressions and calls). Internal.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "lang/code.h"
+#include "lang/compile.h"
+#include "lang/interpreter.h"
+
+namespace tracer {
+
+// Thrown after an error while running has been reported: the entry or statement is dropped.
+struct EvaluationError {};
+
+// Where the code running now came from, innermost last: a loop iteration, a call or an include.
+// Its origin (Sources) is made only when something made in it needs a span.
+struct RunContext {
+    enum class Kind : uint8_t { Iteration, Call, Include };
+    Kind kind = Kind::Iteration;
+    Span at;                   // the loop's keyword, the call or the include's path, as compiled
+    std::string_view name;     // the loop's variable or the function's name
+    double value = 0;          // the iteration's value (or, looping over a list, its index)
+    uint32_t file_origin = 0;  // Call, Include: the origin the code was compiled with
+    uint32_t origin = 0;
+    bool has_origin = false;
+};
+
+class Interpreter {
+public:
+    Interpreter(Sources& sources, Diagnostics& diagnostics, const InterpretLimits& limits, BlockSink on_block);
+
+    EvaluatedScene run(const ParameterValues& parameters);
+    bool single_value(const Expr& expr, Value& out);
+
+private:
+    enum class Flow { Next, Return };
+
+    // Statements (interpreter.cpp).
+    Flow run_steps(const std::vector<Step>& steps);
+    Flow run_step(const Step& step);
+    void run_block(const Step& step);
+    void run_binding(const Step& step);
+    Flow run_range(const Step& step);
+    Flow run_each(const Step& step);
+    Flow run_include(const Step& step);
+    bool count_iteration(const Step& step);
+    std::shared_ptr<Body> make_body(const CompiledBody& code, bool& failed);
+    // The value of an entry: `value` computed at `node`, as the validator reads it.
+    bool entry_value(const CompiledEntry& entry, Value& out);
+
+    // Expressions (evaluate.cpp).
+    Val evaluate(const Node& node);
+    Val evaluate_arithmetic(const Node& node);
+    Val arithmetic(char operation, const Val& a, const Val& b, Span a_span, Span b_span, Span span);
+    Val evaluate_compare(const Node& node);
+    bool condition(const Node& node);
+    Val evaluate_builtin(const Node& node);
+    Val evaluate_index(const Node& node);
+    Val evaluate_list(const Node& node);
+    // A user function called at `node`: for its value, or (`for_value` false) for its blocks.
+    Val call(const Node& node, bool for_value);
+    Val finite(Val value, Span at);
+    double number_operand(const Val& value, Span span, const std::string& what);
+    [[noreturn]] void fail(Span at, std::string message);
+
+    // Slots.
+    Val& slot(uint32_t index) { return stack_[frame_base_ + index]; }
+
+    // Origins: the span as compiled, given the origin of the context running it.
+    uint32_t here();
+    Span at(Span span) { return {span.begin, span.end, here()}; }
+
+    Sources& sources_;
+    Diagnostics& diagnostics_;
+    Compiler compiler_;
+    EvaluatedScene scene_;
+    std::vector<Val> stack_;  // the top level's slots, then each call's
+    size_t frame_base_ = 0;
+    Val running_;               // the function running (none at the top level)
+    bool step_failed_ = false;  // a statement had an error (reported) since the call began
+    Val returned_;              // the value of the last 'return'
+    bool returned_value_ = false;
+    bool making_blocks_ = true;  // false while a function runs for its value
+    std::vector<RunContext> contexts_;
+    std::shared_ptr<const Group> current_group_;         // the innermost group running
+    std::map<std::string, Val, std::less<>> overrides_;  // -D values, by name
+    std::map<std::string, std::string, std::less<>> override_texts_;
+    size_t blocks_ = 0, iterations_run_ = 0, statements_run_ = 0, list_items_ = 0, call_depth_ = 0;
+    bool stopped_ = false;  // a limit was hit: nothing more is run
+    InterpretLimits limits_;
+    BlockSink on_block_;
+    const char* stack_top_ = nullptr;  // where the native stack began, for the guard in call()
+};
+
+}  // namespace tracer

@@ -1,0 +1,129 @@
+// The parser after a syntax error: skipping to where the next statement can start, so that one
+// run reports the errors of several blocks, and telling a missing '}' from a new statement.
+#include "lang/parser_class.h"
+#include "lang/schema.h"
+
+namespace tracer {
+
+bool is_statement_keyword(std::string_view word) {
+    return word == "let" || word == "param" || word == "for" || word == "include" || word == "if" || word == "fn" ||
+           word == "return" || word == "group";
+}
+
+bool is_placement_key(std::string_view word) {
+    return word == "scale" || word == "rotate" || word == "translate" || word == "transform";
+}
+
+void Parser::fail(const Token& token, std::string message) {
+    // The lexer has already reported an Error token: one message per mistake.
+    if (token.kind != TokenKind::Error) diagnostics_.error(file_, token.span, std::move(message));
+    throw SyntaxError{};
+}
+
+// A top-level block written where a key was expected almost always means a missing '}':
+// `sphere {`, `sphere name {` or `material name {` (a plain `material {` is an inline material),
+// and so does a statement (`let x =`, `for i in`, `include "..."`).
+bool Parser::starts_new_block() {
+    if (!at(TokenKind::Identifier)) return false;
+    std::string_view word = peek().text;
+    if (is_statement_keyword(word)) return starts_statement();
+    if (!find_block_spec(word)) return false;
+    if (word != "material" && at(TokenKind::LBrace, 1)) return true;
+    return at(TokenKind::Identifier, 1) && at(TokenKind::LBrace, 2);
+}
+
+// `let x =`, `param x =`, `for x in`, `include "..."`, `fn f(`, `group {`, `if`, `return`.
+bool Parser::starts_statement() {
+    if (!at(TokenKind::Identifier)) return false;
+    std::string_view word = peek().text;
+    if ((word == "let" || word == "param") && at(TokenKind::Identifier, 1) && at(TokenKind::Equals, 2)) return true;
+    if (word == "for" && at(TokenKind::Identifier, 1) && at_word("in", 2)) return true;
+    if (word == "fn") return at(TokenKind::Identifier, 1) && at(TokenKind::LParen, 2);
+    if (word == "group") return at(TokenKind::LBrace, 1);
+    if (word == "if" || word == "return") return true;
+    return word == "include" && at(TokenKind::String, 1);
+}
+
+// Skips to the '}' that closes the current top-level block (or the end of the file).
+void Parser::skip_to_block_end() {
+    // The block is already reported: what the lexer finds in the rest of it is no news.
+    lexer_.set_quiet(true);
+    struct LoudAgain {
+        Lexer& lexer;
+        ~LoudAgain() { lexer.set_quiet(false); }
+    } loud_again{lexer_};
+    if (open_.empty()) {
+        // The error came before the block's '{': skip to that brace, unless a block starts first.
+        while (!at(TokenKind::End) && !at(TokenKind::LBrace) &&
+               !(at(TokenKind::Identifier) && find_block_spec(peek().text)))
+            take();
+        if (!at(TokenKind::LBrace)) return;
+        open_.push_back({take().span, "block"});
+    }
+    int depth = int(open_.size());
+    while (depth > 0) {
+        if (at(TokenKind::End)) {
+            Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
+            Diagnostics::note(d, file_, open_.front().span,
+                              "to close the '" + open_.front().owner + "' block opened here");
+            return;
+        }
+        TokenKind kind = take().kind;
+        if (kind == TokenKind::LBrace) ++depth;
+        if (kind == TokenKind::RBrace) --depth;
+    }
+}
+
+// `range(...)` where a range belongs: the way to write it here, from the call's own arguments.
+std::string Parser::range_call_hint(const Expr& call, const std::string& name) const {
+    auto text = [&](const Expr& e) { return std::string(file_.slice(e.span)); };
+    const auto& args = call.operands;
+    const std::string range = args.size() == 1   ? "0.." + text(args[0])
+                              : args.size() == 2 ? text(args[0]) + ".." + text(args[1])
+                                                 : "A..B";
+    return "'range(...)' is not a function here: a loop is written 'for " + name + " in " + range +
+           "' (from the first number up to the end - 1)";
+}
+
+// After an error in the header of a loop, condition, function or group: skip the statement,
+// body and all, when its '{' is on the keyword's line (so that the body's statements and '}'
+// raise no errors of their own); else as after any broken statement.
+void Parser::skip_broken_header(Span keyword) {
+    for (;;) {
+        const int line = file_.locate(keyword.begin).line;
+        lexer_.set_quiet(true);
+        while (!at(TokenKind::End) && !at(TokenKind::LBrace) && file_.locate(peek().span.begin).line == line) take();
+        lexer_.set_quiet(false);
+        if (!at(TokenKind::LBrace)) return skip_to_next_statement();
+        lexer_.set_quiet(true);
+        for (int depth = 0; !at(TokenKind::End);) {
+            const TokenKind kind = take().kind;
+            depth += kind == TokenKind::LBrace ? 1 : kind == TokenKind::RBrace ? -1 : 0;
+            if (depth == 0) break;
+        }
+        lexer_.set_quiet(false);
+        // `} else {`: the rest of a broken condition goes with it.
+        if (!at_word("else")) return;
+        keyword = peek().span;
+    }
+}
+
+// After a broken statement: skip to what can start the next one (a statement keyword, a block
+// kind, or a body's closing brace).
+void Parser::skip_to_next_statement() {
+    lexer_.set_quiet(true);
+    while (!at(TokenKind::End) && !at(TokenKind::RBrace) &&
+           !(at(TokenKind::Identifier) && (find_block_spec(peek().text) || is_statement_keyword(peek().text))))
+        take();
+    lexer_.set_quiet(false);
+}
+
+// Everything left, unreported: after nesting too deep to parse, the rest is a generated or
+// broken file.
+void Parser::skip_rest_of_file() {
+    lexer_.set_quiet(true);
+    while (!at(TokenKind::End)) take();
+    lexer_.set_quiet(false);
+}
+
+}  // namespace tracer

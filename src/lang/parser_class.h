@@ -1,0 +1,110 @@
+// The parser's class, shared by its three files: parser.cpp (statements), parse_expressions.cpp
+// (expressions) and parse_recovery.cpp (skipping past a syntax error). Internal to the parser.
+#pragma once
+
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "base/diagnostics.h"
+#include "base/source.h"
+#include "lang/lexer.h"
+#include "lang/syntax_tree.h"
+
+namespace tracer {
+
+// Thrown after a syntax error has been reported, to unwind to the top-level block.
+struct SyntaxError {};
+// Thrown when a new top-level block starts before the current one was closed.
+struct UnclosedBlock {};
+
+struct OpenBrace {
+    Span span;
+    std::string owner;  // what the brace opened, for "to close the 'sphere' block"
+};
+
+// Nesting deeper than this (parentheses, unary minus, conditions, statements in braces) is
+// refused: the parser recurses.
+inline constexpr int kMaxParseDepth = 200;
+
+// The words that start a statement other than a block.
+bool is_statement_keyword(std::string_view word);
+// The keys a group's placement is written with (before its contents).
+bool is_placement_key(std::string_view word);
+
+class Parser {
+public:
+    Parser(const SourceFile& file, Diagnostics& diagnostics, uint32_t origin)
+        : file_(file), diagnostics_(diagnostics), lexer_(file, diagnostics, origin) {}
+
+    Program parse_program();
+    bool next_statement(std::vector<Statement>& out);
+    bool parse_lone_value(Expr& out);
+
+private:
+    // Token access with three tokens of look-ahead.
+    const Token& peek(size_t ahead = 0);
+    Token take();
+    bool at(TokenKind kind, size_t ahead = 0) { return peek(ahead).kind == kind; }
+    bool at_word(std::string_view word, size_t ahead = 0) {
+        return at(TokenKind::Identifier, ahead) && peek(ahead).text == word;
+    }
+
+    // Statements (parser.cpp).
+    void parse_statements(std::vector<Statement>& out, bool nested);
+    void parse_statement(std::vector<Statement>& out);
+    void parse_block(std::vector<Statement>& out);
+    void parse_binding(std::vector<Statement>& out, Statement::Kind kind);
+    template <class Parse>
+    void parse_block_guarded(std::vector<Statement>& out, Statement block, Parse parse);
+    void parse_loop(std::vector<Statement>& out);
+    void parse_if(std::vector<Statement>& out);
+    void parse_function(std::vector<Statement>& out);
+    void parse_return(std::vector<Statement>& out);
+    void parse_call(std::vector<Statement>& out);
+    void parse_group(std::vector<Statement>& out);
+    void parse_include(std::vector<Statement>& out);
+    // The statements of a body whose '{' (at `open_brace`, opened by `owner`) was just taken, and
+    // its '}'; false if it was too deep to parse (reported, the rest of the file skipped).
+    bool parse_braced_statements(Statement& statement, std::vector<Statement>& out, Span open_brace,
+                                 const std::string& owner);
+    void parse_body(BodyCode& body, const std::string& owner);
+    void parse_entry(BodyCode& body);
+    void parse_value(Expr& value, const std::string& key);
+
+    // Expressions (parse_expressions.cpp).
+    Expr parse_expression();
+    Expr parse_and();
+    Expr parse_not();
+    Expr parse_comparison();
+    Expr parse_sum();
+    Expr parse_term();
+    Expr parse_unary();
+    Expr parse_postfix();
+    Expr parse_primary();
+    Expr parse_conditional();
+    void parse_list(Expr& value, TokenKind close, const char* what);
+    void enter_nesting();
+    Token expect(TokenKind kind, const std::string& what);
+
+    // Recovery (parse_recovery.cpp).
+    bool starts_new_block();
+    bool starts_statement();
+    void skip_to_next_statement();
+    void skip_broken_header(Span keyword);
+    void skip_rest_of_file();
+    std::string range_call_hint(const Expr& call, const std::string& name) const;
+    [[noreturn]] void fail(const Token& token, std::string message);
+    void skip_to_block_end();
+
+    const SourceFile& file_;
+    Diagnostics& diagnostics_;
+    Lexer lexer_;
+    std::deque<Token> lookahead_;
+    std::vector<OpenBrace> open_;  // braces opened inside the current block
+    int depth_ = 0;                // expressions nested: a bound against stack overflow (so is nesting_)
+    int nesting_ = 0;              // loops, conditions, functions and groups around the statement being parsed
+    int functions_ = 0;            // functions around it ('return' is allowed)
+};
+
+}  // namespace tracer

@@ -1,0 +1,92 @@
+// A value while a scene program runs: a number, a vector, a boolean, a string, a list, a block
+// (a material or a transform written as a value) or a function. Small and cheap to copy: numbers,
+// booleans and vectors of up to 3 components hold no heap memory; the rest share immutable
+// objects. Spans are not kept here: the code that made a value knows where it was written.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace tracer {
+
+struct Body;
+struct FunctionCode;
+struct Val;
+
+// What the heap-held kinds point to; never changed once made.
+struct ValObject {
+    virtual ~ValObject() = default;
+};
+struct StringObject final : ValObject {
+    std::string text;
+};
+struct ListObject final : ValObject {
+    std::vector<Val> items;
+};
+struct WideVectorObject final : ValObject {  // a vector of more than 3 components
+    std::vector<double> components;
+};
+struct BlockObject final : ValObject {  // material { ... } or transform { ... }, evaluated
+    std::string kind;
+    std::shared_ptr<Body> body;
+};
+struct FunctionObject final : ValObject {
+    std::shared_ptr<const FunctionCode> code;
+    std::vector<Val> captures;  // the values of the outer names its body uses, taken when defined
+};
+
+struct Val {
+    enum class Kind : uint8_t { Number, Vector, Bool, String, List, Block, Function, Broken };
+    Kind kind = Kind::Number;
+    uint8_t size = 0;         // Vector: its number of components
+    double x[3] = {0, 0, 0};  // Number: x[0]; Bool: x[0] is 1 or 0; Vector of up to 3: its components
+    std::shared_ptr<const ValObject> object;
+
+    static Val number(double value) {
+        Val v;
+        v.x[0] = value;
+        return v;
+    }
+    static Val boolean(bool value) {
+        Val v;
+        v.kind = Kind::Bool;
+        v.x[0] = value ? 1 : 0;
+        return v;
+    }
+    static Val vector3(double a, double b, double c) {
+        Val v;
+        v.kind = Kind::Vector;
+        v.size = 3;
+        v.x[0] = a, v.x[1] = b, v.x[2] = c;
+        return v;
+    }
+    // A vector of any number of components.
+    static Val vector(std::span<const double> components);
+    static Val string(std::string text);
+    static Val list(std::vector<Val> items);
+    // A name whose definition had an error (reported): using it is an error already reported.
+    static Val broken() {
+        Val v;
+        v.kind = Kind::Broken;
+        return v;
+    }
+
+    bool is_number() const { return kind == Kind::Number; }
+    bool is_vector() const { return kind == Kind::Vector; }
+    std::span<const double> components() const;
+    const std::string& text() const { return static_cast<const StringObject&>(*object).text; }
+    const std::vector<Val>& items() const { return static_cast<const ListObject&>(*object).items; }
+    const BlockObject& block() const { return static_cast<const BlockObject&>(*object); }
+    const FunctionObject& function() const { return static_cast<const FunctionObject&>(*object); }
+};
+
+// What a value is, for messages: "a number", "a vector of 3 numbers", "a list of 4 values".
+std::string kind_of(const Val& value);
+// True if the two values are equal: the same kind and equal numbers, components or texts (lists,
+// blocks and functions: the same one; the language does not compare them).
+bool equal_values(const Val& a, const Val& b);
+
+}  // namespace tracer
