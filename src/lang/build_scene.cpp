@@ -89,16 +89,21 @@ bool Validator::check_material_name(const Value& value) {
 
 void Validator::build(const Block& block, const Fields& fields) {
     const std::string& kind = block.kind;
+    if (block.group && (kind == "camera" || kind == "render"))
+        return (void)diagnostics_.error(file_, block.kind_span,
+                                        "a " + kind + " block is not placed by a group: write it outside the group");
     if (kind == "render") return build_render(block, fields);
     if (kind == "camera") return build_camera(block, fields);
     if (kind == "mesh") return build_mesh(block, fields);
     if (kind == "triangle" || kind == "quad" || kind == "box") return build_flat_shape(block, fields);
     if (kind == "light") {
-        scene_.lights.push_back({fields.triple("position"), fields.triple("color")});
+        Placed group;
+        if (!add_group_steps(block, group)) return;
+        scene_.lights.push_back({Placement(group).point(fields.triple("position")), fields.triple("color")});
     } else if (kind == "sphere") {
-        scene_.spheres.push_back({fields.triple("center"), fields.number("radius"), material_index(fields)});
+        build_sphere(block, fields);
     } else if (kind == "plane") {
-        scene_.planes.push_back({fields.triple("point"), normalized(fields.triple("normal")), material_index(fields)});
+        build_plane(block, fields);
     }
 }
 
@@ -144,6 +149,12 @@ void Validator::build_camera(const Block& block, const Fields& fields) {
 bool Validator::build_placed(const Block& block, const Fields& fields, Placed& out) {
     out.at = Diagnostics::locate(file_, block.kind_span);
     out.material = material_index(fields);
+    return build_placement(fields, out) && add_group_steps(block, out);
+}
+
+// The placement written by `fields`' scale, rotate and translate keys, or by the steps of its
+// transform block (not both). False if it is refused (reported).
+bool Validator::build_placement(const Fields& fields, Placed& out) {
     out.scale = fields.triple("scale");
     const Fields& rotate = fields.child("rotate");
     out.rotate_axis = normalized(rotate.triple("axis"));

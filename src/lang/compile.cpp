@@ -211,7 +211,7 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Step>& 
         case Statement::Kind::Group: {
             step.op = Step::Op::Group;
             bool failed = false;
-            step.body = compile_body(statement.body, "group", find_block_spec("group"), failed);
+            step.body = compile_body(statement.body, "group", &group_spec(), failed);
             step.broken = failed;
             compile_scoped(statement.statements, step.steps);
             break;

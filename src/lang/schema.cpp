@@ -117,17 +117,6 @@ const BlockSpec kMaterial{
     "sphere {\n  center (0, 0, 0)\n  radius 1\n  material shiny_green\n}\n",
 };
 
-const BlockSpec kSphere{
-    "sphere", false, true, Occurs::Any,
-    "A sphere.",
-    {
-        key("center", ValueType::Vector, "", "Centre."),
-        ranged(key("radius", ValueType::Number, "", "Radius."), kSmallestSize, kInf),
-        key("material", ValueType::MaterialRef, "", "A material name or an inline material block."),
-    },
-    "sphere {\n  center (1, -0.5, 3)\n  radius 0.5\n  material { ka 0.1 kd (0, 0, 1) ks 1 n 10 }\n}\n",
-};
-
 const BlockSpec kPlane{
     "plane", false, true, Occurs::Any,
     "An infinite plane, visible from both sides.",
@@ -184,6 +173,32 @@ std::vector<KeySpec> placed(std::vector<KeySpec> keys, std::vector<KeySpec> afte
     keys.push_back(key("material", ValueType::MaterialRef, "", "A material name or an inline material block."));
     return keys;
 }
+
+const BlockSpec kSphere{
+    "sphere", false, true, Occurs::Any,
+    "A sphere, placed like a mesh (by one scale factor on every axis: a sphere stays a sphere).",
+    placed({
+        key("center", ValueType::Vector, "", "Centre."),
+        ranged(key("radius", ValueType::Number, "", "Radius."), kSmallestSize, kInf),
+    }),
+    "sphere {\n  center (1, -0.5, 3)\n  radius 0.5\n  material { ka 0.1 kd (0, 0, 1) ks 1 n 10 }\n}\n",
+};
+
+const BlockSpec kGroup{
+    "group", false, false, Occurs::Any,
+    "The placement of a `group { ... }`, written before its contents: it places every shape and light made "
+    "inside, after their own placement (groups inside groups: the inner one first).",
+    {
+        scale_key("Scale factor, uniform or per axis, applied first; a negative factor mirrors."),
+        rotate_key("Rotation, applied after scaling: `rotate { axis (x, y, z) angle degrees }`."),
+        key("translate", ValueType::Vector, "(0, 0, 0)", "Translation, applied last."),
+        nested(key("transform", ValueType::Block, "{ }",
+                   "Instead of `scale`, `rotate` and `translate`: any number of those steps in the order they "
+                   "apply."),
+               &kTransform),
+    },
+    "",
+};
 
 const BlockSpec kMesh{
     "mesh", false, true, Occurs::Any,
@@ -250,9 +265,14 @@ const KeySpec* BlockSpec::find_key(std::string_view key_name) const {
 }
 
 const std::vector<const BlockSpec*>& all_block_specs() {
-    static const std::vector<const BlockSpec*> specs{&kCamera,   &kRender, &kMaterial, &kSphere, &kPlane,     &kMesh,
-                                                     &kTriangle, &kQuad,   &kBox,      &kRotate, &kTransform, &kLight};
+    static const std::vector<const BlockSpec*> specs{&kCamera,    &kRender,   &kMaterial, &kSphere, &kPlane,
+                                                     &kMesh,      &kTriangle, &kQuad,     &kBox,    &kRotate,
+                                                     &kTransform, &kGroup,    &kLight};
     return specs;
+}
+
+const BlockSpec& group_spec() {
+    return kGroup;
 }
 
 const BlockSpec* find_block_spec(std::string_view kind) {

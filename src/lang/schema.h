@@ -61,6 +61,8 @@ struct BlockSpec {
 const std::vector<const BlockSpec*>& all_block_specs();
 // The top-level block kind called `kind`, or nullptr.
 const BlockSpec* find_block_spec(std::string_view kind);
+// The table of a group's placement (`group { translate ... }`).
+const BlockSpec& group_spec();
 // A number as messages and the reference print it: 100000, 0.5, 1e-30.
 std::string format_number(double value);
 

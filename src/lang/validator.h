@@ -65,6 +65,12 @@ private:
     void build_render(const Block& block, const Fields& fields);
     void build_camera(const Block& block, const Fields& fields);
     bool build_placed(const Block& block, const Fields& fields, Placed& out);
+    bool build_placement(const Fields& fields, Placed& out);
+    // Appends to `out` the steps of the groups `block` was made in, innermost first; false if a
+    // group's placement is refused (reported once, at the group).
+    bool add_group_steps(const Block& block, Placed& out);
+    void build_sphere(const Block& block, const Fields& fields);
+    void build_plane(const Block& block, const Fields& fields);
     void build_mesh(const Block& block, const Fields& fields);
     void build_flat_shape(const Block& block, const Fields& fields);
     bool check_reach(const Block& block, const Placed& placed, const TriangleMesh& mesh);
@@ -89,6 +95,14 @@ private:
     };
     std::map<const Body*, SharedMaterial> value_materials_;
     std::map<std::string_view, Span> first_of_kind_;  // each kind's first block
+    // Each group's own steps, by the group (held, so that no other group can take its address);
+    // `ok` false if its placement was refused.
+    struct GroupSteps {
+        std::shared_ptr<const Group> group;
+        bool ok = false;
+        std::vector<TransformStep> steps;
+    };
+    std::map<const Group*, GroupSteps> group_steps_;
     // Materials used by name before their block, resolved by finish(): a shape's material index
     // kLaterMaterial - i stands for later_uses_[i].
     struct LaterUse {
