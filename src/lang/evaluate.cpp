@@ -262,7 +262,7 @@ Val Interpreter::call(const Node& node, bool for_value) {
                                (code.parameters == 1 ? "" : "s") + ", found " + std::to_string(given));
         throw EvaluationError{};
     }
-    if (call_depth_ >= kMaxCallDepth || stack_used_since(stack_top_) > kBigStackBytes / 2)
+    if (call_depth_ >= kMaxCallDepth || stack_used_since(stack_top_, TRACER_STACK_ADDRESS()) > kBigStackBytes / 2)
         fail(node.span, "calls nest more than " + std::to_string(call_depth_) +
                             " deep (the limit): a recursion that does not stop?");
     const size_t base = stack_.size();

@@ -52,8 +52,7 @@ void Interpreter::fail(Span span, std::string message) {
 }
 
 EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
-    const char top = 0;
-    stack_top_ = &top;
+    stack_top_ = TRACER_STACK_ADDRESS();
     // Step 1: the command line's parameters, each a value alone.
     for (const auto& [name, text] : parameters) {
         SourceFile file("-D " + name, text);

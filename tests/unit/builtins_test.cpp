@@ -29,7 +29,8 @@ double number(std::string_view name, std::vector<Val> args) {
     return call(name, std::move(args)).x[0];
 }
 std::vector<double> vector(std::string_view name, std::vector<Val> args) {
-    const auto c = call(name, std::move(args)).components();
+    const Val result = call(name, std::move(args));  // its components live in it
+    const auto c = result.components();
     return {c.begin(), c.end()};
 }
 // The message of the BuiltinError that calling `name` with `args` throws, or "" if none.
