@@ -172,17 +172,18 @@ Val Interpreter::evaluate_arithmetic(const Node& node) {
 
 // a `operation` b, the operands written at `a_span` and `b_span`, the whole at `span`.
 Val Interpreter::arithmetic(char operation, const Val& a, const Val& b, Span a_span, Span b_span, Span span) {
+    if (a.is_number() && b.is_number()) {  // the common case first, with nothing to allocate
+        if (operation == '/' && b.x[0] == 0) fail(b_span, "division by zero");
+        const double x = a.x[0], y = b.x[0];
+        const double result = operation == '+' ? x + y : operation == '-' ? x - y : operation == '*' ? x * y : x / y;
+        if (!std::isfinite(result)) fail(span, "this expression's value is not finite (too large for a double)");
+        return Val::number(result);
+    }
     const std::string op = std::string("'") + operation + "'";
     for (const auto& [operand, where] : {std::pair{&a, a_span}, std::pair{&b, b_span}}) {
         if (operand->kind == Val::Kind::Broken) throw EvaluationError{};
         if (!operand->is_number() && !operand->is_vector())
             fail(where, op + " applies to numbers and vectors; this is " + kind_of(*operand));
-    }
-    if (a.is_number() && b.is_number()) {
-        if (operation == '/' && b.x[0] == 0) fail(b_span, "division by zero");
-        const double x = a.x[0], y = b.x[0];
-        const double result = operation == '+' ? x + y : operation == '-' ? x - y : operation == '*' ? x * y : x / y;
-        return finite(Val::number(result), span);
     }
     std::vector<double> out;
     if (a.is_vector() && b.is_vector()) {
