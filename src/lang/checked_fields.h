@@ -4,7 +4,7 @@
 // reading through a null pointer.
 #pragma once
 
-#include <map>
+#include <array>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -21,18 +21,24 @@ const Value& default_of(const KeySpec& key);
 
 class Fields {
 public:
-    explicit Fields(const BlockSpec& spec) : spec_(&spec) {}
+    // Most keys one table may have (Fields keeps one slot per key, without allocating).
+    static constexpr size_t kMaxKeys = 16;
 
-    void set(const KeySpec& key, const Value& value, Span key_span) { given_[key.name] = {&value, key_span}; }
-    void set_child(const KeySpec& key, std::unique_ptr<Fields> child) { children_[key.name] = std::move(child); }
-    bool has(std::string_view name) const { return given_.count(key(name).name) > 0; }
-    Span key_span(std::string_view name) const { return given_.at(name).key_span; }
-    Span value_span(std::string_view name) const { return has(name) ? given_.at(name).value->span : Span{}; }
+    explicit Fields(const BlockSpec& spec);
+
+    void set(const KeySpec& key, const Value& value, Span key_span) { given_[index(key)] = {&value, key_span}; }
+    void set_child(const KeySpec& key, std::unique_ptr<Fields> child) { children_[index(key)] = std::move(child); }
+    bool has(std::string_view name) const { return has(key(name)); }
+    bool has(const KeySpec& row) const { return given_[index(row)].value != nullptr; }
+    Span key_span(const KeySpec& row) const { return given_[index(row)].key_span; }
+    Span key_span(std::string_view name) const { return given_[index(key(name))].key_span; }
+    Span value_span(std::string_view name) const { return has(name) ? get(name).span : Span{}; }
 
     // The value written for `name`, or the table's default.
     const Value& get(std::string_view name) const {
-        auto found = given_.find(name);
-        return found != given_.end() ? *found->second.value : default_of(key(name));
+        const KeySpec& row = key(name);
+        const Value* given = given_[index(row)].value;
+        return given ? *given : default_of(row);
     }
     double number(std::string_view name) const { return get(name).number; }
     int integer(std::string_view name) const { return int(get(name).number); }
@@ -43,7 +49,7 @@ public:
         if (value.kind == Value::Kind::Number) return dvec3(value.number);
         return {value.components[0], value.components[1], value.components[2]};
     }
-    // The checked fields of a nested block (written, or the table's default).
+    // The checked fields of a nested block (written, or else the table's default, shared).
     const Fields& child(std::string_view name) const;
     // An ordered block's steps (transform), each with its one key, in the order written.
     void add_step(std::unique_ptr<Fields> step) { steps_.push_back(std::move(step)); }
@@ -52,14 +58,15 @@ public:
 private:
     // The table's row for `name`; throws std::logic_error, naming both, if the block has none.
     const KeySpec& key(std::string_view name) const;
+    size_t index(const KeySpec& key) const { return size_t(&key - spec_->keys.data()); }
 
     struct Given {
-        const Value* value;
+        const Value* value = nullptr;
         Span key_span;
     };
     const BlockSpec* spec_;
-    std::map<std::string_view, Given> given_;
-    std::map<std::string_view, std::unique_ptr<Fields>> children_;
+    std::array<Given, kMaxKeys> given_{};
+    std::array<std::unique_ptr<Fields>, kMaxKeys> children_{};
     std::vector<std::unique_ptr<Fields>> steps_;
 };
 

@@ -259,8 +259,8 @@ const BlockSpec kLight{
 }  // namespace
 
 const KeySpec* BlockSpec::find_key(std::string_view key_name) const {
-    for (const KeySpec& spec : keys)
-        if (spec.name == key_name) return &spec;
+    for (const KeySpec& spec : keys)  // the first letters first: most keys differ there
+        if (!key_name.empty() && spec.name[0] == key_name[0] && spec.name == key_name) return &spec;
     return nullptr;
 }
 
@@ -277,7 +277,7 @@ const BlockSpec& group_spec() {
 
 const BlockSpec* find_block_spec(std::string_view kind) {
     for (const BlockSpec* spec : all_block_specs())
-        if (spec->top_level && spec->kind == kind) return spec;
+        if (spec->top_level && !kind.empty() && spec->kind[0] == kind[0] && spec->kind == kind) return spec;
     return nullptr;
 }
 

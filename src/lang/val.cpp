@@ -4,6 +4,9 @@
 
 namespace tracer {
 
+ListObject::~ListObject() = default;
+FunctionObject::~FunctionObject() = default;
+
 Val Val::vector(std::span<const double> components) {
     Val v;
     v.kind = Kind::Vector;

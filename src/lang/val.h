@@ -25,6 +25,7 @@ struct StringObject final : ValObject {
 };
 struct ListObject final : ValObject {
     std::vector<Val> items;
+    ~ListObject() override;  // in val.cpp, where Val is complete
 };
 struct WideVectorObject final : ValObject {  // a vector of more than 3 components
     std::vector<double> components;
@@ -35,7 +36,8 @@ struct BlockObject final : ValObject {  // material { ... } or transform { ... }
 };
 struct FunctionObject final : ValObject {
     std::shared_ptr<const FunctionCode> code;
-    std::vector<Val> captures;  // the values of the outer names its body uses, taken when defined
+    std::vector<Val> captures;   // the values of the outer names its body uses, taken when defined
+    ~FunctionObject() override;  // in val.cpp, where Val is complete
 };
 
 struct Val {

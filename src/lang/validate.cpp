@@ -191,9 +191,9 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
             ok = unknown_key(entry, spec, suggested);
             continue;
         }
-        if (fields.has(key->name)) {
+        if (fields.has(*key)) {
             Diagnostic* d = diagnostics_.error(file_, entry.key_span, "duplicate key '" + entry.key + "'");
-            Diagnostics::note(d, file_, fields.key_span(key->name), "'" + entry.key + "' was first set here");
+            Diagnostics::note(d, file_, fields.key_span(*key), "'" + entry.key + "' was first set here");
             ok = false;
             continue;
         }
@@ -201,17 +201,13 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
         ok = check_value(entry.value, *key, fields) && ok;
     }
     for (const KeySpec& key : spec.keys) {
+        if (!key.required() || fields.has(key)) continue;  // nested blocks left out: their defaults
         bool misspelled = std::find(suggested.begin(), suggested.end(), key.name) != suggested.end();
-        if (key.required() && !fields.has(key.name) && !misspelled) {
+        if (!misspelled) {
             diagnostics_.error(file_, owner,
                                std::string(spec.kind) + " is missing the required key '" + std::string(key.name) +
                                    "' (" + std::string(describe(key.type)) + ")");
             ok = false;
-        }
-        // Nested blocks left out still get their defaults as checked fields.
-        if (key.type == ValueType::Block && !fields.has(key.name)) {
-            auto child = std::make_unique<Fields>(*key.block);
-            fields.set_child(key, std::move(child));
         }
     }
     return ok;
