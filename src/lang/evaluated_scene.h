@@ -38,10 +38,14 @@ Value vector_value(std::vector<double> components, Span span);
 // What a value is, for messages: "a number", "a vector of 3 numbers", "the word 'sah'".
 std::string kind_of(const Value& value);
 
+struct KeySpec;
+struct BlockSpec;
+
 struct Entry {
     std::string key;
     Span key_span;
     Value value;
+    const KeySpec* spec = nullptr;  // the key's row in its block's table, when already looked up
 };
 
 struct Body {
@@ -61,6 +65,7 @@ struct Group {
 
 struct Block {
     std::string kind;
+    const BlockSpec* spec = nullptr;  // the kind's table, when already looked up
     Span kind_span;
     std::string name;  // empty when the block has no name
     Span name_span;

@@ -184,6 +184,7 @@ void Interpreter::run_block(const Step& step) {
     }
     Block block;
     block.kind = step.word;
+    block.spec = step.body->spec;
     block.kind_span = at(step.keyword);
     block.name = step.name;
     block.name_span = at(step.name_span);
@@ -207,6 +208,7 @@ std::shared_ptr<Body> Interpreter::make_body(const CompiledBody& code, bool& fai
         Entry out;
         out.key = entry.key;
         out.key_span = at(entry.key_span);
+        out.spec = entry.spec;
         if (entry.nested) {
             out.value.kind = Value::Kind::Block;
             out.value.span = {entry.body->open_brace.begin, entry.body->close_brace.end, here()};

@@ -56,7 +56,7 @@ std::optional<SceneDescription> Validator::run(const EvaluatedScene& evaluated) 
 // resolved at the end.
 void Validator::accept(const Block& block) {
     if (diagnostics_.saturated()) return;
-    const BlockSpec* spec = find_block_spec(block.kind);
+    const BlockSpec* spec = block.spec ? block.spec : find_block_spec(block.kind);
     if (!spec) {
         std::vector<std::string_view> kinds;
         for (const BlockSpec* s : all_block_specs())
@@ -186,7 +186,9 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
     std::vector<std::string> suggested;  // keys offered in "did you mean": not reported missing
     for (const Entry& entry : body.entries) {
         if (diagnostics_.saturated()) return false;
-        const KeySpec* key = spec.find_key(entry.key);
+        const bool row_of_this_table =
+            entry.spec && entry.spec >= spec.keys.data() && entry.spec < spec.keys.data() + spec.keys.size();
+        const KeySpec* key = row_of_this_table ? entry.spec : spec.find_key(entry.key);
         if (!key) {
             ok = unknown_key(entry, spec, suggested);
             continue;
