@@ -121,13 +121,9 @@ Val Interpreter::evaluate(const Node& node) {
 
 Val Interpreter::evaluate_list(const Node& node) {
     list_items_ += node.operands.size();
-    if (list_items_ > limits_.max_list_items) {
-        diagnostics_.error(
-            sources_, at(node.span),
-            "the scene makes more than " + std::to_string(limits_.max_list_items) + " list items (the limit)");
-        stopped_ = true;
-        throw EvaluationError{};
-    }
+    if (list_items_ > limits_.max_list_items)
+        stop(node.span,
+             "the scene makes more than " + std::to_string(limits_.max_list_items) + " list items (the limit)");
     std::vector<Val> items;
     items.reserve(node.operands.size());
     for (const Node& operand : node.operands) {
@@ -263,8 +259,9 @@ Val Interpreter::call(const Node& node, bool for_value) {
                                (code.parameters == 1 ? "" : "s") + ", found " + std::to_string(given));
         throw EvaluationError{};
     }
-    if (call_depth_ >= kMaxCallDepth || stack_used_since(stack_top_, TRACER_STACK_ADDRESS()) > kBigStackBytes / 2)
-        fail(node.span, "calls nest more than " + std::to_string(call_depth_) +
+    if (call_depth_ >= limits_.max_call_depth ||
+        stack_used_since(stack_top_, TRACER_STACK_ADDRESS()) > kBigStackBytes / 2)
+        stop(node.span, "calls nest more than " + std::to_string(call_depth_) +
                             " deep (the limit): a recursion that does not stop?");
     const size_t base = stack_.size();
     stack_.resize(base + code.slots);

@@ -51,6 +51,12 @@ void Interpreter::fail(Span span, std::string message) {
     throw EvaluationError{};
 }
 
+void Interpreter::stop(Span span, std::string message) {
+    diagnostics_.error(sources_, at(span), std::move(message));
+    stopped_ = true;
+    throw EvaluationStopped{};
+}
+
 EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
     stack_top_ = TRACER_STACK_ADDRESS();
     // Step 1: the command line's parameters, each a value alone.
@@ -68,6 +74,8 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
             try {
                 value = machine.evaluate(node);
             } catch (const EvaluationError&) {
+                ok = false;
+            } catch (const EvaluationStopped&) {
                 ok = false;
             }
         }
@@ -91,7 +99,10 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
         for (const Statement& statement : statements) compiler_.compile_top_level(statement, steps);
         statements.clear();
         stack_.resize(compiler_.top_level_slots());
-        run_steps(steps);
+        try {
+            run_steps(steps);
+        } catch (const EvaluationStopped&) {
+        }
         steps.clear();
     }
     // Step 3: -D names the scene does not declare.
@@ -112,13 +123,9 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
 Interpreter::Flow Interpreter::run_steps(const std::vector<Step>& steps) {
     for (const Step& step : steps) {
         if (stopped_ || diagnostics_.saturated()) return Flow::Next;
-        if (++statements_run_ > limits_.max_statements) {
-            diagnostics_.error(
-                sources_, at(step.keyword),
-                "the scene runs more than " + std::to_string(limits_.max_statements) + " statements (the limit)");
-            stopped_ = true;
-            return Flow::Next;
-        }
+        if (++statements_run_ > limits_.max_statements)
+            stop(step.keyword,
+                 "the scene runs more than " + std::to_string(limits_.max_statements) + " statements (the limit)");
         try {
             if (run_step(step) == Flow::Return) return Flow::Return;
         } catch (const EvaluationError&) {
@@ -341,6 +348,8 @@ bool Interpreter::single_value(const Expr& expr, Value& out) {
         entry.value = std::move(node);
         return entry_value(entry, out);
     } catch (const EvaluationError&) {
+        return false;
+    } catch (const EvaluationStopped&) {
         return false;
     }
 }

@@ -23,7 +23,7 @@ namespace tracer {
 constexpr size_t kMaxGeneratedBlocks = 2'000'000;
 constexpr size_t kMaxLoopIterations = 10'000'000;
 constexpr size_t kMaxStatementsRun = 100'000'000;
-constexpr size_t kMaxListItems = 10'000'000;
+constexpr size_t kMaxListItems = 1'000'000;
 constexpr size_t kMaxCallDepth = 10'000;
 
 // -D NAME=VALUE from the command line, in order: each must name a `param` of the scene.
@@ -35,6 +35,7 @@ struct InterpretLimits {
     size_t max_iterations = kMaxLoopIterations;
     size_t max_statements = kMaxStatementsRun;
     size_t max_list_items = kMaxListItems;
+    size_t max_call_depth = kMaxCallDepth;
 };
 
 // Takes each block as soon as it is made, instead of the EvaluatedScene keeping it: a scene of

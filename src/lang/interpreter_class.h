@@ -14,6 +14,9 @@ namespace tracer {
 
 // Thrown after an error while running has been reported: the entry or statement is dropped.
 struct EvaluationError {};
+// Thrown when a limit is reached (reported): nothing more is run, however deep the calls are
+// (one exception through them all, not one per level).
+struct EvaluationStopped {};
 
 // Where the code running now came from, innermost last: a loop iteration, a call or an include.
 // Its origin (Sources) is made only when something made in it needs a span.
@@ -65,6 +68,8 @@ private:
     Val finite(Val value, Span at);
     double number_operand(const Val& value, Span span, const std::string& what);
     [[noreturn]] void fail(Span at, std::string message);
+    // Reports that a limit was reached at `at`, and stops everything.
+    [[noreturn]] void stop(Span at, std::string message);
 
     // Slots.
     Val& slot(uint32_t index) { return stack_[frame_base_ + index]; }

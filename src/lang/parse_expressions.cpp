@@ -33,7 +33,21 @@ const char* comparison_text(TokenKind kind) {
 }  // namespace
 
 void Parser::enter_nesting() {
-    if (++depth_ > kMaxParseDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");
+    if (++depth_ > kMaxParseDepth)
+        fail_and_skip_file(peek(), "the expression is nested too deeply (more than 200 levels)");
+}
+
+void Parser::check_size(size_t count, size_t most, const char* what) {
+    if (count < most) return;
+    fail_and_skip_file(peek(), "more than " + std::to_string(most) + " " + what +
+                                   " in one statement (the limit); build large scenes with loops and functions");
+}
+
+void Parser::fail_and_skip_file(const Token& token, const std::string& message) {
+    if (token.kind != TokenKind::Error) diagnostics_.error(file_, token.span, message);
+    skip_rest_of_file();
+    gave_up_ = true;
+    throw SyntaxError{};
 }
 
 Token Parser::expect(TokenKind kind, const std::string& what) {
@@ -52,6 +66,7 @@ Expr Parser::parse_expression() {
     chain.span = first.span;
     chain.operands.push_back(std::move(first));
     while (at_word("or")) {
+        check_size(chain.operands.size(), kMaxTerms, "terms");
         take();
         chain.operands.push_back(parse_and());
         chain.span.end = chain.operands.back().span.end;
@@ -68,6 +83,7 @@ Expr Parser::parse_and() {
     chain.span = first.span;
     chain.operands.push_back(std::move(first));
     while (at_word("and")) {
+        check_size(chain.operands.size(), kMaxTerms, "terms");
         take();
         chain.operands.push_back(parse_not());
         chain.span.end = chain.operands.back().span.end;
@@ -102,7 +118,8 @@ Expr Parser::parse_comparison() {
 // sum = term { ( "+" | "-" ) term } ;
 Expr Parser::parse_sum() {
     Expr left = parse_term();
-    while (at(TokenKind::Plus) || at(TokenKind::Minus)) {
+    for (size_t terms = 1; at(TokenKind::Plus) || at(TokenKind::Minus); ++terms) {
+        check_size(terms, kMaxTerms, "terms");
         const char op = take().kind == TokenKind::Plus ? '+' : '-';
         left = binary_expression(Expr::Kind::Binary, std::move(left), op, "", parse_term());
     }
@@ -112,7 +129,8 @@ Expr Parser::parse_sum() {
 // term = unary { ( "*" | "/" ) unary } ;
 Expr Parser::parse_term() {
     Expr left = parse_unary();
-    while (at(TokenKind::Star) || at(TokenKind::Slash)) {
+    for (size_t terms = 1; at(TokenKind::Star) || at(TokenKind::Slash); ++terms) {
+        check_size(terms, kMaxTerms, "terms");
         const char op = take().kind == TokenKind::Star ? '*' : '/';
         left = binary_expression(Expr::Kind::Binary, std::move(left), op, "", parse_unary());
     }
@@ -138,7 +156,8 @@ Expr Parser::parse_postfix() {
     Expr value = parse_primary();
     for (int steps = 0; at(TokenKind::Dot) || at(TokenKind::LBracket); ++steps) {
         // A chain this long is a broken or hostile file.
-        if (steps == kMaxParseDepth) fail(peek(), "the expression is nested too deeply (more than 200 levels)");
+        if (steps == kMaxParseDepth)
+            fail_and_skip_file(peek(), "the expression is nested too deeply (more than 200 levels)");
         Expr access;
         if (take().kind == TokenKind::Dot) {
             Token component = expect(TokenKind::Identifier, "a component name (x, y or z) after '.'");
@@ -196,6 +215,7 @@ void Parser::parse_list(Expr& value, TokenKind close, const char* what) {
         for (;;) {
             value.operands.push_back(parse_expression());
             if (at(TokenKind::Comma)) {
+                check_size(value.operands.size(), kMaxTerms, "values");
                 take();
                 if (close == TokenKind::RBracket && at(close)) break;  // [a, b,] as in most languages
                 continue;

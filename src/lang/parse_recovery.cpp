@@ -62,6 +62,7 @@ void Parser::skip_to_block_end() {
     }
     int depth = int(open_.size());
     while (depth > 0) {
+        if (at(TokenKind::End) && gave_up_) return;  // reported already, and why the rest was skipped
         if (at(TokenKind::End)) {
             Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
             Diagnostics::note(d, file_, open_.front().span,

@@ -136,8 +136,10 @@ bool Parser::parse_braced_statements(Statement& statement, std::vector<Statement
     parse_statements(out, true);
     --nesting_;
     if (at(TokenKind::End)) {
-        Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
-        Diagnostics::note(d, file_, open_brace, "to close the " + owner + " opened here");
+        if (!gave_up_) {
+            Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
+            Diagnostics::note(d, file_, open_brace, "to close the " + owner + " opened here");
+        }
     } else {
         statement.end_brace = take().span;  // '}'
     }
@@ -377,6 +379,7 @@ void Parser::parse_body(BodyCode& body, const std::string& owner) {
                               "to close the '" + open_.back().owner + "' block opened here");
             throw UnclosedBlock{};
         }
+        check_size(body.entries.size(), kMaxEntries, "entries");
         parse_entry(body);
     }
     body.close_brace = take().span;

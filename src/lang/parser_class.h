@@ -26,6 +26,11 @@ struct OpenBrace {
 // Nesting deeper than this (parentheses, unary minus, conditions, statements in braces) is
 // refused: the parser recurses.
 inline constexpr int kMaxParseDepth = 200;
+// Most terms one chain of + - * / (or and, or or) may have, most values one list, vector or call
+// may have, and most entries one block may have: the syntax tree of one statement is held
+// whole, so its size is bounded where it is read (a scene repeats statements with loops).
+inline constexpr size_t kMaxTerms = 100'000;
+inline constexpr size_t kMaxEntries = 10'000;
 
 // The words that start a statement other than a block.
 bool is_statement_keyword(std::string_view word);
@@ -85,6 +90,11 @@ private:
     Expr parse_conditional();
     void parse_list(Expr& value, TokenKind close, const char* what);
     void enter_nesting();
+    // Fails at the next token if `count` terms, values or entries are already too many.
+    void check_size(size_t count, size_t most, const char* what);
+    // Reports `message` at `token`, skips the rest of the file and throws SyntaxError (nesting
+    // this deep is a generated or broken file: what follows would only add errors).
+    [[noreturn]] void fail_and_skip_file(const Token& token, const std::string& message);
     Token expect(TokenKind kind, const std::string& what);
 
     // Recovery (parse_recovery.cpp).
@@ -105,6 +115,7 @@ private:
     int depth_ = 0;                // expressions nested: a bound against stack overflow (so is nesting_)
     int nesting_ = 0;              // loops, conditions, functions and groups around the statement being parsed
     int functions_ = 0;            // functions around it ('return' is allowed)
+    bool gave_up_ = false;         // the rest of the file was skipped after an error: no more reports
 };
 
 }  // namespace tracer

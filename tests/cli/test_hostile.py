@@ -166,12 +166,12 @@ class Hangs(Hostile):
             run("--check", scene, limits=limits), 1, "the scene generates more than 2000000 blocks (the limit)"
         )
 
-    def test_expressions_a_million_terms_long_evaluate_without_exhausting_the_stack(self):
-        # a + b + ... is a tree as deep as it is long: evaluated and taken apart iteratively
-        # (before: a segmentation fault from 30,000 terms). In a value, a let and a loop bound;
-        # a million components (.x.x...) are refused as nested too deeply. Measured: 0.7 s,
-        # 352 MB at a million terms on the reference machine.
-        limits = [] if sanitized() else [(resource.RLIMIT_AS, 2 << 30)]
+    def test_long_expressions_evaluate_or_stop_at_the_term_limit_in_bounded_memory(self):
+        # a + b + ... is a tree as deep as it is long: parsed, compiled flat and taken apart
+        # iteratively (before: a segmentation fault from 30,000 terms). 30,000 terms are a value,
+        # in an entry, a let and a loop bound; a million are refused where the limit is passed
+        # (100,000 terms or values in one statement), as are a million components (.x.x...).
+        limits = [] if sanitized() else [(resource.RLIMIT_AS, 1 << 30)]
         for n in (30_000, 1_000_000):
             chain = "+".join(["1"] * n)
             product = "*".join(["1"] * n)
@@ -179,6 +179,8 @@ class Hangs(Hostile):
                 "radius": f"sphere {{ center (0, 0, 0) radius {chain} - {n - 1} material {{ kd 1 }} }}\n",
                 "let": f"let r = {product}\nsphere {{ center (0, 0, 0) radius r material {{ kd 1 }} }}\n",
                 "loop": f"for i in 0..({chain}) - {n - 1} {{ sphere {{ center (0, 0, 0) radius 1 material m }} }}\n",
+                "or": "let b = " + " or ".join(["false"] * n) + "\n",
+                "list": "let l = [" + ", ".join(["1"] * n) + "]\n",
             }
             for name, text in cases.items():
                 with self.subTest(terms=n, where=name):
@@ -186,9 +188,50 @@ class Hangs(Hostile):
                         "chain.scn", CAMERA + "light { position (0, 5, 5) }\nmaterial m { kd 1 }\n" + text
                     )
                     result = run("--check", scene, limits=limits)
-                    self.assertEqual(result.returncode, 0, result.stderr.decode(errors="replace")[-500:])
+                    if n < 100_000:
+                        self.assertEqual(result.returncode, 0, result.stderr.decode(errors="replace")[-500:])
+                    else:
+                        self.assertError(result, 1, "in one statement (the limit)")
+                        self.assertEqual(result.stderr.decode().count("error:"), 1)
             scene = self.write("dots.scn", CAMERA + "let v = (1, 2, 3)" + ".x" * n + "\n")
             self.assertError(run("--check", scene, limits=limits), 1, "the expression is nested too deeply")
+
+    def test_the_language_s_other_limits_hold_in_bounded_time_and_memory(self):
+        # Each an error at its place within the limits, never a crash, a hang or a blow-up: a
+        # recursion 10^5 deep (the limit is 10,000 calls), a loop of heavy bodies (10^8
+        # statements), a list grown by recursion (10^6 items), a transform of 10^7 steps
+        # (10,000 entries in a block), 10^5 nested conditions and a 10^8-byte string.
+        limits = [] if sanitized() else [(resource.RLIMIT_AS, 1 << 30)]
+        heavy = "".join(f"  let a{k} = i * {k}\n" for k in range(1000))
+        cases = {
+            "recursion": (
+                "fn f(n) { return if n == 0 { 0 } else { 1 + f(n - 1) } }\nlet x = f(100000)\n",
+                "calls nest more than 10000 deep (the limit)",
+            ),
+            "heavy": ("for i in 0..10000000 {\n" + heavy + "}\n", "the scene runs more than 100000000 statements"),
+            "list": (
+                "fn grow(n) { return if n == 0 { [] } else { [grow(n - 1), grow(n - 1)] } }\nlet l = grow(40)\n",
+                "the scene makes more than 1000000 list items (the limit)",
+            ),
+            "transform": (
+                'mesh { file "m.obj" material { kd 1 } transform {\n' + "scale 1\n" * 10_000_000 + "} }\n",
+                "more than 10000 entries in one statement (the limit)",
+            ),
+            "conditions": (
+                "let x = " + "if false { 1 } else " * 100_000 + "{ 2 }\n",
+                "the expression is nested too deeply",
+            ),
+        }
+        for name, (text, message) in cases.items():
+            with self.subTest(case=name):
+                scene = self.write("limit.scn", CAMERA + "light { position (0, 5, 5) }\n" + text)
+                result = run("--check", scene, limits=limits)
+                self.assertError(result, 1, message)
+                self.assertEqual(result.stderr.decode().count("error:"), 1, result.stderr.decode()[-800:])
+        scene = self.write(
+            "string.scn", CAMERA + 'let s = "' + "x" * 100_000_000 + '"\nfor i in 0..1000000 { let t = s }\n'
+        )
+        self.assertEqual(run("--check", scene, limits=limits).returncode, 0)
 
     def test_a_loop_including_a_big_file_compiles_it_once(self):
         # The file's text is held once and compiled once, at the include: each run of it costs

@@ -16,6 +16,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     InterpretLimits limits;
     limits.max_blocks = 20'000;
     limits.max_iterations = 100'000;
+    limits.max_statements = 1'000'000;
+    limits.max_list_items = 100'000;
+    limits.max_call_depth = 1'000;
     LoadResult loaded =
         load_scene_text("fuzz.scn", std::string(reinterpret_cast<const char*>(data), size), false, {}, limits);
     std::ostringstream messages;
