@@ -56,6 +56,12 @@ uint32_t Sources::add_iteration(Span loop, std::string_view name, double value) 
     return uint32_t(origins_.size() - 1);
 }
 
+uint32_t Sources::add_command_line(Span used_at, std::string text) {
+    texts_.push_back(std::move(text));
+    origins_.push_back({origins_[used_at.origin].file, Kind::CommandLine, used_at, texts_.back(), 0});
+    return uint32_t(origins_.size() - 1);
+}
+
 uint32_t Sources::add_call(uint32_t body_origin, Span called_at, std::string_view name) {
     origins_.push_back({origins_[body_origin].file, Kind::Call, called_at, name, 0});
     return uint32_t(origins_.size() - 1);
@@ -65,10 +71,13 @@ std::vector<std::pair<Span, std::string>> Sources::context(Span span) const {
     std::vector<std::pair<Span, std::string>> out;
     for (uint32_t origin = span.origin; origin != 0;) {
         const Origin& o = origins_[origin];
-        char text[96];
+        char text[128];
         if (o.kind == Kind::Iteration)
             std::snprintf(text, sizeof text, "in iteration %.*s = %.17g of this loop",
                           int(std::min<size_t>(o.name.size(), 40)), o.name.data(), o.value);
+        else if (o.kind == Kind::CommandLine)
+            std::snprintf(text, sizeof text, "this value came from the command line: %.*s",
+                          int(std::min<size_t>(o.name.size(), 60)), o.name.data());
         else if (o.kind == Kind::Call)
             std::snprintf(text, sizeof text, "in this call of '%.*s'", int(std::min<size_t>(o.name.size(), 40)),
                           o.name.data());

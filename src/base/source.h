@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -65,6 +66,9 @@ public:
     // `called_at`: spans of its body evaluated in that call get the returned origin. `name` must
     // outlive this object, as for add_iteration.
     uint32_t add_call(uint32_t body_origin, Span called_at, std::string_view name);
+    // A value used at `used_at` that the command line set (`text`: "-D NAME=VALUE"): messages
+    // about a span with the returned origin say so in a note.
+    uint32_t add_command_line(Span used_at, std::string text);
 
     const SourceFile& scene() const { return *files_.front(); }
     // The file a span lies in.
@@ -76,12 +80,12 @@ public:
     std::vector<Span> include_chain(uint32_t origin) const;
     size_t origins() const { return origins_.size(); }
     // True if `origin` is a loop iteration (else a call, a file, the scene or an include).
-    bool is_iteration(uint32_t origin) const { return origins_[origin].kind == Kind::Iteration; }
+    bool is_iteration(uint32_t origin) const { return kind_around(origin) == Kind::Iteration; }
     // True if `origin` is a call of a function.
-    bool is_call(uint32_t origin) const { return origins_[origin].kind == Kind::Call; }
+    bool is_call(uint32_t origin) const { return kind_around(origin) == Kind::Call; }
 
 private:
-    enum class Kind : uint8_t { File, Iteration, Call };
+    enum class Kind : uint8_t { File, Iteration, Call, CommandLine };
     struct Origin {
         uint32_t file = 0;
         Kind kind = Kind::File;  // File: the file itself, included at `at` (unless it is the scene)
@@ -89,8 +93,14 @@ private:
         std::string_view name;   // the loop's variable, or the function called
         double value = 0;
     };
+    // The kind of `origin`, seen through a command-line note to the context it was used in.
+    Kind kind_around(uint32_t origin) const {
+        const Origin& o = origins_[origin];
+        return o.kind == Kind::CommandLine ? origins_[o.at.origin].kind : o.kind;
+    }
     std::vector<std::unique_ptr<SourceFile>> files_;
     std::vector<Origin> origins_;
+    std::deque<std::string> texts_;  // the command-line texts origins name (a deque: they stay put)
 };
 
 }  // namespace tracer

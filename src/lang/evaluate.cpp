@@ -327,6 +327,10 @@ bool Interpreter::entry_value(const CompiledEntry& entry, Value& out) {
     const Node& node = entry.value;
     const KeySpec* key = entry.spec;
     out.span = at(node.span);
+    // A param the command line set, used as it is: messages about it say where it came from.
+    if (node.op == Node::Op::Global && !command_line_.empty())
+        if (auto set = command_line_.find(node.index); set != command_line_.end())
+            out.span.origin = sources_.add_command_line(out.span, set->second);
     if (node.op == Node::Op::Word) {
         out.kind = Value::Kind::Identifier;
         out.text = node.text;

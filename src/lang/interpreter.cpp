@@ -239,7 +239,10 @@ std::shared_ptr<Body> Interpreter::make_body(const CompiledBody& code, bool& fai
 void Interpreter::run_binding(const Step& step) {
     Val value = evaluate(step.value);
     if (step.op == Step::Op::Param) {
-        if (auto given = overrides_.find(step.name); given != overrides_.end()) value = given->second;
+        if (auto given = overrides_.find(step.name); given != overrides_.end()) {
+            value = given->second;
+            command_line_[step.slot] = "-D " + step.name + "=" + override_texts_[step.name];
+        }
         scene_.parameters.emplace_back(step.name, Value{});
         Value& shown = scene_.parameters.back().second;
         if (value.is_number()) shown = number_value(value.x[0], at(step.value.span));

@@ -93,6 +93,7 @@ private:
     std::shared_ptr<const Group> current_group_;         // the innermost group running
     std::map<std::string, Val, std::less<>> overrides_;  // -D values, by name
     std::map<std::string, std::string, std::less<>> override_texts_;
+    std::map<uint32_t, std::string> command_line_;  // global slots of params set by -D: "-D NAME=VALUE"
     size_t blocks_ = 0, iterations_run_ = 0, statements_run_ = 0, list_items_ = 0, call_depth_ = 0;
     bool stopped_ = false;  // a limit was hit: nothing more is run
     InterpretLimits limits_;

@@ -167,5 +167,20 @@ TEST(Language, GroupsComposeTheirPlacementsInnerFirst) {
     EXPECT_EQ(radius_of("", "1\n scale -3 rotate { angle 30 }"), 3);  // a sphere's own placement
 }
 
+TEST(Language, AValueFromTheCommandLineSaysSoWhereItIsRefused) {
+    const LoadResult r = load_scene_text(
+        "/scenes/t.scn",
+        kCamera + "param r = 1\nfor i in 0..3 { sphere { center (i, 0, 0) radius r material { kd 1 } } }", false,
+        {{"r", "-1"}}, {});
+    ASSERT_EQ(errors(r).size(), 1u);
+    const Diagnostic& d = r.diagnostics.all()[0];
+    EXPECT_EQ(d.message, "'radius' must be greater than 0, found -1");
+    ASSERT_GE(d.notes.size(), 2u);
+    EXPECT_EQ(d.notes[0].message, "this value came from the command line: -D r=-1");
+    EXPECT_EQ(d.notes[1].message, "in iteration i = 0 of this loop");
+    EXPECT_EQ(d.repeats, 2);  // the other iterations, counted as iterations
+    EXPECT_EQ(d.repeated_in, Diagnostic::RepeatedIn::Iterations);
+}
+
 }  // namespace
 }  // namespace tracer
