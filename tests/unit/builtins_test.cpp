@@ -105,6 +105,12 @@ TEST(Builtins, PowersLogarithmsAndInverseTrigonometryInDegrees) {
 // random(seed, i) is SplitMix64's finaliser of the two numbers' bits, as grammar/README.md
 // states it; these values come from an independent implementation of that statement (Python's
 // integers), so any machine or compiler that gives others breaks the promise.
+TEST(Builtins, LenCountsAListsValues) {
+    EXPECT_EQ(number("len", {Val::list({})}), 0);
+    EXPECT_EQ(number("len", {Val::list({num(1), vec(1, 2, 3), Val::list({num(1), num(2)})})}), 3);
+    EXPECT_EQ(error("len", {num(3)}), "'len''s argument must be a list; this is a number");
+}
+
 TEST(Builtins, RandomIsTheDocumentedSequenceOnEveryMachine) {
     EXPECT_EQ(number("random", {num(0), num(0)}), 0.28176129772258496);
     EXPECT_EQ(number("random", {num(1), num(0)}), 0.5085127456672683);
