@@ -196,7 +196,7 @@ void Interpreter::run_block(const Step& step) {
     block.name = step.name;
     block.name_span = at(step.name_span);
     bool failed = false;
-    block.body = std::move(*make_body(*step.body, failed));
+    fill_body(*step.body, block.body, failed);
     block.broken = step.broken || failed;  // reported: not validated too
     block.group = current_group_;
     if (on_block_)
@@ -208,6 +208,12 @@ void Interpreter::run_block(const Step& step) {
 // A body's entries evaluated; `failed` is set if a value had an error (reported).
 std::shared_ptr<Body> Interpreter::make_body(const CompiledBody& code, bool& failed) {
     auto body = std::make_shared<Body>();
+    fill_body(code, *body, failed);
+    return body;
+}
+
+void Interpreter::fill_body(const CompiledBody& code, Body& filled, bool& failed) {
+    Body* body = &filled;
     body->open_brace = at(code.open_brace);
     body->close_brace = at(code.close_brace);
     body->entries.reserve(code.entries.size());
@@ -233,7 +239,6 @@ std::shared_ptr<Body> Interpreter::make_body(const CompiledBody& code, bool& fai
         }
         body->entries.push_back(std::move(out));
     }
-    return body;
 }
 
 void Interpreter::run_binding(const Step& step) {

@@ -51,6 +51,8 @@ private:
     Flow run_include(const Step& step);
     bool count_iteration(const Step& step);
     std::shared_ptr<Body> make_body(const CompiledBody& code, bool& failed);
+    // The same, into `body`.
+    void fill_body(const CompiledBody& code, Body& body, bool& failed);
     // The value of an entry: `value` computed at `node`, as the validator reads it.
     bool entry_value(const CompiledEntry& entry, Value& out);
 

@@ -99,7 +99,7 @@ void Validator::resolve_later_materials() {
 std::optional<SceneDescription> Validator::finish() {
     resolve_later_materials();
     // Step 3: whole-scene checks.
-    if (!options_.fragment && !first_of_kind_.count("camera") && !diagnostics_.saturated())
+    if (!options_.fragment && !first_of_kind_.count(find_block_spec("camera")) && !diagnostics_.saturated())
         diagnostics_.report(Severity::Error, Diagnostics::whole_file(file_.scene().path()),
                             "the scene has no camera block; add one, e.g. camera { eye (0, 0, 7) lookat (0, 0, 0) }");
     // With errors around, an unused material is usually a misspelled use: no extra noise.
@@ -159,7 +159,7 @@ bool Validator::check_block_header(const Block& block, const BlockSpec& spec) {
                            "a " + block.kind + " block takes no name; write " + block.kind + " { ... }");
         return false;
     }
-    auto [first, inserted] = first_of_kind_.emplace(spec.kind, block.kind_span);
+    auto [first, inserted] = first_of_kind_.emplace(&spec, block.kind_span);
     if (!inserted && spec.occurs != Occurs::Any) {
         Diagnostic* d = diagnostics_.error(file_, block.kind_span, "a scene has only one " + block.kind + " block");
         Diagnostics::note(d, file_, first->second, "the first " + block.kind + " block is here");

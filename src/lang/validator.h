@@ -94,7 +94,7 @@ private:
         int index;
     };
     std::map<const Body*, SharedMaterial> value_materials_;
-    std::map<std::string_view, Span> first_of_kind_;  // each kind's first block
+    std::map<const BlockSpec*, Span> first_of_kind_;  // each kind's first block, by its table
     // Each group's own steps, by the group (held, so that no other group can take its address);
     // `ok` false if its placement was refused.
     struct GroupSteps {
