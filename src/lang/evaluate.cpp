@@ -33,6 +33,8 @@ bool Interpreter::condition(const Node& node) {
     return value.x[0] != 0;
 }
 
+// The value of `node`. Its frame is kept small (each call of a scene's function nests it
+// again on the native stack): the cases with arrays or messages are functions of their own.
 Val Interpreter::evaluate(const Node& node) {
     switch (node.op) {
         case Node::Op::Constant:
@@ -50,37 +52,10 @@ Val Interpreter::evaluate(const Node& node) {
             return value;
         }
         case Node::Op::Self: return running_;
-        case Node::Op::Word: fail(node.span, "undefined name " + in_quotes(node.text));
-        case Node::Op::Vector: {
-            double components[16];
-            std::vector<double> many;
-            for (size_t i = 0; i < node.operands.size(); ++i) {
-                const double c =
-                    number_operand(evaluate(node.operands[i]), node.operands[i].span, "a vector's component");
-                if (i < 16) components[i] = c;
-                if (i == 16) many.assign(components, components + 16);
-                if (i >= 16) many.push_back(c);
-            }
-            if (node.operands.size() > 16) return Val::vector(many);
-            return Val::vector({components, node.operands.size()});
-        }
+        case Node::Op::Vector: return evaluate_vector(node);
         case Node::Op::List: return evaluate_list(node);
         case Node::Op::Negate:
-        case Node::Op::Plus: {
-            Val value = evaluate(node.operands[0]);
-            if (value.kind == Val::Kind::Broken) throw EvaluationError{};
-            if (!value.is_number() && !value.is_vector())
-                fail(node.operands[0].span, std::string("'") + (node.op == Node::Op::Negate ? '-' : '+') +
-                                                "' applies to numbers and vectors; this is " + kind_of(value));
-            if (node.op == Node::Op::Plus) return value;
-            if (value.object) {
-                std::vector<double> negated;
-                for (double c : value.components()) negated.push_back(-c);
-                return Val::vector(negated);
-            }
-            for (double& c : value.x) c = -c;
-            return value;
-        }
+        case Node::Op::Plus: return evaluate_sign(node);
         case Node::Op::Not: return Val::boolean(!condition(node.operands[0]));
         case Node::Op::Arithmetic: return evaluate_arithmetic(node);
         case Node::Op::Compare: return evaluate_compare(node);
@@ -94,29 +69,67 @@ Val Interpreter::evaluate(const Node& node) {
             return Val::boolean(false);
         case Node::Op::Builtin: return evaluate_builtin(node);
         case Node::Op::Call: return call(node, true);
-        case Node::Op::Component: {
-            const Val value = evaluate(node.operands[0]);
-            static const char* kNames[] = {"x", "y", "z"};
-            if (!value.is_vector() || value.components().size() <= node.index)
-                fail(node.operands[0].span,
-                     std::string("'.") + kNames[node.index] + "' needs a vector; this is " + kind_of(value));
-            return Val::number(value.components()[node.index]);
-        }
+        case Node::Op::Component: return evaluate_component(node);
         case Node::Op::Index: return evaluate_index(node);
         case Node::Op::Conditional: return evaluate(condition(node.operands[0]) ? node.operands[1] : node.operands[2]);
-        case Node::Op::Block: {
-            bool failed = false;
-            auto block = std::make_shared<BlockObject>();
-            block->kind = node.text;
-            block->body = make_body(*node.block, failed);
-            if (failed) throw EvaluationError{};
-            Val value;
-            value.kind = Val::Kind::Block;
-            value.object = std::move(block);
-            return value;
-        }
+        case Node::Op::Block: return evaluate_block(node);
+        case Node::Op::Word: break;
     }
-    fail(node.span, "not a value");
+    fail_undefined(node);
+}
+
+void Interpreter::fail_undefined(const Node& node) {
+    fail(node.span, node.op == Node::Op::Word ? "undefined name " + in_quotes(node.text) : "not a value");
+}
+
+Val Interpreter::evaluate_vector(const Node& node) {
+    double components[16];
+    std::vector<double> many;
+    for (size_t i = 0; i < node.operands.size(); ++i) {
+        const double c = number_operand(evaluate(node.operands[i]), node.operands[i].span, "a vector's component");
+        if (i < 16) components[i] = c;
+        if (i == 16) many.assign(components, components + 16);
+        if (i >= 16) many.push_back(c);
+    }
+    if (node.operands.size() > 16) return Val::vector(many);
+    return Val::vector({components, node.operands.size()});
+}
+
+Val Interpreter::evaluate_sign(const Node& node) {
+    Val value = evaluate(node.operands[0]);
+    if (value.kind == Val::Kind::Broken) throw EvaluationError{};
+    if (!value.is_number() && !value.is_vector())
+        fail(node.operands[0].span, std::string("'") + (node.op == Node::Op::Negate ? '-' : '+') +
+                                        "' applies to numbers and vectors; this is " + kind_of(value));
+    if (node.op == Node::Op::Plus) return value;
+    if (value.object) {
+        std::vector<double> negated;
+        for (double c : value.components()) negated.push_back(-c);
+        return Val::vector(negated);
+    }
+    for (double& c : value.x) c = -c;
+    return value;
+}
+
+Val Interpreter::evaluate_component(const Node& node) {
+    const Val value = evaluate(node.operands[0]);
+    static const char* kNames[] = {"x", "y", "z"};
+    if (!value.is_vector() || value.components().size() <= node.index)
+        fail(node.operands[0].span,
+             std::string("'.") + kNames[node.index] + "' needs a vector; this is " + kind_of(value));
+    return Val::number(value.components()[node.index]);
+}
+
+Val Interpreter::evaluate_block(const Node& node) {
+    bool failed = false;
+    auto block = std::make_shared<BlockObject>();
+    block->kind = node.text;
+    block->body = make_body(*node.block, failed);
+    if (failed) throw EvaluationError{};
+    Val value;
+    value.kind = Val::Kind::Block;
+    value.object = std::move(block);
+    return value;
 }
 
 Val Interpreter::evaluate_list(const Node& node) {

@@ -60,11 +60,16 @@ private:
     Val evaluate(const Node& node);
     Val evaluate_arithmetic(const Node& node);
     Val arithmetic(char operation, const Val& a, const Val& b, Span a_span, Span b_span, Span span);
-    Val evaluate_compare(const Node& node);
+    [[gnu::noinline]] Val evaluate_compare(const Node& node);
     bool condition(const Node& node);
-    Val evaluate_builtin(const Node& node);
-    Val evaluate_index(const Node& node);
+    [[gnu::noinline]] Val evaluate_builtin(const Node& node);
+    [[gnu::noinline]] Val evaluate_index(const Node& node);
     Val evaluate_list(const Node& node);
+    [[gnu::noinline]] Val evaluate_vector(const Node& node);
+    [[gnu::noinline]] Val evaluate_sign(const Node& node);
+    [[gnu::noinline]] Val evaluate_component(const Node& node);
+    [[gnu::noinline]] Val evaluate_block(const Node& node);
+    [[noreturn, gnu::noinline]] void fail_undefined(const Node& node);
     // A user function called at `node`: for its value, or (`for_value` false) for its blocks.
     Val call(const Node& node, bool for_value);
     Val finite(Val value, Span at);
