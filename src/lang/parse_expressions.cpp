@@ -58,34 +58,26 @@ Token Parser::expect(TokenKind kind, const std::string& what) {
 // expression = and { "or" and } ;   and = not { "and" not } ;   (kept flat: a chain of a
 // million terms is one node, not a million levels)
 Expr Parser::parse_expression() {
-    Expr first = parse_and();
-    if (!at_word("or")) return first;
-    Expr chain;
-    chain.kind = Expr::Kind::Logical;
-    chain.text = "or";
-    chain.span = first.span;
-    chain.operands.push_back(std::move(first));
-    while (at_word("or")) {
-        check_size(chain.operands.size(), kMaxTerms, "terms");
-        take();
-        chain.operands.push_back(parse_and());
-        chain.span.end = chain.operands.back().span.end;
-    }
-    return chain;
+    return parse_chain("or", &Parser::parse_and);
 }
 
 Expr Parser::parse_and() {
-    Expr first = parse_not();
-    if (!at_word("and")) return first;
+    return parse_chain("and", &Parser::parse_not);
+}
+
+// operand { word operand }, one Logical node if the word occurs.
+Expr Parser::parse_chain(std::string_view word, Expr (Parser::*operand)()) {
+    Expr first = (this->*operand)();
+    if (!at_word(word)) return first;
     Expr chain;
     chain.kind = Expr::Kind::Logical;
-    chain.text = "and";
+    chain.text = std::string(word);
     chain.span = first.span;
     chain.operands.push_back(std::move(first));
-    while (at_word("and")) {
+    while (at_word(word)) {
         check_size(chain.operands.size(), kMaxTerms, "terms");
         take();
-        chain.operands.push_back(parse_not());
+        chain.operands.push_back((this->*operand)());
         chain.span.end = chain.operands.back().span.end;
     }
     return chain;

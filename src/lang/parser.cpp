@@ -92,15 +92,22 @@ void Parser::parse_binding(std::vector<Statement>& out, Statement::Kind kind) {
     Token name = take();
     statement.name = std::string(name.text);
     statement.name_span = name.span;
-    open_.clear();
-    try {
+    parse_guarded(out, std::move(statement), [&](Statement& binding) {
         if (kind == Statement::Kind::Param && nesting_ > 0) {
-            diagnostics_.error(file_, statement.keyword,
+            diagnostics_.error(file_, binding.keyword,
                                "a 'param' is declared at the top level of a file, not inside braces");
             throw SyntaxError{};
         }
-        expect(TokenKind::Equals, "'=' after '" + statement.name + "'");
-        statement.value = parse_expression();
+        expect(TokenKind::Equals, "'=' after '" + binding.name + "'");
+        binding.value = parse_expression();
+    });
+}
+
+template <class Parse>
+void Parser::parse_guarded(std::vector<Statement>& out, Statement statement, Parse parse) {
+    open_.clear();
+    try {
+        parse(statement);
     } catch (const SyntaxError&) {
         skip_to_next_statement();
         return;
@@ -264,22 +271,15 @@ void Parser::parse_return(std::vector<Statement>& out) {
     Statement statement;
     statement.kind = Statement::Kind::Return;
     statement.keyword = take().span;
-    open_.clear();
-    try {
+    parse_guarded(out, std::move(statement), [&](Statement& done) {
         if (functions_ == 0) {
-            diagnostics_.error(file_, statement.keyword, "'return' is written inside a function's body (fn)");
+            diagnostics_.error(file_, done.keyword, "'return' is written inside a function's body (fn)");
             throw SyntaxError{};
         }
-        statement.has_value = !at(TokenKind::End) && !at(TokenKind::RBrace) &&
-                              file_.locate(peek().span.begin).line == file_.locate(statement.keyword.begin).line;
-        if (statement.has_value) statement.value = parse_expression();
-    } catch (const SyntaxError&) {
-        skip_to_next_statement();
-        return;
-    } catch (const UnclosedBlock&) {
-        return;
-    }
-    out.push_back(std::move(statement));
+        done.has_value = !at(TokenKind::End) && !at(TokenKind::RBrace) &&
+                         file_.locate(peek().span.begin).line == file_.locate(done.keyword.begin).line;
+        if (done.has_value) done.value = parse_expression();
+    });
 }
 
 // call = identifier "(" [ expression { "," expression } ] ")" ;   (a function making blocks)
@@ -287,18 +287,11 @@ void Parser::parse_call(std::vector<Statement>& out) {
     Statement call;
     call.kind = Statement::Kind::Call;
     call.keyword = peek().span;
-    open_.clear();
-    try {
-        call.value = parse_postfix();
-        if (call.value.kind != Expr::Kind::Call)
+    parse_guarded(out, std::move(call), [&](Statement& statement) {
+        statement.value = parse_postfix();
+        if (statement.value.kind != Expr::Kind::Call)
             fail(peek(), "expected a block or a statement; a value alone does nothing, found " + describe(peek()));
-    } catch (const SyntaxError&) {
-        skip_to_next_statement();
-        return;
-    } catch (const UnclosedBlock&) {
-        return;
-    }
-    out.push_back(std::move(call));
+    });
 }
 
 // group = "group" "{" { placement } { statement } "}" ;   placement = ( "scale" | "rotate" |

@@ -62,6 +62,10 @@ private:
     void parse_binding(std::vector<Statement>& out, Statement::Kind kind);
     template <class Parse>
     void parse_block_guarded(std::vector<Statement>& out, Statement block, Parse parse);
+    // Runs `parse` on a statement that is not a block and keeps it; after a syntax error it is
+    // dropped and the parser skips to the next statement.
+    template <class Parse>
+    void parse_guarded(std::vector<Statement>& out, Statement statement, Parse parse);
     void parse_loop(std::vector<Statement>& out);
     void parse_if(std::vector<Statement>& out);
     void parse_function(std::vector<Statement>& out);
@@ -80,6 +84,7 @@ private:
     // Expressions (parse_expressions.cpp).
     Expr parse_expression();
     Expr parse_and();
+    Expr parse_chain(std::string_view word, Expr (Parser::*operand)());
     Expr parse_not();
     Expr parse_comparison();
     Expr parse_sum();
