@@ -8,20 +8,14 @@
 #include "lang/parser.h"
 #include "lang/schema.h"
 #include "lang/suggest.h"
+#include "lang/take_apart.h"
 
 namespace tracer {
 
 namespace fs = std::filesystem;
 
 Node::~Node() {
-    if (operands.empty()) return;
-    std::vector<Node> pending = std::move(operands);
-    while (!pending.empty()) {
-        Node last = std::move(pending.back());
-        pending.pop_back();
-        for (Node& operand : last.operands) pending.push_back(std::move(operand));
-        last.operands.clear();
-    }
+    take_apart(operands);
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "base/source.h"
+#include "lang/take_apart.h"
 
 namespace tracer {
 
@@ -51,14 +52,7 @@ struct Expr {
 };
 
 inline Expr::~Expr() {
-    if (operands.empty()) return;
-    std::vector<Expr> pending = std::move(operands);
-    while (!pending.empty()) {
-        Expr last = std::move(pending.back());
-        pending.pop_back();
-        for (Expr& operand : last.operands) pending.push_back(std::move(operand));
-        last.operands.clear();  // moved-from shells: their destruction goes no deeper
-    }
+    take_apart(operands);
 }
 
 struct EntryCode {
