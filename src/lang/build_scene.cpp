@@ -88,10 +88,10 @@ bool Validator::check_material_name(const Value& value) {
 }
 
 void Validator::build(const Block& block, const Fields& fields) {
-    const std::string& kind = block.kind;
+    const std::string_view kind = block.kind;  // compared length first
     if (block.group && (kind == "camera" || kind == "render"))
-        return (void)diagnostics_.error(file_, block.kind_span,
-                                        "a " + kind + " block is not placed by a group: write it outside the group");
+        return (void)diagnostics_.error(
+            file_, block.kind_span, "a " + block.kind + " block is not placed by a group: write it outside the group");
     if (kind == "render") return build_render(block, fields);
     if (kind == "camera") return build_camera(block, fields);
     if (kind == "mesh") return build_mesh(block, fields);
@@ -234,7 +234,7 @@ bool Validator::check_reach(const Block& block, const Placed& placed, const Tria
 }
 
 void Validator::build_flat_shape(const Block& block, const Fields& fields) {
-    const std::string& kind = block.kind;
+    const std::string_view kind = block.kind;
     if (kind == "triangle") {
         FlatTriangle shape;
         shape.a = fields.triple("a");

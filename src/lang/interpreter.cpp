@@ -20,11 +20,9 @@ Interpreter::Interpreter(Sources& sources, Diagnostics& diagnostics, const Inter
       limits_(limits),
       on_block_(std::move(on_block)) {}
 
-// The origin for spans evaluated now: the innermost context's, made (with those of the contexts
-// around it that have none yet) on first use; the scene file's when nothing is around.
-uint32_t Interpreter::here() {
-    if (contexts_.empty()) return 0;
-    if (contexts_.back().has_origin) return contexts_.back().origin;
+// The origins of the contexts running now that have none yet, outermost first (here() is the
+// origin for spans evaluated now: the innermost context's, or the scene file's).
+uint32_t Interpreter::make_origins() {
     size_t first = contexts_.size() - 1;
     while (first > 0 && !contexts_[first - 1].has_origin) --first;
     uint32_t outer = first == 0 ? 0 : contexts_[first - 1].origin;

@@ -82,7 +82,12 @@ private:
     Val& slot(uint32_t index) { return stack_[frame_base_ + index]; }
 
     // Origins: the span as compiled, given the origin of the context running it.
-    uint32_t here();
+    uint32_t here() {
+        if (contexts_.empty()) return 0;
+        return contexts_.back().has_origin ? contexts_.back().origin : make_origins();
+    }
+    // Makes the origins of the innermost contexts that have none yet; returns the innermost's.
+    uint32_t make_origins();
     Span at(Span span) { return {span.begin, span.end, here()}; }
 
     Sources& sources_;
