@@ -79,6 +79,10 @@ public:
     // The spans of the include statements above `origin`'s file, innermost first.
     std::vector<Span> include_chain(uint32_t origin) const;
     size_t origins() const { return origins_.size(); }
+    // Forgets the origins made since there were `count`: nothing may refer to them any more.
+    void forget_origins_from(size_t count) {
+        if (count < origins_.size()) origins_.resize(count);
+    }
     // True if `origin` is a loop iteration (else a call, a file, the scene or an include).
     bool is_iteration(uint32_t origin) const { return kind_around(origin) == Kind::Iteration; }
     // True if `origin` is a call of a function.

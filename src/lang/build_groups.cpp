@@ -13,6 +13,7 @@ bool Validator::add_group_steps(const Block& block, Placed& out) {
         auto [entry, first] = group_steps_.try_emplace(group);
         GroupSteps& known = entry->second;
         if (first) {
+            kept_ = true;
             // Its placement, checked against the group's table as any block's body.
             known.group = group == block.group.get() ? block.group : nullptr;
             Fields fields(group_spec());

@@ -31,6 +31,7 @@ dvec3 normalized(dvec3 v) {
 }
 
 void Validator::add_named_material(const Block& block) {
+    kept_ = true;  // its name's span, for "unused" and "defined twice"
     auto [entry, inserted] = named_.try_emplace(block.name);
     if (!inserted) {
         Diagnostic* d = diagnostics_.error(file_, block.name_span, "material '" + block.name + "' is defined twice");
@@ -67,7 +68,10 @@ int Validator::material_index(const Fields& fields) {
             return shared->second.index;
         scene_.materials.push_back(build_material(fields.child("material"), ""));
         const int index = int(scene_.materials.size()) - 1;
-        if (value.body.use_count() > 1) value_materials_.emplace(value.body.get(), SharedMaterial{value.body, index});
+        if (value.body.use_count() > 1) {
+            value_materials_.emplace(value.body.get(), SharedMaterial{value.body, index});
+            kept_ = true;
+        }
         return index;
     }
     auto found = named_.find(value.text);
@@ -84,6 +88,7 @@ bool Validator::check_material_name(const Value& value) {
         return true;
     }
     later_uses_.push_back({value.text, value.span});
+    kept_ = true;
     return true;
 }
 

@@ -187,6 +187,10 @@ void Interpreter::run_block(const Step& step) {
         stopped_ = true;
         return;
     }
+    // The contexts' origins made for this block alone are forgotten after it, unless a message
+    // or the validator kept one of its spans: a loop of a million blocks then holds none.
+    const size_t origins_before = sources_.origins();
+    const int reported_before = diagnostics_.error_count() + diagnostics_.warning_count();
     Block block;
     block.kind = step.word;
     block.spec = step.body->spec;
@@ -197,10 +201,12 @@ void Interpreter::run_block(const Step& step) {
     fill_body(*step.body, block.body, failed);
     block.broken = step.broken || failed;  // reported: not validated too
     block.group = current_group_;
-    if (on_block_)
-        on_block_(std::move(block));
-    else
-        scene_.blocks.push_back(std::move(block));
+    if (!on_block_) return scene_.blocks.push_back(std::move(block));
+    const bool kept = on_block_(std::move(block));
+    if (kept || diagnostics_.error_count() + diagnostics_.warning_count() != reported_before) return;
+    sources_.forget_origins_from(origins_before);
+    for (RunContext& context : contexts_)
+        if (context.has_origin && context.origin >= origins_before) context.has_origin = false;
 }
 
 // A body's entries evaluated; `failed` is set if a value had an error (reported).

@@ -39,8 +39,9 @@ struct InterpretLimits {
 };
 
 // Takes each block as soon as it is made, instead of the EvaluatedScene keeping it: a scene of
-// a million blocks is then never held whole.
-using BlockSink = std::function<void(Block&&)>;
+// a million blocks is then never held whole. Returns true if it kept any of the block's spans
+// (for a later message); false lets the interpreter forget the origins made for it alone.
+using BlockSink = std::function<bool(Block&&)>;
 
 // The scene file `sources.scene()` parsed and run, one statement at a time, with the command
 // line's `parameters`; problems go to `diagnostics`. Included files are added to `sources`.

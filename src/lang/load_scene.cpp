@@ -15,7 +15,7 @@ LoadResult load_scene_text(const std::string& path, std::string text, bool fragm
     ValidateOptions options;
     options.fragment = fragment;
     SceneBuilder builder(sources, result.diagnostics, options);
-    const BlockSink check_and_build = [&](Block&& block) { builder.add(block); };
+    const BlockSink check_and_build = [&](Block&& block) { return builder.add(block); };
     const EvaluatedScene evaluated = interpret(sources, result.diagnostics, parameters, limits, check_and_build);
     result.scene = builder.finish(evaluated.parameters);
     return result;

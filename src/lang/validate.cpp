@@ -54,7 +54,13 @@ std::optional<SceneDescription> Validator::run(const EvaluatedScene& evaluated) 
 // One block, checked and built as soon as it is made (the interpreter hands them over one by
 // one, so that a big scene is never held whole). A material used before its block is
 // resolved at the end.
-void Validator::accept(const Block& block) {
+bool Validator::accept(const Block& block) {
+    kept_ = false;
+    check_and_build(block);
+    return kept_;
+}
+
+void Validator::check_and_build(const Block& block) {
     if (diagnostics_.saturated()) return;
     const BlockSpec* spec = block.spec ? block.spec : find_block_spec(block.kind);
     if (!spec) {
@@ -160,6 +166,7 @@ bool Validator::check_block_header(const Block& block, const BlockSpec& spec) {
         return false;
     }
     auto [first, inserted] = first_of_kind_.emplace(&spec, block.kind_span);
+    kept_ = kept_ || inserted;
     if (!inserted && spec.occurs != Occurs::Any) {
         Diagnostic* d = diagnostics_.error(file_, block.kind_span, "a scene has only one " + block.kind + " block");
         Diagnostics::note(d, file_, first->second, "the first " + block.kind + " block is here");
@@ -382,8 +389,8 @@ SceneBuilder::SceneBuilder(const Sources& sources, Diagnostics& diagnostics, con
     : state_(std::make_unique<State>(State{Validator(sources, diagnostics, options)})) {}
 SceneBuilder::~SceneBuilder() = default;
 
-void SceneBuilder::add(const Block& block) {
-    state_->validator.accept(block);
+bool SceneBuilder::add(const Block& block) {
+    return state_->validator.accept(block);
 }
 
 std::optional<SceneDescription> SceneBuilder::finish(const std::vector<std::pair<std::string, Value>>& parameters) {

@@ -31,8 +31,10 @@ class SceneBuilder {
 public:
     SceneBuilder(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& options = {});
     ~SceneBuilder();
-    // Checks one block and adds what it describes.
-    void add(const Block& block);
+    // Checks one block and adds what it describes. True if anything of it was kept for later
+    // (a span that a later message may point at); false lets the interpreter forget the
+    // contexts (Sources origins) it made only for this block.
+    bool add(const Block& block);
     // The scene description (with the parameters the scene used), or nothing after errors.
     std::optional<SceneDescription> finish(const std::vector<std::pair<std::string, Value>>& parameters);
 

@@ -36,7 +36,8 @@ public:
 
     std::optional<SceneDescription> run(const EvaluatedScene& evaluated);
     void set_parameters(const std::vector<std::pair<std::string, Value>>& parameters);
-    void accept(const Block& block);
+    // Checks and builds one block; true if it kept any of the block's spans for later.
+    bool accept(const Block& block);
     std::optional<SceneDescription> finish();
     // Checks one value of `key` as a scene's block would (its type, range and other rules).
     bool check_setting(const Value& value, const KeySpec& key, const BlockSpec& spec) {
@@ -46,6 +47,7 @@ public:
     }
 
 private:
+    void check_and_build(const Block& block);
     // Generic checks driven by the tables.
     bool check_block_header(const Block& block, const BlockSpec& spec);
     bool check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields);
@@ -95,6 +97,7 @@ private:
     };
     std::map<const Body*, SharedMaterial> value_materials_;
     std::map<const BlockSpec*, Span> first_of_kind_;  // each kind's first block, by its table
+    bool kept_ = false;  // the block being accepted had a span of its kept (in the members above or below)
     // Each group's own steps, by the group (held, so that no other group can take its address);
     // `ok` false if its placement was refused.
     struct GroupSteps {

@@ -182,5 +182,25 @@ TEST(Language, AValueFromTheCommandLineSaysSoWhereItIsRefused) {
     EXPECT_EQ(d.repeated_in, Diagnostic::RepeatedIn::Iterations);
 }
 
+// Blocks whose spans nothing kept let the interpreter forget the contexts made for them; a span
+// kept for a later message (a material used before its block) keeps its iteration.
+TEST(Language, AnErrorFoundAfterTheLoopStillNamesItsIteration) {
+    const LoadResult r = load(
+        "for i in 0..3 {\n  sphere { center (i, 0, 0) radius 0.2 material { kd 1 } }\n"
+        "  sphere { center (i, 1, 0) radius 0.2 material later }\n}\nlet after = 1\n"
+        "sphere { center (0, 0, 0) radius 0.2 - 0.1 * after * 2 material { kd 1 } }");
+    ASSERT_EQ(errors(r).size(), 2u);
+    for (const Diagnostic& d : r.diagnostics.all()) {
+        if (d.message == "undefined material 'later'") {
+            ASSERT_EQ(d.notes.size(), 1u);
+            EXPECT_EQ(d.notes[0].message, "in iteration i = 0 of this loop");
+            EXPECT_EQ(d.repeats, 2);
+        } else {
+            EXPECT_EQ(d.message, "'radius' must be greater than 0, found 0");
+            EXPECT_EQ(d.notes.size(), 0u);  // outside the loop: no stale context
+        }
+    }
+}
+
 }  // namespace
 }  // namespace tracer

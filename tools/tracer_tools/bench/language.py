@@ -49,17 +49,16 @@ CASES = {
 
 def run_measured(command: list) -> tuple[float, int, str]:
     """Runs `command` alone; returns its wall time in seconds, its peak resident memory in bytes
-    and its standard error."""
-    with tempfile.TemporaryFile() as errors:
-        start = time.perf_counter()
-        process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=errors)
-        _, status, usage = os.wait4(process.pid, 0)
-        seconds = time.perf_counter() - start
-        errors.seek(0)
-        text = errors.read().decode(errors="replace")
-    if os.waitstatus_to_exitcode(status) != 0:
-        raise SystemExit(f"{command[0]} failed:\n{text}")
-    return seconds, usage.ru_maxrss * 1024, text
+    and its standard error. The peak is measured by GNU time (/usr/bin/time): a child of this
+    Python process would start with Python's own pages counted."""
+    timed = ["/usr/bin/time", "-f", "peak %M KB", *map(str, command)]
+    start = time.perf_counter()
+    done = subprocess.run(timed, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, errors="replace")
+    seconds = time.perf_counter() - start
+    if done.returncode != 0:
+        raise SystemExit(f"{command[0]} failed:\n{done.stderr}")
+    peak = re.findall(r"peak (\d+) KB", done.stderr)
+    return seconds, int(peak[-1]) * 1024, done.stderr
 
 
 def tracer_command(name: str, folder: str) -> list:
