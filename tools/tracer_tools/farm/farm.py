@@ -37,6 +37,17 @@ ROOT = str(tracer_tools.ROOT)
 EXIT_INTERRUPTED = 130
 
 
+# Set by Ctrl-C or SIGTERM. The handler also raises KeyboardInterrupt, but Python swallows an
+# exception raised inside a garbage-collector or weakref callback (Dask installs some): the flag
+# is what every image write and the exit status consult, so such an interrupt is never lost.
+INTERRUPTED = {"signal": False}
+
+
+def on_interrupt(number: int, frame: object) -> None:
+    INTERRUPTED["signal"] = True
+    raise KeyboardInterrupt
+
+
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         prog="tools/farm", description=__doc__.split("\n\n")[0], formatter_class=argparse.RawTextHelpFormatter
@@ -209,6 +220,8 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
             canvas = canvases[index]
             canvas.paste(region, decode_tile(data, suffix, canvas.pixels.dtype))
             assembly += time.perf_counter() - moment
+            if INTERRUPTED["signal"]:  # an interrupt that a callback swallowed: stop at this tile
+                raise KeyboardInterrupt
             if canvas.complete():
                 moment = time.perf_counter()
                 write_atomically(jobs[index].output, canvas.pixels)
@@ -245,7 +258,8 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
 def main(argv: list[str] | None = None) -> int:
     arguments = parse_arguments(sys.argv[1:] if argv is None else argv)
     # SIGTERM stops the farm as Ctrl-C does: nothing unfinished is written.
-    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    signal.signal(signal.SIGINT, on_interrupt)
+    signal.signal(signal.SIGTERM, on_interrupt)
     timings: dict = {}
     start = time.perf_counter()
 
@@ -264,6 +278,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"farm: error: {error}", file=sys.stderr)
         return 3
     except KeyboardInterrupt:
+        INTERRUPTED["signal"] = True
+    if INTERRUPTED["signal"]:
         print("farm: interrupted; no unfinished image was written", file=sys.stderr)
         return EXIT_INTERRUPTED
     timings["total_s"] = time.perf_counter() - start
