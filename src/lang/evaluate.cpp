@@ -385,7 +385,9 @@ bool Interpreter::entry_value(const CompiledEntry& entry, Value& out) {
                                                                                   : std::string_view();
             if (wanted != kind)
                 fail(node.span, "'" + entry.key + "' takes " +
-                                    (wanted.empty() ? std::string("no block") : "a " + std::string(wanted)) +
+                                    (wanted.empty()         ? std::string("no block")
+                                     : wanted == "material" ? std::string("a material")
+                                                            : "a " + std::string(wanted) + " { ... } block") +
                                     "; this is a " + kind);
             out.kind = Value::Kind::Block;
             out.body = value.block().body;
