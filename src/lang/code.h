@@ -33,7 +33,7 @@ struct Node {
         Negate,       // -operands[0]
         Plus,         // +operands[0]
         Not,          // not operands[0]
-        Arithmetic,   // operands[0] `symbol` operands[1], symbol one of + - * /
+        Arithmetic,   // operands[0] op operands[1] op ..., `text` the operators, each + - * /
         Compare,      // operands[0] `text` operands[1]
         And,          // operands[0] and operands[1] and ...
         Or,           // operands[0] or operands[1] or ...
@@ -45,7 +45,6 @@ struct Node {
         Block,        // material { ... } or transform { ... } as a value: `block`
     };
     Op op = Op::Constant;
-    char symbol = 0;
     uint32_t index = 0;
     Span span;
     Val constant;

@@ -36,6 +36,16 @@ Node constant(Val value, Span span) {
 
 }  // namespace
 
+std::string path_expected(std::string_view key, std::string_view written) {
+    return "'" + std::string(key) + "' expects a file path in double quotes: " + std::string(key) + " \"" +
+           std::string(written) + "\"";
+}
+
+std::string arguments_expected(std::string_view function, size_t expected, size_t found) {
+    return in_quotes(function) + " takes " + std::to_string(expected) + " argument" + (expected == 1 ? "" : "s") +
+           ", found " + std::to_string(found);
+}
+
 Compiler::Compiler(Sources& sources, Diagnostics& diagnostics) : sources_(sources), diagnostics_(diagnostics) {
     functions_.emplace_back();
     functions_.back().scopes.emplace_back();
@@ -343,8 +353,7 @@ std::shared_ptr<CompiledBody> Compiler::compile_body(const BodyCode& code, const
                     !(entry.value.kind == Expr::Kind::Name &&
                       resolve(entry.value.text, functions_.size() - 1, entry.value.span, named)))
                     fail(entry.value.span,
-                         "'" + entry.key + "' expects a file path in double quotes: " + entry.key + " \"" +
-                             std::string(sources_.file(entry.value.span).slice(entry.value.span)) + "\"");
+                         path_expected(entry.key, sources_.file(entry.value.span).slice(entry.value.span)));
                 const bool word_key = key && (key->type == ValueType::MaterialRef || key->type == ValueType::Choice);
                 out.value = compile_expression(entry.value, true, word_key);
             } catch (const CompileError&) {

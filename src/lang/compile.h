@@ -24,6 +24,11 @@ constexpr size_t kMaxIncludedBytes = size_t(256) << 20;
 // Thrown after a mistake in an expression has been reported: the entry or statement is dropped.
 struct CompileError {};
 
+// The messages the compiler and the interpreter both give: a file-path key given something
+// else (`written`: its source text), and a call with the wrong number of arguments.
+std::string path_expected(std::string_view key, std::string_view written);
+std::string arguments_expected(std::string_view function, size_t expected, size_t found);
+
 class Compiler {
 public:
     Compiler(Sources& sources, Diagnostics& diagnostics);

@@ -126,8 +126,7 @@ Node Compiler::compile_call(const Expr& expr) {
     node.builtin = function;
     for (const Expr& operand : expr.operands) node.operands.push_back(compile_expression(operand));
     if (node.operands.size() != function->arity)
-        fail(expr.span, "'" + expr.text + "' takes " + std::to_string(function->arity) + " argument" +
-                            (function->arity == 1 ? "" : "s") + ", found " + std::to_string(node.operands.size()));
+        fail(expr.span, arguments_expected(expr.text, function->arity, node.operands.size()));
     return node;
 }
 

@@ -267,9 +267,7 @@ Val Interpreter::call(const Node& node, bool for_value) {
     const FunctionCode& code = *callee.function().code;
     const size_t given = node.operands.size() - 1;
     if (given != code.parameters) {
-        diagnostics_.error(sources_, at(node.span),
-                           in_quotes(code.name) + " takes " + std::to_string(code.parameters) + " argument" +
-                               (code.parameters == 1 ? "" : "s") + ", found " + std::to_string(given));
+        diagnostics_.error(sources_, at(node.span), arguments_expected(code.name, code.parameters, given));
         throw EvaluationError{};
     }
     if (call_depth_ >= limits_.max_call_depth ||
@@ -351,32 +349,14 @@ bool Interpreter::entry_value(const CompiledEntry& entry, Value& out) {
     }
     const Val value = evaluate(node);
     if (key && key->type == ValueType::Path && value.kind != Val::Kind::String)
-        fail(node.span, "'" + entry.key + "' expects a file path in double quotes: " + entry.key + " \"" +
-                            std::string(sources_.file(node.span).slice(node.span)) + "\"");
+        fail(node.span, path_expected(entry.key, sources_.file(node.span).slice(node.span)));
+    if (plain_value(value, out.span, out)) {
+        // Written as (a, b, c): each component points at its own expression.
+        if (node.op == Node::Op::Vector && node.operands.size() == out.components.size())
+            for (size_t i = 0; i < out.components.size(); ++i) out.component_spans[i] = at(node.operands[i].span);
+        return true;
+    }
     switch (value.kind) {
-        case Val::Kind::Number:
-            out.kind = Value::Kind::Number;
-            out.number = value.x[0];
-            return true;
-        case Val::Kind::Vector: {
-            out.kind = Value::Kind::Vector;
-            const auto components = value.components();
-            out.components.assign(components.begin(), components.end());
-            // Written as (a, b, c): each component points at its own expression.
-            const bool literal = node.op == Node::Op::Vector && node.operands.size() == components.size();
-            out.component_spans.reserve(components.size());
-            for (size_t i = 0; i < components.size(); ++i)
-                out.component_spans.push_back(literal ? at(node.operands[i].span) : out.span);
-            return true;
-        }
-        case Val::Kind::Bool:
-            out.kind = Value::Kind::Identifier;
-            out.text = value.x[0] != 0 ? "true" : "false";
-            return true;
-        case Val::Kind::String:
-            out.kind = Value::Kind::String;
-            out.text = value.text();
-            return true;
         case Val::Kind::Block: {
             const std::string& kind = value.block().kind;
             const std::string_view wanted = !key                                  ? std::string_view(kind)
@@ -398,8 +378,28 @@ bool Interpreter::entry_value(const CompiledEntry& entry, Value& out) {
         case Val::Kind::Function:
             fail(node.span, "'" + entry.key + "' takes a value, not a function; call it, as in 'f(...)'");
         case Val::Kind::Broken: throw EvaluationError{};
+        default: break;  // the plain kinds, done above
     }
     return false;
+}
+
+bool plain_value(const Val& value, Span span, Value& out) {
+    out.span = span;
+    switch (value.kind) {
+        case Val::Kind::Number: out.kind = Value::Kind::Number, out.number = value.x[0]; return true;
+        case Val::Kind::Vector: {
+            out.kind = Value::Kind::Vector;
+            const auto components = value.components();
+            out.components.assign(components.begin(), components.end());
+            out.component_spans.assign(components.size(), span);
+            return true;
+        }
+        case Val::Kind::Bool:  // as the validator reads a boolean: the word
+            out.kind = Value::Kind::Identifier, out.text = value.x[0] != 0 ? "true" : "false";
+            return true;
+        case Val::Kind::String: out.kind = Value::Kind::String, out.text = value.text(); return true;
+        default: return false;
+    }
 }
 
 }  // namespace tracer

@@ -64,10 +64,10 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
         Expr expr;
         Node node;
         Sources alone(std::make_unique<SourceFile>(file.path(), text));
-        Compiler compiler(alone, problems);
         Interpreter machine(alone, problems, limits_, {});
         Val value;
-        bool ok = parse_single_expression(file, problems, expr) && compiler.compile_lone_value(expr, false, node);
+        bool ok =
+            parse_single_expression(file, problems, expr) && machine.compiler_.compile_lone_value(expr, false, node);
         if (ok) {
             try {
                 value = machine.evaluate(node);
@@ -253,20 +253,7 @@ void Interpreter::run_binding(const Step& step) {
             command_line_[step.slot] = "-D " + step.name + "=" + override_texts_[step.name];
         }
         scene_.parameters.emplace_back(step.name, Value{});
-        Value& shown = scene_.parameters.back().second;
-        if (value.is_number()) shown = number_value(value.x[0], at(step.value.span));
-        if (value.is_vector()) {
-            const auto c = value.components();
-            shown = vector_value({c.begin(), c.end()}, at(step.value.span));
-        }
-        if (value.kind == Val::Kind::String) {
-            shown.kind = Value::Kind::String;
-            shown.text = value.text();
-        }
-        if (value.kind == Val::Kind::Bool) {
-            shown.kind = Value::Kind::Identifier;
-            shown.text = value.x[0] != 0 ? "true" : "false";
-        }
+        plain_value(value, at(step.value.span), scene_.parameters.back().second);
     }
     slot(step.slot) = std::move(value);
 }

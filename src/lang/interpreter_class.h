@@ -12,6 +12,10 @@
 
 namespace tracer {
 
+// `value` as validation reads it, at `span` (each component too), if it is a number, vector,
+// boolean or string; false for the other kinds.
+bool plain_value(const Val& value, Span span, Value& out);
+
 // Thrown after an error while running has been reported: the entry or statement is dropped.
 struct EvaluationError {};
 // Thrown when a limit is reached (reported): nothing more is run, however deep the calls are
