@@ -74,15 +74,45 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
         objects_.push_back({ObjectKind::Plane, uint32_t(planes_.size()), p.material});
         planes_.push_back({Vec3(p.point), Vec3(p.normal), uint32_t(objects_.size() - 1)});
     }
-    // Step 2: the meshes, each file built once, and an instance per mesh block.
+    // Step 2: the meshes, each file built once, and an instance per mesh block; then the cones
+    // and discs (numbered after every older kind, so that older scenes keep their order).
     add_meshes(scene, meshes, settings, flatten_shared);
+    add_round_shapes(scene);
     // Step 3: the top level over every bounded object.
     build_top_level(settings);
 }
 
-void World::add_bounded(const Bounds& box, uint32_t object, uint32_t instance) {
-    bounded_.push_back({box.centre(), half_diagonal(box), object, instance, ObjectKind::MeshInstance});
+void World::add_bounded(const Bounds& box, uint32_t object, uint32_t index, ObjectKind kind) {
+    bounded_.push_back({box.centre(), half_diagonal(box), object, index, kind});
     boxes_.push_back(box);
+}
+
+void World::add_round_shapes(const SceneDescription& scene) {
+    // The box around a disc of `radius` at `centre` across the unit `axis`: on each coordinate
+    // radius sqrt(1 - axis_i^2), padded for the slack of the tests at the edges.
+    auto disc_box = [](const glm::dvec3& centre, const glm::dvec3& axis, double radius) {
+        const glm::dvec3 reach = radius * glm::sqrt(glm::max(glm::dvec3(0.0), 1.0 - axis * axis));
+        const glm::dvec3 pad = 1e-6 * radius + double(gamma(64)) * glm::abs(centre);
+        return Bounds{Vec3(centre - reach - pad), Vec3(centre + reach + pad)};
+    };
+    for (const Cone& c : scene.cones) {
+        const glm::dvec3 along = c.top - c.base;
+        const double height = glm::length(along);
+        const glm::dvec3 axis = along / height;
+        const uint32_t index = uint32_t(cones_.size()), object = uint32_t(objects_.size());
+        objects_.push_back({ObjectKind::Cone, index, c.material});
+        cones_.push_back({Vec3(c.base), Vec3(axis), Real(height), Real(c.base_radius),
+                          Real((c.top_radius - c.base_radius) / height), Real(c.top_radius), c.caps});
+        Bounds box = disc_box(c.base, axis, c.base_radius);
+        box.extend(disc_box(c.top, axis, c.top_radius));
+        add_bounded(box, object, index, ObjectKind::Cone);
+    }
+    for (const Disc& d : scene.discs) {
+        const uint32_t index = uint32_t(discs_.size()), object = uint32_t(objects_.size());
+        objects_.push_back({ObjectKind::Disc, index, d.material});
+        discs_.push_back({Vec3(d.center), Vec3(d.normal), Real(d.radius)});
+        add_bounded(disc_box(d.center, d.normal, d.radius), object, index, ObjectKind::Disc);
+    }
 }
 
 void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
@@ -175,7 +205,8 @@ bool World::may_hit(const Ray& ray) const {
 size_t World::top_level_memory_bytes() const {
     return top_.memory_bytes() + bounded_.capacity() * sizeof(Bounded) + objects_.capacity() * sizeof(Object) +
            instances_.capacity() * sizeof(MeshInstance) + spheres_.capacity() * sizeof(SphereShape) +
-           planes_.capacity() * sizeof(PlaneShape);
+           planes_.capacity() * sizeof(PlaneShape) + cones_.capacity() * sizeof(ConeShape) +
+           discs_.capacity() * sizeof(DiscShape);
 }
 
 }  // namespace tracer

@@ -1,6 +1,6 @@
 // The renderer's view of a scene and the two ray queries the shading needs: the nearest hit,
 // and "is anything in the way". Two levels: one BVH over every bounded object (spheres and
-// mesh instances; tinybvh's TLAS) and, below it, each mesh's own BVH (the BLAS), built once
+// mesh instances, cones, discs; tinybvh's TLAS) and, below it, each mesh's own BVH (the BLAS), built once
 // per mesh file however many mesh blocks place it. Infinite planes are a short list tested
 // beside the top level. A search returns a Hit (object, primitive, t, u, v); the surface
 // (point, normal, material) is worked out once, after the search, by surface().
@@ -12,6 +12,7 @@
 
 #include "accel/bvh.h"
 #include "accel/mesh_accel.h"
+#include "accel/round_shapes.h"
 #include "accel/types.h"
 #include "scene/placement.h"
 #include "scene/scene.h"
@@ -19,12 +20,12 @@
 
 namespace tracer {
 
-enum class ObjectKind : uint8_t { Sphere, Plane, MeshInstance };
+enum class ObjectKind : uint8_t { Sphere, Plane, MeshInstance, Cone, Disc };
 
 // What a search found.
 struct Hit {
     uint32_t object = 0;     // index into World::objects()
-    uint32_t primitive = 0;  // mesh instances: the triangle's slot in its MeshAccel; else 0
+    uint32_t primitive = 0;  // mesh instances: the triangle's slot in its MeshAccel; cones: the ConePart
     Real t = 0;
     Real u = 0, v = 0;  // barycentric coordinates of a triangle hit
 };
@@ -62,7 +63,7 @@ struct SearchCounts {
 // One shape of the scene: its kind, its index among the shapes of that kind, its material.
 struct Object {
     ObjectKind kind;
-    uint32_t index;  // into spheres, planes or instances
+    uint32_t index;  // into spheres, planes, instances, cones or discs
     int material;
 };
 
@@ -144,16 +145,19 @@ private:
     static constexpr uint32_t kObjectOfTriangle = ~uint32_t(0);
     // An entry of the top level, in its BVH's leaf order.
     struct Bounded {
-        Vec3 centre;  // sphere: the sphere; instance: a sphere around the placed mesh's box
+        Vec3 centre;  // sphere: the sphere; others: a sphere around their box
         Real radius;
         uint32_t object;  // index into objects_, or kObjectOfTriangle
-        uint32_t index;   // into spheres_ or instances_
+        uint32_t index;   // into spheres_, instances_, cones_ or discs_
         ObjectKind kind;
     };
 
     void add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
                     bool flatten_shared);
-    void add_bounded(const Bounds& box, uint32_t object, uint32_t instance);
+    void add_bounded(const Bounds& box, uint32_t object, uint32_t index, ObjectKind kind = ObjectKind::MeshInstance);
+    void add_round_shapes(const SceneDescription& scene);
+    bool hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
+    bool bounded_blocks(uint32_t entry, const Ray& ray, Interval range, SearchCounts& counts, Occluder& blocker) const;
     void build_top_level(const SearchSettings& settings);
     bool hit_instance(uint32_t index, uint32_t object, const Ray& ray, Interval& range, Hit& hit,
                       SearchCounts& counts) const;
@@ -168,6 +172,8 @@ private:
     std::vector<PlaneShape> planes_;
     std::vector<MeshAccel> meshes_;
     std::vector<MeshInstance> instances_;
+    std::vector<ConeShape> cones_;
+    std::vector<DiscShape> discs_;
     std::vector<Bounded> bounded_;
     LargeArray<Bounds> boxes_;  // of bounded_, while the world is built
     Bvh top_;

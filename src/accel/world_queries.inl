@@ -33,12 +33,60 @@ inline bool World::instance_blocks(uint32_t entry, const Ray& ray, Interval rang
     return blocked;
 }
 
+// hit_instance's sibling for any bounded object but a mesh instance: a sphere, cone or disc.
+[[gnu::always_inline]] inline bool World::hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& hit,
+                                                      SearchCounts& counts) const {
+    if (b.kind == ObjectKind::Sphere) {
+        const auto t = intersect_sphere(ray, b.centre, b.radius, range);
+        if (!t) return false;
+        range.max = *t;
+        hit = {b.object, 0, *t, 0, 0};
+        return true;
+    }
+    if (b.kind == ObjectKind::Cone) {
+        const auto found = intersect_cone(ray, cones_[b.index], range);
+        if (!found) return false;
+        range.max = found->t;
+        hit = {b.object, found->part, found->t, 0, 0};
+        return true;
+    }
+    if (b.kind == ObjectKind::Disc) {
+        const auto t = intersect_disc(ray, discs_[b.index], range);
+        if (!t) return false;
+        range.max = *t;
+        hit = {b.object, 0, *t, 0, 0};
+        return true;
+    }
+    return hit_instance(b.index, b.object, ray, range, hit, counts);
+}
+
+// True if the bounded object `entry` lies along `ray` within `range`; it becomes `blocker`.
+inline bool World::bounded_blocks(uint32_t entry, const Ray& ray, Interval range, SearchCounts& counts,
+                                  Occluder& blocker) const {
+    const Bounded& b = bounded_[entry];
+    bool blocked = false;
+    switch (b.kind) {
+        case ObjectKind::MeshInstance: return instance_blocks(entry, ray, range, counts, blocker);
+        case ObjectKind::Sphere: blocked = intersect_sphere(ray, b.centre, b.radius, range).has_value(); break;
+        case ObjectKind::Cone: blocked = intersect_cone(ray, cones_[b.index], range).has_value(); break;
+        case ObjectKind::Disc: blocked = intersect_disc(ray, discs_[b.index], range).has_value(); break;
+        case ObjectKind::Plane: break;
+    }
+    if (blocked) blocker = {entry, {}};
+    return blocked;
+}
+
 inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range,
                                    SearchCounts& counts) const {
     const Bounded& b = bounded_[occluder.entry];
     if (b.kind == ObjectKind::Sphere) {
         ++counts.objects.primitive_tests;
         return intersect_sphere(ray, b.centre, b.radius, range).has_value();
+    }
+    if (b.kind != ObjectKind::MeshInstance) {
+        ++counts.objects.primitive_tests;
+        Occluder ignored;
+        return bounded_blocks(occluder.entry, ray, range, counts, ignored);
     }
     counts.triangles.primitive_tests += occluder.triangles.count;
     const MeshInstance& instance = instances_[b.index];
@@ -75,7 +123,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     for (size_t i = spheres_.size(); i < bounded_.size(); ++i) {
         const Bounded& b = bounded_[i];
         if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
-            found = hit_instance(b.index, b.object, ray, range, hit, counts) || found;
+            found = hit_bounded(b, ray, range, hit, counts) || found;
     }
     counts.objects.primitive_tests += bounded_.size();
     return found;
@@ -96,12 +144,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     bool found = nearest_plane(ray, range, hit);
     auto test = [&](uint32_t i, Interval& r) {
         const Bounded& b = bounded_[i];
-        if (b.kind != ObjectKind::Sphere) return hit_instance(b.index, b.object, ray, r, hit, counts);
-        const auto t = intersect_sphere(ray, b.centre, b.radius, r);
-        if (!t) return false;
-        r.max = *t;
-        hit = {b.object, 0, *t, 0, 0};
-        return true;
+        if (b.kind == ObjectKind::MeshInstance) return hit_instance(b.index, b.object, ray, r, hit, counts);
+        return hit_bounded(b, ray, r, hit, counts);
     };
     found = top_.closest(ray, range, counts.objects, test) || found;
     if (!found) return std::nullopt;
@@ -144,6 +188,23 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
             }
             out.normal = p.normal;
             out.geometric_normal = p.normal;
+            break;
+        }
+        case ObjectKind::Cone:
+        case ObjectKind::Disc: {
+            const RoundSurface round = object.kind == ObjectKind::Cone
+                                           ? cone_surface(ray, cones_[object.index], hit.t, hit.primitive)
+                                           : disc_surface(ray, discs_[object.index], hit.t);
+            if constexpr (kRobust) {
+                out.point = round.point;
+                out.error = round.error;
+            }
+            out.normal = round.normal;
+            out.geometric_normal = round.normal;
+            if (out.normal == Vec3(0)) [[unlikely]] {
+                out.normal = -normalize_or_zero(ray.direction);
+                out.geometric_normal = out.normal;
+            }
             break;
         }
         case ObjectKind::MeshInstance: {
@@ -215,7 +276,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
             const Bounded& b = bounded_[i];
             ++counts.objects.primitive_tests;
             if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius) &&
-                instance_blocks(uint32_t(i), ray, range, counts, last))
+                bounded_blocks(uint32_t(i), ray, range, counts, last))
                 return true;
         }
         return false;
@@ -224,7 +285,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     // bounding sphere (which holds the box) would rule nothing out.
     auto test = [&](uint32_t i, Interval& r) {
         const Bounded& b = bounded_[i];
-        if (b.kind != ObjectKind::Sphere) return instance_blocks(i, ray, r, counts, last);
+        if (b.kind == ObjectKind::MeshInstance) return instance_blocks(i, ray, r, counts, last);
+        if (b.kind != ObjectKind::Sphere) return bounded_blocks(i, ray, r, counts, last);
         if (!intersect_sphere(ray, b.centre, b.radius, r)) return false;
         last = {i, {}};
         return true;

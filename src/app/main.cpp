@@ -250,7 +250,8 @@ int check_only(const Options& options) {
     std::cout << (options.scene == "-" ? std::string(tracer::kStandardInputName) : options.scene) << ": ok ("
               << scene.spheres.size() << " spheres, " << scene.planes.size() << " planes, " << scene.meshes.size()
               << " meshes, " << count_of(scene.triangles.size(), "triangles") << count_of(scene.quads.size(), "quads")
-              << count_of(scene.boxes.size(), "boxes") << scene.lights.size() << " lights, " << scene.materials.size()
+              << count_of(scene.boxes.size(), "boxes") << count_of(scene.cones.size(), "cones")
+              << count_of(scene.discs.size(), "discs") << scene.lights.size() << " lights, " << scene.materials.size()
               << " materials)\n";
     const tracer::RenderSettings& render = scene.render;
     std::cout << "  image: " << render.width << " x " << render.height << " pixels, " << render.samples

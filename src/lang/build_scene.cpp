@@ -109,6 +109,10 @@ void Validator::build(const Block& block, const Fields& fields) {
         build_sphere(block, fields);
     } else if (kind == "plane") {
         build_plane(block, fields);
+    } else if (kind == "cylinder" || kind == "cone") {
+        build_cone(block, fields);
+    } else if (kind == "disc") {
+        build_disc(block, fields);
     }
 }
 

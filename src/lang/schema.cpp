@@ -148,8 +148,7 @@ KeySpec rotate_key(std::string_view meaning) {
 const BlockSpec kTransform{
     "transform", false, false, Occurs::AtMostOnce,
     "Steps that place a shape, applied in the order written; each key may appear any number of "
-    "times (inside `mesh`, `triangle`, `quad` and `box`, instead of their own `scale`, `rotate` and "
-    "`translate`).",
+    "times (inside a shape, instead of its own `scale`, `rotate` and `translate`).",
     {
         scale_key("Scale about the origin, uniform or per axis; a negative factor mirrors."),
         rotate_key("Rotate about an axis through the origin: `rotate { axis (x, y, z) angle degrees }`."),
@@ -182,6 +181,49 @@ const BlockSpec kSphere{
         ranged(key("radius", ValueType::Number, "", "Radius."), kSmallestSize, kInf),
     }),
     "sphere {\n  center (1, -0.5, 3)\n  radius 0.5\n  material { ka 0.1 kd (0, 0, 1) ks 1 n 10 }\n}\n",
+};
+
+KeySpec caps_key() {
+    return key("caps", ValueType::Boolean, "true",
+               "Close the ends with flat discs (a solid); `false` leaves them open (a tube).");
+}
+
+const BlockSpec kCylinder{
+    "cylinder", false, true, Occurs::Any,
+    "A round cylinder between two points, closed by its caps unless `caps false`; placed like a sphere "
+    "(by one scale factor on every axis).",
+    placed({
+        key("base", ValueType::Vector, "", "Centre of one end."),
+        key("top", ValueType::Vector, "", "Centre of the other end; must differ from `base`."),
+        ranged(key("radius", ValueType::Number, "", "Radius."), kSmallestSize, kInf),
+        caps_key(),
+    }),
+    "cylinder {\n  base (0, -1, 0)\n  top (0, 1, 0)\n  radius 0.5\n  material { ka 0.1 kd (0.8, 0.6, 0.2) }\n}\n",
+};
+
+const BlockSpec kCone{
+    "cone", false, true, Occurs::Any,
+    "A round cone between two points with a radius at each end (0 makes a point; equal radii a "
+    "cylinder), closed by its caps unless `caps false`; placed like a sphere.",
+    placed({
+        key("base", ValueType::Vector, "", "Centre of one end."),
+        key("top", ValueType::Vector, "", "Centre of the other end; must differ from `base`."),
+        ranged(key("base_radius", ValueType::Number, "", "Radius at `base` (0: a point)."), 0, kInf),
+        ranged(key("top_radius", ValueType::Number, "0", "Radius at `top` (0: a point)."), 0, kInf),
+        caps_key(),
+    }),
+    "cone {\n  base (0, -1, 0)\n  top (0, 1, 0)\n  base_radius 0.7\n  material { ka 0.1 kd (0.9, 0.3, 0.2) }\n}\n",
+};
+
+const BlockSpec kDisc{
+    "disc", false, true, Occurs::Any,
+    "A flat round disc, seen from both sides; placed like a sphere.",
+    placed({
+        key("center", ValueType::Vector, "", "Centre."),
+        nonzero(key("normal", ValueType::Vector, "", "The disc's normal (normalised for you): its front.")),
+        ranged(key("radius", ValueType::Number, "", "Radius."), kSmallestSize, kInf),
+    }),
+    "disc {\n  center (0, -1, 0)\n  normal (0, 1, 0)\n  radius 2\n  material { ka 0.1 kd 0.8 }\n}\n",
 };
 
 const BlockSpec kGroup{
@@ -265,9 +307,9 @@ const KeySpec* BlockSpec::find_key(std::string_view key_name) const {
 }
 
 const std::vector<const BlockSpec*>& all_block_specs() {
-    static const std::vector<const BlockSpec*> specs{&kCamera,    &kRender,   &kMaterial, &kSphere, &kPlane,
-                                                     &kMesh,      &kTriangle, &kQuad,     &kBox,    &kRotate,
-                                                     &kTransform, &kGroup,    &kLight};
+    static const std::vector<const BlockSpec*> specs{&kCamera,   &kRender,    &kMaterial, &kSphere,   &kPlane, &kMesh,
+                                                     &kTriangle, &kQuad,      &kBox,      &kCylinder, &kCone,  &kDisc,
+                                                     &kRotate,   &kTransform, &kGroup,    &kLight};
     return specs;
 }
 

@@ -100,6 +100,7 @@ void Validator::resolve_later_materials() {
     };
     resolve(scene_.spheres), resolve(scene_.planes), resolve(scene_.meshes);
     resolve(scene_.triangles), resolve(scene_.quads), resolve(scene_.boxes);
+    resolve(scene_.cones), resolve(scene_.discs);
 }
 
 std::optional<SceneDescription> Validator::finish() {
@@ -125,7 +126,8 @@ std::optional<SceneDescription> Validator::finish() {
 void Validator::warn_about_the_picture() {
     const SceneDescription& scene = scene_;
     const Location whole = Diagnostics::whole_file(file_.scene().path());
-    const bool flat_shapes = !scene.triangles.empty() || !scene.quads.empty() || !scene.boxes.empty();
+    const bool flat_shapes = !scene.triangles.empty() || !scene.quads.empty() || !scene.boxes.empty() ||
+                             !scene.cones.empty() || !scene.discs.empty();
     if (scene.spheres.empty() && scene.planes.empty() && scene.meshes.empty() && !flat_shapes) {
         diagnostics_.report(Severity::Warning, whole,
                             "the scene has no shapes: the image will be the background colour only");
@@ -147,7 +149,8 @@ void Validator::warn_about_the_picture() {
         });
     };
     if (scene.lights.empty() && (needs_light(scene.spheres) || needs_light(scene.planes) || needs_light(scene.meshes) ||
-                                 needs_light(scene.triangles) || needs_light(scene.quads) || needs_light(scene.boxes)))
+                                 needs_light(scene.triangles) || needs_light(scene.quads) || needs_light(scene.boxes) ||
+                                 needs_light(scene.cones) || needs_light(scene.discs)))
         diagnostics_.report(Severity::Warning, whole,
                             "the scene has no light: its diffuse and specular colours (kd, ks) will not show, only "
                             "ka; add one, e.g. light { position (0, 5, 5) }");

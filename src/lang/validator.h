@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 #include "lang/evaluated_scene.h"
 #include "lang/schema.h"
 #include "lang/validate.h"
+#include "scene/placement.h"
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
 
@@ -71,7 +73,14 @@ private:
     // Appends to `out` the steps of the groups `block` was made in, innermost first; false if a
     // group's placement is refused (reported once, at the group).
     bool add_group_steps(const Block& block, Placed& out);
+    // The placement of a round shape (sphere, cylinder, cone, disc): false if refused (reported),
+    // else `out` and its one scale factor `size`; the identity when nothing places the block.
+    bool place_round(const Block& block, const Fields& fields, std::string_view what, Placement& out, double& size);
+    bool check_round_reach(const Block& block, std::string_view what, std::initializer_list<dvec3> points,
+                           double radius);
     void build_sphere(const Block& block, const Fields& fields);
+    void build_cone(const Block& block, const Fields& fields);
+    void build_disc(const Block& block, const Fields& fields);
     void build_plane(const Block& block, const Fields& fields);
     void build_mesh(const Block& block, const Fields& fields);
     void build_flat_shape(const Block& block, const Fields& fields);

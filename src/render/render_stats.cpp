@@ -43,11 +43,13 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
 
     // The top level: every object, and the BVH over the bounded ones.
     nlohmann::ordered_json top;
-    size_t counts[3] = {0, 0, 0};
+    size_t counts[5] = {0, 0, 0, 0, 0};
     for (const Object& object : world.objects()) ++counts[size_t(object.kind)];
     top["spheres"] = counts[size_t(ObjectKind::Sphere)];
     top["planes"] = counts[size_t(ObjectKind::Plane)];
     top["mesh_instances"] = counts[size_t(ObjectKind::MeshInstance)];
+    if (const size_t cones = counts[size_t(ObjectKind::Cone)]) top["cones"] = cones;
+    if (const size_t discs = counts[size_t(ObjectKind::Disc)]) top["discs"] = discs;
     top["bounded_objects"] = world.bounded_objects();
     top["search"] = world.top_level_linear() ? "linear" : "sah";
     top["build_seconds"] = world.top_level_build_seconds();

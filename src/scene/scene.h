@@ -79,6 +79,25 @@ struct Plane {
     int material = 0;
 };
 
+// A cone with two radii, from the disc of `base_radius` around `base` to the disc of
+// `top_radius` around `top` (a cylinder when they are equal; a pointed cone when one is 0), open
+// or closed by those discs (`caps`). Curved normals on its side, flat ones on its caps; the
+// normals point outwards, away from the axis. In world coordinates: the language places it.
+struct Cone {
+    dvec3 base{0.0}, top{0.0, 1.0, 0.0};
+    double base_radius = 1.0, top_radius = 0.0;
+    bool caps = true;
+    int material = 0;
+};
+
+// A flat round disc, seen from both sides, in world coordinates.
+struct Disc {
+    dvec3 center{0.0};
+    dvec3 normal{0.0, 1.0, 0.0};  // unit length: the front
+    double radius = 1.0;
+    int material = 0;
+};
+
 struct Light {
     dvec3 position{0.0};
     dvec3 color{1.0};
@@ -150,6 +169,8 @@ struct SceneDescription {
     std::vector<FlatTriangle> triangles;
     std::vector<Quad> quads;
     std::vector<Box> boxes;
+    std::vector<Cone> cones;
+    std::vector<Disc> discs;
     std::vector<Light> lights;
 };
 

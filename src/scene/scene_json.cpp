@@ -99,6 +99,24 @@ Json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes) {
     out["boxes"] = Json::array();
     for (const Box& b : scene.boxes)
         out["boxes"].push_back(placed_json(scene, b, {{"min", vec(b.min)}, {"max", vec(b.max)}}));
+    if (!scene.cones.empty()) {  // only then: older readers know no such key
+        out["cones"] = Json::array();
+        for (const Cone& cone : scene.cones)
+            out["cones"].push_back({{"base", vec(cone.base)},
+                                    {"top", vec(cone.top)},
+                                    {"base_radius", cone.base_radius},
+                                    {"top_radius", cone.top_radius},
+                                    {"caps", cone.caps},
+                                    {"material", material_json(scene, cone.material)}});
+    }
+    if (!scene.discs.empty()) {
+        out["discs"] = Json::array();
+        for (const Disc& d : scene.discs)
+            out["discs"].push_back({{"center", vec(d.center)},
+                                    {"normal", vec(d.normal)},
+                                    {"radius", d.radius},
+                                    {"material", material_json(scene, d.material)}});
+    }
     out["lights"] = Json::array();
     for (const Light& l : scene.lights)
         out["lights"].push_back({{"position", vec(l.position)}, {"color", vec(l.color)}});

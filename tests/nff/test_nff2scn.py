@@ -47,17 +47,17 @@ def run_nff2scn(tmp_path, text, *options, name="scene"):
 class Converted:
     """What nff2scn wrote for an NFF text: the .scn text and the OBJ files by name."""
 
-    def __init__(self, text, corner_rays=False):
+    def __init__(self, text, corner_rays=False, cones="analytic"):
         with tempfile.TemporaryDirectory() as folder:
             source, output = pathlib.Path(folder) / "test.nff", pathlib.Path(folder) / "test.scn"
             source.write_text(text)
-            self.summary = nff2scn.convert_file(source, output, corner_rays)
+            self.summary = nff2scn.convert_file(source, output, corner_rays, cones=cones)
             self.scn = output.read_text()
             self.meshes = {path.name: path.read_text() for path in (output.parent / "test_meshes").iterdir()}
 
 
-def convert_text(text, corner_rays=False):
-    return None, Converted(text, corner_rays)
+def convert_text(text, corner_rays=False, cones="analytic"):
+    return None, Converted(text, corner_rays, cones)
 
 
 def block_lines(scn, kind):
@@ -151,9 +151,20 @@ def test_patch_keeps_its_corner_normals():
     assert normals.tolist() == [[0, 0, 1], [0, 0.6, 0.8], [0.6, 0, 0.8]]
 
 
-def test_cone_is_an_instance_of_a_unit_frustum():
-    text = VIEW + "f 1 1 1 1 0 1 0 0\nc 0 -1 -5 0.5 0 1 -5 0.25\nc\n1 -1 -5 0.5\n1 1 -5 0.25\n"
+def test_cone_is_an_open_analytic_cone():
+    text = VIEW + "f 1 1 1 1 0 1 0 0\nc 0 -1 -5 0.5 0 1 -5 0.25\nc\n1 -1 -5 -0.5\n1 1 -5 -0.5\n"
     _, converted = convert_text(text)
+    cones = block_lines(converted.scn, "cone")
+    assert cones == [
+        "cone { base (0, -1, -5)  top (0, 1, -5)  base_radius 0.5  top_radius 0.25  caps false  material m0 }",
+        "cone { base (1, -1, -5)  top (1, 1, -5)  base_radius 0.5  top_radius 0.5  caps false  material m0 }",
+    ]
+    assert converted.meshes == {}
+
+
+def test_cone_as_mesh_is_an_instance_of_a_unit_frustum():
+    text = VIEW + "f 1 1 1 1 0 1 0 0\nc 0 -1 -5 0.5 0 1 -5 0.25\nc\n1 -1 -5 0.5\n1 1 -5 0.25\n"
+    _, converted = convert_text(text, cones="mesh")
     meshes = block_lines(converted.scn, "mesh")
     assert len(meshes) == 2 and len(converted.meshes) == 1  # one unit mesh for both (same ratio)
     (name,) = converted.meshes
@@ -165,7 +176,7 @@ def test_cone_is_an_instance_of_a_unit_frustum():
 def test_cones_past_the_unit_mesh_limit_are_tessellated_in_place(monkeypatch):
     monkeypatch.setattr(convert, "MAX_CONE_MESHES", 1)
     text = VIEW + "f 1 1 1 1 0 1 0 0\nc 0 -1 -5 0.5 0 1 -5 0.25\nc 1 -1 -5 0.5 1 1 -5 0.1\n"
-    _, converted = convert_text(text)
+    _, converted = convert_text(text, cones="mesh")
     assert sorted(converted.meshes) == ["cone-0.5.obj", "polygons-m0.obj"]
     vertices, normals, faces = obj_arrays(converted.meshes["polygons-m0.obj"])
     # The second cone (ratio 0.2) in world space: its base ring around (1, -1, -5), radius >= 0.5.

@@ -31,6 +31,8 @@ material m { }
 light { position (0, 5, 0) }
 mesh { file ")" TRACER_SOURCE_DIR R"(/scenes/meshes/tetrahedron.obj" material m }
 box { min (0, 0, 0) max (1, 1, 1) material m rotate { } }
+cylinder { base (0, 0, 0) top (0, 1, 0) radius 1 material m }
+cone { base (0, 0, 0) top (0, 1, 0) base_radius 1 material m }
 )";
 
 std::vector<DefaultRow> rows() {
@@ -40,6 +42,7 @@ std::vector<DefaultRow> rows() {
     const Light light;
     const Mesh mesh;
     const Box box;
+    const Cone cone;
     // clang-format off
     return {
         {"render", "width", [=](auto& s) { EXPECT_EQ(s.render.width, render.width); }},
@@ -62,6 +65,9 @@ std::vector<DefaultRow> rows() {
         {"material", "ior", [=](auto& s) { EXPECT_EQ(s.materials[0].ior, material.ior); }},
         {"light", "color", [=](auto& s) { EXPECT_EQ(s.lights[0].color, light.color); }},
         {"mesh", "shading", [=](auto& s) { EXPECT_EQ(s.meshes[0].flat, mesh.flat); }},
+        {"cylinder", "caps", [=](auto& s) { EXPECT_EQ(s.cones[0].caps, cone.caps); }},
+        {"cone", "caps", [=](auto& s) { EXPECT_EQ(s.cones[1].caps, cone.caps); }},
+        {"cone", "top_radius", [=](auto& s) { EXPECT_EQ(s.cones[1].top_radius, cone.top_radius); }},
         // The keys that place a shape, shared by mesh, triangle, quad and box (read on the mesh).
         {"placed", "scale", [=](auto& s) { EXPECT_EQ(s.meshes[0].scale, mesh.scale); }},
         {"placed", "rotate", [=](auto& s) {

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include <glm/geometric.hpp>
+
 #include "lang/load_scene.h"
 #include "scene/scene_json.h"
 
@@ -137,6 +139,39 @@ TEST(Validate, JsonDumpIsFullyResolved) {
     EXPECT_EQ(json["spheres"][0]["material"]["kd"], nlohmann::json::array({0.5, 0.5, 0.5}));
     EXPECT_EQ(json["spheres"][0]["material"]["ka"], nlohmann::json::array({0.0, 0.0, 0.0}));
     EXPECT_EQ(json["camera"]["up"], nlohmann::json::array({0.0, 1.0, 0.0}));
+}
+
+}  // namespace
+}  // namespace tracer
+
+namespace tracer {
+namespace {
+
+// Cylinders, cones and discs are placed into world coordinates by their own keys and their
+// groups' (inner first): points placed, radii scaled by the one factor, normals turned; a
+// mirroring scale keeps them round.
+TEST(Validate, RoundShapesArePlacedByTransformsAndGroups) {
+    LoadResult r = load(kCamera +
+                        "light { position (0, 5, 5) }\n"
+                        "group {\n  rotate { axis (0, 0, 1) angle 90 }\n  translate (1, 0, 0)\n"
+                        "  cylinder { base (0, 0, 0) top (0, 1, 0) radius 0.5 scale -2 material { kd 1 } }\n"
+                        "  disc { center (0, 1, 0) normal (0, 1, 0) radius 0.5 material { kd 1 } }\n}\n"
+                        "cone { base (1, 2, 3) top (1, 2, 4) base_radius 1 caps false material { kd 1 } }\n");
+    ASSERT_TRUE(r.scene) << format_diagnostic(r.diagnostics.all().front());
+    ASSERT_EQ(r.scene->cones.size(), 2u);
+    const Cone& cylinder = r.scene->cones[0];
+    EXPECT_NEAR(glm::length(cylinder.base - dvec3(1, 0, 0)), 0, 1e-15);
+    EXPECT_NEAR(glm::length(cylinder.top - dvec3(3, 0, 0)), 0, 1e-15);
+    EXPECT_EQ(cylinder.base_radius, 1.0);
+    EXPECT_EQ(cylinder.top_radius, 1.0);
+    EXPECT_TRUE(cylinder.caps);
+    const Cone& cone = r.scene->cones[1];
+    EXPECT_EQ(cone.top_radius, 0.0);  // a pointed cone by default
+    EXPECT_FALSE(cone.caps);
+    ASSERT_EQ(r.scene->discs.size(), 1u);
+    EXPECT_NEAR(glm::length(r.scene->discs[0].center), 0, 1e-15);
+    EXPECT_NEAR(glm::length(r.scene->discs[0].normal - dvec3(-1, 0, 0)), 0, 1e-15);
+    EXPECT_EQ(r.scene->discs[0].radius, 0.5);
 }
 
 }  // namespace

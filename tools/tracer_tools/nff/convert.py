@@ -14,10 +14,12 @@ The rules, each a choice NFF leaves open (docs/spd.md gives the reasons):
 - ray tree depth 5 counting the eye ray: max_depth 4.
 - polygons and patches: triangulated by Earcut into one OBJ per material, each polygon with its
   own corners and flat normal (patches keep their corner normals), wound like the polygon.
-- cones and cylinders: one unit frustum OBJ per apex/base radius ratio, placed by scale, rotate
-  and translate (instances), with enough sides that the outline is within `max_error_pixels`
-  of the true cone for every cone in front of the eye. Past MAX_CONE_MESHES different ratios, a
-  cone is tessellated in place into its material's OBJ instead.
+- cones and cylinders: tracer's own open cones (`cone { ... caps false }`: NFF's cones have no
+  end caps), base to apex. With `cones="mesh"` (for measuring the analytic cone against it)
+  instead one unit frustum OBJ per apex/base radius ratio, placed by scale, rotate and translate
+  (instances), with enough sides that the outline is within `max_error_pixels` of the true cone
+  for every cone in front of the eye; past MAX_CONE_MESHES different ratios, a cone is
+  tessellated in place into its material's OBJ.
 """
 
 from __future__ import annotations
@@ -101,9 +103,15 @@ class Writer:
     staging/MESHES/*.obj as they come; finish() writes the .scn around them."""
 
     def __init__(
-        self, staging: pathlib.Path, meshes_folder: str, corner_rays: bool = False, max_error_pixels: float = 0.1
+        self,
+        staging: pathlib.Path,
+        meshes_folder: str,
+        corner_rays: bool = False,
+        max_error_pixels: float = 0.1,
+        cones: str = "analytic",
     ) -> None:
         self.staging = staging
+        self.cones = cones
         self.folder = meshes_folder
         (staging / meshes_folder).mkdir()
         self.shapes = open(staging / "shapes.part", "w")  # noqa: SIM115  (closed by finish)
@@ -171,6 +179,13 @@ class Writer:
 
     def cone(self, scene: Scene, cone: Cone) -> None:
         name = self.material(cone.fill, cone.word)
+        self.counts["cones"] += 1
+        if self.cones == "analytic":
+            self.shapes.write(
+                f"cone {{ base {_vec(cone.base)}  top {_vec(cone.apex)}  base_radius {_num(cone.base_radius)}  "
+                f"top_radius {_num(cone.apex_radius)}  caps false  material {name} }}\n"
+            )
+            return
         if self.camera is None:
             self.camera = _Camera(scene.view, self.corner_rays)
         base, apex = np.array(cone.base, dtype=np.float64), np.array(cone.apex, dtype=np.float64)
@@ -183,7 +198,6 @@ class Writer:
         rotation_axis, angle = geometry.frame_to_axis(axis / length)
         sides = self.sides_for(base, apex, r_base)
         scale = (r_base, r_base, length)
-        self.counts["cones"] += 1
         if ratio in self.cone_sides or len(self.cone_sides) < MAX_CONE_MESHES:
             self.cone_sides[ratio] = max(self.cone_sides.get(ratio, geometry.LEAST_SIDES), sides)
             self.shapes.write(

@@ -65,6 +65,7 @@ def convert_file(
     scn_path: str | pathlib.Path,
     corner_rays: bool = False,
     max_error_pixels: float = 0.1,
+    cones: str = "analytic",
 ) -> dict:
     """Converts an NFF file, writing scn_path and its meshes folder; prints warnings on stderr.
 
@@ -76,7 +77,7 @@ def convert_file(
     meshes_name = f"{scn_path.stem}_meshes"
     staging = pathlib.Path(tempfile.mkdtemp(prefix=f".{scn_path.stem}.", dir=scn_path.parent))
     try:
-        writer = convert.Writer(staging, meshes_name, corner_rays, max_error_pixels)
+        writer = convert.Writer(staging, meshes_name, corner_rays, max_error_pixels, cones)
         try:
             scene = reader.read_nff(nff_path, text, writer)
         finally:
@@ -106,6 +107,12 @@ def main(argv: list[str] | None = None) -> int:
         "average 2 x 2 blocks for the N x N image)",
     )
     parser.add_argument(
+        "--cones",
+        choices=("analytic", "mesh"),
+        default="analytic",
+        help="cones and cylinders as tracer's own cones (default), or tessellated into meshes (to compare)",
+    )
+    parser.add_argument(
         "--max-error-pixels", type=float, default=0.1, help="largest outline error of a tessellated cone (pixels)"
     )
     args = parser.parse_args(argv)
@@ -117,14 +124,15 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(f"the output's folder does not exist: {args.output.parent}")
 
     try:
-        summary = convert_file(args.nff, args.output, args.corner_rays, args.max_error_pixels)
+        summary = convert_file(args.nff, args.output, args.corner_rays, args.max_error_pixels, args.cones)
     except reader.NffError as error:
         print(error, file=sys.stderr)
         return 1
     print(
         f"{args.output}: {summary['spheres']} spheres, {summary['polygons']} polygons "
-        f"({summary['triangles']} triangles), {summary['cones']} cones "
-        f"(sides by radius ratio: {summary['cone_sides'] or 'none'}), {summary['lights']} lights, "
+        f"({summary['triangles']} triangles), {summary['cones']} cones"
+        + (f" (sides by radius ratio: {summary['cone_sides']})" if summary["cone_sides"] else "")
+        + f", {summary['lights']} lights, "
         f"{summary['materials']} materials; {summary['seconds']:.2f} s",
         file=sys.stderr,
     )
