@@ -124,6 +124,8 @@ void Validator::build_render(const Block& block, const Fields& fields) {
     render.samples = fields.integer("samples");
     render.background = fields.triple("background");
     render.shadows = fields.boolean("shadows");
+    render.transparent_shadows = fields.boolean("transparent_shadows");
+    render.spawn_rules = fields.text("spawn_rules") == "spd" ? SpawnRules::Spd : SpawnRules::Tracer;
     accelerator_from_name(fields.text("accel"), render.accel);
     render.leaf_size = fields.integer("leaf_size");
 

@@ -64,6 +64,18 @@ const BlockSpec kRender{
         ranged(key("background", ValueType::Triple, "0",
                    "Colour of rays that leave the scene."), 0, kInf),
         key("shadows", ValueType::Boolean, "true", "Trace shadow rays to the lights."),
+        key("transparent_shadows", ValueType::Boolean, "false",
+            "Let shadow rays through transmitting surfaces (kt > 0): the light is multiplied by kt at "
+            "each surface the shadow ray crosses, in a straight line (no refraction, so no caustics). "
+            "`false`: every surface blocks light."),
+        one_of(key("spawn_rules", ValueType::Choice, "tracer",
+                   "Which rays a hit spawns. `tracer`: a reflection ray where the path's mirror weight "
+                   "is not zero, a shadow ray where a light's Phong term is not zero, no refracted ray "
+                   "under 1/4096 of weight. `spd`: the Standard Procedural Databases' testing "
+                   "procedure, for comparing ray counts: a reflection ray at every hit on a surface "
+                   "with km or kt above 0, a shadow ray wherever the normal faces the light, no "
+                   "weight cut-off (the image is the same)."),
+               {"tracer", "spd"}),
         one_of(key("accel", ValueType::Choice, "sah",
                    "How rays find a mesh's triangles: `none` tests every triangle, `box` one bounding "
                    "box around the mesh, `median` a BVH split at the median centroid (x, y, z by "

@@ -30,8 +30,15 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
     out["accel"] = accelerator_name(scene.render.accel);
     out["leaf_size"] = scene.render.leaf_size;
     out["render_seconds"] = stats.seconds;
-    out["rays"] = {{"primary", rays.primary},       {"primary_hits", rays.primary_hits}, {"shadow", rays.shadow},
-                   {"reflection", rays.reflection}, {"refraction", rays.refraction},     {"total", rays.total()}};
+    out["rays"] = {{"primary", rays.primary},
+                   {"primary_hits", rays.primary_hits},
+                   {"shadow", rays.shadow},
+                   {"reflection", rays.reflection},
+                   {"refraction", rays.refraction},
+                   {"total", rays.total()},
+                   {"total_internal_reflections", rays.total_internal_reflections}};
+    out["spawn_rules"] = scene.render.spawn_rules == SpawnRules::Spd ? "spd" : "tracer";
+    out["transparent_shadows"] = scene.render.transparent_shadows;
     const double total = double(std::max<uint64_t>(rays.total(), 1));
     const SearchCounts& work = rays.traversal;
     out["box_tests_per_ray"] = double(work.objects.box_tests + work.triangles.box_tests) / total;

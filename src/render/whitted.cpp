@@ -18,6 +18,7 @@ RayCounts& RayCounts::operator+=(const RayCounts& other) {
     reflection += other.reflection;
     refraction += other.refraction;
     primary_hits += other.primary_hits;
+    total_internal_reflections += other.total_internal_reflections;
     traversal += other.traversal;
     return *this;
 }
@@ -34,12 +35,36 @@ static std::span<Occluder> shadow_cache(const World& world) {
     return last;
 }
 
-// Phong terms of every light that the point sees (no ambient). A light whose unshadowed
-// term is exactly zero (a mirror with kd = ks = 0, a back face without specular) adds
-// nothing either way, so it costs no shadow ray.
+// The most surfaces one transparent shadow ray crosses; past them the light counts as blocked.
+constexpr int kMostShadowCrossings = 1024;
+
+// The fraction of a light's colour that reaches the point along `shadow` (transparent shadows):
+// the product of kt over the surfaces crossed, 0 at the first that transmits nothing. Each
+// crossing continues as a ray of its own, from the far side of the surface, counted as a shadow
+// ray.
+static Color light_through(const World& world, SpawnedRay shadow, const Vec3& light, RayCounts& counts) {
+    Color through(1.0);
+    for (int crossings = 0; crossings < kMostShadowCrossings; ++crossings) {
+        const auto found = world.nearest_hit(shadow.ray, shadow.range, counts.traversal);
+        if (!found) return through;
+        const SurfaceHit hit = world.surface(shadow.ray, *found);
+        through *= world.materials()[size_t(hit.material)].kt;
+        if (through == Color(0.0)) return through;
+        ++counts.shadow;
+        shadow = spawn_ray_to(hit, light);
+    }
+    return Color(0.0);
+}
+
+// Phong terms of every light that the point sees (no ambient). Under tracer's rules a light
+// whose unshadowed term is exactly zero (a mirror with kd = ks = 0, a back face without
+// specular) adds nothing either way, so it costs no shadow ray; under the SPD's, a shadow ray
+// goes wherever the normal faces the light, and nowhere else.
 static Color direct_light(const World& world, const RenderSettings& settings, const Material& material,
                           const SurfaceHit& hit, const SpawnPoint& spawn, const Vec3& normal, const Vec3& to_viewer,
                           std::span<Occluder> last_blockers, RayCounts& counts) {
+    const bool spd_rules = settings.spawn_rules == SpawnRules::Spd;
+    const bool through_glass = settings.transparent_shadows && world.refracts();
     Color sum(0.0);
     for (size_t l = 0; l < world.lights().size(); ++l) {
         const Light& light = world.lights()[l];
@@ -53,12 +78,16 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         const Color diffuse = material.kd * double(std::max(Real(0), n_dot_l));
         const Color specular =
             material.ks == Color(0.0) ? Color(0.0) : material.ks * std::pow(double(r_dot_v), material.n);
-        const Color term = light.color * (diffuse + specular);
-        if (term == Color(0.0)) continue;
+        Color term = light.color * (diffuse + specular);
+        if (spd_rules ? !(n_dot_l > 0) : term == Color(0.0)) continue;
         if (settings.shadows) {
             ++counts.shadow;
             const SpawnedRay shadow = spawn.ray_to(light_offset, distance);
-            if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l])) continue;
+            if (through_glass) {
+                term *= light_through(world, shadow, Vec3(light.position), counts);
+            } else if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l])) {
+                continue;
+            }
         }
         sum += term;
     }
@@ -109,6 +138,7 @@ template <bool kRefracts>
                                               RayCounts& counts) {
     Color color(0.0);
     std::vector<Branch>* pending = nullptr;  // this thread's stack, once a branch is made
+    const bool spd_rules = settings.spawn_rules == SpawnRules::Spd;
     const std::span<Occluder> last_blockers = shadow_cache(world);
     int spawned = 0;
     Branch path{ray, kPrimaryRange, Color(1.0), 0};
@@ -145,8 +175,8 @@ template <bool kRefracts>
                 const Real eta = Real(entering ? 1 / material.ior : material.ior);
                 const Color branch_weight = weight * material.kt;
                 if (const auto direction = refracted(ray.direction, normal, eta)) {
-                    const bool visible =
-                        std::max({branch_weight.r, branch_weight.g, branch_weight.b}) >= kSmallestBranchWeight;
+                    const bool visible = spd_rules || std::max({branch_weight.r, branch_weight.g, branch_weight.b}) >=
+                                                          kSmallestBranchWeight;
                     if (visible && spawned < kMostBranches) {
                         ++counts.refraction, ++spawned;
                         const SpawnedRay next = spawn.ray(*direction);
@@ -155,12 +185,14 @@ template <bool kRefracts>
                     }
                 } else {
                     reflect += material.kt;
+                    ++counts.total_internal_reflections;
                 }
             }
 
-            // Step 4: continue along the mirror direction D - 2(D.N)N.
+            // Step 4: continue along the mirror direction D - 2(D.N)N (the SPD's rules: from every
+            // surface with km or kt, whatever the path's weight).
             weight *= reflect;
-            if (weight == Color(0.0)) break;
+            if (spd_rules ? material.km == Color(0.0) && material.kt == Color(0.0) : weight == Color(0.0)) break;
             ++counts.reflection;
             const SpawnedRay reflected = spawn.ray(ray.direction - 2 * glm::dot(ray.direction, normal) * normal);
             ray = reflected.ray;

@@ -17,8 +17,9 @@ struct RayCounts {
     uint64_t shadow = 0;
     uint64_t reflection = 0;
     uint64_t refraction = 0;
-    uint64_t primary_hits = 0;  // primary rays that met a surface (a subset of primary)
-    SearchCounts traversal;     // box, object and triangle tests of all those rays
+    uint64_t primary_hits = 0;                // primary rays that met a surface (a subset of primary)
+    uint64_t total_internal_reflections = 0;  // transmitting hits that made no refracted ray
+    SearchCounts traversal;                   // box, object and triangle tests of all those rays
 
     uint64_t total() const { return primary + shadow + reflection + refraction; }
     RayCounts& operator+=(const RayCounts& other);

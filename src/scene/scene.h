@@ -41,6 +41,10 @@ struct Camera {
     double focal = 1.0;          // distance to the image plane (cancels out of the image)
 };
 
+// Which secondary rays a hit spawns (docs/spd.md): tracer's own rules, or those of the Standard
+// Procedural Databases' testing procedure (its rules 8 and 10), for comparing ray counts.
+enum class SpawnRules { Tracer, Spd };
+
 // How rays find triangles: every triangle (none), one bounding box around the mesh (box),
 // or a bounding volume hierarchy built by median splits (median) or the SAH (sah).
 enum class Accelerator { None, Box, Median, Sah };
@@ -56,6 +60,10 @@ struct RenderSettings {
     int samples = 1;        // samples per pixel, a perfect square (N x N stratified)
     dvec3 background{0.0};  // colour of rays that leave the scene
     bool shadows = true;    // trace shadow rays to the lights
+    // Shadow rays pass through transmitting surfaces, the light times kt at each one crossed
+    // (not refracted); false: every surface blocks light.
+    bool transparent_shadows = false;
+    SpawnRules spawn_rules = SpawnRules::Tracer;
     Accelerator accel = Accelerator::Sah;
     int leaf_size = 4;  // most triangles in a BVH leaf (median; sah may make smaller leaves)
 };

@@ -62,6 +62,9 @@ Json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes) {
                      {"shadows", r.shadows},
                      {"accel", accelerator_name(r.accel)},
                      {"leaf_size", r.leaf_size}};
+    // Only when set: older readers know no such keys.
+    if (r.transparent_shadows) out["render"]["transparent_shadows"] = true;
+    if (r.spawn_rules == SpawnRules::Spd) out["render"]["spawn_rules"] = "spd";
     const Camera& c = scene.camera;
     out["camera"] = {{"eye", vec(c.eye)},
                      {"lookat", vec(c.lookat)},

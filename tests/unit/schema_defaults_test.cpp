@@ -51,6 +51,10 @@ std::vector<DefaultRow> rows() {
         {"render", "samples", [=](auto& s) { EXPECT_EQ(s.render.samples, render.samples); }},
         {"render", "background", [=](auto& s) { EXPECT_EQ(s.render.background, render.background); }},
         {"render", "shadows", [=](auto& s) { EXPECT_EQ(s.render.shadows, render.shadows); }},
+        {"render", "transparent_shadows", [=](auto& s) {
+             EXPECT_EQ(s.render.transparent_shadows, render.transparent_shadows);
+         }},
+        {"render", "spawn_rules", [=](auto& s) { EXPECT_EQ(s.render.spawn_rules, render.spawn_rules); }},
         {"render", "accel", [=](auto& s) { EXPECT_EQ(s.render.accel, render.accel); }},
         {"render", "leaf_size", [=](auto& s) { EXPECT_EQ(s.render.leaf_size, render.leaf_size); }},
         {"camera", "up", [=](auto& s) { EXPECT_EQ(s.camera.up, camera.up); }},

@@ -147,3 +147,61 @@ TEST(Whitted, MayHitNeverRulesOutARayThatHits) {
 
 }  // namespace
 }  // namespace tracer
+
+namespace tracer {
+namespace {
+
+// A lit unit sphere seen head on, a glass sphere (kt 0.5, 0.25, 0) between it and the light.
+SceneDescription lit_through_glass(bool transparent) {
+    SceneDescription scene = one_sphere(phong(dvec3(0), dvec3(1), dvec3(0), 1), {{0, 0, 10}, dvec3(1)});
+    Material glass;
+    glass.kt = dvec3(0.5, 0.25, 0);
+    glass.ior = 1.5;
+    scene.materials.push_back(glass);
+    scene.spheres.push_back({{0, 0, 3}, 0.5, 1});
+    scene.render.transparent_shadows = transparent;
+    return scene;
+}
+
+// Transparent shadows: the light crosses two surfaces of the glass, kt at each (not refracted);
+// a channel with kt 0 is blocked. Opaque shadows block it all.
+TEST(Whitted, TransparentShadowsMultiplyTheLightByKtAtEachSurfaceCrossed) {
+    const Ray at_lit_point{{0, 0, 1.5}, {0, 0, -1}};  // starts between the spheres: (0, 0, 1) first
+    for (bool transparent : {true, false}) {
+        const SceneDescription scene = lit_through_glass(transparent);
+        const World world(scene);
+        RayCounts counts;
+        const Color c = trace(world, scene.render, at_lit_point, counts);
+        EXPECT_NEAR(c.r, transparent ? 0.25 : 0, 1e-12);
+        EXPECT_NEAR(c.g, transparent ? 0.0625 : 0, 1e-12);
+        EXPECT_EQ(c.b, 0);
+        // The shadow ray, and under transparent shadows its two continuations past each surface.
+        EXPECT_EQ(counts.shadow, transparent ? 3u : 1u);
+    }
+}
+
+// The SPD's spawn rules: a reflection ray at a transmitting surface with km = 0 and a shadow ray
+// wherever the normal faces the light (here onto black glass); tracer's rules spawn neither.
+// The colour is the same.
+TEST(Whitted, SpdSpawnRulesAddRaysButNotColour) {
+    SceneDescription scene = one_sphere(phong(dvec3(0.1), dvec3(0), dvec3(0), 1), {{0, 0, 10}, dvec3(1)});
+    scene.materials[0].kt = dvec3(0.5);
+    scene.materials[0].ior = 1.5;
+    scene.spheres.push_back({{0, 0, -4}, 1, 0});
+    Color colours[2];
+    RayCounts counts[2];
+    for (int spd = 0; spd < 2; ++spd) {
+        scene.render.spawn_rules = spd ? SpawnRules::Spd : SpawnRules::Tracer;
+        const World world(scene);
+        colours[spd] = trace(world, scene.render, kDown, counts[spd]);
+    }
+    EXPECT_EQ(colours[0], colours[1]);
+    EXPECT_EQ(counts[0].reflection, 0u);
+    EXPECT_GT(counts[1].reflection, 0u);
+    EXPECT_EQ(counts[0].shadow, 0u);  // kd = ks = 0: no Phong term, no shadow ray
+    EXPECT_GT(counts[1].shadow, 0u);
+    EXPECT_GE(counts[1].refraction, counts[0].refraction);  // the reflection rays' own subtrees
+}
+
+}  // namespace
+}  // namespace tracer

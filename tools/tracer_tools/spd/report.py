@@ -73,6 +73,46 @@ def rays_table(results: list[dict]) -> str:
     return "\n".join(lines)
 
 
+# Upstream's published counts at the default size (its Readme.txt, "Database Analysis"): eye rays
+# that hit, reflection, refraction and shadow rays, 513 x 513 eye rays, depth 5.
+UPSTREAM_COUNTS = {
+    "balls": (263169, 175095, 0, 954368),
+    "gears": (245086, 304643, 207564, 2246955),
+    "mount": (173125, 354769, 354769, 412922),
+    "rings": (263169, 315236, 0, 1085002),
+    "teapot": (161120, 225248, 0, 407656),
+    "tetra": (49788, 0, 0, 46112),
+    "tree": (169836, 0, 0, 1097419),
+}
+
+
+def _versus(ours: int, theirs: int) -> str:
+    if theirs == 0:
+        return f"{ours:,} (0)" if ours else "0"
+    return f"{ours:,} ({100 * (ours - theirs) / theirs:+.2f}%)"
+
+
+def upstream_rules_table(results: list[dict]) -> str:
+    """Counts under `spawn_rules spd` against upstream's table; refraction also with the total
+    internal reflections added (upstream's figure counts them)."""
+    lines = [
+        "| scene | eye rays that hit | reflection | refraction | refraction + TIR | shadow "
+        "| upstream's (hit, refl., refr., shadow) |",
+        "|---|--:|--:|--:|--:|--:|---|",
+    ]
+    for r in results:
+        if "spd_rules_rays" not in r or r["scene"] not in UPSTREAM_COUNTS:
+            continue
+        rays, theirs = r["spd_rules_rays"], UPSTREAM_COUNTS[r["scene"]]
+        tir = rays.get("total_internal_reflections", 0)
+        lines.append(
+            f"| {r['scene']} | {_versus(rays['primary_hits'], theirs[0])} | {_versus(rays['reflection'], theirs[1])} "
+            f"| {_versus(rays['refraction'], theirs[2])} | {_versus(rays['refraction'] + tir, theirs[2])} "
+            f"| {_versus(rays['shadow'], theirs[3])} | {', '.join(f'{n:,}' for n in theirs)} |"
+        )
+    return "\n".join(lines)
+
+
 def crosscheck_table(results: list[dict]) -> str:
     lines = [
         "| scene | over 2 levels | px | ill-conditioned px | over 2 levels on the others | RMSE | FLIP |",
@@ -148,6 +188,22 @@ Reading the OBJ files is in neither column, nor in "parse + check" above (`--che
 mesh files without reading them).
 
 {rays_table(results)}
+
+## Ray counts under upstream's rules against its published table
+
+The same corner-ray renders with `spawn_rules spd` (upstream's rules 8 and 10 as it states them: a
+reflection ray at every hit on a surface with km or kt above 0, whatever the weight; a shadow ray
+wherever the normal faces the light, none elsewhere; no weight cut-off). The image is the same;
+only rays of no weight are added. Differences from upstream's table in brackets.
+
+{upstream_rules_table(results)}
+
+Every count is within 0.4% of upstream's but gears' refraction: tracer spawns no refracted ray
+under total internal reflection (rule 9), and upstream's figure matches tracer's refracted rays
+plus its total internal reflections (`--stats-json`'s `total_internal_reflections`) to 0.01%: the
+tracer that made the table counted a refraction ray at those hits too. The small remaining
+differences come from rays that graze silhouettes and edges, which any two tracers decide
+differently (upstream: "the numbers given can vary noticeably from a given ray tracer").
 
 ## Cross-check with Mitsuba 3 (512 x 512, 1 sample at each pixel centre)
 

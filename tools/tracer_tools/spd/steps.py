@@ -101,6 +101,33 @@ def render_corner_rays(
     return json.loads(stats_path.read_text())
 
 
+def with_spd_rules(scn_path: pathlib.Path, out_path: pathlib.Path) -> None:
+    """The scene with `spawn_rules spd` in its render block (upstream's rules 8 and 10)."""
+    text = scn_path.read_text()
+    if not re.search(r"^render \{", text, flags=re.MULTILINE):
+        raise ValueError(f"{scn_path}: no render block to set spawn_rules in")
+    out_path.write_text(re.sub(r"^render \{", "render { spawn_rules spd ", text, count=1, flags=re.MULTILINE))
+
+
+def ray_counts(scn_path: pathlib.Path, stats_path: pathlib.Path, threads: int) -> dict:
+    """tracer's ray counts for a scene (`--stats-json`'s rays), its image thrown away."""
+    image = stats_path.with_suffix(".exr")
+    command = [
+        tracer_path("tracer"),
+        scn_path,
+        "-o",
+        image,
+        "-q",
+        "--threads",
+        str(threads),
+        "--stats-json",
+        stats_path,
+    ]
+    subprocess.run([str(c) for c in command], check=True)
+    image.unlink()
+    return json.loads(stats_path.read_text())["rays"]
+
+
 def bench(scn_path: pathlib.Path, threads: int, runs: int) -> dict:
     """tracer_bench's in-process timings (median render, build) of a scene."""
     command = [tracer_path("tracer_bench"), scn_path, "--threads", str(threads), "--runs", str(runs), "--json"]

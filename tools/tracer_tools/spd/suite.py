@@ -66,6 +66,9 @@ def run_scene(name: str, args: argparse.Namespace, generators: pathlib.Path, emb
 
     steps.log(f"{name}: rendering under upstream's procedure")
     result["stats"] = steps.render_corner_rays(corners, folder / "tracer.png", folder / "stats.json", args.threads)
+    spd_rules = folder / f"{name}_corners_spd_rules.scn"
+    steps.with_spd_rules(corners, spd_rules)
+    result["spd_rules_rays"] = steps.ray_counts(spd_rules, folder / "stats_spd_rules.json", args.threads)
     result["bench"] = steps.bench(corners, args.threads, args.runs)
 
     if not args.no_crosscheck:

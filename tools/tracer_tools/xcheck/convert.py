@@ -12,7 +12,7 @@ import pathlib
 from collections.abc import Sequence
 from xml.sax.saxutils import quoteattr
 
-from . import PHONG_PLUGIN, WHITTED_PLUGIN, ToolError
+from . import PHONG_PLUGIN, WHITTED_PLUGIN, ToolError, round_shapes
 
 # Primary rays start this far in front of the eye (the camera's near clip). Secondary rays
 # leave surfaces by Mitsuba's spawn_ray / spawn_ray_to, as tracer's by its spawn rule.
@@ -137,7 +137,7 @@ def _material_key(material: dict) -> tuple[str, str]:
     return (material["name"], repr(sorted(material.items())))
 
 
-SHAPE_KINDS = ("spheres", "planes", "meshes", "triangles", "quads", "boxes")
+SHAPE_KINDS = ("spheres", "planes", "meshes", "triangles", "quads", "boxes", "cones", "discs")
 
 
 def shapes(scene: dict) -> list[dict]:
@@ -217,6 +217,11 @@ def to_mitsuba_xml(scene: dict) -> str:
         raise ToolError(
             f"max_depth {render['max_depth']}: the Mitsuba integrator unrolls one level per "
             f"bounce and takes at most {MAX_DEPTH}"
+        )
+    if render.get("transparent_shadows") and refracts(scene):
+        raise ToolError(
+            "transparent_shadows: the Mitsuba integrator's shadows are opaque; check this scene with "
+            "tools/crosscheck --with povray"
         )
     out = _Writer()
     out.line("<?xml version='1.0' encoding='utf-8'?>")
@@ -339,6 +344,21 @@ def to_mitsuba_xml(scene: dict) -> str:
         out.leaf("ref", id=ids[_material_key(shape["material"])])
         out.close("shape")
 
+    # The round shapes: cones and cylinders as OBJ files (round_shapes.cone_obj), discs and caps
+    # as disks.
+    for index, cone in enumerate(scene.get("cones", [])):
+        out.open("shape", type="obj", id=f"cone{index}")
+        out.leaf("string", name="filename", value=f"cone{index}.obj")
+        out.leaf("ref", id=ids[_material_key(cone["material"])])
+        out.close("shape")
+    for name, matrix, material in round_shapes.disks_of(scene):
+        out.open("shape", type="disk", id=name)
+        out.open("transform", name="to_world")
+        out.leaf("matrix", value=" ".join(repr(float(x)) for row in matrix for x in row))
+        out.close("transform")
+        out.leaf("ref", id=ids[_material_key(material)])
+        out.close("shape")
+
     # Step 5: point lights; the integrator undoes Mitsuba's 1/r^2 fall-off.
     for light in scene["lights"]:
         out.open("emitter", type="point")
@@ -351,12 +371,16 @@ def to_mitsuba_xml(scene: dict) -> str:
 
 
 def write_mitsuba_scene(scene: dict, folder: pathlib.Path) -> pathlib.Path:
-    """Writes folder/scene.xml and the planes' OBJ files; returns the XML's path."""
+    """Writes folder/scene.xml and the OBJ files of its planes, triangles and cones; returns the
+    XML's path."""
     folder = pathlib.Path(folder)
     for index, plane in enumerate(scene["planes"]):
         (folder / f"plane{index}.obj").write_text(plane_mesh_obj(scene, plane))
     for index, triangle in enumerate(scene.get("triangles", [])):
         (folder / f"triangle{index}.obj").write_text(triangle_obj(triangle))
+    for index, cone in enumerate(scene.get("cones", [])):
+        sides = round_shapes.sides_for(cone, scene["camera"]["eye"], pixel_angle(scene))
+        (folder / f"cone{index}.obj").write_text(round_shapes.cone_obj(cone, sides))
     xml_path = folder / "scene.xml"
     xml_path.write_text(to_mitsuba_xml(scene))
     return xml_path
