@@ -1,6 +1,7 @@
 """tools/crosscheck end to end, at reduced resolution, and the error figures it reports."""
 
 import json
+import shutil
 import subprocess
 
 import numpy as np
@@ -99,6 +100,28 @@ def test_cylinders_and_discs_agree(tracer_bin, tmp_path):
     report = json.loads(result.stdout)
     assert report["over_2"] <= 0.0001 and report["psnr"] > 60
     assert (tmp_path / "cone0.obj").is_file()
+
+
+POVRAY_MISSING = "POV-Ray is not installed (Debian's povray; tools/bootstrap --python installs it)"
+
+
+@pytest.mark.skipif(shutil.which("povray") is None, reason=POVRAY_MISSING)
+@pytest.mark.parametrize(
+    ("scene", "most_over_2"),
+    [
+        (ROOT / "scenes" / "task2.scn", 0.0),
+        (HERE / "glass_transparent_shadows.scn", 0.0005),
+        (HERE / "cylinders_discs.scn", 0.0005),
+    ],
+)
+def test_povray_agrees(tracer_bin, tmp_path, scene, most_over_2):
+    """POV-Ray 3.7 (xcheck.povray): task2 to the level, glass under transparent shadows (POV-Ray's
+    own) and the analytic cylinders and disc within a few pixels."""
+    result = run_tool("crosscheck", scene, *SMALL, "--with", "povray", "--out", tmp_path, "--json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    report = json.loads(result.stdout)
+    assert report["peer"] == "povray" and report["over_2"] <= most_over_2, report
+    assert report["trace_seconds"] >= 0 and (tmp_path / "scene.pov").is_file()
 
 
 def test_transparent_shadows_are_refused_before_rendering(tracer_bin, tmp_path):

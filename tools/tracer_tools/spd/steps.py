@@ -101,12 +101,17 @@ def render_corner_rays(
     return json.loads(stats_path.read_text())
 
 
-def with_spd_rules(scn_path: pathlib.Path, out_path: pathlib.Path) -> None:
-    """The scene with `spawn_rules spd` in its render block (upstream's rules 8 and 10)."""
+def with_render_key(scn_path: pathlib.Path, out_path: pathlib.Path, key: str) -> None:
+    """The scene with `key` (e.g. `transparent_shadows true`) added to its render block."""
     text = scn_path.read_text()
     if not re.search(r"^render \{", text, flags=re.MULTILINE):
-        raise ValueError(f"{scn_path}: no render block to set spawn_rules in")
-    out_path.write_text(re.sub(r"^render \{", "render { spawn_rules spd ", text, count=1, flags=re.MULTILINE))
+        raise ValueError(f"{scn_path}: no render block to add {key} to")
+    out_path.write_text(re.sub(r"^render \{", "render { " + key + " ", text, count=1, flags=re.MULTILINE))
+
+
+def with_spd_rules(scn_path: pathlib.Path, out_path: pathlib.Path) -> None:
+    """The scene with `spawn_rules spd` in its render block (upstream's rules 8 and 10)."""
+    with_render_key(scn_path, out_path, "spawn_rules spd")
 
 
 def ray_counts(scn_path: pathlib.Path, stats_path: pathlib.Path, threads: int) -> dict:
@@ -135,14 +140,16 @@ def bench(scn_path: pathlib.Path, threads: int, runs: int) -> dict:
     return json.loads(done.stdout)
 
 
-def crosscheck(scn_path: pathlib.Path, folder: pathlib.Path) -> dict:
-    """tools/crosscheck's report (tracer against Mitsuba 3 at the scene's size, 1 spp)."""
+def crosscheck(scn_path: pathlib.Path, folder: pathlib.Path, peer: str = "mitsuba") -> dict:
+    """tools/crosscheck's report (tracer against Mitsuba 3, or `peer` povray, at the scene's
+    size, 1 spp)."""
     environment = {
         **os.environ,
         "TRACER_BIN": str(tracer_path("tracer")),
         "PYTHONPATH": str(ROOT / "tools"),
     }
-    command = [sys.executable, "-m", "xcheck.crosscheck", str(scn_path), "--out", str(folder), "--json"]
+    command = [sys.executable, "-m", "tracer_tools.xcheck.crosscheck", str(scn_path), "--out", str(folder), "--json"]
+    command += ["--with", peer]
     done = subprocess.run(command, capture_output=True, text=True, env=environment)
     if done.returncode not in (0, 1):  # 1: over a threshold, still reported
         raise RuntimeError(f"tools/crosscheck {scn_path} failed:\n{done.stderr}")

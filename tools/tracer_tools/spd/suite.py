@@ -7,9 +7,10 @@ theirs), converts each with tools/nff2scn, renders it under upstream's testing p
 through the pixel corners, 2 x 2 averaged; ray tree depth 5), times parsing, building and
 tracing, cross-checks it with Mitsuba 3 (tools/crosscheck, with a measurement of which pixels
 are ill-conditioned), compares its speed with Embree's (compare_scene.py and embree_scene from
---bench), and writes docs/spd.md with an image of each scene beside upstream's (--images).
+--bench), cross-checks it with POV-Ray 3.7 (opaque shadows, and transparent ones where
+something transmits), and writes docs/spd.md with an image of each scene beside upstream's (--images).
 Everything else goes to --out (default build/spd). Steps can be left out: --no-crosscheck,
---no-embree.
+--no-embree, --no-povray.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument("--pairs", type=int, default=5, help="tracer/Embree pairs (A B A B ...)")
     parser.add_argument("--no-crosscheck", action="store_true")
     parser.add_argument("--no-embree", action="store_true")
+    parser.add_argument("--no-povray", action="store_true")
     parser.add_argument("--report-only", action="store_true", help="rewrite --docs from --out's results.json")
     args = parser.parse_args(argv)
     args.scenes = [name.strip() for name in args.scenes.split(",") if name.strip()]
@@ -49,6 +51,11 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     if not (args.source / "balls.c").is_file():
         parser.error(f"no SPD generator source in {args.source} (give --source)")
     return args
+
+
+def transmits(scn: pathlib.Path) -> bool:
+    """True if a material of the converted scene has a kt."""
+    return any(" kt " in line for line in scn.read_text().splitlines() if line.startswith("material"))
 
 
 def run_scene(name: str, args: argparse.Namespace, generators: pathlib.Path, embree: pathlib.Path | None) -> dict:
@@ -77,10 +84,17 @@ def run_scene(name: str, args: argparse.Namespace, generators: pathlib.Path, emb
         result["crosscheck"] = steps.crosscheck(scn, check_folder)
         unstable = steps.unstable_pixels(scn, check_folder, relative=steps.MITSUBA_SPAWN_OFFSET, trials=16)
         result["conditioning"] = steps.agreement_on_stable_pixels(check_folder, unstable)
+    if not args.no_povray:
+        steps.log(f"{name}: cross-checking with POV-Ray 3.7")
+        result["povray"] = steps.crosscheck(scn, folder / "povray", "povray")
+        if transmits(scn):
+            transparent = folder / f"{name}_transparent_shadows.scn"
+            steps.with_render_key(scn, transparent, "transparent_shadows true")
+            result["povray_transparent"] = steps.crosscheck(transparent, folder / "povray_transparent", "povray")
     if embree is not None:
         steps.log(f"{name}: timing against Embree")
         compared = scn
-        if any(" kt " in line for line in scn.read_text().splitlines() if line.startswith("material")):
+        if transmits(scn):
             compared = folder / f"{name}_no_refraction.scn"
             steps.without_refraction(scn, compared)
             result["embree_refraction_off"] = True

@@ -1,8 +1,9 @@
 """tools/crosscheck SCENE: render a scene with tracer and with Mitsuba 3 (the plugins of
-xcheck.plugins), report how far apart the images are, and fail above a threshold.
+xcheck.plugins) or, with --with povray, POV-Ray 3.7 (xcheck.povray), report how far apart the
+images are, and fail above a threshold.
 
 Exit codes: 0 the images agree within the thresholds; 1 they do not; 2 bad command line;
-3 tracer rejected the scene (its diagnostics are printed); 4 Mitsuba 3 is missing; 5 another
+3 tracer rejected the scene (its diagnostics are printed); 4 Mitsuba 3 (or POV-Ray) is missing; 5 another
 failure (a scene the cross-check cannot convert, a file that cannot be written, ...).
 """
 
@@ -58,6 +59,13 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     )
     parser.add_argument("--max-rmse", type=float, help="fail when the RMSE is above this")
     parser.add_argument("--max-flip", type=float, help="fail when the FLIP mean is above this")
+    parser.add_argument(
+        "--with",
+        dest="peer",
+        choices=("mitsuba", "povray"),
+        default="mitsuba",
+        help="the other renderer: Mitsuba 3 with tracer's integrator as plugins (default), or POV-Ray 3.7",
+    )
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     return parser.parse_args(argv)
 
@@ -95,29 +103,41 @@ def crosscheck(args: argparse.Namespace) -> int:
     out = args.out or tracer_cli.ROOT / "out" / "crosscheck" / args.scene.stem
     out.mkdir(parents=True, exist_ok=True)
 
-    # Step 2: both renders, as floats.
+    # Step 2: both renders, as floats (the peer first: it may refuse the scene).
     from . import (
         images,
         metrics,
-        mitsuba_render,  # first: it says clearly when Mitsuba is missing
+        mitsuba_render,  # first: it says clearly when Mitsuba is missing (and reads EXR)
     )
 
-    mitsuba_image = mitsuba_render.render_scene(scene, out)  # first: it may refuse the scene
+    peer_times = {}
+    if args.peer == "povray":
+        from . import povray
+
+        peer, peer_name = "povray", "POV-Ray 3.7"
+        peer_image, peer_times = povray.render_scene(scene, out)
+        for note in peer_times["approximated"]:
+            print(f"crosscheck: note: {note}", file=sys.stderr)
+    else:
+        peer, peer_name = "mitsuba", "Mitsuba 3"
+        peer_image = mitsuba_render.render_scene(scene, out)
     tracer_cli.render(args.scene, out / "tracer.exr", extra)
     tracer_image = images.read_exr(out / "tracer.exr")
 
     # Step 3: compare, write the pictures, report.
-    comparison = metrics.compare(mitsuba_image, tracer_image)
+    comparison = metrics.compare(peer_image, tracer_image)
     images.write_png(out / "tracer.png", tracer_image)
-    images.write_png(out / "mitsuba.png", mitsuba_image)
-    images.write_png(out / "heatmap.png", metrics.heat_map(mitsuba_image, tracer_image))
-    images.write_png(out / "side_by_side.png", metrics.side_by_side(mitsuba_image, tracer_image, "Mitsuba 3", "tracer"))
+    images.write_png(out / f"{peer}.png", peer_image)
+    images.write_png(out / "heatmap.png", metrics.heat_map(peer_image, tracer_image))
+    images.write_png(out / "side_by_side.png", metrics.side_by_side(peer_image, tracer_image, peer_name, "tracer"))
     failed = failures(comparison, args)
     report = {
         "scene": str(args.scene),
         "width": scene["render"]["width"],
         "height": scene["render"]["height"],
         "samples": scene["render"]["samples"],
+        "peer": peer,
+        **peer_times,
         **comparison.as_dict(),
         "failed": failed,
         "output": str(out),
@@ -128,7 +148,7 @@ def crosscheck(args: argparse.Namespace) -> int:
     else:
         render = scene["render"]
         print(
-            f"{args.scene}: tracer vs Mitsuba 3 at {render['width']}x{render['height']}, "
+            f"{args.scene}: tracer vs {peer_name} at {render['width']}x{render['height']}, "
             f"{render['samples']} spp\n{comparison.summary()}\nimages: {out}"
         )
         print("FAIL: " + "; ".join(failed) if failed else "ok: within the thresholds")

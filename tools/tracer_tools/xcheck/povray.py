@@ -1,0 +1,246 @@
+"""Scene description (the JSON of `tracer --dump-json`) -> POV-Ray 3.7 SDL, and POV-Ray's image.
+
+POV-Ray is the peer most users would pick instead of tracer and shares its model (point
+lights, Phong, mirror and refraction rays); set up as below it gives the same pixels. The rules,
+each where the two renderers' defaults differ:
+- `#version 3.7`, `assumed_gamma 1.0`, File_Gamma=1.0 and 16-bit PNG output: linear values;
+  no antialiasing, no radiosity; `max_trace_level` = max_depth + 1 (POV-Ray counts the eye ray);
+  `adc_bailout 0` (no weight cut-off); `ambient_light 1`.
+- the camera by its vectors (location, direction, right, up: no look_at, so POV-Ray's
+  left-handedness plays no part): the same rays through the pixel centres as tracer's.
+- lights: point lights without fade; `shadowless` when the scene has `shadows false`.
+- materials: POV-Ray multiplies ambient and diffuse by the pigment and by the opacity 1 - T, so
+  the pigment is kd / (1 - T) with `transmit T`, `diffuse 1` and `ambient` ka / kd per channel (a
+  channel with kd 0 gets a pigment of 1e-9, under any level); `phong` ks with `phong_size` n;
+  `reflection` km; `interior { ior }`. POV-Ray's phong amount and transmit are one number each: a
+  coloured ks, or a coloured kt on a surface with ka or kd, is written as its mean and reported
+  (APPROXIMATED); clear glass (ka = kd = 0) takes any kt exactly, as a pigment of kt with filter 1.
+- shadows through transmitting surfaces: POV-Ray always lets light through them, multiplied by
+  T at each surface (tracer's `transparent_shadows true`); tracer's default opaque shadows differ
+  there, and the report says so.
+- shapes: spheres, planes, discs, cones and cylinders as POV-Ray's own (analytic); meshes as
+  `mesh2` with tracer's placed corners and normals (xcheck.exact_meshes); the flat shapes as
+  triangles.
+"""
+
+from __future__ import annotations
+
+import pathlib
+import re
+import shutil
+import subprocess
+from collections.abc import Sequence
+
+import numpy as np
+
+from . import ToolError, exact_meshes
+
+TINY_PIGMENT = 1e-9  # a kd channel of 0 with ka above 0 (see the module's rules)
+
+
+class PovrayMissing(ToolError):
+    """The `povray` program is not installed."""
+
+    exit_code = 4
+
+
+def _v(values: Sequence[float]) -> str:
+    return "<" + ", ".join(repr(float(v)) for v in values) + ">"
+
+
+# What could not be written exactly, by material: printed once per conversion (APPROXIMATED).
+APPROXIMATED: dict[str, str] = {}
+
+
+def _grey(values: Sequence[float], what: str, material: dict) -> float:
+    """One number for a colour POV-Ray takes as one: exact when grey, else the mean (noted)."""
+    if values[0] == values[1] == values[2]:
+        return float(values[0])
+    name = material.get("name") or "(inline)"
+    APPROXIMATED[f"{name} {what}"] = (
+        f"material {name}: the coloured {what} {list(values)} is written as its mean (POV-Ray's is one number)"
+    )
+    return float(sum(values) / 3)
+
+
+def texture(material: dict) -> str:
+    """A material as POV-Ray's texture and interior (the rules in the module's docstring)."""
+    kd, ka, kt_colour = material["kd"], material["ka"], material.get("kt", [0, 0, 0])
+    ks = _grey(material.get("ks", [0, 0, 0]), "ks", material)
+    finish_parts = []
+    if ks > 0:
+        finish_parts.append(f"phong {ks!r} phong_size {float(material['n'])!r}")
+    if any(material["km"]):
+        finish_parts.append(f"reflection {{ rgb {_v(material['km'])} }}")
+    if not any(kd) and not any(ka) and any(kt_colour):
+        # Clear glass: the pigment is free, so a coloured kt is exact as a filter of 1.
+        finish = " ".join(["ambient 0 diffuse 0", *finish_parts])
+        filtered = ", ".join(repr(float(t)) for t in kt_colour)
+        text = f"texture {{ pigment {{ rgbf <{filtered}, 1> }} finish {{ {finish} }} }}"
+        return text + f" interior {{ ior {float(material['ior'])!r} }}"
+    kt = _grey(kt_colour, "kt", material)
+    if kt >= 1:
+        raise ToolError("a kt of 1 or more: POV-Ray's transmit T scales diffuse and ambient by 1 - T")
+    pigment = [max(d, TINY_PIGMENT if a > 0 else 0.0) for d, a in zip(kd, ka, strict=True)]
+    ambient = [a / p if p > 0 else 0.0 for a, p in zip(ka, pigment, strict=True)]
+    finish = " ".join([f"ambient rgb {_v(ambient)} diffuse 1 brilliance 1", *finish_parts])
+    opacity = 1.0 - kt
+    text = (
+        f"texture {{ pigment {{ rgbt <{', '.join(repr(p / opacity) for p in pigment)}, {kt!r}> }} "
+        f"finish {{ {finish} }} }}"
+    )
+    if kt > 0:
+        text += f" interior {{ ior {float(material['ior'])!r} }}"
+    return text
+
+
+def _camera(scene: dict) -> str:
+    """tracer's pinhole camera (src/render/camera.cpp) by its vectors."""
+    camera, render = scene["camera"], scene["render"]
+    eye, lookat, up = (np.array(camera[k], dtype=np.float64) for k in ("eye", "lookat", "up"))
+    w = (eye - lookat) / np.linalg.norm(eye - lookat)
+    u = np.cross(up, w)
+    u /= np.linalg.norm(u)
+    v = np.cross(w, u)
+    height = 2 * np.tan(np.radians(camera["fovy"]) / 2)
+    width = height * render["width"] / render["height"]
+    return f"camera {{ perspective location {_v(eye)} direction {_v(-w)} right {_v(u * width)} up {_v(v * height)} }}"
+
+
+def _mesh2(corners: np.ndarray, normals: np.ndarray, material: dict) -> str:
+    """Triangles (t, 3, 3) with their corner normals (zero: flat) as one mesh2."""
+    count = len(corners)
+    if count == 0:
+        return ""
+    lines = ["mesh2 {", f"  vertex_vectors {{ {3 * count},"]
+    lines += ["    " + ", ".join(_v(p) for p in triangle) for triangle in corners]
+    lines.append("  }")
+    smooth = bool(np.any(normals))
+    if smooth:
+        faces = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        missing = ~np.any(normals, axis=2)  # a corner without a normal takes its face's
+        normals = np.where(missing[:, :, None], faces[:, None, :], normals)
+        lines.append(f"  normal_vectors {{ {3 * count},")
+        lines += ["    " + ", ".join(_v(n) for n in triangle) for triangle in normals]
+        lines.append("  }")
+    lines.append(f"  face_indices {{ {count},")
+    lines += [f"    <{3 * t}, {3 * t + 1}, {3 * t + 2}>" for t in range(count)]
+    lines.append("  }")
+    if any(material.get("kt", [0, 0, 0])):
+        lines.append("  inside_vector <0, 0, 1>")  # a solid (closed) mesh: refraction needs an inside
+    lines.append(f"  {texture(material)}\n}}")
+    return "\n".join(lines)
+
+
+def _flat_triangles(scene: dict) -> list[tuple[np.ndarray, dict]]:
+    """Each flat shape as placed triangles (t, 3, 3) with its material."""
+    out = []
+    for kind in ("triangles", "quads", "boxes"):
+        for shape in scene.get(kind, []):
+            if kind == "triangles":
+                local = [[shape["a"], shape["b"], shape["c"]]]
+            elif kind == "quads":
+                c, e1, e2 = (np.array(shape[k], dtype=np.float64) for k in ("corner", "edge1", "edge2"))
+                local = [[c, c + e1, c + e1 + e2], [c, c + e1 + e2, c + e2]]
+            else:
+                lo, hi = np.array(shape["min"], dtype=np.float64), np.array(shape["max"], dtype=np.float64)
+                p = [np.where([i & 1, i & 2, i & 4], hi, lo) for i in range(8)]
+                quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+                local = [t for a, b, c, d in quads for t in ([p[a], p[b], p[c]], [p[a], p[c], p[d]])]
+            linear, translate = exact_meshes.placement(shape)
+            out.append((np.array(local, dtype=np.float64) @ linear.T + translate, shape["material"]))
+    return out
+
+
+def to_povray_sdl(scene: dict) -> str:
+    """The POV-Ray 3.7 scene text for a scene description (a dict from `tracer --dump-json`)."""
+    APPROXIMATED.clear()
+    render = scene["render"]
+    out = [
+        f"// From `tracer --dump-json {scene['source']}` by tools/tracer_tools/xcheck/povray.py.",
+        "#version 3.7;",
+        "global_settings { assumed_gamma 1.0 max_trace_level "
+        f"{render['max_depth'] + 1} adc_bailout 0 ambient_light rgb <1, 1, 1> }}",
+        f"background {{ rgb {_v(render['background'])} }}",
+        _camera(scene),
+    ]
+    shadowless = "" if render["shadows"] else " shadowless"
+    out += [
+        f"light_source {{ {_v(light['position'])} color rgb {_v(light['color'])}{shadowless} }}"
+        for light in scene["lights"]
+    ]
+    for sphere in scene["spheres"]:
+        out.append(f"sphere {{ {_v(sphere['center'])}, {float(sphere['radius'])!r} {texture(sphere['material'])} }}")
+    for plane in scene["planes"]:
+        distance = float(np.dot(plane["point"], plane["normal"]))
+        out.append(f"plane {{ {_v(plane['normal'])}, {distance!r} {texture(plane['material'])} }}")
+    for disc in scene.get("discs", []):
+        out.append(
+            f"disc {{ {_v(disc['center'])}, {_v(disc['normal'])}, {float(disc['radius'])!r} "
+            f"{texture(disc['material'])} }}"
+        )
+    for cone in scene.get("cones", []):
+        is_open = "" if cone["caps"] else " open"
+        out.append(
+            f"cone {{ {_v(cone['base'])}, {float(cone['base_radius'])!r}, {_v(cone['top'])}, "
+            f"{float(cone['top_radius'])!r}{is_open} {texture(cone['material'])} }}"
+        )
+    for mesh in scene["meshes"]:
+        linear, translate = exact_meshes.placement(mesh)
+        corners, normals = exact_meshes._triangles(mesh["file"], linear, translate, mesh.get("shading") != "flat")
+        out.append(_mesh2(corners, normals, mesh["material"]))
+    for corners, material in _flat_triangles(scene):
+        out.append(_mesh2(corners, np.zeros_like(corners), material))
+    return "\n".join(out) + "\n"
+
+
+def render_scene(scene: dict, folder: pathlib.Path, threads: int = 2) -> tuple[np.ndarray, dict]:
+    """Renders the scene with POV-Ray into folder (scene.pov, povray.png); (the image as linear
+    floats H x W x 3, POV-Ray's reported {"parse_seconds", "trace_seconds"})."""
+    povray = shutil.which("povray")
+    if povray is None:
+        raise PovrayMissing(
+            "POV-Ray is not installed (Debian's `povray` package; tools/bootstrap --python installs it)"
+        )
+    render = scene["render"]
+    if render["samples"] != 1:
+        raise ToolError(
+            "POV-Ray's antialiasing is adaptive, not tracer's N x N grid: compare at 1 sample (--samples 1)"
+        )
+    folder = pathlib.Path(folder)
+    pov = folder / "scene.pov"
+    pov.write_text(to_povray_sdl(scene))
+    png = folder / "povray.png"
+    command = [
+        povray, f"+I{pov}", f"+O{png}", f"+W{render['width']}", f"+H{render['height']}",
+        "-A", "+FN16", "File_Gamma=1.0", "-D", "-P", "+Q9", f"+WT{threads}", "-V",
+    ]  # fmt: skip
+    done = subprocess.run(command, capture_output=True, text=True, cwd=folder)
+    if done.returncode != 0 or not png.is_file():
+        tail = "\n".join(done.stderr.strip().splitlines()[-8:])
+        raise ToolError(f"POV-Ray failed on {pov} (exit {done.returncode}):\n{tail}")
+    return read_png16(png), {**render_times(done.stderr), "approximated": sorted(APPROXIMATED.values())}
+
+
+def render_times(log: str) -> dict:
+    """POV-Ray's own Parse Time and Trace Time (seconds) from its statistics on stderr."""
+    times = {}
+    for name, key in (("Parse Time", "parse_seconds"), ("Trace Time", "trace_seconds")):
+        found = re.search(name + r":.*\(([\d.]+) seconds\)", log)
+        if found:
+            times[key] = float(found.group(1))
+    return times
+
+
+def read_png16(path: pathlib.Path) -> np.ndarray:
+    """A 16-bit linear PNG as floats in [0, 1] (OpenImageIO)."""
+    import OpenImageIO as oiio
+
+    image = oiio.ImageInput.open(str(path))
+    if image is None:
+        raise ToolError(f"cannot read {path}: {oiio.geterror()}")
+    try:
+        pixels = image.read_image(0, 0, 0, 3, oiio.FLOAT)
+    finally:
+        image.close()
+    return np.asarray(pixels, dtype=np.float32)
