@@ -108,8 +108,8 @@ def test_background_and_lights_with_and_without_colour():
     assert "background (0.1, 0.2, 0.3)" in block_lines(converted.scn, "render")[0]
     lights = block_lines(converted.scn, "light")
     intensity = math.sqrt(2) / 4  # sqrt(L) / (2L) for L = 2
-    assert lights[0] == f"light {{ position (1, 2, 3)  color {intensity:.9g} }}"
-    assert lights[1] == f"light {{ position (4, 5, 6)  color ({intensity:.9g}, {intensity / 2:.9g}, 0) }}"
+    assert lights[0] == f"light {{ position (1, 2, 3)  color {intensity!r} }}"
+    assert lights[1] == f"light {{ position (4, 5, 6)  color ({intensity!r}, {intensity / 2!r}, 0) }}"
 
 
 def test_fill_maps_to_phong_mirror_and_glass():

@@ -27,8 +27,8 @@ pytestmark = [
 
 @pytest.fixture(scope="module")
 def generators(tmp_path_factory: pytest.TempPathFactory) -> pathlib.Path:
-    """The balls and tetra generators, built as ../shared/spd/build.sh builds them but printing
-    every number at full precision."""
+    """The balls, tetra, rings and tree generators, built as ../shared/spd/build.sh builds them
+    but printing every number at full precision."""
     folder = tmp_path_factory.mktemp("spd")
     for source in (SPD / "src").iterdir():
         if source.suffix in (".c", ".h") or source.name == "makefile":
@@ -36,7 +36,11 @@ def generators(tmp_path_factory: pytest.TempPathFactory) -> pathlib.Path:
     for printer in folder.glob("lib*.c"):
         printer.write_text(printer.read_text(encoding="latin-1").replace("%g", "%.17g"), encoding="latin-1")
     compiler = "cc -O2 -w -std=gnu89 -include compat.h"
-    subprocess.run(["make", "-s", "-C", folder, f"CC={compiler}", "balls", "tetra"], check=True, capture_output=True)
+    subprocess.run(
+        ["make", "-s", "-C", folder, f"CC={compiler}", "balls", "tetra", "rings", "tree"],
+        check=True,
+        capture_output=True,
+    )
     return folder
 
 
@@ -114,4 +118,27 @@ def test_tetra_is_the_generators_tetrahedron(generators: pathlib.Path, tmp_path:
     assert len(ours["triangles"]) == len(upstream) == 4**size
     for index, (mine, their) in enumerate(zip(ours["triangles"], upstream, strict=False)):
         assert_close(mine["a"] + mine["b"] + mine["c"], their, f"triangle {index}")
+    assert_same_view(ours, theirs)
+
+
+@pytest.mark.parametrize(
+    ("name", "size", "count"), [("rings", 1, 30), ("rings", 3, 420), ("tree", 1, 3), ("tree", 3, 15)]
+)
+def test_rings_and_tree_are_the_generators_cones_and_spheres(
+    generators: pathlib.Path, tmp_path: pathlib.Path, name: str, size: int, count: int
+):
+    """Each open cone (a cylinder in rings) and sphere, in the generator's order."""
+    theirs = dump(converted(generators, name, size, tmp_path))
+    ours = dump(PROCEDURAL / f"{name}.scn", "-D", f"size={size}")
+    assert len(ours["cones"]) == len(theirs["cones"]) == len(ours["spheres"]) == len(theirs["spheres"]) == count
+    for index, (mine, upstream) in enumerate(zip(ours["cones"], theirs["cones"], strict=True)):
+        assert mine["caps"] is upstream["caps"] is False
+        numbers = [*mine["base"], *mine["top"], mine["base_radius"], mine["top_radius"]]
+        assert_close(
+            numbers,
+            [*upstream["base"], *upstream["top"], upstream["base_radius"], upstream["top_radius"]],
+            f"cone {index}",
+        )
+    for index, (mine, upstream) in enumerate(zip(ours["spheres"], theirs["spheres"], strict=True)):
+        assert_close(mine["center"] + [mine["radius"]], upstream["center"] + [upstream["radius"]], f"sphere {index}")
     assert_same_view(ours, theirs)

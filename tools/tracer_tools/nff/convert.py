@@ -42,8 +42,11 @@ BUFFERED_LINES = 200_000  # OBJ lines held before they are appended to their fil
 
 
 def _num(value: float) -> str:
-    text = f"{float(value):.9g}"
-    return "0" if text == "-0" else text
+    """The shortest text that reads back as the same double (no precision lost on the way)."""
+    value = float(value)
+    if value == int(value) and abs(value) < 1e15:
+        return str(int(value))
+    return repr(value)
 
 
 def _vec(values: Sequence[float]) -> str:
