@@ -1,0 +1,61 @@
+"""The POV-Ray converter's rules (xcheck.povray), without POV-Ray itself."""
+
+import math
+
+import pytest
+from conftest import ROOT
+
+from tracer_tools.xcheck import povray
+
+
+def material(**keys):
+    base = {
+        "name": "m",
+        "ka": [0, 0, 0],
+        "kd": [0, 0, 0],
+        "ks": [0, 0, 0],
+        "km": [0, 0, 0],
+        "n": 1,
+        "kt": [0, 0, 0],
+        "ior": 1,
+    }
+    return {**base, **keys}
+
+
+def test_pigment_and_ambient_undo_povrays_scaling_by_opacity():
+    text = povray.texture(material(ka=[0.1, 0.1, 0], kd=[0.5, 0.25, 0], kt=[0.5, 0.5, 0.5], ior=1.5))
+    # pigment kd / (1 - T), transmit T; ambient ka / kd per channel; a kd of 0 with ka 0 stays 0.
+    assert "rgbt <1.0, 0.5, 0.0, 0.5>" in text
+    assert "ambient rgb <0.2, 0.4, 0.0>" in text
+    assert "interior { ior 1.5 }" in text
+
+
+def test_ambient_without_diffuse_gets_a_tiny_pigment():
+    text = povray.texture(material(ka=[0.1, 0.1, 0.1]))
+    assert f"rgbt <{povray.TINY_PIGMENT!r}" in text
+    assert f"ambient rgb <{0.1 / povray.TINY_PIGMENT!r}" in text
+
+
+def test_clear_glass_takes_a_coloured_kt_exactly_and_other_colours_are_noted():
+    text = povray.texture(material(ks=[0.6, 0.6, 0.6], n=200, kt=[0.6, 0.9, 0.7], ior=1.33))
+    assert "rgbf <0.6, 0.9, 0.7, 1>" in text and "phong 0.6 phong_size 200.0" in text
+    assert povray.APPROXIMATED == {}
+    povray.texture(material(kd=[0.5, 0.5, 0.5], ks=[0.4, 0.4, 0.3]))
+    assert any("coloured ks" in note for note in povray.APPROXIMATED.values())
+
+
+def test_camera_vectors_span_the_field_of_view(dump):
+    scene = dump(ROOT / "scenes" / "task2.scn")
+    text = povray.to_povray_sdl(scene)
+    camera = next(line for line in text.splitlines() if line.startswith("camera"))
+    up = [float(x) for x in camera.split("up <")[1].split(">")[0].split(",")]
+    assert math.hypot(*up) == pytest.approx(2 * math.tan(math.radians(scene["camera"]["fovy"]) / 2))
+    assert "max_trace_level 5" in text and "adc_bailout 0" in text and "assumed_gamma 1.0" in text
+
+
+def test_render_times_are_read_from_povrays_statistics():
+    log = (
+        "  Parse Time:       0 hours  0 minutes  0 seconds (0.019 seconds)\n"
+        "  Trace Time:       0 hours  1 minutes  2 seconds (62.125 seconds)\n"
+    )
+    assert povray.render_times(log) == {"parse_seconds": 0.019, "trace_seconds": 62.125}
