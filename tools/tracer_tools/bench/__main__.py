@@ -7,6 +7,7 @@ from tracer_tools import subcommands
 # name: (module of tracer_tools.bench, what it measures and where its report goes)
 BENCHMARKS = {
     "language": ("language", "the scene language against POV-Ray's parser (docs/bench-language.md)"),
+    "cones": ("cones", "SPD rings and tree, analytic cones against tessellated ones (docs/bench-cones.md)"),
     "task2": ("task2", "task2 rendered 9 times: median time and Mrays/s (docs/bench-task2.txt)"),
     "bvh": ("bvh", "the four accelerators on the bunny at five sizes, against Embree (docs/performance*)"),
     "many": ("many", "many spheres and bunny instances, against Embree (docs/many-objects*)"),
