@@ -228,6 +228,11 @@ int render_to_file(const Options& options) {
                      millions(rays.shadow).c_str(), millions(rays.reflection).c_str(), refraction.c_str(),
                      double(rays.total()) / stats.seconds / 1e6);
     }
+    if (stats.rays.trees_cut > 0)  // shown even with --quiet: the image is not what max_depth says
+        std::fprintf(stderr,
+                     "tracer: note: %llu camera rays reached the bound of %d reflected and refracted rays; the "
+                     "rest of their ray trees returned black (README, Limits)\n",
+                     (unsigned long long)stats.rays.trees_cut, tracer::kMostRaysPerTree);
     return kOk;
 }
 

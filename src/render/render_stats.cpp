@@ -36,7 +36,8 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
                    {"reflection", rays.reflection},
                    {"refraction", rays.refraction},
                    {"total", rays.total()},
-                   {"total_internal_reflections", rays.total_internal_reflections}};
+                   {"total_internal_reflections", rays.total_internal_reflections},
+                   {"trees_cut", rays.trees_cut}};
     out["spawn_rules"] = scene.render.spawn_rules == SpawnRules::Spd ? "spd" : "tracer";
     out["transparent_shadows"] = scene.render.transparent_shadows;
     const double total = double(std::max<uint64_t>(rays.total(), 1));

@@ -14,14 +14,15 @@ namespace tracer {
 // The mean of N x N rays through the centres of a regular grid of sub-pixel cells (N = 1:
 // the pixel centre).
 static Color shade_pixel(const World& world, const PinholeCamera& camera, const RenderSettings& settings, int x, int y,
-                         int grid, RayCounts& counts) {
+                         int grid, RayCounts& counts, const std::atomic<bool>* cancel) {
     Color sum(0.0);
     const Real cell = Real(1) / grid;  // exact for grid 1 (offset 0.5: the pixel centre)
     for (int sy = 0; sy < grid; ++sy)
         for (int sx = 0; sx < grid; ++sx) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) return sum;
             const Real px = x + (sx + Real(0.5)) * cell;
             const Real py = y + (sy + Real(0.5)) * cell;
-            sum += trace(world, settings, camera.ray_through(px, py), counts);
+            sum += trace(world, settings, camera.ray_through(px, py), counts, cancel);
         }
     return grid == 1 ? sum : sum * (1.0 / double(grid * grid));
 }
@@ -57,6 +58,7 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     stats = {};
     stats.threads = threads;
 
+    const std::atomic<bool>* cancel = options.cancel;
     auto worker = [&](int index) {
         RayCounts counts;
         std::vector<Vec3> directions(size_t(area.width));
@@ -66,15 +68,18 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
         // own code, full frame).
         std::vector<Ray> rays(size_t(area.width));
         for (int row; (row = next_row.fetch_add(1)) < area.height;) {
-            if (options.cancel && options.cancel->load()) break;
+            if (cancel && cancel->load()) break;
             const int y = area.y0 + row;
             if (grid == 1) {
                 camera.row_directions(area.x0 + Real(0.5), y + Real(0.5), area.width, directions.data());
                 for (size_t i = 0; i < rays.size(); ++i) rays[i] = {camera.eye(), directions[i]};
             }
             for (int x = area.x0; x < area.x0 + area.width; ++x) {
-                const Color c = grid == 1 ? trace(world, settings, rays[size_t(x - area.x0)], counts)
-                                          : shade_pixel(world, camera, settings, x, y, grid, counts);
+                // Checked at every pixel and inside the ray tree: a pixel may cost up to
+                // kMostRaysPerTree rays per sample.
+                if (cancel && cancel->load(std::memory_order_relaxed)) break;
+                const Color c = grid == 1 ? trace(world, settings, rays[size_t(x - area.x0)], counts, cancel)
+                                          : shade_pixel(world, camera, settings, x, y, grid, counts, cancel);
                 double* out = &image.rgb[(size_t(row) * size_t(area.width) + size_t(x - area.x0)) * 3];
                 out[0] = c.r, out[1] = c.g, out[2] = c.b;
             }

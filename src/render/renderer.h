@@ -28,7 +28,7 @@ struct RenderOptions {
     PixelRect crop;
     // Called now and then from a worker with the finished fraction in [0, 1].
     std::function<void(double)> progress;
-    // When set to true, workers stop after their current row and render() returns false.
+    // When set to true, workers stop within a few hundred rays and render() returns false.
     const std::atomic<bool>* cancel = nullptr;
 };
 
