@@ -116,9 +116,10 @@ std::string json_text(const nlohmann::json& value) {
 }
 
 // Why the paths the render will write clash with its inputs or with each other, or nullopt:
-// an output must never replace the scene, a mesh or the other output.
+// an output must never replace the scene, a file it includes, a mesh or the other output.
 std::optional<std::string> output_clash(const Options& options, const tracer::SceneDescription& scene) {
     std::vector<std::pair<std::string, std::string>> inputs = {{options.scene, "the scene file"}};
+    for (const std::string& included : scene.included_paths) inputs.push_back({included, "a file the scene includes"});
     for (const tracer::Mesh& mesh : scene.meshes) inputs.push_back({mesh.path, "a mesh file"});
     for (const auto& [output, what] :
          {std::pair{options.output, "-o"}, std::pair{options.stats_json, "--stats-json"}}) {

@@ -71,6 +71,9 @@ public:
     uint32_t add_command_line(Span used_at, std::string text);
 
     const SourceFile& scene() const { return *files_.front(); }
+    // Every file read: the scene, then each included file once, in the order first included.
+    size_t files() const { return files_.size(); }
+    const SourceFile& file_at(size_t index) const { return *files_[index]; }
     // The file a span lies in.
     const SourceFile& file(Span span) const { return *files_[origins_[span.origin].file]; }
     // Where a span's text came from, innermost first: each an explaining span and its text

@@ -18,6 +18,8 @@ LoadResult load_scene_text(const std::string& path, std::string text, bool fragm
     const BlockSink check_and_build = [&](Block&& block) { return builder.add(block); };
     const EvaluatedScene evaluated = interpret(sources, result.diagnostics, parameters, limits, check_and_build);
     result.scene = builder.finish(evaluated.parameters);
+    if (result.scene)  // the files an output must never replace (with the scene and its meshes)
+        for (size_t i = 1; i < sources.files(); ++i) result.scene->included_paths.push_back(sources.file_at(i).path());
     return result;
 }
 

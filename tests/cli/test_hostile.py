@@ -354,6 +354,20 @@ class Files(Hostile):
         self.assertEqual((self.tmp / "m.png").read_text(), TRIANGLE)
         self.assertEqual(self.files(), ["m.png", "s.png", "s.scn"])
 
+    def test_outputs_never_replace_an_included_file(self):
+        # The scene includes a file with an image's name: -o, --stats-json and a --region-list
+        # line naming it are refused, and it is left as it was.
+        included = "light { position (2, 3, 4) }\n"
+        self.write("inc.png", included)
+        scene = self.write("s.scn", SMALL_SCENE + 'include "inc.png"\n')
+        self.assertError(run(scene, "-o", self.tmp / "inc.png"), 2, "is a file the scene includes")
+        self.assertError(run(scene, "-o", self.tmp / "o.png", "--stats-json", self.tmp / "inc.png"), 2, "includes")
+        region = f"0 0 8 8 {self.tmp / 'inc.png'}\n"
+        result = run(scene, "--region-list", input=region.encode())  # answered line by line on stdout
+        self.assertIn(b"is a file the scene includes", result.stdout)
+        self.assertEqual((self.tmp / "inc.png").read_text(), included)
+        self.assertEqual(self.files(), ["inc.png", "s.scn"])
+
     def test_output_paths_checked_before_rendering(self):
         scene = self.write("s.scn", SMALL_SCENE.replace("width 64 height 48", "width 4096 height 4096 samples 64"))
         started = time.monotonic()
