@@ -319,12 +319,25 @@ bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fiel
     return false;
 }
 
+// Why a value of `key` beyond +-1e30 is refused: the reason for its kind of value (a length's
+// is the renderer's float boxes; a colour, an exponent, an angle or an index has its own).
+static std::string beyond_range_reason(std::string_view key) {
+    for (std::string_view colour : {"ka", "kd", "ks", "km", "kt", "color", "background"})
+        if (key == colour)
+            return "a colour or weight beyond 1e30 shows nothing more than 1e30 does: every pixel it lights is "
+                   "already white, and sums of such colours overflow";
+    if (key == "n") return "a Phong exponent of 1e30 already makes the highlight a point";
+    if (key == "angle") return "only an angle's remainder after whole turns counts, and beyond 1e16 degrees a double "
+                               "keeps no fraction of a turn";
+    if (key == "ior") return "an index of refraction of 1e30 already bends every ray along the normal";
+    return "the renderer keeps bounding boxes in float and squares and cubes lengths";
+}
+
 bool Validator::check_number(double number, Span span, const KeySpec& key) {
     if (std::abs(number) > kLargestMagnitude) {
         diagnostics_.error(file_, span,
-                           "'" + std::string(key.name) + "' must lie between -1e30 and 1e30 (the renderer keeps " +
-                               "bounding boxes in float and squares and cubes lengths), found " +
-                               format_number(number));
+                           "'" + std::string(key.name) + "' must lie between -1e30 and 1e30 (" +
+                               beyond_range_reason(key.name) + "), found " + format_number(number));
         return false;
     }
     if (key.mirror_size && std::abs(number) < kSmallestSize) {
