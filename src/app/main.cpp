@@ -371,6 +371,10 @@ int run(int argc, char** argv) {
         return usage_error(
             "--region-list takes each output from its input lines; it cannot be combined with -o, "
             "--region, --stats or --stats-json");
+    if (options.region_list && options.scene == "-")
+        return usage_error(
+            "--region-list reads its regions from standard input, so the scene cannot come from there too ('-'); "
+            "give the scene's file");
     if (options.output.empty() && !options.region_list) return usage_error("no output image given (-o out.png)");
     return render_to_file(options);
 }

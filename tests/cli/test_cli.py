@@ -195,6 +195,11 @@ class CommandLine(unittest.TestCase):
         result = run("--check", "-", input="camera { eye (0, 0, 7) lookat (0, 0, 0) }\nsphere { radius 1 }\n")
         self.assertEqual(result.returncode, 1)
         self.assertTrue(result.stderr.startswith("<stdin>:2:1: error: sphere is missing"), result.stderr)
+        # --region-list reads its regions from standard input too: it cannot also hold the scene
+        # (it exited 0 silently, the regions' text taken as part of the scene).
+        result = run("-", "--region-list", input=SMALL_SCENE)
+        self.assertEqual(result.returncode, 2)
+        self.assertIn("the scene cannot come from there too", result.stderr)
         # More than a scene file may hold: refused, as a file would be (exit 3).
         result = run("--check", "-", input=" " * ((128 << 20) + 1))
         self.assertEqual(result.returncode, 3)
