@@ -270,14 +270,15 @@ TEST(HardCases, F1_ParallelMirrorsAlternateWithoutDrift) {
     EXPECT_EQ(objects.size(), 1001u);
     EXPECT_EQ(std::count(objects.begin(), objects.end(), sphere), 0);
 
-    // The renderer: a depth of 10^5 finishes (the recursion is a loop), and the rays traced
-    // grow at most linearly with the depth.
+    // The renderer: a depth of 10^5 finishes (the recursion is a loop) at the bound on the rays
+    // one camera ray spawns, and the rays traced grow at most linearly with the depth.
     RenderSettings settings = scene.render;
     RayCounts deep, eight, sixty_four;
     settings.max_depth = 100000;
     const Color c = trace(world, settings, {{0, 0, 0.5}, {0, 0, 1}}, deep);
     EXPECT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z));
-    EXPECT_EQ(deep.reflection, 100000u);
+    EXPECT_EQ(deep.reflection, uint64_t(kMostRaysPerTree));
+    EXPECT_EQ(deep.trees_cut, 1u);
     const PinholeCamera camera({{0, 0, 0.5}, {1, 0, 0.3}, {0, 0, 1}, 45, 1}, 64, 64);
     for (auto [depth, counts] : {std::pair{8, &eight}, std::pair{64, &sixty_four}}) {
         settings.max_depth = depth;
