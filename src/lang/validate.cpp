@@ -327,8 +327,9 @@ static std::string beyond_range_reason(std::string_view key) {
             return "a colour or weight beyond 1e30 shows nothing more than 1e30 does: every pixel it lights is "
                    "already white, and sums of such colours overflow";
     if (key == "n") return "a Phong exponent of 1e30 already makes the highlight a point";
-    if (key == "angle") return "only an angle's remainder after whole turns counts, and beyond 1e16 degrees a double "
-                               "keeps no fraction of a turn";
+    if (key == "angle")
+        return "only an angle's remainder after whole turns counts, and beyond 1e16 degrees a double "
+               "keeps no fraction of a turn";
     if (key == "ior") return "an index of refraction of 1e30 already bends every ray along the normal";
     return "the renderer keeps bounding boxes in float and squares and cubes lengths";
 }

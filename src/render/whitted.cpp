@@ -142,9 +142,9 @@ template <bool kRefracts>
     std::vector<Branch>* pending = nullptr;  // this thread's stack, once a branch is made
     const bool spd_rules = settings.spawn_rules == SpawnRules::Spd;
     const std::span<Occluder> last_blockers = shadow_cache(world);
-    int spawned = 0;     // refracted branches
-    int tree_rays = 0;   // reflected and refracted rays
-    bool cut = false;    // a ray refused for the bound
+    int spawned = 0;    // refracted branches
+    int tree_rays = 0;  // reflected and refracted rays
+    bool cut = false;   // a ray refused for the bound
     // One more secondary ray; false when the tree is at its bound or the render is cancelled.
     auto may_spawn = [&] {
         if (tree_rays == kMostRaysPerTree) {

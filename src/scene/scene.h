@@ -166,7 +166,7 @@ struct Parameter {
 };
 
 struct SceneDescription {
-    std::string source_path;  // absolute path of the scene file
+    std::string source_path;                  // absolute path of the scene file
     std::vector<std::string> included_paths;  // every file the scene included, each once, as opened
     std::vector<Parameter> parameters;
     RenderSettings render;

@@ -8,11 +8,11 @@ Time limits here only catch hangs (each is generous); speed is measured by bench
 """
 
 import argparse
+import json
 import math
 import os
 import pathlib
 import resource
-import json
 import signal
 import subprocess
 import sys
