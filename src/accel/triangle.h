@@ -47,6 +47,11 @@ struct RayShear {
     int kx = 0, ky = 1, kz = 2;
     Real sx = 0, sy = 0, sz = 1;
     Vec3 origin{0};  // the ray's origin, permuted to (kx, ky, kz)
+    // A bound on |direction[kx]| and |direction[ky]|, for the error bound of the shear
+    // (finish_triangle_hit): 1 for a unit direction, |direction[kz]| otherwise. A ray carried into
+    // an instance's coordinates has a direction of length 1 / scale, and with 1 in its place a
+    // mesh placed at scale 1e13 lost every hit (its t bound grew with the scale).
+    Real shear_error_scale = 1;
 
     // The shear of `ray`; a zero direction gives a shear that no triangle passes.
     explicit RayShear(const Ray& ray) {
@@ -59,6 +64,8 @@ struct RayShear {
         sx = ray.direction[kx] * sz;
         sy = ray.direction[ky] * sz;
         origin = {ray.origin[kx], ray.origin[ky], ray.origin[kz]};
+        const Real largest = std::abs(ray.direction[kz]);
+        shear_error_scale = largest > Real(0.5) && largest <= 1 ? Real(1) : largest;
     }
 };
 
@@ -67,6 +74,7 @@ struct RayShear {
 struct ShearedTriangle {
     Real ax, ay, az, bx, by, bz, cx, cy, cz;
     Real e0, e1, e2, det, t_scaled;
+    Real shear_error_scale;  // the ray's RayShear::shear_error_scale
 };
 
 // How loosely step 3 of the watertight test compares t x det with the range x det: a few ulps,
@@ -93,8 +101,10 @@ inline bool in_scaled_range(const ShearedTriangle& s, Interval range) {
     const Real max_x = std::max({std::abs(s.ax), std::abs(s.bx), std::abs(s.cx)});
     const Real max_y = std::max({std::abs(s.ay), std::abs(s.by), std::abs(s.cy)});
     const Real delta_z = gamma(3) * max_z;
-    const Real delta_x = gamma(5) * (max_x + max_z);
-    const Real delta_y = gamma(5) * (max_y + max_z);
+    // The shear's error: |sx z| = |d_kx| |z / d_kz| <= shear_error_scale max_z (pbrt-v4 takes
+    // max_z, right for |d| <= 1).
+    const Real delta_x = gamma(5) * (max_x + s.shear_error_scale * max_z);
+    const Real delta_y = gamma(5) * (max_y + s.shear_error_scale * max_z);
     const Real delta_e = 2 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
     const Real max_e = std::max({std::abs(s.e0), std::abs(s.e1), std::abs(s.e2)});
     const Real delta_t = 3 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * std::abs(inv_det);
@@ -116,6 +126,7 @@ inline bool in_scaled_range(const ShearedTriangle& s, Interval range) {
 inline bool intersect_triangle(const RayShear& shear, const Triangle& tri, Interval range, TriangleHit& hit) {
     // Step 1: translate, permute, shear (x, y; z only scaled, below).
     ShearedTriangle s;
+    s.shear_error_scale = shear.shear_error_scale;
     auto sheared = [&](const Vec3& p, Real& x, Real& y, Real& z) {
         z = component(p, shear.kz) - shear.origin.z;
         x = std::fma(-shear.sx, z, component(p, shear.kx) - shear.origin.x);
