@@ -127,8 +127,9 @@ inline unsigned TriangleLaneTester::candidates(uint32_t first, int lanes, Interv
     const unsigned mask = lanes_true(pass) & ((1u << lanes) - 1);
     for (unsigned m = mask; m != 0; m &= m - 1) {
         const int i = __builtin_ctz(m);
-        sheared[i] = {x[0][i], y[0][i], z[0][i], x[1][i], y[1][i], z[1][i], x[2][i],
-                      y[2][i], z[2][i], e0[i],   e1[i],   e2[i],   det[i],  t_scaled[i], shear.shear_error_scale};
+        sheared[i] = {x[0][i], y[0][i], z[0][i], x[1][i],     y[1][i],
+                      z[1][i], x[2][i], y[2][i], z[2][i],     e0[i],
+                      e1[i],   e2[i],   det[i],  t_scaled[i], shear.shear_error_scale};
     }
     return mask;
 }
