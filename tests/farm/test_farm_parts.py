@@ -2,6 +2,7 @@
 jobs file or option is refused with a message before any work."""
 
 import json
+import os
 
 import numpy as np
 import pytest
@@ -62,6 +63,31 @@ def test_bad_jobs_files_are_refused(tmp_path, content, message):
     path = tmp_path / "jobs.json"
     path.write_text(content)
     with pytest.raises(JobError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        jobs_from_file(str(path))
+
+
+def test_hostile_jobs_files_are_refused_with_a_message(tmp_path):
+    # A path with a NUL byte gave a traceback; a FIFO as the jobs file blocked for ever.
+    path = tmp_path / "jobs.json"
+    path.write_text('[{"scene": "a\\u0000.scn", "output": "a.png"}]')
+    with pytest.raises(JobError, match="NUL byte"):
+        jobs_from_file(str(path))
+    fifo = tmp_path / "fifo.json"
+    os.mkfifo(fifo)
+    with pytest.raises(JobError, match="not a regular file"):
+        jobs_from_file(str(fifo))
+
+
+def test_a_hundred_thousand_jobs_are_read_and_checked_for_clashes_in_linear_time(tmp_path):
+    # The duplicate-output check was quadratic (4x10^4 jobs: 15 s); 10^5 now read in well under
+    # a second, and a clash between the first and the last is still found.
+    jobs = [{"scene": "s.scn", "output": f"out{i}.png", "define": {"i": i}} for i in range(100_000)]
+    path = tmp_path / "jobs.json"
+    path.write_text(json.dumps(jobs))
+    assert len(jobs_from_file(str(path))) == 100_000
+    jobs[-1]["output"] = "out0.png"
+    path.write_text(json.dumps(jobs))
+    with pytest.raises(JobError, match="two jobs write"):
         jobs_from_file(str(path))
 
 

@@ -103,10 +103,16 @@ def check_jobs(tracer: str, jobs: list[Job]) -> None:
     the JobError raised, before any tile is sent); prints tracer's warnings."""
     if not os.access(tracer, os.X_OK):
         raise JobError(f"no tracer executable at '{tracer}' (build it: tools/bootstrap)", 3)
+    checked = {}  # tracer's arguments -> the frame size: each distinct scene checked once
     for job in jobs:
-        warnings = check_job(tracer, job)
-        if warnings:
-            sys.stderr.write(warnings)
+        key = tuple(job.tracer_arguments())
+        if key in checked:
+            job.width, job.height = checked[key]
+        else:
+            warnings = check_job(tracer, job)
+            if warnings:
+                sys.stderr.write(warnings)
+            checked[key] = (job.width, job.height)
         check_output(job)
 
 
