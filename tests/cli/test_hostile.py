@@ -45,6 +45,17 @@ def run(*args, limits=None, **kwargs):
     return subprocess.run([TRACER, *map(str, args)], capture_output=True, timeout=HANG, preexec_fn=set_limits, **kwargs)
 
 
+def wait_until_handled(process, signum):
+    """Waits until `process` catches `signum` (tracer installs its handlers just before it loads:
+    a signal sent earlier kills it as usual), or has ended."""
+    status = pathlib.Path(f"/proc/{process.pid}/status")
+    while process.poll() is None:
+        caught = next(line for line in status.read_text().splitlines() if line.startswith("SigCgt:"))
+        if int(caught.split()[1], 16) & (1 << (signum - 1)):
+            return
+        time.sleep(0.005)
+
+
 def peak_memory_mb(*args):
     """Runs tracer in a fresh Python process and returns (exit code, its peak resident MB)."""
     code = (
@@ -470,12 +481,7 @@ class Messages(Hostile):
         scene = self.write("hall.scn", self.GLASS_HALL + "render { width 320 height 240 max_depth 100000 }\n")
         out = self.tmp / "hall.png"
         process = subprocess.Popen([TRACER, scene, "-o", out, "--threads", "2"], stderr=subprocess.PIPE)
-        status = pathlib.Path(f"/proc/{process.pid}/status")
-        while process.poll() is None:
-            caught = next(line for line in status.read_text().splitlines() if line.startswith("SigCgt:"))
-            if int(caught.split()[1], 16) & (1 << (signal.SIGINT - 1)):
-                break
-            time.sleep(0.005)
+        wait_until_handled(process, signal.SIGINT)
         time.sleep(0.5)  # rendering by now
         sent = time.monotonic()
         process.send_signal(signal.SIGINT)
@@ -500,14 +506,7 @@ class Messages(Hostile):
         scene = self.mesh_scene("grid.obj", "scale 0.001")
         out = self.tmp / "o.png"
         process = subprocess.Popen([TRACER, scene, "-o", out, "--threads", "1"], stderr=subprocess.PIPE)
-        # Wait until tracer's handler is installed (a signal before main() kills as usual),
-        # which happens just before it starts loading.
-        status = pathlib.Path(f"/proc/{process.pid}/status")
-        while process.poll() is None:
-            caught = next(line for line in status.read_text().splitlines() if line.startswith("SigCgt:"))
-            if int(caught.split()[1], 16) & (1 << (signal.SIGTERM - 1)):
-                break
-            time.sleep(0.005)
+        wait_until_handled(process, signal.SIGTERM)
         process.send_signal(signal.SIGTERM)
         _, stderr = process.communicate(timeout=HANG)
         self.assertEqual(process.returncode, 130, stderr)

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "accel/mesh_accel.h"
 #include "accel/triangle.h"
 #include "io/obj_mesh.h"
+#include "scene/scene.h"
 
 namespace tracer::hard_cases {
 
@@ -108,6 +110,26 @@ inline TriangleMesh load_obj(const std::string& relative) {
     auto mesh = load_mesh(block, diagnostics);
     EXPECT_TRUE(mesh) << "cannot load " << relative;
     return mesh ? *mesh : TriangleMesh{};
+}
+
+// A scene with one material of the given kd and km, and nothing else yet.
+inline SceneDescription empty_scene(double kd = 0.8, double km = 0) {
+    SceneDescription scene;
+    Material m;
+    m.kd = dvec3(kd);
+    m.km = dvec3(km);
+    scene.materials.push_back(m);
+    return scene;
+}
+
+// Uniform on the unit sphere.
+inline Vec3 random_direction(std::mt19937& random) {
+    std::normal_distribution<double> gauss;
+    for (;;) {
+        const Vec3 d(gauss(random), gauss(random), gauss(random));
+        const Real length = glm::length(d);
+        if (length > 1e-6) return d / length;
+    }
 }
 
 }  // namespace tracer::hard_cases

@@ -14,22 +14,6 @@ namespace {
 using L = long double;
 using LVec = glm::vec<3, L>;
 
-SceneDescription one_material_scene() {
-    SceneDescription scene;
-    scene.materials.resize(1);
-    scene.materials[0].kd = dvec3(0.8);
-    return scene;
-}
-
-Vec3 random_direction(std::mt19937& random) {
-    std::normal_distribution<double> gauss;
-    for (;;) {
-        const Vec3 d(gauss(random), gauss(random), gauss(random));
-        const Real length = glm::length(d);
-        if (length > 1e-6) return d / length;
-    }
-}
-
 struct RoundCase {
     const char* name;
     Cone cone;
@@ -49,11 +33,11 @@ std::vector<RoundCase> closed_cones() {
 TEST(HardCases, RoundShapesRaysLeavingThemNeverMeetThemAgain) {
     std::vector<std::pair<std::string, SceneDescription>> scenes;
     for (const RoundCase& c : closed_cones()) {
-        SceneDescription scene = one_material_scene();
+        SceneDescription scene = empty_scene();
         scene.cones.push_back(c.cone);
         scenes.emplace_back(c.name, scene);
     }
-    SceneDescription disc_scene = one_material_scene();
+    SceneDescription disc_scene = empty_scene();
     disc_scene.discs.push_back({{3e3, 1e3, -2e3}, glm::normalize(dvec3(1, 2, 3)), 40, 0});
     scenes.emplace_back("far_disc", disc_scene);
     for (const auto& [name, scene] : scenes) {
@@ -106,7 +90,7 @@ TEST(HardCases, RoundShapesRaysLeavingThemNeverMeetThemAgain) {
 // ulps of the coordinates (no leak, and no early hit).
 TEST(HardCases, RoundShapesClosedConesLeakNoRay) {
     for (const RoundCase& c : closed_cones()) {
-        SceneDescription scene = one_material_scene();
+        SceneDescription scene = empty_scene();
         scene.cones.push_back(c.cone);
         const World world(scene);
         const dvec3 base = c.cone.base, top = c.cone.top;
@@ -162,7 +146,7 @@ TEST(HardCases, RoundShapesThinCylinderFarAwayIsHitExactly) {
         double radius, distance;
     };
     for (const Case& c : {Case{"round_thin_cylinder_1e4", 0.01, 1e4}, Case{"round_cylinder_1e5", 1, 1e5}}) {
-        SceneDescription scene = one_material_scene();
+        SceneDescription scene = empty_scene();
         scene.cones.push_back({{0, -50 * c.radius, 0}, {0, 50 * c.radius, 0}, c.radius, c.radius, false, 0});
         const World world(scene);
         std::mt19937 random(5);

@@ -12,26 +12,6 @@
 namespace tracer::hard_cases {
 namespace {
 
-// A scene with one material of the given kd and km, and nothing else yet.
-SceneDescription empty_scene(double kd = 0.8, double km = 0) {
-    SceneDescription scene;
-    Material m;
-    m.kd = dvec3(kd);
-    m.km = dvec3(km);
-    scene.materials.push_back(m);
-    return scene;
-}
-
-// Uniform on the unit sphere.
-Vec3 random_direction(std::mt19937& random) {
-    std::normal_distribution<double> gauss;
-    for (;;) {
-        const Vec3 d(gauss(random), gauss(random), gauss(random));
-        const Real length = glm::length(d);
-        if (length > 1e-6) return d / length;
-    }
-}
-
 // B2: spheres of radius 0.015 to 1000, one far from the origin. 10^4 primary hits each (seed
 // 4); from each, 100 rays into the outward hemisphere and 100 towards points 2r..10r away on
 // the outward side: none may meet the sphere (it is convex).
