@@ -8,7 +8,6 @@ once total internal reflections are counted with them, as upstream's figure coun
 import json
 import os
 import pathlib
-import re
 import subprocess
 import sys
 
@@ -16,6 +15,7 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
+from tracer_tools.spd import steps  # noqa: E402
 from tracer_tools.spd.report import UPSTREAM_COUNTS  # noqa: E402
 
 NFF = ROOT.parent / "shared" / "spd" / "nff"
@@ -31,7 +31,7 @@ def counts(tmp_path: pathlib.Path, name: str) -> dict:
     scene = tmp_path / f"{name}.scn"
     convert = [ROOT / "tools" / "nff2scn", NFF / f"{name}.nff", "-o", scene, "--corner-rays"]
     subprocess.run([str(c) for c in convert], check=True, capture_output=True)
-    scene.write_text(re.sub(r"^render \{", "render { spawn_rules spd ", scene.read_text(), count=1, flags=re.M))
+    steps.with_spd_rules(scene, scene)
     stats = tmp_path / "stats.json"
     render = [TRACER, scene, "-o", tmp_path / "image.exr", "-q", "--stats-json", stats]
     subprocess.run([str(c) for c in render], check=True)

@@ -16,11 +16,11 @@ import argparse
 import datetime
 import json
 import pathlib
-import re
 import subprocess
 import sys
 
 from tracer_tools import ROOT
+from tracer_tools.spd import steps
 
 from . import convert, speed_vs_error, tracer_cli
 
@@ -30,13 +30,6 @@ HEADER = (
     "| written approximately |\n|---|---|---|--:|--:|--:|--:|--:|--:|---|"
 )
 SPD = ["balls", "gears", "mount", "rings", "teapot", "tetra", "tree"]
-
-
-def with_transparent_shadows(scn: pathlib.Path, out: pathlib.Path) -> pathlib.Path:
-    text = scn.read_text()
-    text = re.sub(r"^render \{", "render { transparent_shadows true ", text, count=1, flags=re.MULTILINE)
-    out.write_text(text.replace('include "', f'include "{scn.parent}/'))
-    return out
 
 
 def check(scn: pathlib.Path, folder: pathlib.Path) -> dict:
@@ -84,7 +77,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"povray_table: {name}", file=sys.stderr, flush=True)
         rows.append(row(name, "opaque", check(scn, args.out / slug)))
         if convert.refracts(tracer_cli.dump_json(scn)):
-            transparent = with_transparent_shadows(scn, args.out / f"{slug}_transparent.scn")
+            transparent = args.out / f"{slug}_transparent.scn"
+            steps.with_render_key(scn, transparent, "transparent_shadows true")
             rows.append(row(name, "transparent", check(transparent, args.out / f"{slug}_transparent")))
     today = datetime.date.today()
     args.docs.write_text(f"""# tracer against POV-Ray 3.7
