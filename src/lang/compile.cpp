@@ -56,6 +56,20 @@ void Compiler::fail(Span span, std::string message) {
     throw CompileError{};
 }
 
+// Whether an unbound name written as a key's whole value is a word for the validator (a
+// material, `sah`, `true`, `inf` to be refused by name) rather than an undefined name.
+static bool may_be_word(const KeySpec* key, const Expr& value) {
+    if (!key || value.kind != Expr::Kind::Name) return true;
+    switch (key->type) {
+        case ValueType::Number:
+        case ValueType::Integer:
+        case ValueType::Vector:
+        case ValueType::Triple:
+            return value.text == "true" || value.text == "false" || names_nan_or_infinity(value.text);
+        default: return true;
+    }
+}
+
 void Compiler::compile_top_level(const Statement& statement, std::vector<Step>& out) {
     compile_statement(statement, out);
 }
@@ -355,7 +369,7 @@ std::shared_ptr<CompiledBody> Compiler::compile_body(const BodyCode& code, const
                     fail(entry.value.span,
                          path_expected(entry.key, sources_.file(entry.value.span).slice(entry.value.span)));
                 const bool word_key = key && (key->type == ValueType::MaterialRef || key->type == ValueType::Choice);
-                out.value = compile_expression(entry.value, true, word_key);
+                out.value = compile_expression(entry.value, may_be_word(key, entry.value), word_key);
             } catch (const CompileError&) {
                 failed = true;
                 continue;
