@@ -95,7 +95,9 @@ public:
     // Large inputs are built on `threads` threads (0: one per core), the subtrees near the
     // root in parallel. A leaf's primitives are tested `leaf_lanes` at a time (LeafTest): the
     // SAH counts a leaf's cost by such groups, which makes fuller leaves.
-    Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1);
+    // `primitives` is freed once read, and each work array once used: the peak stays near the
+    // tree's size plus the input's.
+    Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1);
 
     // Box's and Median's binary tree, depth first: an inner node's left child follows it, its
     // right child is at `index` (empty for Sah).

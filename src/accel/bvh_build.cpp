@@ -388,7 +388,7 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
     return wide;
 }
 
-Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
+Bvh::Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
     const uint32_t n = uint32_t(primitives.size());
     order_.resize(n);
     if (n == 0) return;
@@ -403,6 +403,7 @@ Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, i
             refs[i].id = uint32_t(i);
         },
         threads);
+    primitives = LargeArray<Bounds>();
     leaf_size = std::max(leaf_size, 1);
     const Range root = measure(refs.data(), 0, n);
 
@@ -410,6 +411,9 @@ Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, i
     BvhBuilder builder(refs.data(), slots.data(), method, leaf_size, std::max(leaf_lanes, 1),
                        thread_count(threads) > 1);
     builder.build(root, 0, 0);
+    parallel_for(
+        n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
+    refs = LargeArray<PrimRef>();
     if (method == BvhBuild::Sah)
         wide_ = collapse_to_wide(slots);
     else
@@ -418,8 +422,6 @@ Bvh::Bvh(const LargeArray<Bounds>& primitives, BvhBuild method, int leaf_size, i
         root_box_.lower[axis] = root.bounds.lower[axis];
         root_box_.upper[axis] = root.bounds.upper[axis];
     }
-    parallel_for(
-        n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
 }
 
 BvhStats Bvh::stats() const {

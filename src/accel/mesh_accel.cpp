@@ -28,15 +28,6 @@ std::vector<Vec3> area_weighted_normals(std::span<const Vec3> positions,
 
 namespace {
 
-// The parts placed and put together: positions, normals and triangles, as in one file.
-struct PlacedMesh {
-    std::vector<Vec3> positions;
-    std::vector<Vec3> normals;
-    std::vector<std::array<uint32_t, 3>> triangles;
-    std::vector<std::array<uint32_t, 3>> normal_ids;
-    std::vector<std::pair<uint32_t, uint32_t>> origin;  // per triangle: its part and its number there
-};
-
 // Triangles with their second and third corners swapped: a mirrored file's winding, turning
 // again the way its (mirrored) normals point.
 std::vector<std::array<uint32_t, 3>> reversed_winding(std::vector<std::array<uint32_t, 3>> triangles) {
@@ -44,69 +35,86 @@ std::vector<std::array<uint32_t, 3>> reversed_winding(std::vector<std::array<uin
     return triangles;
 }
 
-PlacedMesh place(const std::vector<MeshPart>& parts, int threads) {
-    PlacedMesh out;
-    size_t triangles = 0;
-    for (const MeshPart& part : parts) triangles += part.file->triangles.size();
-    out.triangles.reserve(triangles);
-    out.normal_ids.reserve(triangles);
-    out.origin.reserve(triangles);
-    for (uint32_t part = 0; part < parts.size(); ++part) {
-        const TriangleMesh& file = *parts[part].file;
-        const Placement& placement = parts[part].placement;
-        const bool mirrored = placement.mirrors();
-        const auto reversed = mirrored ? reversed_winding(file.triangles) : std::vector<std::array<uint32_t, 3>>{};
-        const auto& corners = mirrored ? reversed : file.triangles;
-        const uint32_t first_position = uint32_t(out.positions.size()), first_normal = uint32_t(out.normals.size());
-        out.positions.resize(first_position + file.positions.size());
-        parallel_for(
-            file.positions.size(),
-            [&](size_t i) { out.positions[first_position + i] = Vec3(placement.point(file.positions[i])); }, threads);
-        // Normals: each triangle's own (flat), the file's placed by the inverse transpose, else
-        // area-weighted over the placed triangles.
-        std::vector<Vec3> normals;
-        const bool flat = parts[part].flat;
-        if (flat) {
-            normals.resize(corners.size());
-            parallel_for(
-                normals.size(),
-                [&](size_t t) {
-                    const auto& v = corners[t];
-                    const Vec3 a = out.positions[first_position + v[0]], b = out.positions[first_position + v[1]],
-                               c = out.positions[first_position + v[2]];
-                    normals[t] = normalize_or_zero(glm::cross(b - a, c - a));
-                },
-                threads);
-        } else if (!file.normal_ids.empty()) {
-            normals.resize(file.normals.size());
-            parallel_for(
-                normals.size(),
-                [&](size_t i) { normals[i] = normalize_or_zero(Vec3(placement.normal * file.normals[i])); }, threads);
-        } else {
-            normals = area_weighted_normals(std::span(out.positions).subspan(first_position), corners);
-        }
-        out.normals.insert(out.normals.end(), normals.begin(), normals.end());
-        const auto reversed_ids = mirrored ? reversed_winding(file.normal_ids) : std::vector<std::array<uint32_t, 3>>{};
-        const auto& ids = file.normal_ids.empty() ? corners : mirrored ? reversed_ids : file.normal_ids;
-        for (uint32_t t = 0; t < corners.size(); ++t) {
-            const auto& v = corners[t];
-            const std::array<uint32_t, 3> n = flat ? std::array<uint32_t, 3>{t, t, t} : ids[t];
-            out.triangles.push_back({first_position + v[0], first_position + v[1], first_position + v[2]});
-            out.normal_ids.push_back({first_normal + n[0], first_normal + n[1], first_normal + n[2]});
-            out.origin.emplace_back(part, t);
-        }
-    }
-    return out;
+// Frees a vector's storage now.
+template <typename T>
+void release(std::vector<T>& v) {
+    std::vector<T>().swap(v);
 }
 
 }  // namespace
 
+void PlacedTriangles::reserve_more(size_t more_positions, size_t more_normals, size_t more_triangles) {
+    positions.reserve(positions.size() + more_positions);
+    normals.reserve(normals.size() + more_normals);
+    for (auto* per_triangle : {&triangles, &normal_ids}) per_triangle->reserve(per_triangle->size() + more_triangles);
+    for (auto* per_triangle : {&tags, &numbers}) per_triangle->reserve(per_triangle->size() + more_triangles);
+}
+
+void append_part(PlacedTriangles& out, const MeshPart& part, int threads) {
+    const TriangleMesh& file = *part.file;
+    const Placement& placement = part.placement;
+    const bool mirrored = placement.mirrors();
+    const auto reversed = mirrored ? reversed_winding(file.triangles) : std::vector<std::array<uint32_t, 3>>{};
+    const auto& corners = mirrored ? reversed : file.triangles;
+    const uint32_t first_position = uint32_t(out.positions.size()), first_normal = uint32_t(out.normals.size());
+    out.positions.resize(first_position + file.positions.size());
+    parallel_for(
+        file.positions.size(),
+        [&](size_t i) { out.positions[first_position + i] = Vec3(placement.point(file.positions[i])); }, threads);
+    // Normals: none for flat (each triangle's face normal, worked out from the corners when
+    // shading), the file's placed by the inverse transpose, else area-weighted over the placed
+    // triangles.
+    if (part.flat) {
+        // nothing stored
+    } else if (!file.normal_ids.empty()) {
+        out.normals.resize(first_normal + file.normals.size());
+        parallel_for(
+            file.normals.size(),
+            [&](size_t i) {
+                out.normals[first_normal + i] = normalize_or_zero(Vec3(placement.normal * file.normals[i]));
+            },
+            threads);
+    } else {
+        const std::vector<Vec3> normals =
+            area_weighted_normals(std::span(out.positions).subspan(first_position), corners);
+        out.normals.insert(out.normals.end(), normals.begin(), normals.end());
+    }
+    const auto reversed_ids = mirrored ? reversed_winding(file.normal_ids) : std::vector<std::array<uint32_t, 3>>{};
+    const auto& ids = file.normal_ids.empty() ? corners : mirrored ? reversed_ids : file.normal_ids;
+    for (uint32_t t = 0; t < corners.size(); ++t) {
+        const auto& v = corners[t];
+        const auto& n = ids[t];
+        out.triangles.push_back({first_position + v[0], first_position + v[1], first_position + v[2]});
+        out.normal_ids.push_back(
+            part.flat ? std::array{PlacedTriangles::kFlat, PlacedTriangles::kFlat, PlacedTriangles::kFlat}
+                      : std::array{first_normal + n[0], first_normal + n[1], first_normal + n[2]});
+        out.tags.push_back(part.tag);
+        out.numbers.push_back(t);
+    }
+}
+
+PlacedTriangles place(const std::vector<MeshPart>& parts, int threads, size_t flat_positions, size_t flat_triangles) {
+    PlacedTriangles mesh;
+    size_t positions = flat_positions, normals = 0, triangles = flat_triangles;
+    for (const MeshPart& part : parts) {
+        positions += part.file->positions.size();
+        triangles += part.file->triangles.size();
+        normals += part.flat                       ? 0
+                   : part.file->normal_ids.empty() ? part.file->positions.size()
+                                                   : part.file->normals.size();
+    }
+    mesh.reserve_more(positions, normals, triangles);
+    for (const MeshPart& part : parts) append_part(mesh, part, threads);
+    return mesh;
+}
+
+// Placing is loading, as reading the file is: not in build_seconds, which times what Embree's
+// build does.
 MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& settings)
-    : brute_force_(settings.brute_force) {
+    : MeshAccel(place(parts, settings.threads), settings) {}
+
+MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : brute_force_(settings.brute_force) {
     const int threads = settings.threads;
-    // Step 1: the placed vertices and their normals (loading, as reading the file is: not
-    // in build_seconds, which times what Embree's build does).
-    const PlacedMesh mesh = place(parts, threads);
     const size_t n = mesh.triangles.size();
     const auto start = std::chrono::steady_clock::now();
 
@@ -120,28 +128,43 @@ MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& s
         },
         threads);
     for (const Bounds& box : boxes) bounds_.extend(box);
-    if (!brute_force_) bvh_ = Bvh(boxes, settings.build, settings.leaf_size, threads, kTriangleLanes);
+    if (!brute_force_) bvh_ = Bvh(std::move(boxes), settings.build, settings.leaf_size, threads, kTriangleLanes);
 
-    // Step 3: the triangles in that order, and their hit records.
+    // Step 3: the triangles in that order; then their hit records (each input freed once read).
     triangle_count_ = n;
+    auto triangle_in_slot = [&](size_t i) { return brute_force_ ? uint32_t(i) : bvh_.order()[i]; };
     const size_t stride = n + kTriangleLanes - 1;
     columns_.assign(9 * stride, Real(0));  // the spare entries too: never hit (no area)
     Real* const columns = columns_.data();
-    hit_records_.resize(n);
     parallel_for(
         n,
         [&](size_t i) {
-            const uint32_t triangle = brute_force_ ? uint32_t(i) : bvh_.order()[i];
-            const auto& v = mesh.triangles[triangle];
+            const auto& v = mesh.triangles[triangle_in_slot(i)];
             for (int vertex = 0; vertex < 3; ++vertex)
                 for (int axis = 0; axis < 3; ++axis)
                     columns[size_t(3 * vertex + axis) * stride + i] = mesh.positions[v[vertex]][axis];
-            const auto& ids = mesh.normal_ids[triangle];
-            const auto [part, number] = mesh.origin[triangle];
-            hit_records_[i] = {
-                {mesh.normals[ids[0]], mesh.normals[ids[1]], mesh.normals[ids[2]]}, number, parts[part].tag};
         },
         threads);
+    release(mesh.positions);
+    release(mesh.triangles);
+    hit_records_.resize(n);
+    size_t smooth = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const uint32_t triangle = triangle_in_slot(i);
+        const bool flat = mesh.normal_ids[triangle][0] == PlacedTriangles::kFlat;
+        hit_records_[i] = {mesh.numbers[triangle], mesh.tags[triangle], flat ? kFlat : uint32_t(smooth++)};
+    }
+    vertex_normals_.resize(smooth);
+    parallel_for(
+        n,
+        [&](size_t i) {
+            if (hit_records_[i].normals == kFlat) return;
+            const auto& ids = mesh.normal_ids[triangle_in_slot(i)];
+            vertex_normals_[hit_records_[i].normals] = {mesh.normals[ids[0]], mesh.normals[ids[1]],
+                                                        mesh.normals[ids[2]]};
+        },
+        threads);
+    mesh = PlacedTriangles();
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -183,9 +206,8 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
         best = i;
         best_hit = hit;
         found = true;
-        // Read when the search ends, if no nearer hit: ask for both cache lines it may span.
+        // Read when the search ends, if no nearer hit.
         __builtin_prefetch(&hit_records_[i]);
-        __builtin_prefetch(&hit_records_[i].triangle);
         return true;
     };
     // Four triangles at a time; those that pass the vector steps are finished in order.
@@ -267,14 +289,22 @@ Vec3 MeshAccel::geometric_normal(uint32_t slot) const {
     return normalize_or_zero(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
 }
 
+std::array<Vec3, 3> MeshAccel::vertex_normals(uint32_t slot) const {
+    const uint32_t index = hit_records_[slot].normals;
+    if (index != kFlat) return vertex_normals_[index];
+    // As a flat part's vertex normals were once stored: the same Real corners, the same formula.
+    const Vec3 face = geometric_normal(slot);
+    return {face, face, face};
+}
+
 Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v) const {
-    const Vec3(&n)[3] = hit_records_[slot].normals;
+    const std::array<Vec3, 3> n = vertex_normals(slot);
     const Vec3 shading = normalize_or_zero((1 - u - v) * n[0] + u * n[1] + v * n[2]);
     return shading != Vec3(0) ? shading : geometric_normal(slot);
 }
 
 Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const Mat3& normal_map) const {
-    const Vec3(&n)[3] = hit_records_[slot].normals;
+    const std::array<Vec3, 3> n = vertex_normals(slot);
     const Vec3 shading =
         normalize_or_zero((1 - u - v) * normalize_or_zero(normal_map * n[0]) +
                           u * normalize_or_zero(normal_map * n[1]) + v * normalize_or_zero(normal_map * n[2]));
@@ -282,7 +312,8 @@ Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const Mat3& normal
 }
 
 size_t MeshAccel::memory_bytes() const {
-    return bvh_.memory_bytes() + columns_.capacity() * sizeof(Real) + hit_records_.capacity() * sizeof(HitRecord);
+    return bvh_.memory_bytes() + columns_.capacity() * sizeof(Real) + hit_records_.capacity() * sizeof(HitRecord) +
+           vertex_normals_.capacity() * sizeof(vertex_normals_[0]);
 }
 
 }  // namespace tracer

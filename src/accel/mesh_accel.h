@@ -4,6 +4,7 @@
 // it; or built placed in the world from one or several mesh blocks merged (see world.h).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <type_traits>
@@ -44,10 +45,35 @@ struct MeshPart {
     bool flat = false;  // each triangle shaded with its own normal
 };
 
+// Parts placed and put together, as in one file: what a MeshAccel is built from.
+struct PlacedTriangles {
+    static constexpr uint32_t kFlat = ~uint32_t(0);  // a normal id: shaded with its face normal
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;
+    std::vector<std::array<uint32_t, 3>> triangles;   // indices into positions
+    std::vector<std::array<uint32_t, 3>> normal_ids;  // indices into normals, or kFlat (all three)
+    std::vector<uint32_t> tags;                       // per triangle: its part's tag
+    std::vector<uint32_t> numbers;                    // per triangle: its number in its part's file
+
+    // Room for this many more positions, normals and triangles.
+    void reserve_more(size_t positions, size_t normals, size_t triangles);
+};
+
+// Appends `part` placed, with its vertex normals: none if flat (each triangle shaded with its
+// face normal), the file's placed by the inverse transpose, else area-weighted over the placed
+// triangles.
+void append_part(PlacedTriangles& out, const MeshPart& part, int threads);
+// The parts placed (append_part), with room for flat parts of this many more positions and
+// triangles to be appended.
+PlacedTriangles place(const std::vector<MeshPart>& parts, int threads, size_t flat_positions = 0,
+                      size_t flat_triangles = 0);
+
 class MeshAccel {
 public:
-    // The parts' triangles, placed, behind one accelerator, with their vertex normals: the
-    // file's (placed by the inverse transpose), else area-weighted over the placed triangles.
+    // The triangles behind one accelerator; `mesh` is emptied as the build goes, to keep the
+    // peak memory near the result's.
+    MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings);
+    // The parts' triangles, placed (append_part), behind one accelerator.
     MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& settings);
     // One file, placed.
     MeshAccel(const TriangleMesh& file, const Placement& placement, const SearchSettings& settings, bool flat = false)
@@ -107,19 +133,23 @@ private:
 
     bool brute_force_;
     Bvh bvh_;
-    // What shading a hit needs, in leaf order too: read in one or two cache lines, where the
-    // mesh's own arrays would cost a cache miss each for a big mesh.
+    // What ties and shading need of a hit, in leaf order too, where the mesh's own arrays
+    // would cost a cache miss each for a big mesh.
     struct HitRecord {
-        Vec3 normals[3];    // the vertex normals
         uint32_t triangle;  // the file's triangle number
         uint32_t tag;       // its part's
+        uint32_t normals;   // index into vertex_normals_, or kFlat: shaded with its face normal
     };
+    static constexpr uint32_t kFlat = ~uint32_t(0);
+    // The vertex normals of a hit record's triangle (its face normal three times if flat).
+    std::array<Vec3, 3> vertex_normals(uint32_t slot) const;
     TriangleColumns columns() const { return {columns_.data(), triangle_count_ + kTriangleLanes - 1}; }
     // The triangles (entry i is triangle hit_records_[i].triangle) coordinate by coordinate, for
     // testing a leaf's triangles side by side (TriangleColumns).
     LargeArray<Real> columns_;
     size_t triangle_count_ = 0;
     LargeArray<HitRecord> hit_records_;
+    LargeArray<std::array<Vec3, 3>> vertex_normals_;  // of the triangles not flat, in leaf order
     Bounds bounds_;
     double build_seconds_ = 0;
 };

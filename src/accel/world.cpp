@@ -151,26 +151,32 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
         }
         instances_.push_back(instance);
     }
-    // The flat shapes (triangle, quad, box): small meshes of their own, placed and merged too.
-    std::vector<TriangleMesh> flat_meshes;
-    flat_meshes.reserve(scene.triangles.size() + scene.quads.size() + scene.boxes.size());  // no reallocation
-    auto add_flat = [&](const Placed& shape, TriangleMesh mesh) {
-        const uint32_t index = uint32_t(instances_.size()), object = uint32_t(objects_.size());
-        objects_.push_back({ObjectKind::MeshInstance, index, shape.material});
-        flat_meshes.push_back(std::move(mesh));
-        merged.push_back({&flat_meshes.back(), Placement(shape), object, true});
-        merged_instances.push_back(index);
+    // The flat shapes (triangle, quad, box): placed and merged too, straight into the merged
+    // triangles, sharing one instance; the work and memory per shape are a few triangles'.
+    const size_t flat_shapes = scene.triangles.size() + scene.quads.size() + scene.boxes.size();
+    if (merged.empty() && flat_shapes == 0) return;
+    PlacedTriangles placed =
+        place(merged, settings.threads, 3 * scene.triangles.size() + 4 * scene.quads.size() + 8 * scene.boxes.size(),
+              scene.triangles.size() + 2 * scene.quads.size() + 12 * scene.boxes.size());
+    if (flat_shapes > 0) {
+        merged_instances.push_back(uint32_t(instances_.size()));
         instances_.emplace_back();
+    }
+    auto add_flat = [&](const Placed& shape, const TriangleMesh& mesh) {
+        const uint32_t object = uint32_t(objects_.size());
+        objects_.push_back({ObjectKind::MeshInstance, merged_instances.back(), shape.material});
+        append_part(placed, {&mesh, Placement(shape), object, true}, 1);
     };
     for (const FlatTriangle& shape : scene.triangles) add_flat(shape, triangle_mesh(shape));
     for (const Quad& shape : scene.quads) add_flat(shape, triangle_mesh(shape));
     for (const Box& shape : scene.boxes) add_flat(shape, triangle_mesh(shape));
-    if (merged.empty()) return;
     for (uint32_t index : merged_instances) instances_[index].mesh = uint32_t(meshes_.size());
-    meshes_.emplace_back(merged, settings);
-    // One block alone needs no look-up of its triangles' tag (the hit record's cache line).
-    add_bounded(meshes_.back().bounds(), merged.size() == 1 ? merged[0].tag : kObjectOfTriangle,
-                merged_instances.front());
+    merged_mesh_ = uint32_t(meshes_.size());
+    // One shape alone needs no look-up of its triangles' tag (the hit record's cache line).
+    const bool one_shape = merged.size() + flat_shapes == 1;
+    const uint32_t only_tag = placed.tags.empty() ? 0 : placed.tags.front();
+    meshes_.emplace_back(std::move(placed), settings);
+    add_bounded(meshes_.back().bounds(), one_shape ? only_tag : kObjectOfTriangle, merged_instances.front());
 }
 
 void World::build_top_level(const SearchSettings& settings) {
@@ -184,7 +190,7 @@ void World::build_top_level(const SearchSettings& settings) {
     }
     linear_ = settings.brute_force || bounded_.size() <= kLinearObjects;
     if (!linear_) {
-        top_ = Bvh(boxes_, BvhBuild::Sah, kTopLeafSize, settings.threads);
+        top_ = Bvh(std::move(boxes_), BvhBuild::Sah, kTopLeafSize, settings.threads);
         std::vector<Bounded> in_leaf_order;
         in_leaf_order.reserve(bounded_.size());
         for (uint32_t i : top_.order()) in_leaf_order.push_back(bounded_[i]);

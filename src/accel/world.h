@@ -67,8 +67,8 @@ struct Object {
     int material;
 };
 
-// A mesh block or a flat shape (World::instances() holds the scene's mesh blocks in order, then
-// its triangles, quads and boxes): a mesh and where the block places it. Flat shapes and the
+// A mesh block, or all the flat shapes (World::instances() holds the scene's mesh blocks in
+// order, then one shared by its triangles, quads and boxes): a mesh and where it is placed. Flat shapes and the
 // blocks whose file no other block uses are built placed in the world, all of them merged into
 // one mesh (`placed`: rays reach it unchanged); a file that several blocks name is built once in
 // its own coordinates, and rays are carried there by each block's `to_object`.
@@ -122,6 +122,8 @@ public:
     const std::vector<Object>& objects() const { return objects_; }
     const std::vector<MeshAccel>& meshes() const { return meshes_; }
     const std::vector<MeshInstance>& instances() const { return instances_; }
+    // The mesh that holds the shapes built placed (flat shapes, unshared mesh blocks), if any.
+    std::optional<uint32_t> merged_mesh() const { return merged_mesh_; }
     // The top level: a BVH over the bounded objects, unless they are few (kLinearObjects) or
     // the scene asks for no accelerator.
     bool top_level_linear() const { return linear_; }
@@ -172,6 +174,7 @@ private:
     std::vector<PlaneShape> planes_;
     std::vector<MeshAccel> meshes_;
     std::vector<MeshInstance> instances_;
+    std::optional<uint32_t> merged_mesh_;  // the mesh of the shapes built placed, if any
     std::vector<ConeShape> cones_;
     std::vector<DiscShape> discs_;
     std::vector<Bounded> bounded_;

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -267,12 +268,18 @@ int check_only(const Options& options) {
     for (size_t block = 0; block < std::min(scene.meshes.size(), kMeshesListed); ++block) {
         const tracer::Mesh& mesh = scene.meshes[block];
         const auto facts = tracer::mesh_facts(loaded->meshes.files[loaded->meshes.file_of_block[block]], mesh);
-        std::cout << "  mesh " << tracer::shape_label(mesh.path, mesh.at) << ": " << facts.triangles << " triangles, "
+        std::cout << "  mesh " << tracer::shape_label(mesh.path, mesh.line) << ": " << facts.triangles << " triangles, "
                   << facts.vertices << " vertices, placed within " << vector_text(facts.lower) << " to "
                   << vector_text(facts.upper) << '\n';
     }
     if (scene.meshes.size() > kMeshesListed)
         std::cout << "  and " << scene.meshes.size() - kMeshesListed << " more mesh blocks (--dump-json lists all)\n";
+    // Every other file the render reads, each once (tools/farm keys its kept tiles on them).
+    std::set<std::string> listed;
+    for (const std::string& path : scene.included_paths)
+        if (listed.insert(path).second) std::cout << "  reads: " << path << '\n';
+    for (const tracer::Mesh& mesh : scene.meshes)
+        if (listed.insert(mesh.path).second) std::cout << "  reads: " << mesh.path << '\n';
     return kOk;
 }
 

@@ -158,7 +158,7 @@ void Validator::build_camera(const Block& block, const Fields& fields) {
 // The placement and material of a mesh or flat shape: its scale, rotate and translate keys, or
 // the steps of its transform block (not both). False if the placement is refused.
 bool Validator::build_placed(const Block& block, const Fields& fields, Placed& out) {
-    out.at = Diagnostics::locate(file_, block.kind_span);
+    out.line = Diagnostics::locate(file_, block.kind_span).line;
     out.material = material_index(fields);
     return build_placement(fields, out) && add_group_steps(block, out);
 }

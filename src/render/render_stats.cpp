@@ -67,21 +67,30 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
 
     // The meshes: each mesh file once, however many instances place it; and the shapes each one
     // holds (the instances of a shared file, or the blocks and flat shapes merged into a placed mesh).
-    std::vector<std::string> labels;
-    for (const Mesh& mesh : scene.meshes) labels.push_back(shape_label(mesh.path, mesh.at));
-    for (const FlatTriangle& shape : scene.triangles) labels.push_back(shape_label("triangle", shape.at));
-    for (const Quad& shape : scene.quads) labels.push_back(shape_label("quad", shape.at));
-    for (const Box& shape : scene.boxes) labels.push_back(shape_label("box", shape.at));
+    constexpr size_t kListedShapes = 16;  // "shapes" names the first few; "blocks" counts them all
+    // Shape `block` of the mesh blocks, then the triangles, quads and boxes.
+    const size_t shapes = scene.meshes.size() + scene.triangles.size() + scene.quads.size() + scene.boxes.size();
+    auto label = [&](size_t block) {
+        if (block < scene.meshes.size()) return shape_label(scene.meshes[block].path, scene.meshes[block].line);
+        block -= scene.meshes.size();
+        if (block < scene.triangles.size()) return shape_label("triangle", scene.triangles[block].line);
+        block -= scene.triangles.size();
+        if (block < scene.quads.size()) return shape_label("quad", scene.quads[block].line);
+        return shape_label("box", scene.boxes[block - scene.quads.size()].line);
+    };
     std::vector<size_t> blocks_of(world.meshes().size(), 0);
     std::vector<bool> placed(world.meshes().size(), false);
     std::vector<std::string> file_of(world.meshes().size());
     std::vector<nlohmann::ordered_json> shapes_of(world.meshes().size(), nlohmann::ordered_json::array());
-    for (size_t block = 0; block < world.instances().size(); ++block) {
-        const MeshInstance& instance = world.instances()[block];
-        placed[instance.mesh] = instance.placed;
-        if (blocks_of[instance.mesh]++ == 0 && block < scene.meshes.size())
-            file_of[instance.mesh] = scene.meshes[block].path;
-        if (block < labels.size()) shapes_of[instance.mesh].push_back(labels[block]);
+    for (size_t block = 0; block < shapes; ++block) {
+        // Mesh blocks have an instance each; the flat shapes are all in the merged mesh.
+        const MeshInstance* instance =
+            block < scene.meshes.size() && block < world.instances().size() ? &world.instances()[block] : nullptr;
+        const std::optional<uint32_t> mesh = instance ? std::optional(instance->mesh) : world.merged_mesh();
+        if (!mesh) continue;
+        placed[*mesh] = instance ? instance->placed : true;
+        if (blocks_of[*mesh]++ == 0 && instance) file_of[*mesh] = scene.meshes[block].path;
+        if (shapes_of[*mesh].size() < kListedShapes) shapes_of[*mesh].push_back(label(block));
     }
     out["meshes"] = nlohmann::ordered_json::array();
     for (size_t i = 0; i < world.meshes().size(); ++i) {
@@ -121,14 +130,14 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
     for (const auto& mesh : s["meshes"]) {
         // The first shape it holds, then the lines of a few more.
         const auto& shapes = mesh["shapes"];
+        const size_t blocks = mesh["blocks"].get<size_t>();
         std::string name = shapes.empty() ? mesh["file"].get<std::string>() : shapes[0].get<std::string>();
-        if (shapes.size() > 1) {
-            name +=
-                " and " + std::to_string(shapes.size() - 1) + " more" + (mesh["placed"].get<bool>() ? ", merged" : "");
+        if (blocks > 1) {
+            name += " and " + std::to_string(blocks - 1) + " more" + (mesh["placed"].get<bool>() ? ", merged" : "");
             constexpr size_t kNamed = 4;
             for (size_t i = 1; i < std::min(shapes.size(), kNamed); ++i)
                 name += (i == 1 ? " (" : ", ") + shapes[i].get<std::string>();
-            name += shapes.size() > kNamed ? ", ...)" : ")";
+            name += blocks > kNamed ? ", ...)" : ")";
         }
         std::snprintf(line, sizeof line, "mesh %s: %zu triangles, %s built in %.3f ms", name.c_str(),
                       mesh["triangles"].get<size_t>(), s["accel"].get<std::string>().c_str(),

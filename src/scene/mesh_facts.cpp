@@ -25,9 +25,9 @@ MeshFacts mesh_facts(const TriangleMesh& mesh, const Placed& placed) {
     return facts;
 }
 
-std::string shape_label(const std::string& kind_or_path, const Location& at) {
+std::string shape_label(const std::string& kind_or_path, int line) {
     const std::string name = kind_or_path.substr(kind_or_path.find_last_of('/') + 1);
-    return at.line > 0 ? name + " (line " + std::to_string(at.line) + ")" : name;
+    return line > 0 ? name + " (line " + std::to_string(line) + ")" : name;
 }
 
 }  // namespace tracer

@@ -21,6 +21,6 @@ struct MeshFacts {
 MeshFacts mesh_facts(const TriangleMesh& mesh, const Placed& placed);
 
 // "mesh.obj (line 12)": a shape as statistics name it, by its file or kind and its line.
-std::string shape_label(const std::string& kind_or_path, const Location& at);
+std::string shape_label(const std::string& kind_or_path, int line);
 
 }  // namespace tracer

@@ -130,7 +130,7 @@ struct Placed {
     dvec3 translate{0.0};
     std::vector<TransformStep> steps;
     int material = 0;  // index into SceneDescription::materials
-    Location at;       // the block's first word, for messages and statistics
+    int line = 0;      // the line of the block's first word, for statistics (0: not from a file)
 };
 
 // A triangle mesh from an OBJ file.

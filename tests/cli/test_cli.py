@@ -117,6 +117,12 @@ class CommandLine(unittest.TestCase):
                     self.assertEqual(in_scene.returncode, 1)
                     self.assertEqual(on_command_line.returncode, 2)
                     message = in_scene.stderr.splitlines()[0].split(": error: ", 1)[1]
+                    if message.startswith("undefined name"):
+                        # A scene may define names; the command line has none, so a word there
+                        # is a value of the wrong kind.
+                        self.assertIn(f"{option}: '{key}' expects", on_command_line.stderr)
+                        self.assertIn(f"found '{value}'", on_command_line.stderr)
+                        continue
                     self.assertIn(f"{option}: {message}", on_command_line.stderr)
 
     def test_shipped_scenes_describe_the_same_scene_as_before_the_interpreter(self):

@@ -296,6 +296,33 @@ class Memory(Hostile):
         os.truncate(big, (128 << 20) + 1)
         self.assertError(run("--check", big), 3, "the limit is 134.2 MB")
 
+    def test_flat_shapes_from_a_loop_cost_a_few_hundred_bytes_per_triangle(self):
+        # 2^18 shapes of each kind, the peak memory above the same scene with one shape, per
+        # triangle. Each quad once took its own mesh, instance and copy of its source line: 915
+        # bytes per triangle; now its description, its placed corners and its share of the
+        # world (docs/many-objects.md, "Many flat shapes"). Under the sanitizers only the run is checked.
+        shapes = {
+            "quad": ("corner (i, j, 0) edge1 (0.5, 0, 0) edge2 (0, 0.5, 0)", 2, 340),
+            "box": ("min (i, j, 0) max (i + 0.5, j + 0.5, 0.5)", 12, 200),
+            "triangle": ("a (i, j, 0) b (i + 0.5, j, 0) c (i, j + 0.5, 0)", 1, 600),
+        }
+        for kind, (keys, triangles, most_bytes) in shapes.items():
+            with self.subTest(kind=kind):
+                peaks = []
+                for side in (1, 512):
+                    scene = self.write(
+                        f"{kind}{side}.scn",
+                        "camera { eye (256, 256, 700) lookat (256, 256, 0) }\nlight { position (0, 0, 900) }\n"
+                        "material grey { kd 1 }\n"
+                        f"for i in 0..{side} {{ for j in 0..{side} {{ {kind} {{ {keys} material grey }} }} }}\n",
+                    )
+                    code, megabytes = peak_memory_mb(scene, "-o", self.tmp / "q.png", "--width", "32", "-q")
+                    self.assertEqual(code, 0)
+                    peaks.append(megabytes)
+                if not sanitized():
+                    per_triangle = (peaks[1] - peaks[0]) * 2**20 / (512 * 512 * triangles)
+                    self.assertLess(per_triangle, most_bytes)
+
     def test_many_warnings_are_capped(self):
         materials = " ".join(f"material m{i} {{ kd 1 }}" for i in range(20000))
         scene = self.write(
