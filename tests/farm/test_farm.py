@@ -201,6 +201,35 @@ def test_interrupted_farm_writes_nothing_and_leaves_no_tracer(tracer_bin, tmp_pa
     _, errors = process.communicate(timeout=120)
     assert process.returncode == 130, errors
     assert "interrupted" in errors
-    assert os.listdir(tmp_path) == []
+    assert set(os.listdir(tmp_path)) <= {".farm.png.farm"}  # finished tiles may be kept, no image
     psutil.wait_procs(workers, timeout=30)
     assert not any(worker.is_running() and worker.status() != psutil.STATUS_ZOMBIE for worker in workers)
+
+
+def test_an_interrupted_job_run_again_renders_only_the_tiles_it_lacks(tracer_bin, tmp_path):
+    alone = render(tracer_bin, SCENES / "bunny_room.scn", tmp_path / "alone.png", "--width", 600, "--samples", 36)
+    output = tmp_path / "farm.png"
+    kept = tmp_path / ".farm.png.farm"
+    process, _ = start_long_farm(output, tracer_bin)
+
+    def tiles_kept():
+        return [name for name in os.listdir(kept) if name.startswith("tile-")] if kept.is_dir() else []
+
+    wait_until(lambda: len(tiles_kept()) >= 4, "no tile was kept", process)
+    process.send_signal(signal.SIGINT)
+    _, errors = process.communicate(timeout=120)
+    assert process.returncode == 130, errors
+    assert "finished tiles are kept in" in errors and not output.exists()
+    before = len(tiles_kept())
+    assert (kept / "manifest.json").is_file() and before >= 4
+
+    # The same command again: the kept tiles are pasted, only the others rendered.
+    timings = tmp_path / "timings.json"
+    command = [SCENES / "bunny_room.scn", "-o", output, "--width", 600, "--samples", 36, "--tile", 40]
+    result = farm(*command, "--workers", 2, "-q", "--timings", timings, tracer=tracer_bin)
+    assert result.returncode == 0, result.stderr
+    figures = json.loads(timings.read_text())
+    assert figures["tiles_kept"] == before
+    assert figures["tiles"] + before == 15 * 10  # 600 x 400 in tiles of 40
+    assert np.array_equal(read_pixels(output)[0], alone)
+    assert not kept.exists()

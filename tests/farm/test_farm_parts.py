@@ -6,10 +6,11 @@ import os
 
 import numpy as np
 import pytest
-from conftest import SCENES, farm
+from conftest import ROOT, SCENES, farm
 
+from tracer_tools.farm import resume
 from tracer_tools.farm.images import decode_ppm
-from tracer_tools.farm.jobs import JobError, jobs_from_file
+from tracer_tools.farm.jobs import Job, JobError, check_job, jobs_from_file
 from tracer_tools.farm.tiles import Canvas, Region, split, tile_size_for
 
 
@@ -136,3 +137,53 @@ def test_images_are_written_whole_or_not_at_all(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out.png"]  # no temporary file left
     with pytest.raises(OSError):
         write_atomically(str(tmp_path / "missing" / "out.png"), pixels)
+
+
+def checked_job(tracer_bin, tmp_path):
+    """A job whose scene includes a file and reads a mesh, checked by tracer (inputs and frame set)."""
+    (tmp_path / "part.scn").write_text("sphere { center (0, 0, 0) radius 1 material { kd 1 } }\n")
+    (tmp_path / "cube.obj").write_bytes((ROOT / "scenes" / "meshes" / "cube.obj").read_bytes())
+    (tmp_path / "s.scn").write_text(
+        'camera { eye (0, 0, 7) lookat (0, 0, 0) }\ninclude "part.scn"\nlight { position (0, 3, 3) }\n'
+        'mesh { file "cube.obj" material { kd 1 } }\nrender { width 64 height 48 }\n'
+    )
+    job = Job(str(tmp_path / "s.scn"), str(tmp_path / "out.png"))
+    check_job(str(tracer_bin), job)
+    return job
+
+
+def test_a_job_s_identity_covers_tracer_and_every_file_the_scene_reads(tracer_bin, tmp_path):
+    job = checked_job(tracer_bin, tmp_path)
+    assert sorted(os.path.basename(path) for path in job.inputs) == ["cube.obj", "part.scn"]
+    first = resume.identity(str(tracer_bin), job)
+    assert first == resume.identity(str(tracer_bin), job)
+    for name in ("part.scn", "cube.obj", "s.scn"):
+        with open(tmp_path / name, "a") as file:
+            file.write("\n# changed\n")
+        changed = resume.identity(str(tracer_bin), job)
+        assert changed != first, name
+        first = changed
+    job.overrides["samples"] = "4"
+    assert resume.identity(str(tracer_bin), job) != first
+
+
+def test_kept_tiles_are_reused_only_by_the_same_job_and_tile_size(tracer_bin, tmp_path):
+    job = checked_job(tracer_bin, tmp_path)
+    manifest = resume.identity(str(tracer_bin), job)
+    store = resume.TileStore(job.output, dict(manifest))
+    assert store.resume(None, 32) == (32, {})
+    tile = np.full((32, 32, 3), 7, np.uint8)
+    store.keep(Region(0, 0, 32, 32), tile)
+    store.keep(Region(32, 0, 32, 32), np.zeros((16, 16, 3), np.uint8))  # the wrong size: not reused
+    (tmp_path / ".out.png.farm" / "tile-0-32-32-16.npy").write_bytes(b"not a tile")
+    (tmp_path / ".out.png.farm" / "notes.txt").write_text("a stranger's file")
+
+    # The same job, even with another default tile size: the kept size and the good tile.
+    tile_size, kept = resume.TileStore(job.output, dict(manifest)).resume(None, 16)
+    assert tile_size == 32 and list(kept) == [Region(0, 0, 32, 32)] and np.array_equal(kept[Region(0, 0, 32, 32)], tile)
+    # Another tile size asked for, or another job: the folder starts over.
+    assert resume.TileStore(job.output, dict(manifest)).resume(16, 32) == (16, {})
+    assert not (tmp_path / ".out.png.farm").exists()
+    resume.TileStore(job.output, dict(manifest)).keep(Region(0, 0, 32, 32), tile)
+    assert resume.TileStore(job.output, {**manifest, "arguments": ["other"]}).resume(None, 32) == (32, {})
+    assert not (tmp_path / ".out.png.farm").exists()

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 import tracer_tools
-from tracer_tools.farm import worker
+from tracer_tools.farm import resume, worker
 from tracer_tools.farm.images import decode_tile, write_atomically
 from tracer_tools.farm.jobs import OVERRIDES, Job, JobError, check_job, check_output, jobs_from_file
 from tracer_tools.farm.progress import Progress
@@ -103,17 +103,21 @@ def check_jobs(tracer: str, jobs: list[Job]) -> None:
     the JobError raised, before any tile is sent); prints tracer's warnings."""
     if not os.access(tracer, os.X_OK):
         raise JobError(f"no tracer executable at '{tracer}' (build it: tools/bootstrap)", 3)
-    checked = {}  # tracer's arguments -> the frame size: each distinct scene checked once
+    checked = {}  # tracer's arguments -> the checked job: each distinct scene checked once
     for job in jobs:
         key = tuple(job.tracer_arguments())
         if key in checked:
-            job.width, job.height = checked[key]
+            job.width, job.height, job.inputs = checked[key].width, checked[key].height, checked[key].inputs
         else:
             warnings = check_job(tracer, job)
             if warnings:
                 sys.stderr.write(warnings)
-            checked[key] = (job.width, job.height)
+            checked[key] = job
         check_output(job)
+        try:
+            job.manifest = resume.identity(tracer, job)
+        except OSError as error:  # an input that vanished since the check
+            raise JobError(f"cannot read '{error.filename}': {error.strerror}", 3) from error
 
 
 def start_cluster(arguments: argparse.Namespace) -> tuple[Client, LocalCluster | None]:
@@ -191,16 +195,28 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
         checking.result()
         slots = sum(client.nthreads().values()) or arguments.workers
 
-        # Step 1: every tile of every job, in order.
+        # Step 1: every tile of every job, in order, but those an earlier run of the job kept.
         start = time.perf_counter()
-        canvases = []
+        canvases, stores = [], []
+        kept_tiles = 0
         for index, job in enumerate(jobs):
-            tile = arguments.tile or tile_size_for(job.width, job.height, slots)
+            stores.append(resume.TileStore(job.output, job.manifest))
+            tile, kept = stores[index].resume(arguments.tile, tile_size_for(job.width, job.height, slots))
             regions = split(job.width, job.height, tile)
             worker_job = worker_jobs[index]
             suffix = worker_job["tile_suffix"]
             canvases.append(Canvas(job.width, job.height, np.float32 if job.is_float() else np.uint8, len(regions)))
+            for region in regions:
+                if region in kept:
+                    canvases[index].paste(region, kept[region])
+                    kept_tiles += 1
+            if canvases[index].complete():  # every tile kept: only the writing was left
+                write_atomically(job.output, canvases[index].pixels)
+                stores[index].remove()
+                canvases[index] = None
             for number, region in enumerate(regions):
+                if region in kept:
+                    continue
                 future = client.submit(
                     worker.render_tile,
                     worker_job,
@@ -224,19 +240,24 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
             transferred += len(data)
             moment = time.perf_counter()
             canvas = canvases[index]
-            canvas.paste(region, decode_tile(data, suffix, canvas.pixels.dtype))
+            pixels = decode_tile(data, suffix, canvas.pixels.dtype)
+            canvas.paste(region, pixels)
             assembly += time.perf_counter() - moment
             if INTERRUPTED["signal"]:  # an interrupt that a callback swallowed: stop at this tile
                 raise KeyboardInterrupt
+            moment = time.perf_counter()
             if canvas.complete():
-                moment = time.perf_counter()
                 write_atomically(jobs[index].output, canvas.pixels)
-                writing += time.perf_counter() - moment
+                stores[index].remove()
                 canvases[index] = None
+            else:
+                stores[index].keep(region, pixels)
+            writing += time.perf_counter() - moment
             progress.tile_done()
         progress.finish()
         timings.update(
             tiles=len(pending),
+            tiles_kept=kept_tiles,
             workers=slots,
             tiles_s=time.perf_counter() - start,
             tile_work_s=work,
@@ -273,18 +294,29 @@ def main(argv: list[str] | None = None) -> int:
         check_jobs(arguments.tracer, jobs)
         timings["check_s"] = time.perf_counter() - start
 
+    jobs: list[Job] = []
+    failed = None  # the exit code of a failure
     try:
         jobs = jobs_of(arguments)
         with ThreadPoolExecutor(1) as pool:
             run_jobs(arguments, jobs, pool.submit(check, jobs), timings)
     except JobError as error:
         print(str(error) if error.tracers_own else f"farm: error: {error}", file=sys.stderr)
-        return error.exit_code
+        failed = error.exit_code
     except OSError as error:  # writing an image: disk full, permissions changed meanwhile
         print(f"farm: error: {error}", file=sys.stderr)
-        return 3
+        failed = 3
     except KeyboardInterrupt:
         INTERRUPTED["signal"] = True
+    kept = [resume.folder_of(job.output) for job in jobs if os.path.isdir(resume.folder_of(job.output))]
+    if kept:
+        others = " and beside the other outputs" if len(kept) > 1 else ""
+        print(
+            f"farm: finished tiles are kept in {kept[0]}{others}; the same command again renders only the rest",
+            file=sys.stderr,
+        )
+    if failed is not None:
+        return failed
     if INTERRUPTED["signal"]:
         print("farm: interrupted; no unfinished image was written", file=sys.stderr)
         return EXIT_INTERRUPTED

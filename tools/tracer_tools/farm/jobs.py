@@ -32,6 +32,8 @@ class Job:
     overrides: dict[str, str] = field(default_factory=dict)  # samples, width, height, max_depth
     width: int = 0  # the frame, as tracer --check reports it
     height: int = 0
+    inputs: list[str] = field(default_factory=list)  # the other files it reads, as tracer --check lists them
+    manifest: dict = field(default_factory=dict)  # what its image depends on (resume.identity)
 
     def tracer_arguments(self) -> list[str]:
         """The scene and its overrides as tracer's command line."""
@@ -102,6 +104,7 @@ def jobs_from_file(path: str) -> list[Job]:
 
 
 _IMAGE_LINE = re.compile(r"^  image: (\d+) x (\d+) pixels", re.MULTILINE)
+_READS_LINE = re.compile(r"^  reads: (.*)$", re.MULTILINE)
 
 
 def check_job(tracer: str, job: Job) -> str:
@@ -114,6 +117,7 @@ def check_job(tracer: str, job: Job) -> str:
     if not size:
         raise JobError(f"'{tracer} --check' did not report the image size; is it an older tracer?", 3)
     job.width, job.height = int(size.group(1)), int(size.group(2))
+    job.inputs = _READS_LINE.findall(result.stdout)
     return result.stderr
 
 
