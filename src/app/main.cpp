@@ -64,6 +64,7 @@ struct Options {
     std::string width;
     std::string height;
     std::string samples;
+    std::string adaptive;  // THRESHOLD[:DEPTH]
     std::string max_depth;
     std::vector<std::string> defines;  // -D NAME=VALUE
     std::vector<int> region;           // --region X0 Y0 W H (empty: the whole frame)
@@ -96,6 +97,15 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
             };
             render.leaf_size = whole(options.leaf_size, render.leaf_size);
             render.samples = whole(options.samples, render.samples);
+            if (!options.adaptive.empty()) {
+                // The command line's choice of sampling wins over the scene's samples, unless it
+                // gives --samples too (then render_settings_problem names the clash).
+                const size_t colon = options.adaptive.find(':');
+                render.antialias = tracer::Antialias::Adaptive;
+                render.adaptive_threshold = std::stod(options.adaptive.substr(0, colon));  // checked
+                if (colon != std::string::npos) render.adaptive_depth = std::stoi(options.adaptive.substr(colon + 1));
+                if (options.samples.empty()) render.samples = 1;
+            }
             render.max_depth = whole(options.max_depth, render.max_depth);
             // One of width and height alone keeps the scene's aspect ratio (as tools/crosscheck).
             const double aspect = double(render.width) / double(render.height);
@@ -109,6 +119,16 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
         std::cerr, &unreadable, parameter_values(options));
     if (!loaded) exit_code = unreadable ? kIoError : kSceneError;
     return loaded;
+}
+
+// Samples per pixel as the summary line gives them: N*N, or adaptive's mean.
+std::string samples_text(const tracer::RenderSettings& render, const tracer::RayCounts& rays,
+                         const tracer::Image& image) {
+    if (render.antialias == tracer::Antialias::Uniform) return std::to_string(render.samples);
+    char text[64];
+    const double pixels = std::max(1.0, double(image.width) * double(image.height));
+    std::snprintf(text, sizeof text, "%.2f (adaptive)", double(rays.primary) / pixels);
+    return text;
 }
 
 // JSON text even when a path in it is not UTF-8 (such bytes become U+FFFD, not an abort).
@@ -223,10 +243,10 @@ int render_to_file(const Options& options) {
         const tracer::RayCounts& rays = stats.rays;
         const std::string refraction = rays.refraction ? ", " + millions(rays.refraction) + " refraction" : "";
         std::fprintf(stderr,
-                     "%s: %dx%d, %d spp, %d threads, %.3f s, %srays (%s primary, %s shadow, %s reflection%s), "
+                     "%s: %dx%d, %s spp, %d threads, %.3f s, %srays (%s primary, %s shadow, %s reflection%s), "
                      "%.1f Mrays/s\n",
-                     options.output.c_str(), image.width, image.height, scene.render.samples, stats.threads,
-                     stats.seconds, millions(rays.total()).c_str(), millions(rays.primary).c_str(),
+                     options.output.c_str(), image.width, image.height, samples_text(scene.render, rays, image).c_str(),
+                     stats.threads, stats.seconds, millions(rays.total()).c_str(), millions(rays.primary).c_str(),
                      millions(rays.shadow).c_str(), millions(rays.reflection).c_str(), refraction.c_str(),
                      double(rays.total()) / stats.seconds / 1e6);
     }
@@ -317,6 +337,21 @@ int run(int argc, char** argv) {
         ->check(render_key("height"));
     app.add_option("--samples", options.samples, "Override the scene's samples per pixel (N*N: 1, 4, 9, 16, ...)")
         ->check(render_key("samples"));
+    app.add_option("--adaptive", options.adaptive,
+                   "Adaptive antialiasing: split a pixel's cells where their corners differ by THRESHOLD "
+                   "(0..1 per channel), down to DEPTH levels (default: the scene's, else 3); replaces --samples")
+        ->type_name("THRESHOLD[:DEPTH]")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                const size_t colon = text.find(':');
+                if (colon == 0 || colon + 1 == text.size())
+                    return std::string("expected THRESHOLD[:DEPTH], e.g. 0.05:3");
+                std::string problem = tracer::setting_problem("render", "adaptive_threshold", text.substr(0, colon));
+                if (problem.empty() && colon != std::string::npos)
+                    problem = tracer::setting_problem("render", "adaptive_depth", text.substr(colon + 1));
+                return problem;
+            },
+            "", "adaptive"));
     app.add_option("--max-depth", options.max_depth, "Override the scene's reflection and refraction depth")
         ->check(render_key("max_depth"));
     app.add_option("-D,--define", options.defines,

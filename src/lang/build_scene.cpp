@@ -126,6 +126,9 @@ void Validator::build_render(const Block& block, const Fields& fields) {
     render.shadows = fields.boolean("shadows");
     render.transparent_shadows = fields.boolean("transparent_shadows");
     render.spawn_rules = fields.text("spawn_rules") == "spd" ? SpawnRules::Spd : SpawnRules::Tracer;
+    render.antialias = fields.text("antialias") == "adaptive" ? Antialias::Adaptive : Antialias::Uniform;
+    render.adaptive_threshold = fields.number("adaptive_threshold");
+    render.adaptive_depth = fields.integer("adaptive_depth");
     accelerator_from_name(fields.text("accel"), render.accel);
     render.leaf_size = fields.integer("leaf_size");
 

@@ -76,6 +76,20 @@ const BlockSpec kRender{
                    "with km or kt above 0, a shadow ray wherever the normal faces the light, no "
                    "weight cut-off (the image is the same)."),
                {"tracer", "spd"}),
+        one_of(key("antialias", ValueType::Choice, "uniform",
+                   "How a pixel's samples are placed. `uniform`: `samples` (N*N) in every pixel. "
+                   "`adaptive`: one sample at each pixel corner, shared with the neighbours; a cell "
+                   "whose corners differ by at least `adaptive_threshold` in a channel is split into "
+                   "four, down to `adaptive_depth` levels; a cell's colour is the mean of its corners "
+                   "(threshold 0 splits every cell to the full depth). The image is the same for any "
+                   "thread count, tile or region."),
+               {"uniform", "adaptive"}),
+        ranged(key("adaptive_threshold", ValueType::Number, "0.05",
+                   "With `antialias adaptive`: the difference in one colour channel (clamped to 0..1; "
+                   "one level of an 8-bit image is 1/255) at which a cell is split."), 0, 1),
+        ranged(key("adaptive_depth", ValueType::Integer, "3",
+                   "With `antialias adaptive`: the most times a pixel is split, into 2^depth x 2^depth "
+                   "cells at most ((2^depth + 1)^2 samples)."), 0, 8),
         one_of(key("accel", ValueType::Choice, "sah",
                    "How rays find a mesh's triangles: `none` tests every triangle, `box` one bounding "
                    "box around the mesh, `median` a BVH split at the median centroid (x, y, z by "

@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
 
 #include "accel/world.h"
 #include "base/parallel.h"
+#include "render/adaptive.h"
 #include "render/camera.h"
 
 namespace tracer {
@@ -47,8 +49,11 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     image.frame_height = settings.height;
     image.rgb.resize(size_t(area.width) * size_t(area.height) * 3);
 
-    // Step 2: rows handed to the threads one at a time. The time is the render loop's (as
-    // embree_bench's): it leaves out the image's allocation.
+    // Step 2: rows handed to the threads one at a time (adaptive: in bands, whose rows share
+    // their edges' samples). The time is the render loop's (as embree_bench's): it leaves out
+    // the image's allocation.
+    const bool adaptive = settings.antialias == Antialias::Adaptive;
+    const int band = adaptive ? 16 : 1;
     const auto start = std::chrono::steady_clock::now();
     const int threads = options.pool ? options.pool->size()
                                      : std::max(1, std::min(thread_count(options.threads), std::max(area.height, 1)));
@@ -67,25 +72,30 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
         // every pixel (store-to-load forwarding fails: 40% of the samples in the render loop's
         // own code, full frame).
         std::vector<Ray> rays(size_t(area.width));
-        for (int row; (row = next_row.fetch_add(1)) < area.height;) {
-            if (cancel && cancel->load()) break;
-            const int y = area.y0 + row;
-            if (grid == 1) {
-                camera.row_directions(area.x0 + Real(0.5), y + Real(0.5), area.width, directions.data());
-                for (size_t i = 0; i < rays.size(); ++i) rays[i] = {camera.eye(), directions[i]};
+        std::optional<AdaptivePixels> corners;
+        if (adaptive) corners.emplace(world, camera, settings, cancel);
+        for (int first; (first = next_row.fetch_add(band)) < area.height;)
+            for (int row = first; row < std::min(first + band, area.height); ++row) {
+                if (cancel && cancel->load()) break;
+                const int y = area.y0 + row;
+                if (adaptive) corners->begin_row(y);
+                if (grid == 1 && !adaptive) {
+                    camera.row_directions(area.x0 + Real(0.5), y + Real(0.5), area.width, directions.data());
+                    for (size_t i = 0; i < rays.size(); ++i) rays[i] = {camera.eye(), directions[i]};
+                }
+                for (int x = area.x0; x < area.x0 + area.width; ++x) {
+                    // Checked at every pixel and inside the ray tree: a pixel may cost up to
+                    // kMostRaysPerTree rays per sample.
+                    if (cancel && cancel->load(std::memory_order_relaxed)) break;
+                    const Color c = adaptive    ? corners->pixel(x, y, counts)
+                                    : grid == 1 ? trace(world, settings, rays[size_t(x - area.x0)], counts, cancel)
+                                                : shade_pixel(world, camera, settings, x, y, grid, counts, cancel);
+                    double* out = &image.rgb[(size_t(row) * size_t(area.width) + size_t(x - area.x0)) * 3];
+                    out[0] = c.r, out[1] = c.g, out[2] = c.b;
+                }
+                const int done = rows_done.fetch_add(1) + 1;
+                if (index == 0 && options.progress) options.progress(double(done) / area.height);
             }
-            for (int x = area.x0; x < area.x0 + area.width; ++x) {
-                // Checked at every pixel and inside the ray tree: a pixel may cost up to
-                // kMostRaysPerTree rays per sample.
-                if (cancel && cancel->load(std::memory_order_relaxed)) break;
-                const Color c = grid == 1 ? trace(world, settings, rays[size_t(x - area.x0)], counts, cancel)
-                                          : shade_pixel(world, camera, settings, x, y, grid, counts, cancel);
-                double* out = &image.rgb[(size_t(row) * size_t(area.width) + size_t(x - area.x0)) * 3];
-                out[0] = c.r, out[1] = c.g, out[2] = c.b;
-            }
-            const int done = rows_done.fetch_add(1) + 1;
-            if (index == 0 && options.progress) options.progress(double(done) / area.height);
-        }
         std::lock_guard lock(merge);
         stats.rays += counts;
     };

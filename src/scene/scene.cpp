@@ -13,6 +13,9 @@ const char* accelerator_name(Accelerator accelerator) {
 }
 
 std::string render_settings_problem(const RenderSettings& render) {
+    if (render.antialias == Antialias::Adaptive && render.samples > 1)
+        return "'samples' is for uniform antialiasing; adaptive places its own samples (at most "
+               "(2^adaptive_depth + 1)^2 per pixel): leave 'samples' at 1";
     const long long pixels = 1LL * render.width * render.height;
     if (pixels <= kMaxPixels) return "";
     return "the image would have " + std::to_string(pixels) + " pixels; the limit is " + std::to_string(kMaxPixels) +

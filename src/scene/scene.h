@@ -45,6 +45,10 @@ struct Camera {
 // Procedural Databases' testing procedure (its rules 8 and 10), for comparing ray counts.
 enum class SpawnRules { Tracer, Spd };
 
+// How a pixel's samples are placed: N x N in every pixel (uniform), or at the corners of cells
+// split where they differ (adaptive; render/adaptive.h).
+enum class Antialias { Uniform, Adaptive };
+
 // How rays find triangles: every triangle (none), one bounding box around the mesh (box),
 // or a bounding volume hierarchy built by median splits (median) or the SAH (sah).
 enum class Accelerator { None, Box, Median, Sah };
@@ -64,6 +68,9 @@ struct RenderSettings {
     // (not refracted); false: every surface blocks light.
     bool transparent_shadows = false;
     SpawnRules spawn_rules = SpawnRules::Tracer;
+    Antialias antialias = Antialias::Uniform;
+    double adaptive_threshold = 0.05;  // a cell is split where a channel of its corners differs by this much
+    int adaptive_depth = 3;            // the most times a pixel is split (into 2^depth x 2^depth cells)
     Accelerator accel = Accelerator::Sah;
     int leaf_size = 4;  // most triangles in a BVH leaf (median; sah may make smaller leaves)
 };

@@ -65,6 +65,11 @@ Json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes) {
     // Only when set: older readers know no such keys.
     if (r.transparent_shadows) out["render"]["transparent_shadows"] = true;
     if (r.spawn_rules == SpawnRules::Spd) out["render"]["spawn_rules"] = "spd";
+    if (r.antialias == Antialias::Adaptive) {
+        out["render"]["antialias"] = "adaptive";
+        out["render"]["adaptive_threshold"] = r.adaptive_threshold;
+        out["render"]["adaptive_depth"] = r.adaptive_depth;
+    }
     const Camera& c = scene.camera;
     out["camera"] = {{"eye", vec(c.eye)},
                      {"lookat", vec(c.lookat)},

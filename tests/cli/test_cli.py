@@ -90,6 +90,35 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("30x20, 4 spp", result.stderr)
 
+    def test_adaptive_antialiasing_from_the_command_line(self):
+        result = run("--dump-json", self.small, "--adaptive", "0.02:4")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        render = json.loads(result.stdout)["render"]
+        self.assertEqual(
+            (render["antialias"], render["adaptive_threshold"], render["adaptive_depth"]), ("adaptive", 0.02, 4)
+        )
+        self.assertEqual(
+            json.loads(run("--dump-json", self.small, "--adaptive", "0.1").stdout)["render"]["adaptive_depth"], 3
+        )
+        out = self.tmp / "out.png"
+        result = run(self.small, "-o", out, "--adaptive", "0.05:2")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertRegex(result.stderr, r"64x48, \d+\.\d\d \(adaptive\) spp")
+        # The scene's values are checked by its rules, the option's by the same rules.
+        for value, message in (
+            ("2", "'adaptive_threshold' must be between 0 and 1, found 2"),
+            ("0.1:9", "'adaptive_depth' must be between 0 and 8, found 9"),
+            ("abc", "'adaptive_threshold' expects a number, found 'abc'"),
+            ("0.1:", "expected THRESHOLD[:DEPTH], e.g. 0.05:3"),
+        ):
+            with self.subTest(value=value):
+                result = run(self.small, "-o", out, "--adaptive", value)
+                self.assertEqual(result.returncode, 2)
+                self.assertIn(f"--adaptive: {message}", result.stderr)
+        result = run(self.small, "-o", out, "--adaptive", "0.1", "--samples", "4")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("'samples' is for uniform antialiasing", result.stderr)
+
     def test_overrides_are_checked_by_the_scene_rules(self):
         # Each override against the same key written in the scene's render block: refused alike,
         # with the same message (CLI11 puts the option's name before it), or accepted alike.
