@@ -1,43 +1,77 @@
 #include "render/adaptive.h"
 
 #include <algorithm>
-#include <iterator>
+#include <climits>
+#include <utility>
 
 namespace tracer {
 
 AdaptivePixels::AdaptivePixels(const World& world, const PinholeCamera& camera, const RenderSettings& settings,
-                               const std::atomic<bool>* cancel)
+                               const std::atomic<bool>* cancel, int x0, int width)
     : world_(world),
       camera_(camera),
       settings_(settings),
       cancel_(cancel),
+      x0_(x0),
+      width_(width),
       cells_(int64_t(1) << settings.adaptive_depth),
-      step_(Real(1) / Real(int64_t(1) << settings.adaptive_depth)) {}
-
-void AdaptivePixels::begin_row(int y) {
-    if (y != row_ + 1) {
-        samples_.clear();
-    } else {
-        // Only the top edge of row y (the bottom edge of the row before) is shared from now on.
-        const int64_t top = int64_t(y) * cells_;
-        std::erase_if(samples_, [&](const auto& entry) { return int64_t(entry.first >> 32) < top; });
-    }
-    row_ = y;
+      step_(Real(1) / Real(int64_t(1) << settings.adaptive_depth)) {
+    const size_t line = size_t(width) * size_t(cells_) + 1, side = size_t(cells_) + 1;
+    top_.resize(line), bottom_.resize(line);
+    left_.resize(side), right_.resize(side);
+    inside_.resize(side * side);
 }
 
-Color AdaptivePixels::sample(int64_t x, int64_t y, RayCounts& counts) {
-    const uint64_t key = uint64_t(y) << 32 | uint64_t(x);
-    if (auto known = samples_.find(key); known != samples_.end()) return known->second;
+Color AdaptivePixels::trace_at(int64_t x, int64_t y, RayCounts& counts) const {
     // Lattice coordinates times a power of two: exact, so a point has one ray wherever it is asked.
-    const Color c = trace(world_, settings_, camera_.ray_through(Real(x) * step_, Real(y) * step_), counts, cancel_);
-    samples_.emplace(key, c);
-    return c;
+    return trace(world_, settings_, camera_.ray_through(Real(x) * step_, Real(y) * step_), counts, cancel_);
 }
 
-// The cell with corners (x, y) and (x + size, y + size) on the lattice.
-Color AdaptivePixels::cell(int64_t x, int64_t y, int64_t size, RayCounts& counts) {
-    const Color corners[4] = {sample(x, y, counts), sample(x + size, y, counts), sample(x, y + size, counts),
-                              sample(x + size, y + size, counts)};
+void AdaptivePixels::row(int y, double* out, RayCounts& counts) {
+    // Step 1: the edges. The row before's bottom edge is this one's top edge (stamped with the
+    // number of the row whose bottom edge it is).
+    std::swap(top_, bottom_);
+    y_ = y;
+    // Step 2: the pixels, left to right, each passing its right edge to the next.
+    ++pixel_stamp_;  // the first pixel has no left neighbour
+    for (int x = x0_; x < x0_ + width_; ++x) {
+        if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
+        x_ = x;
+        std::swap(left_, right_);
+        ++pixel_stamp_;
+        const Color c = cell(0, 0, cells_, counts);
+        double* pixel = out + size_t(x - x0_) * 3;
+        pixel[0] = c.r, pixel[1] = c.g, pixel[2] = c.b;
+    }
+}
+
+Color AdaptivePixels::sample(int64_t i, int64_t j, RayCounts& counts) {
+    // Where the point (i, j) of the pixel is kept: on the row's edges, the pixel's sides, inside.
+    Line* line;
+    size_t at;
+    int64_t stamp;
+    if (j == 0 || j == cells_) {
+        line = j == 0 ? &top_ : &bottom_;
+        at = size_t(x_ - x0_) * size_t(cells_) + size_t(i);
+        stamp = j == 0 ? y_ - 1 : y_;
+    } else if (i == 0 || i == cells_) {
+        line = i == 0 ? &left_ : &right_;
+        at = size_t(j);
+        stamp = i == 0 ? pixel_stamp_ - 1 : pixel_stamp_;
+    } else {
+        line = &inside_;
+        at = size_t(j) * size_t(cells_ + 1) + size_t(i);
+        stamp = pixel_stamp_;
+    }
+    if (line->stamp[at] == stamp) return line->colour[at];
+    line->stamp[at] = stamp;
+    return line->colour[at] = trace_at(int64_t(x_) * cells_ + i, int64_t(y_) * cells_ + j, counts);
+}
+
+// The cell of the current pixel with corners (i, j) and (i + size, j + size).
+Color AdaptivePixels::cell(int64_t i, int64_t j, int64_t size, RayCounts& counts) {
+    const Color corners[4] = {sample(i, j, counts), sample(i + size, j, counts), sample(i, j + size, counts),
+                              sample(i + size, j + size, counts)};
     if (size > 1 && !(cancel_ && cancel_->load(std::memory_order_relaxed))) {
         double spread = 0;
         for (int channel = 0; channel < 3; ++channel) {
@@ -50,16 +84,12 @@ Color AdaptivePixels::cell(int64_t x, int64_t y, int64_t size, RayCounts& counts
         }
         if (spread >= settings_.adaptive_threshold) {
             const int64_t half = size / 2;
-            return (cell(x, y, half, counts) + cell(x + half, y, half, counts) + cell(x, y + half, half, counts) +
-                    cell(x + half, y + half, half, counts)) *
+            return (cell(i, j, half, counts) + cell(i + half, j, half, counts) + cell(i, j + half, half, counts) +
+                    cell(i + half, j + half, half, counts)) *
                    0.25;
         }
     }
     return (corners[0] + corners[1] + corners[2] + corners[3]) * 0.25;
-}
-
-Color AdaptivePixels::pixel(int x, int y, RayCounts& counts) {
-    return cell(int64_t(x) * cells_, int64_t(y) * cells_, cells_, counts);
 }
 
 }  // namespace tracer

@@ -6,13 +6,13 @@
 //
 // Every sample sits on one lattice over the whole frame, 2^depth points per pixel side, and its
 // colour depends on nothing but its lattice point: neighbours share their edges' samples, and
-// the image is the same for any thread count, row order, tile or region (a cache only saves
-// rays, it never changes a value).
+// the image is the same for any thread count, row order, tile or region (what is kept between
+// pixels and rows only saves rays, it never changes a value).
 #pragma once
 
 #include <atomic>
 #include <cstdint>
-#include <unordered_map>
+#include <vector>
 
 #include "accel/world.h"
 #include "render/camera.h"
@@ -23,28 +23,39 @@ namespace tracer {
 
 class AdaptivePixels {
 public:
+    // For the pixels x0 .. x0 + width - 1 of any row.
     AdaptivePixels(const World& world, const PinholeCamera& camera, const RenderSettings& settings,
-                   const std::atomic<bool>* cancel);
+                   const std::atomic<bool>* cancel, int x0, int width);
 
-    // The colour of pixel (x, y). Pixels of one row should come one after another and rows in
-    // order: the samples shared with the row before are then kept, not traced again.
-    Color pixel(int x, int y, RayCounts& counts);
-    // Drops the samples no row from `y` on can share (all of them if `y` does not follow the
-    // last row begun).
-    void begin_row(int y);
+    // Row y's pixels into out (3 doubles each). Rows taken in order (y, y + 1, ...) share their
+    // edge: the samples on it are traced once. Every sample is traced by the same call
+    // (ray_through): a row's rays made together (row_directions) may round differently.
+    void row(int y, double* out, RayCounts& counts);
 
 private:
-    Color sample(int64_t x, int64_t y, RayCounts& counts);
-    Color cell(int64_t x, int64_t y, int64_t size, RayCounts& counts);
+    // The samples on one lattice line: an entry is valid if its stamp is the line's.
+    struct Line {
+        std::vector<Color> colour;
+        std::vector<int64_t> stamp;
+        void resize(size_t n) { colour.resize(n), stamp.assign(n, INT64_MIN); }  // none valid
+    };
+    Color sample(int64_t i, int64_t j, RayCounts& counts);  // pixel-local lattice point
+    Color cell(int64_t i, int64_t j, int64_t size, RayCounts& counts);
+    Color trace_at(int64_t x, int64_t y, RayCounts& counts) const;
 
     const World& world_;
     const PinholeCamera& camera_;
     const RenderSettings& settings_;
     const std::atomic<bool>* cancel_;
-    const int64_t cells_;                          // lattice steps per pixel side: 2^depth
-    const Real step_;                              // 1 / cells_, exact
-    int row_ = -2;                                 // the row begun last
-    std::unordered_map<uint64_t, Color> samples_;  // by lattice point (y << 32 | x)
+    const int x0_, width_;
+    const int64_t cells_;  // lattice steps per pixel side: 2^depth
+    const Real step_;      // 1 / cells_, exact
+
+    // The row being rendered (y_) and pixel (x_); the top and bottom edges of the row (lattice
+    // columns from x0_), the left and right edges and the inside of the pixel.
+    int y_ = 0, x_ = 0;
+    int64_t pixel_stamp_ = 0;
+    Line top_, bottom_, left_, right_, inside_;
 };
 
 }  // namespace tracer

@@ -73,23 +73,23 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
         // own code, full frame).
         std::vector<Ray> rays(size_t(area.width));
         std::optional<AdaptivePixels> corners;
-        if (adaptive) corners.emplace(world, camera, settings, cancel);
+        if (adaptive) corners.emplace(world, camera, settings, cancel, area.x0, area.width);
         for (int first; (first = next_row.fetch_add(band)) < area.height;)
             for (int row = first; row < std::min(first + band, area.height); ++row) {
                 if (cancel && cancel->load()) break;
                 const int y = area.y0 + row;
-                if (adaptive) corners->begin_row(y);
-                if (grid == 1 && !adaptive) {
+                if (adaptive) {
+                    corners->row(y, &image.rgb[size_t(row) * size_t(area.width) * 3], counts);
+                } else if (grid == 1) {
                     camera.row_directions(area.x0 + Real(0.5), y + Real(0.5), area.width, directions.data());
                     for (size_t i = 0; i < rays.size(); ++i) rays[i] = {camera.eye(), directions[i]};
                 }
-                for (int x = area.x0; x < area.x0 + area.width; ++x) {
+                for (int x = area.x0; x < area.x0 + area.width && !adaptive; ++x) {
                     // Checked at every pixel and inside the ray tree: a pixel may cost up to
                     // kMostRaysPerTree rays per sample.
                     if (cancel && cancel->load(std::memory_order_relaxed)) break;
-                    const Color c = adaptive    ? corners->pixel(x, y, counts)
-                                    : grid == 1 ? trace(world, settings, rays[size_t(x - area.x0)], counts, cancel)
-                                                : shade_pixel(world, camera, settings, x, y, grid, counts, cancel);
+                    const Color c = grid == 1 ? trace(world, settings, rays[size_t(x - area.x0)], counts, cancel)
+                                              : shade_pixel(world, camera, settings, x, y, grid, counts, cancel);
                     double* out = &image.rgb[(size_t(row) * size_t(area.width) + size_t(x - area.x0)) * 3];
                     out[0] = c.r, out[1] = c.g, out[2] = c.b;
                 }

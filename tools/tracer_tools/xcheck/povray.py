@@ -194,18 +194,21 @@ def to_povray_sdl(scene: dict) -> str:
     return "\n".join(out) + "\n"
 
 
-def render_scene(scene: dict, folder: pathlib.Path, threads: int = 2) -> tuple[np.ndarray, dict]:
+def render_scene(
+    scene: dict, folder: pathlib.Path, threads: int = 2, antialias: tuple[float, int] | None = None
+) -> tuple[np.ndarray, dict]:
     """Renders the scene with POV-Ray into folder (scene.pov, povray.png); (the image as linear
-    floats H x W x 3, POV-Ray's reported {"parse_seconds", "trace_seconds"})."""
+    floats H x W x 3, POV-Ray's reported {"parse_seconds", "trace_seconds"}). `antialias`
+    (threshold, depth): POV-Ray's adaptive method 2 (+A +AM2 +R, its jitter left on); else none."""
     povray = shutil.which("povray")
     if povray is None:
         raise PovrayMissing(
             "POV-Ray is not installed (Debian's `povray` package; tools/bootstrap --python installs it)"
         )
     render = scene["render"]
-    if render["samples"] != 1:
+    if render["samples"] != 1 or render.get("antialias", "uniform") != "uniform":
         raise ToolError(
-            "POV-Ray's antialiasing is adaptive, not tracer's N x N grid: compare at 1 sample (--samples 1)"
+            "POV-Ray's antialiasing is its own, not tracer's: compare at 1 sample (--samples 1, no --adaptive)"
         )
     folder = pathlib.Path(folder)
     pov = folder / "scene.pov"
@@ -213,7 +216,8 @@ def render_scene(scene: dict, folder: pathlib.Path, threads: int = 2) -> tuple[n
     png = folder / "povray.png"
     command = [
         povray, f"+I{pov}", f"+O{png}", f"+W{render['width']}", f"+H{render['height']}",
-        "-A", "+FN16", "File_Gamma=1.0", "-D", "-P", "+Q9", f"+WT{threads}", "-V",
+        *(["-A"] if antialias is None else [f"+A{antialias[0]}", "+AM2", f"+R{antialias[1]}"]),
+        "+FN16", "File_Gamma=1.0", "-D", "-P", "+Q9", f"+WT{threads}", "-V",
     ]  # fmt: skip
     done = subprocess.run(command, capture_output=True, text=True, cwd=folder)
     if done.returncode != 0 or not png.is_file():
