@@ -55,6 +55,10 @@ std::vector<DefaultRow> rows() {
              EXPECT_EQ(s.render.transparent_shadows, render.transparent_shadows);
          }},
         {"render", "spawn_rules", [=](auto& s) { EXPECT_EQ(s.render.spawn_rules, render.spawn_rules); }},
+        {"render", "antialias", [=](auto& s) { EXPECT_EQ(s.render.antialias, render.antialias); }},
+        {"render", "adaptive_threshold",
+         [=](auto& s) { EXPECT_EQ(s.render.adaptive_threshold, render.adaptive_threshold); }},
+        {"render", "adaptive_depth", [=](auto& s) { EXPECT_EQ(s.render.adaptive_depth, render.adaptive_depth); }},
         {"render", "accel", [=](auto& s) { EXPECT_EQ(s.render.accel, render.accel); }},
         {"render", "leaf_size", [=](auto& s) { EXPECT_EQ(s.render.leaf_size, render.leaf_size); }},
         {"camera", "up", [=](auto& s) { EXPECT_EQ(s.camera.up, camera.up); }},
