@@ -35,9 +35,9 @@ SCENES = {
     "balls": "scenes/spd/balls.scn",
     "teapot": "scenes/spd/teapot.scn",
 }
-UNIFORM = [1, 2, 3, 4, 6, 8]  # N: N x N samples
-ADAPTIVE_DEPTHS = [2, 3, 4]
-ADAPTIVE_THRESHOLDS = [0.2, 0.1, 0.05, 0.02, 0.01, 0.005]
+UNIFORM = [1, 2, 3, 4, 6, 8, 12, 16]  # N: N x N samples
+ADAPTIVE_DEPTHS = [1, 2, 3, 4, 5]
+ADAPTIVE_THRESHOLDS = [0.3, 0.1, 0.05, 0.02, 0.01, 0.005]
 POVRAY = [(threshold, depth) for depth in (3, 4) for threshold in (0.3, 0.1, 0.03, 0.01)]
 REFERENCE_GRID = 32
 DOC = DOCS / "speed-vs-error.md"

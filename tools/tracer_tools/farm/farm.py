@@ -199,6 +199,7 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
         start = time.perf_counter()
         canvases, stores = [], []
         kept_tiles = 0
+        written = []  # the jobs whose image is written, in order
         for index, job in enumerate(jobs):
             stores.append(resume.TileStore(job.output, job.manifest))
             tile, kept = stores[index].resume(arguments.tile, tile_size_for(job.width, job.height, slots))
@@ -212,6 +213,7 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
                     kept_tiles += 1
             if canvases[index].complete():  # every tile kept: only the writing was left
                 write_atomically(job.output, canvases[index].pixels)
+                written.append(index)
                 stores[index].remove()
                 canvases[index] = None
             for number, region in enumerate(regions):
@@ -248,6 +250,7 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
             moment = time.perf_counter()
             if canvas.complete():
                 write_atomically(jobs[index].output, canvas.pixels)
+                written.append(index)
                 stores[index].remove()
                 canvases[index] = None
             else:
@@ -255,6 +258,11 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
             writing += time.perf_counter() - moment
             progress.tile_done()
         progress.finish()
+        if not arguments.quiet:
+            seconds = time.perf_counter() - timings["started"]
+            for index in written:
+                job = jobs[index]
+                print(f"farm: wrote {job.output}: {job.width}x{job.height}, {seconds:.2f} s", file=sys.stderr)
         timings.update(
             tiles=len(pending),
             tiles_kept=kept_tiles,
@@ -287,8 +295,8 @@ def main(argv: list[str] | None = None) -> int:
     # SIGTERM stops the farm as Ctrl-C does: nothing unfinished is written.
     signal.signal(signal.SIGINT, on_interrupt)
     signal.signal(signal.SIGTERM, on_interrupt)
-    timings: dict = {}
     start = time.perf_counter()
+    timings: dict = {"started": start}
 
     def check(jobs: list[Job]) -> None:
         check_jobs(arguments.tracer, jobs)
@@ -323,7 +331,8 @@ def main(argv: list[str] | None = None) -> int:
     timings["total_s"] = time.perf_counter() - start
     if arguments.timings:
         with open(arguments.timings, "w", encoding="utf-8") as file:
-            json.dump({key: round(value, 4) for key, value in timings.items()}, file, indent=2)
+            figures = {key: value for key, value in timings.items() if key != "started"}
+            json.dump({key: round(value, 4) for key, value in figures.items()}, file, indent=2)
     return 0
 
 
