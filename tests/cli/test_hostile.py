@@ -514,8 +514,10 @@ class Messages(Hostile):
         process.send_signal(signal.SIGINT)
         _, stderr = process.communicate(timeout=HANG)
         # A hang check, not a benchmark: the 100 ms of the README are measured in docs, on a
-        # quiet machine; a shared CI machine gets a second.
-        self.assertLess(time.monotonic() - sent, 1.0)
+        # quiet machine; a shared CI machine running other tests gets a few seconds (the suite
+        # failed once under ctest -j2 beside a fuzzer, not reproduced since: this is its one
+        # timed check).
+        self.assertLess(time.monotonic() - sent, 5.0)
         self.assertEqual(process.returncode, 130, stderr)
         self.assertIn(b"interrupted", stderr)
         self.assertEqual(self.files(), ["hall.scn"])
