@@ -20,6 +20,7 @@ AdaptivePixels::AdaptivePixels(const World& world, const PinholeCamera& camera, 
     top_.resize(line), bottom_.resize(line);
     left_.resize(side), right_.resize(side);
     inside_.resize(side * side);
+    rays_.resize(size_t(width) + 1);
 }
 
 Color AdaptivePixels::trace_at(int64_t x, int64_t y, RayCounts& counts) const {
@@ -29,9 +30,23 @@ Color AdaptivePixels::trace_at(int64_t x, int64_t y, RayCounts& counts) const {
 
 void AdaptivePixels::row(int y, double* out, RayCounts& counts) {
     // Step 1: the edges. The row before's bottom edge is this one's top edge (stamped with the
-    // number of the row whose bottom edge it is).
+    // number of the row whose bottom edge it is). The pixel corners missing from either are
+    // traced first, their rays made before any is traced (as uniform sampling does: a ray made
+    // just before the call that takes it stalls the processor on every sample).
     std::swap(top_, bottom_);
     y_ = y;
+    for (int edge = y; edge <= y + 1; ++edge) {
+        Line& line = edge == y ? top_ : bottom_;
+        const int64_t stamp = edge - 1;                     // the row whose bottom edge it is
+        if (edge == y && line.stamp[0] == stamp) continue;  // shared with the row before
+        for (int k = 0; k <= width_; ++k) rays_[size_t(k)] = camera_.ray_through(Real(x0_ + k), Real(edge));
+        for (int k = 0; k <= width_; ++k) {
+            if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
+            const size_t at = size_t(k) * size_t(cells_);
+            line.colour[at] = trace(world_, settings_, rays_[size_t(k)], counts, cancel_);
+            line.stamp[at] = stamp;
+        }
+    }
     // Step 2: the pixels, left to right, each passing its right edge to the next.
     ++pixel_stamp_;  // the first pixel has no left neighbour
     for (int x = x0_; x < x0_ + width_; ++x) {
@@ -45,7 +60,7 @@ void AdaptivePixels::row(int y, double* out, RayCounts& counts) {
     }
 }
 
-Color AdaptivePixels::sample(int64_t i, int64_t j, RayCounts& counts) {
+AdaptivePixels::Slot AdaptivePixels::slot(int64_t i, int64_t j) {
     // Where the point (i, j) of the pixel is kept: on the row's edges, the pixel's sides, inside.
     Line* line;
     size_t at;
@@ -63,9 +78,35 @@ Color AdaptivePixels::sample(int64_t i, int64_t j, RayCounts& counts) {
         at = size_t(j) * size_t(cells_ + 1) + size_t(i);
         stamp = pixel_stamp_;
     }
-    if (line->stamp[at] == stamp) return line->colour[at];
-    line->stamp[at] = stamp;
-    return line->colour[at] = trace_at(int64_t(x_) * cells_ + i, int64_t(y_) * cells_ + j, counts);
+    return {line, at, stamp};
+}
+
+Color AdaptivePixels::sample(int64_t i, int64_t j, RayCounts& counts) {
+    const Slot s = slot(i, j);
+    if (s.line->stamp[s.at] == s.stamp) return s.line->colour[s.at];
+    s.line->stamp[s.at] = s.stamp;
+    return s.line->colour[s.at] = trace_at(int64_t(x_) * cells_ + i, int64_t(y_) * cells_ + j, counts);
+}
+
+void AdaptivePixels::split_samples(int64_t i, int64_t j, int64_t half, RayCounts& counts) {
+    // The five points a split adds (edge midpoints and centre), their rays made before any is
+    // traced.
+    const int64_t points[5][2] = {
+        {i + half, j}, {i, j + half}, {i + half, j + half}, {i + 2 * half, j + half}, {i + half, j + 2 * half}};
+    Slot missing[5];
+    Ray rays[5];
+    int count = 0;
+    for (const auto& [pi, pj] : points) {
+        const Slot s = slot(pi, pj);
+        if (s.line->stamp[s.at] == s.stamp) continue;
+        missing[count] = s;
+        rays[count++] =
+            camera_.ray_through(Real(int64_t(x_) * cells_ + pi) * step_, Real(int64_t(y_) * cells_ + pj) * step_);
+    }
+    for (int k = 0; k < count; ++k) {
+        missing[k].line->colour[missing[k].at] = trace(world_, settings_, rays[k], counts, cancel_);
+        missing[k].line->stamp[missing[k].at] = missing[k].stamp;
+    }
 }
 
 // The cell of the current pixel with corners (i, j) and (i + size, j + size).
@@ -84,6 +125,7 @@ Color AdaptivePixels::cell(int64_t i, int64_t j, int64_t size, RayCounts& counts
         }
         if (spread >= settings_.adaptive_threshold) {
             const int64_t half = size / 2;
+            split_samples(i, j, half, counts);
             return (cell(i, j, half, counts) + cell(i + half, j, half, counts) + cell(i, j + half, half, counts) +
                     cell(i + half, j + half, half, counts)) *
                    0.25;

@@ -39,7 +39,16 @@ private:
         std::vector<int64_t> stamp;
         void resize(size_t n) { colour.resize(n), stamp.assign(n, INT64_MIN); }  // none valid
     };
+    // Where a pixel-local lattice point's sample is kept, and the stamp that makes it valid.
+    struct Slot {
+        Line* line;
+        size_t at;
+        int64_t stamp;
+    };
+    Slot slot(int64_t i, int64_t j);
     Color sample(int64_t i, int64_t j, RayCounts& counts);  // pixel-local lattice point
+    // Traces the points that splitting the cell (i, j) of side 2 half adds, if not known.
+    void split_samples(int64_t i, int64_t j, int64_t half, RayCounts& counts);
     Color cell(int64_t i, int64_t j, int64_t size, RayCounts& counts);
     Color trace_at(int64_t x, int64_t y, RayCounts& counts) const;
 
@@ -56,6 +65,7 @@ private:
     int y_ = 0, x_ = 0;
     int64_t pixel_stamp_ = 0;
     Line top_, bottom_, left_, right_, inside_;
+    std::vector<Ray> rays_;  // an edge's pixel corners
 };
 
 }  // namespace tracer
