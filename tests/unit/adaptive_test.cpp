@@ -39,7 +39,14 @@ Loaded load(const std::string& text, double threshold, int depth) {
     return out;
 }
 
-Image render_with(const Loaded& s, RenderOptions options, RayCounts* rays = nullptr) {
+RenderOptions on(int threads, PixelRect crop = {}) {
+    RenderOptions options;
+    options.threads = threads;
+    options.crop = crop;
+    return options;
+}
+
+Image render_with(const Loaded& s, const RenderOptions& options, RayCounts* rays = nullptr) {
     Image image;
     RenderStats stats;
     EXPECT_TRUE(render(*s.world, s.scene, options, image, stats));
@@ -67,7 +74,7 @@ TEST(Adaptive, ThresholdZeroIsTheFullCornerGridBitForBit) {
     const int depth = 2;
     const Loaded s = load(kScene, 0.0, depth);
     RayCounts rays;
-    const Image image = render_with(s, {.threads = 2}, &rays);
+    const Image image = render_with(s, on(2), &rays);
     const PinholeCamera camera(s.scene.camera, s.scene.render.width, s.scene.render.height);
     const int64_t cells = int64_t(1) << depth;
     for (int y = 0; y < image.height; ++y)
@@ -87,18 +94,18 @@ TEST(Adaptive, AFlatImageTakesOneSamplePerPixelCorner) {
         "camera { eye (0, 0, 5) lookat (0, 0, 0) }\nrender { width 33 height 21 background 0.5 antialias adaptive }\n",
         0.01, 4);
     RayCounts rays;
-    const Image image = render_with(s, {.threads = 1}, &rays);
+    const Image image = render_with(s, on(1), &rays);
     EXPECT_EQ(rays.primary, uint64_t(34 * 22));
     for (double v : image.rgb) EXPECT_EQ(v, 0.5);
 }
 
 TEST(Adaptive, TheImageDoesNotDependOnThreadsBandsOrRegions) {
     const Loaded s = load(kScene, 0.02, 3);
-    const Image whole = render_with(s, {.threads = 1});
-    EXPECT_EQ(render_with(s, {.threads = 2}).rgb, whole.rgb);
+    const Image whole = render_with(s, on(1));
+    EXPECT_EQ(render_with(s, on(2)).rgb, whole.rgb);
     // Windows that cut rows and bands anywhere: each pixel as the whole frame has it.
     for (const PixelRect crop : {PixelRect{0, 0, 40, 30}, PixelRect{7, 3, 19, 23}, PixelRect{39, 17, 1, 13}}) {
-        const Image part = render_with(s, {.threads = 2, .crop = crop});
+        const Image part = render_with(s, on(2, crop));
         for (int y = 0; y < crop.height; ++y)
             for (int x = 0; x < crop.width; ++x)
                 for (int c = 0; c < 3; ++c)
@@ -112,9 +119,9 @@ TEST(Adaptive, SplitsOnlyWhereTheImageChanges) {
     // were flat at the corners.
     const Loaded s = load(kScene, 0.02, 3);
     RayCounts adaptive_rays, full_rays;
-    render_with(s, {.threads = 1}, &adaptive_rays);
+    render_with(s, on(1), &adaptive_rays);
     const Loaded full = load(kScene, 0.0, 3);
-    render_with(full, {.threads = 1}, &full_rays);
+    render_with(full, on(1), &full_rays);
     EXPECT_LT(adaptive_rays.primary * 4, full_rays.primary);
     EXPECT_GT(adaptive_rays.primary, uint64_t(41 * 31));
 }
