@@ -307,7 +307,7 @@ int dump_json(const Options& options) {
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
-    std::cout << json_text(tracer::scene_to_json(loaded->scene, &loaded->meshes)) << '\n';
+    tracer::write_scene_json(std::cout, loaded->scene, &loaded->meshes);
     return kOk;
 }
 

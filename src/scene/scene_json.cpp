@@ -1,5 +1,11 @@
 #include "scene/scene_json.h"
 
+#include <algorithm>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
 #include "scene/mesh_facts.h"
 
 namespace tracer {
@@ -41,9 +47,34 @@ Json placed_json(const SceneDescription& scene, const Placed& placed, Json own) 
     return own;
 }
 
-}  // namespace
+// The scene's big arrays (one entry per shape), made entry by entry: all at once into the
+// document, or, when `later` is given, left as a placeholder string and written afterwards.
+struct LaterArray {
+    std::string key;
+    size_t count;
+    std::function<Json(size_t)> entry;
+};
 
-Json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes) {
+void add_array(Json& out, const char* key, size_t count, std::function<Json(size_t)> entry,
+               std::vector<LaterArray>* later) {
+    if (later) {
+        out[key] = std::string(
+                       "\x01"
+                       "array:") +
+                   key;
+        later->push_back({key, count, std::move(entry)});
+        return;
+    }
+    out[key] = Json::array();
+    for (size_t i = 0; i < count; ++i) out[key].push_back(entry(i));
+}
+
+// As tracer --dump-json has always printed it: keys sorted (nlohmann::json), indent 2.
+std::string text_of(const Json& value) {
+    return nlohmann::json(value).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::vector<LaterArray>* later) {
     Json out;
     out["format"] = "tracer-scene";
     out["version"] = 1;
@@ -76,59 +107,124 @@ Json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes) {
                      {"up", vec(c.up)},
                      {"fovy", c.fovy_degrees},
                      {"focal", c.focal}};
-    out["spheres"] = Json::array();
-    for (const Sphere& s : scene.spheres)
-        out["spheres"].push_back(
-            {{"center", vec(s.center)}, {"radius", s.radius}, {"material", material_json(scene, s.material)}});
-    out["planes"] = Json::array();
-    for (const Plane& p : scene.planes)
-        out["planes"].push_back(
-            {{"point", vec(p.point)}, {"normal", vec(p.normal)}, {"material", material_json(scene, p.material)}});
-    out["meshes"] = Json::array();
-    for (size_t block = 0; block < scene.meshes.size(); ++block) {
-        const Mesh& m = scene.meshes[block];
-        Json entry = placed_json(scene, m, {{"file", m.path}});
-        if (m.flat) entry["shading"] = "flat";  // only then: the default is implied
-        if (meshes && block < meshes->file_of_block.size()) {
-            const MeshFacts facts = mesh_facts(meshes->files[meshes->file_of_block[block]], m);
-            entry["triangles"] = facts.triangles;
-            entry["vertices"] = facts.vertices;
-            entry["bounds"] = {vec(facts.lower), vec(facts.upper)};
-        }
-        out["meshes"].push_back(entry);
-    }
-    out["triangles"] = Json::array();
-    for (const FlatTriangle& t : scene.triangles)
-        out["triangles"].push_back(placed_json(scene, t, {{"a", vec(t.a)}, {"b", vec(t.b)}, {"c", vec(t.c)}}));
-    out["quads"] = Json::array();
-    for (const Quad& q : scene.quads)
-        out["quads"].push_back(
-            placed_json(scene, q, {{"corner", vec(q.corner)}, {"edge1", vec(q.edge1)}, {"edge2", vec(q.edge2)}}));
-    out["boxes"] = Json::array();
-    for (const Box& b : scene.boxes)
-        out["boxes"].push_back(placed_json(scene, b, {{"min", vec(b.min)}, {"max", vec(b.max)}}));
-    if (!scene.cones.empty()) {  // only then: older readers know no such key
-        out["cones"] = Json::array();
-        for (const Cone& cone : scene.cones)
-            out["cones"].push_back({{"base", vec(cone.base)},
-                                    {"top", vec(cone.top)},
-                                    {"base_radius", cone.base_radius},
-                                    {"top_radius", cone.top_radius},
-                                    {"caps", cone.caps},
-                                    {"material", material_json(scene, cone.material)}});
-    }
-    if (!scene.discs.empty()) {
-        out["discs"] = Json::array();
-        for (const Disc& d : scene.discs)
-            out["discs"].push_back({{"center", vec(d.center)},
-                                    {"normal", vec(d.normal)},
-                                    {"radius", d.radius},
-                                    {"material", material_json(scene, d.material)}});
-    }
-    out["lights"] = Json::array();
-    for (const Light& l : scene.lights)
-        out["lights"].push_back({{"position", vec(l.position)}, {"color", vec(l.color)}});
+    add_array(
+        out, "spheres", scene.spheres.size(),
+        [&](size_t i) -> Json {
+            const Sphere& s = scene.spheres[i];
+            return {{"center", vec(s.center)}, {"radius", s.radius}, {"material", material_json(scene, s.material)}};
+        },
+        later);
+    add_array(
+        out, "planes", scene.planes.size(),
+        [&](size_t i) -> Json {
+            const Plane& p = scene.planes[i];
+            return {{"point", vec(p.point)}, {"normal", vec(p.normal)}, {"material", material_json(scene, p.material)}};
+        },
+        later);
+    add_array(
+        out, "meshes", scene.meshes.size(),
+        [&](size_t block) {
+            const Mesh& m = scene.meshes[block];
+            Json entry = placed_json(scene, m, {{"file", m.path}});
+            if (m.flat) entry["shading"] = "flat";  // only then: the default is implied
+            if (meshes && block < meshes->file_of_block.size()) {
+                const MeshFacts facts = mesh_facts(meshes->files[meshes->file_of_block[block]], m);
+                entry["triangles"] = facts.triangles;
+                entry["vertices"] = facts.vertices;
+                entry["bounds"] = {vec(facts.lower), vec(facts.upper)};
+            }
+            return entry;
+        },
+        later);
+    add_array(
+        out, "triangles", scene.triangles.size(),
+        [&](size_t i) {
+            const FlatTriangle& t = scene.triangles[i];
+            return placed_json(scene, t, {{"a", vec(t.a)}, {"b", vec(t.b)}, {"c", vec(t.c)}});
+        },
+        later);
+    add_array(
+        out, "quads", scene.quads.size(),
+        [&](size_t i) {
+            const Quad& q = scene.quads[i];
+            return placed_json(scene, q, {{"corner", vec(q.corner)}, {"edge1", vec(q.edge1)}, {"edge2", vec(q.edge2)}});
+        },
+        later);
+    add_array(
+        out, "boxes", scene.boxes.size(),
+        [&](size_t i) {
+            const Box& b = scene.boxes[i];
+            return placed_json(scene, b, {{"min", vec(b.min)}, {"max", vec(b.max)}});
+        },
+        later);
+    if (!scene.cones.empty())  // only then: older readers know no such key
+        add_array(
+            out, "cones", scene.cones.size(),
+            [&](size_t i) -> Json {
+                const Cone& cone = scene.cones[i];
+                return {{"base", vec(cone.base)},
+                        {"top", vec(cone.top)},
+                        {"base_radius", cone.base_radius},
+                        {"top_radius", cone.top_radius},
+                        {"caps", cone.caps},
+                        {"material", material_json(scene, cone.material)}};
+            },
+            later);
+    if (!scene.discs.empty())
+        add_array(
+            out, "discs", scene.discs.size(),
+            [&](size_t i) -> Json {
+                const Disc& d = scene.discs[i];
+                return {{"center", vec(d.center)},
+                        {"normal", vec(d.normal)},
+                        {"radius", d.radius},
+                        {"material", material_json(scene, d.material)}};
+            },
+            later);
+    add_array(
+        out, "lights", scene.lights.size(),
+        [&](size_t i) -> Json {
+            const Light& l = scene.lights[i];
+            return {{"position", vec(l.position)}, {"color", vec(l.color)}};
+        },
+        later);
     return out;
+}
+
+}  // namespace
+
+Json scene_to_json(const SceneDescription& scene, const SceneMeshes* meshes) {
+    return scene_json(scene, meshes, nullptr);
+}
+
+void write_scene_json(std::ostream& stream, const SceneDescription& scene, const SceneMeshes* meshes) {
+    std::vector<LaterArray> later;
+    const std::string document = text_of(scene_json(scene, meshes, &later));
+    // Each array where its placeholder is (keys are sorted in the text), entry by entry,
+    // indented as dump(2) indents it.
+    std::vector<std::pair<size_t, const LaterArray*>> places;
+    for (const LaterArray& array : later)
+        places.emplace_back(document.find("\"\\u0001array:" + array.key + "\""), &array);
+    std::sort(places.begin(), places.end());
+    size_t written = 0;
+    for (const auto& [at, array] : places) {
+        stream.write(document.data() + written, std::streamsize(at - written));
+        written = at + array->key.size() + 14;  // the quoted placeholder: "\u0001array:KEY"
+        if (array->count == 0) {
+            stream << "[]";
+            continue;
+        }
+        stream << "[\n";
+        for (size_t i = 0; i < array->count; ++i) {
+            std::string entry = "    " + text_of(array->entry(i));
+            for (size_t line = entry.find('\n'); line != std::string::npos; line = entry.find('\n', line + 5))
+                entry.replace(line, 1, "\n    ");
+            stream << entry << (i + 1 < array->count ? ",\n" : "\n");
+        }
+        stream << "  ]";
+    }
+    stream.write(document.data() + written, std::streamsize(document.size() - written));
+    stream << '\n';
 }
 
 }  // namespace tracer

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 
@@ -139,6 +140,29 @@ TEST(Validate, JsonDumpIsFullyResolved) {
     EXPECT_EQ(json["spheres"][0]["material"]["kd"], nlohmann::json::array({0.5, 0.5, 0.5}));
     EXPECT_EQ(json["spheres"][0]["material"]["ka"], nlohmann::json::array({0.0, 0.0, 0.0}));
     EXPECT_EQ(json["camera"]["up"], nlohmann::json::array({0.0, 1.0, 0.0}));
+}
+
+TEST(Validate, JsonTextWrittenShapeByShapeIsTheWholeDocumentsText) {
+    // Every kind of array, empty and full, paths with invalid UTF-8 replaced alike.
+    for (const std::string body :
+         {std::string(""), std::string("material m { kd 0.5 }\nsphere { center (1, 2, 3) radius 1 material m }\n"
+                                       "plane { point (0, 0, 0) normal (0, 1, 0) material m }\n"
+                                       "for i in 0..3 { quad { corner (i, 0, 0) edge1 (1, 0, 0) edge2 (0, 1, 0) "
+                                       "material m rotate { angle 10 * i } } }\n"
+                                       "triangle { a (0, 0, 0) b (1, 0, 0) c (0, 1, 0) material { kd 1 } }\n"
+                                       "box { min (0, 0, 0) max (1, 1, 1) transform { scale 2 translate (1, 0, 0) } "
+                                       "material m }\ncylinder { base (0, 0, 0) top (0, 1, 0) radius 1 material m }\n"
+                                       "disc { center (0, 0, 0) normal (0, 1, 0) radius 1 material m }\n"
+                                       "light { position (0, 5, 5) }\nrender { antialias adaptive }\n")}) {
+        LoadResult r = load(kCamera + body);
+        ASSERT_TRUE(r.scene) << body;
+        r.scene->source_path += "\xff";
+        std::ostringstream streamed;
+        write_scene_json(streamed, *r.scene);
+        const std::string whole =
+            nlohmann::json(scene_to_json(*r.scene)).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
+        EXPECT_EQ(streamed.str(), whole + "\n");
+    }
 }
 
 }  // namespace
