@@ -144,7 +144,7 @@ TEST(Validate, JsonDumpIsFullyResolved) {
 
 TEST(Validate, JsonTextWrittenShapeByShapeIsTheWholeDocumentsText) {
     // Every kind of array, empty and full, paths with invalid UTF-8 replaced alike.
-    for (const std::string body :
+    for (const std::string& body :
          {std::string(""), std::string("material m { kd 0.5 }\nsphere { center (1, 2, 3) radius 1 material m }\n"
                                        "plane { point (0, 0, 0) normal (0, 1, 0) material m }\n"
                                        "for i in 0..3 { quad { corner (i, 0, 0) edge1 (1, 0, 0) edge2 (0, 1, 0) "
