@@ -109,21 +109,21 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
                      {"focal", c.focal}};
     add_array(
         out, "spheres", scene.spheres.size(),
-        [&](size_t i) -> Json {
+        [&scene](size_t i) -> Json {
             const Sphere& s = scene.spheres[i];
             return {{"center", vec(s.center)}, {"radius", s.radius}, {"material", material_json(scene, s.material)}};
         },
         later);
     add_array(
         out, "planes", scene.planes.size(),
-        [&](size_t i) -> Json {
+        [&scene](size_t i) -> Json {
             const Plane& p = scene.planes[i];
             return {{"point", vec(p.point)}, {"normal", vec(p.normal)}, {"material", material_json(scene, p.material)}};
         },
         later);
     add_array(
         out, "meshes", scene.meshes.size(),
-        [&](size_t block) {
+        [&scene, meshes](size_t block) {  // called after scene_json returns: `meshes` by value
             const Mesh& m = scene.meshes[block];
             Json entry = placed_json(scene, m, {{"file", m.path}});
             if (m.flat) entry["shading"] = "flat";  // only then: the default is implied
@@ -138,21 +138,21 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
         later);
     add_array(
         out, "triangles", scene.triangles.size(),
-        [&](size_t i) {
+        [&scene](size_t i) {
             const FlatTriangle& t = scene.triangles[i];
             return placed_json(scene, t, {{"a", vec(t.a)}, {"b", vec(t.b)}, {"c", vec(t.c)}});
         },
         later);
     add_array(
         out, "quads", scene.quads.size(),
-        [&](size_t i) {
+        [&scene](size_t i) {
             const Quad& q = scene.quads[i];
             return placed_json(scene, q, {{"corner", vec(q.corner)}, {"edge1", vec(q.edge1)}, {"edge2", vec(q.edge2)}});
         },
         later);
     add_array(
         out, "boxes", scene.boxes.size(),
-        [&](size_t i) {
+        [&scene](size_t i) {
             const Box& b = scene.boxes[i];
             return placed_json(scene, b, {{"min", vec(b.min)}, {"max", vec(b.max)}});
         },
@@ -160,7 +160,7 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
     if (!scene.cones.empty())  // only then: older readers know no such key
         add_array(
             out, "cones", scene.cones.size(),
-            [&](size_t i) -> Json {
+            [&scene](size_t i) -> Json {
                 const Cone& cone = scene.cones[i];
                 return {{"base", vec(cone.base)},
                         {"top", vec(cone.top)},
@@ -173,7 +173,7 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
     if (!scene.discs.empty())
         add_array(
             out, "discs", scene.discs.size(),
-            [&](size_t i) -> Json {
+            [&scene](size_t i) -> Json {
                 const Disc& d = scene.discs[i];
                 return {{"center", vec(d.center)},
                         {"normal", vec(d.normal)},
@@ -183,7 +183,7 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
             later);
     add_array(
         out, "lights", scene.lights.size(),
-        [&](size_t i) -> Json {
+        [&scene](size_t i) -> Json {
             const Light& l = scene.lights[i];
             return {{"position", vec(l.position)}, {"color", vec(l.color)}};
         },
