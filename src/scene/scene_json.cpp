@@ -70,6 +70,14 @@ void add_array(Json& out, const char* key, size_t count, std::function<Json(size
 }
 
 // As tracer --dump-json has always printed it: keys sorted (nlohmann::json), indent 2.
+// The same, an entry per item of `items` (kept by reference: the caller's must outlive `later`).
+template <typename Item, typename Entry>
+void add_array(Json& out, const char* key, const std::vector<Item>& items, Entry entry,
+               std::vector<LaterArray>* later) {
+    add_array(
+        out, key, items.size(), [&items, entry](size_t i) -> Json { return entry(items[i]); }, later);
+}
+
 std::string text_of(const Json& value) {
     return nlohmann::json(value).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
@@ -108,16 +116,14 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
                      {"fovy", c.fovy_degrees},
                      {"focal", c.focal}};
     add_array(
-        out, "spheres", scene.spheres.size(),
-        [&scene](size_t i) -> Json {
-            const Sphere& s = scene.spheres[i];
+        out, "spheres", scene.spheres,
+        [&scene](const Sphere& s) -> Json {
             return {{"center", vec(s.center)}, {"radius", s.radius}, {"material", material_json(scene, s.material)}};
         },
         later);
     add_array(
-        out, "planes", scene.planes.size(),
-        [&scene](size_t i) -> Json {
-            const Plane& p = scene.planes[i];
+        out, "planes", scene.planes,
+        [&scene](const Plane& p) -> Json {
             return {{"point", vec(p.point)}, {"normal", vec(p.normal)}, {"material", material_json(scene, p.material)}};
         },
         later);
@@ -137,31 +143,27 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
         },
         later);
     add_array(
-        out, "triangles", scene.triangles.size(),
-        [&scene](size_t i) {
-            const FlatTriangle& t = scene.triangles[i];
+        out, "triangles", scene.triangles,
+        [&scene](const FlatTriangle& t) -> Json {
             return placed_json(scene, t, {{"a", vec(t.a)}, {"b", vec(t.b)}, {"c", vec(t.c)}});
         },
         later);
     add_array(
-        out, "quads", scene.quads.size(),
-        [&scene](size_t i) {
-            const Quad& q = scene.quads[i];
+        out, "quads", scene.quads,
+        [&scene](const Quad& q) -> Json {
             return placed_json(scene, q, {{"corner", vec(q.corner)}, {"edge1", vec(q.edge1)}, {"edge2", vec(q.edge2)}});
         },
         later);
     add_array(
-        out, "boxes", scene.boxes.size(),
-        [&scene](size_t i) {
-            const Box& b = scene.boxes[i];
+        out, "boxes", scene.boxes,
+        [&scene](const Box& b) -> Json {
             return placed_json(scene, b, {{"min", vec(b.min)}, {"max", vec(b.max)}});
         },
         later);
     if (!scene.cones.empty())  // only then: older readers know no such key
         add_array(
-            out, "cones", scene.cones.size(),
-            [&scene](size_t i) -> Json {
-                const Cone& cone = scene.cones[i];
+            out, "cones", scene.cones,
+            [&scene](const Cone& cone) -> Json {
                 return {{"base", vec(cone.base)},
                         {"top", vec(cone.top)},
                         {"base_radius", cone.base_radius},
@@ -172,9 +174,8 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
             later);
     if (!scene.discs.empty())
         add_array(
-            out, "discs", scene.discs.size(),
-            [&scene](size_t i) -> Json {
-                const Disc& d = scene.discs[i];
+            out, "discs", scene.discs,
+            [&scene](const Disc& d) -> Json {
                 return {{"center", vec(d.center)},
                         {"normal", vec(d.normal)},
                         {"radius", d.radius},
@@ -182,9 +183,8 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
             },
             later);
     add_array(
-        out, "lights", scene.lights.size(),
-        [&scene](size_t i) -> Json {
-            const Light& l = scene.lights[i];
+        out, "lights", scene.lights,
+        [&scene](const Light& l) -> Json {
             return {{"position", vec(l.position)}, {"color", vec(l.color)}};
         },
         later);
