@@ -1,29 +1,39 @@
 #include "app/load_files.h"
 
+#include <algorithm>
 #include <ostream>
 
 #include "io/obj_mesh.h"
-#include "lang/load_scene.h"
 
 namespace tracer {
 
-std::optional<LoadedScene> load_scene_with_meshes(const std::string& path,
+ReportLoad print_diagnostics_to(std::ostream& out) {
+    return [&out](const LoadReport& report) { report.diagnostics.print(out); };
+}
+
+std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
                                                   const std::function<void(SceneDescription&)>& adjust,
-                                                  std::ostream& errors, bool* unreadable,
-                                                  const ParameterValues& parameters) {
-    LoadResult loaded = load_scene(path, parameters);
+                                                  const ReportLoad& report) {
+    LoadResult loaded = load_scene(input.path, input.parameters, {}, input.standard_input_name);
     std::optional<SceneMeshes> meshes;
+    const std::string name = input.path == "-" ? input.standard_input_name : input.path;
     if (loaded.scene) {
         if (adjust) adjust(*loaded.scene);
         const std::string problem = render_settings_problem(loaded.scene->render);
         if (problem.empty())
             meshes = load_meshes(*loaded.scene, loaded.diagnostics);
         else
-            loaded.diagnostics.report(Severity::Error, Diagnostics::whole_file(path),
+            loaded.diagnostics.report(Severity::Error, Diagnostics::whole_file(name),
                                       "with the command line's overrides, " + problem);
     }
-    loaded.diagnostics.print(errors);
-    if (unreadable) *unreadable = loaded.unreadable;
+    LoadReport found{loaded.diagnostics, {}, loaded.unreadable};
+    if (input.path != "-") found.files_read.push_back(input.path);
+    for (const std::string& path : loaded.included_paths) found.files_read.push_back(path);
+    if (loaded.scene)
+        for (const Mesh& mesh : loaded.scene->meshes) found.files_read.push_back(mesh.path);
+    std::sort(found.files_read.begin() + (input.path != "-"), found.files_read.end());  // each once
+    found.files_read.erase(std::unique(found.files_read.begin(), found.files_read.end()), found.files_read.end());
+    if (report) report(found);
     if (!loaded.scene || !meshes) return std::nullopt;
     return LoadedScene{std::move(*loaded.scene), std::move(*meshes)};
 }

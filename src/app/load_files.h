@@ -6,8 +6,11 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "base/diagnostics.h"
 #include "lang/interpreter.h"
+#include "lang/load_scene.h"
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
 
@@ -18,12 +21,30 @@ struct LoadedScene {
     SceneMeshes meshes;
 };
 
-// Loads the scene at `path`, lets `adjust` change it before its meshes are read, and prints
-// every diagnostic on `errors`. nullopt on errors, with `unreadable` set (if given) when the
-// scene file itself could not be read.
-std::optional<LoadedScene> load_scene_with_meshes(const std::string& path,
+// Where a scene comes from: a file, or standard input ("-") under a name of the caller's choice.
+struct SceneInput {
+    std::string path;
+    // For "-": the name messages give it; relative paths start from its folder.
+    std::string standard_input_name = std::string(kStandardInputName);
+    ParameterValues parameters;
+};
+
+// What a load found besides the scene: every diagnostic, and every file it read (the scene, the
+// files it includes, its meshes), also when it failed.
+struct LoadReport {
+    const Diagnostics& diagnostics;
+    std::vector<std::string> files_read;
+    bool unreadable = false;  // the scene file itself could not be read
+};
+using ReportLoad = std::function<void(const LoadReport&)>;
+
+// A ReportLoad that prints the diagnostics as text on `out`.
+ReportLoad print_diagnostics_to(std::ostream& out);
+
+// Loads the scene of `input`, lets `adjust` change it before its meshes are read, and hands
+// every diagnostic to `report`. nullopt on errors.
+std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
                                                   const std::function<void(SceneDescription&)>& adjust,
-                                                  std::ostream& errors, bool* unreadable = nullptr,
-                                                  const ParameterValues& parameters = {});
+                                                  const ReportLoad& report);
 
 }  // namespace tracer

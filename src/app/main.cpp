@@ -19,9 +19,12 @@
 #include <CLI/CLI.hpp>
 #include <new>
 
+#include "app/diagnostics_json.h"
 #include "app/load_files.h"
 #include "app/progress.h"
 #include "app/regions.h"
+#include "app/summary.h"
+#include "app/watch.h"
 #include "base/output_file.h"
 #include "io/image_file.h"
 #include "lang/load_scene.h"
@@ -71,6 +74,10 @@ struct Options {
     bool region_list = false;          // --region-list: regions read from stdin
     bool stats = false;
     std::string stats_json;
+    std::string diagnostics = "text";  // text on stderr, or json (one line per load) on stdout
+    std::string stdin_name;            // the name of a scene read from standard input
+    bool language_json = false;
+    bool watch = false;
 };
 
 // The -D NAME=VALUE definitions (checked to have a '=' when parsed).
@@ -83,12 +90,37 @@ tracer::ParameterValues parameter_values(const Options& options) {
     return out;
 }
 
+// The scene's name in messages.
+std::string scene_name(const Options& options) {
+    if (options.scene != "-") return options.scene;
+    return options.stdin_name.empty() ? std::string(tracer::kStandardInputName) : options.stdin_name;
+}
+
+// How a load's diagnostics reach the user: as text on stderr, or as one line of JSON on stdout.
+tracer::ReportLoad report_for(const Options& options) {
+    if (options.diagnostics != "json") return tracer::print_diagnostics_to(std::cerr);
+    const std::string name = scene_name(options);
+    return [name](const tracer::LoadReport& found) {
+        std::cout << tracer::json_line(tracer::load_report_json(name, found)) << std::flush;
+    };
+}
+
+std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code, const tracer::ReportLoad& report);
+
 // Loads and validates the scene with the command line's overrides and reads its meshes,
-// printing every diagnostic; nullopt on errors (with `exit_code` set).
+// reporting every diagnostic; nullopt on errors (with `exit_code` set).
 std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) {
+    return load(options, exit_code, report_for(options));
+}
+
+// The same, handing the diagnostics to `report`.
+std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code, const tracer::ReportLoad& report) {
     bool unreadable = false;
+    tracer::SceneInput input{options.scene,
+                             options.stdin_name.empty() ? std::string(tracer::kStandardInputName) : options.stdin_name,
+                             parameter_values(options)};
     auto loaded = tracer::load_scene_with_meshes(
-        options.scene,
+        input,
         [&](tracer::SceneDescription& scene) {
             tracer::RenderSettings& render = scene.render;
             if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
@@ -116,19 +148,12 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
             if (!options.height.empty() && options.width.empty())
                 render.width = std::max(1, int(std::lround(render.height * aspect)));
         },
-        std::cerr, &unreadable, parameter_values(options));
+        [&](const tracer::LoadReport& found) {
+            unreadable = found.unreadable;
+            if (report) report(found);
+        });
     if (!loaded) exit_code = unreadable ? kIoError : kSceneError;
     return loaded;
-}
-
-// Samples per pixel as the summary line gives them: N*N, or adaptive's mean.
-std::string samples_text(const tracer::RenderSettings& render, const tracer::RayCounts& rays,
-                         const tracer::Image& image) {
-    if (render.antialias == tracer::Antialias::Uniform) return std::to_string(render.samples);
-    char text[64];
-    const double pixels = std::max(1.0, double(image.width) * double(image.height));
-    std::snprintf(text, sizeof text, "%.2f (adaptive)", double(rays.primary) / pixels);
-    return text;
 }
 
 // JSON text even when a path in it is not UTF-8 (such bytes become U+FFFD, not an abort).
@@ -152,12 +177,6 @@ std::optional<std::string> output_clash(const Options& options, const tracer::Sc
     if (!options.stats_json.empty() && tracer::same_file(options.output, options.stats_json))
         return "--stats-json and -o name the same file '" + options.output + "'";
     return std::nullopt;
-}
-
-std::string millions(uint64_t count) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f M", double(count) / 1e6);
-    return text;
 }
 
 // --region-list: the regions read from stdin, each written where its line says.
@@ -239,22 +258,9 @@ int render_to_file(const Options& options) {
             std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
             return kIoError;
         }
-    if (!options.quiet) {
-        const tracer::RayCounts& rays = stats.rays;
-        const std::string refraction = rays.refraction ? ", " + millions(rays.refraction) + " refraction" : "";
-        std::fprintf(stderr,
-                     "%s: %dx%d, %s spp, %d threads, %.3f s, %srays (%s primary, %s shadow, %s reflection%s), "
-                     "%.1f Mrays/s\n",
-                     options.output.c_str(), image.width, image.height, samples_text(scene.render, rays, image).c_str(),
-                     stats.threads, stats.seconds, millions(rays.total()).c_str(), millions(rays.primary).c_str(),
-                     millions(rays.shadow).c_str(), millions(rays.reflection).c_str(), refraction.c_str(),
-                     double(rays.total()) / stats.seconds / 1e6);
-    }
-    if (stats.rays.trees_cut > 0)  // shown even with --quiet: the image is not what max_depth says
-        std::fprintf(stderr,
-                     "tracer: note: %llu camera rays reached the bound of %d reflected and refracted rays; the "
-                     "rest of their ray trees returned black (README, Limits)\n",
-                     (unsigned long long)stats.rays.trees_cut, tracer::kMostRaysPerTree);
+    if (!options.quiet) std::cerr << tracer::render_summary(options.output, image, scene.render, stats) << '\n';
+    // Shown even with --quiet: the image is not what max_depth says.
+    if (const std::string note = tracer::trees_cut_note(stats); !note.empty()) std::cerr << note << '\n';
     return kOk;
 }
 
@@ -273,13 +279,13 @@ int check_only(const Options& options) {
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
+    if (options.diagnostics == "json") return kOk;  // the JSON line said it
     const tracer::SceneDescription& scene = loaded->scene;
-    std::cout << (options.scene == "-" ? std::string(tracer::kStandardInputName) : options.scene) << ": ok ("
-              << scene.spheres.size() << " spheres, " << scene.planes.size() << " planes, " << scene.meshes.size()
-              << " meshes, " << count_of(scene.triangles.size(), "triangles") << count_of(scene.quads.size(), "quads")
-              << count_of(scene.boxes.size(), "boxes") << count_of(scene.cones.size(), "cones")
-              << count_of(scene.discs.size(), "discs") << scene.lights.size() << " lights, " << scene.materials.size()
-              << " materials)\n";
+    std::cout << scene_name(options) << ": ok (" << scene.spheres.size() << " spheres, " << scene.planes.size()
+              << " planes, " << scene.meshes.size() << " meshes, " << count_of(scene.triangles.size(), "triangles")
+              << count_of(scene.quads.size(), "quads") << count_of(scene.boxes.size(), "boxes")
+              << count_of(scene.cones.size(), "cones") << count_of(scene.discs.size(), "discs") << scene.lights.size()
+              << " lights, " << scene.materials.size() << " materials)\n";
     const tracer::RenderSettings& render = scene.render;
     std::cout << "  image: " << render.width << " x " << render.height << " pixels, " << render.samples
               << (render.samples == 1 ? " sample" : " samples") << " per pixel, max depth " << render.max_depth << '\n';
@@ -309,6 +315,24 @@ int dump_json(const Options& options) {
     if (!loaded) return exit_code;
     tracer::write_scene_json(std::cout, loaded->scene, &loaded->meshes);
     return kOk;
+}
+
+// --watch: the render again after each change to a file the scene reads, until Ctrl-C.
+int watch(const Options& options) {
+    if (auto problem = tracer::check_output_path(options.output)) {
+        std::cerr << "tracer: error: " << *problem << '\n';
+        return kIoError;
+    }
+    tracer::WatchSettings settings{
+        options.scene, options.output, options.threads, options.quiet, options.diagnostics == "json", &g_interrupted};
+    g_rendering = true;  // Ctrl-C asks the loop to stop (a render under way writes nothing)
+    return tracer::watch_scene(
+        settings,
+        [&](const tracer::ReportLoad& report) {
+            int exit_code = kOk;
+            return load(options, exit_code, report);
+        },
+        [&](const tracer::SceneDescription& scene) { return output_clash(options, scene); });
 }
 
 // A CLI11 check of an override by the render block's own table: the scene's rules and messages.
@@ -377,6 +401,18 @@ int run(int argc, char** argv) {
     app.add_flag("--check", options.check, "Only check the scene; report every problem found");
     app.add_flag("--dump-json", options.dump_json, "Print the resolved scene description as JSON on stdout");
     app.add_flag("--reference", options.reference, "Print the scene language reference (Markdown) on stdout");
+    app.add_flag("--language-json", options.language_json,
+                 "Print the language's blocks, keys, statements and built-ins as JSON on stdout (for editors)");
+    app.add_option("--diagnostics", options.diagnostics,
+                   "How problems in the scene are reported: text on stderr (default), or json: one line of JSON "
+                   "on stdout per load (with --watch, one per event)")
+        ->check(CLI::IsMember({"text", "json"}));
+    app.add_option("--stdin-name", options.stdin_name,
+                   "With the scene '-': the path messages give it; its relative paths start from that folder "
+                   "(editors check unsaved text this way)");
+    app.add_flag("--watch", options.watch,
+                 "Render, then render again whenever the scene, a file it includes or a mesh changes (a quick "
+                 "preview first, then the full image); Ctrl-C stops");
     app.footer(
         "Exit codes: 0 success, 1 scene errors, 2 bad command line, 3 cannot read the scene or write "
         "the image, 130 interrupted.\nExamples:\n  tracer scenes/task2.scn -o out.png\n"
@@ -398,8 +434,21 @@ int run(int argc, char** argv) {
         std::cout << tracer::reference_markdown();
         return kOk;
     }
+    if (options.language_json) {
+        std::cout << json_text(tracer::language_json()) << '\n';
+        return kOk;
+    }
     if (options.scene.empty()) return usage_error("no scene file given");
     if (options.check && options.dump_json) return usage_error("--check and --dump-json cannot be combined");
+    if (options.dump_json && options.diagnostics == "json")
+        return usage_error("--dump-json writes the scene on stdout; it cannot be combined with --diagnostics json");
+    if (!options.stdin_name.empty() && options.scene != "-")
+        return usage_error("--stdin-name names a scene read from standard input; give the scene as '-'");
+    if (options.watch && (options.check || options.dump_json || options.scene == "-" || !options.region.empty() ||
+                          options.region_list || !options.stats_json.empty()))
+        return usage_error(
+            "--watch renders a scene file to -o again after each change; it cannot be combined with --check, "
+            "--dump-json, --region, --region-list, --stats-json or a scene from standard input");
     if ((options.check || options.dump_json) && !options.output.empty())
         return usage_error("-o is for rendering; it cannot be combined with --check or --dump-json");
     if ((options.check || options.dump_json) && (!options.region.empty() || options.region_list))
@@ -418,6 +467,7 @@ int run(int argc, char** argv) {
             "--region-list reads its regions from standard input, so the scene cannot come from there too ('-'); "
             "give the scene's file");
     if (options.output.empty() && !options.region_list) return usage_error("no output image given (-o out.png)");
+    if (options.watch) return watch(options);
     return render_to_file(options);
 }
 

@@ -173,7 +173,7 @@ std::string in_quotes(std::string_view text) {
     return out + "'";
 }
 
-static const char* severity_name(Severity severity) {
+const char* severity_name(Severity severity) {
     switch (severity) {
         case Severity::Error: return "error";
         case Severity::Warning: return "warning";
@@ -217,9 +217,7 @@ std::string format_diagnostic(const Diagnostic& diagnostic) {
     return out.str();
 }
 
-void Diagnostics::print(std::ostream& out) const {
-    // File by file (in the order they first come up), each in line order whatever stage found
-    // them; whole-file messages last within their file.
+std::vector<const Diagnostic*> Diagnostics::in_print_order() const {
     std::vector<std::string> files;
     for (const Diagnostic& d : list_)
         if (std::find(files.begin(), files.end(), d.location.path) == files.end()) files.push_back(d.location.path);
@@ -232,8 +230,12 @@ void Diagnostics::print(std::ostream& out) const {
     for (const Diagnostic& d : list_) ordered.push_back(&d);
     std::stable_sort(ordered.begin(), ordered.end(),
                      [&](const Diagnostic* a, const Diagnostic* b) { return key(a) < key(b); });
+    return ordered;
+}
+
+void Diagnostics::print(std::ostream& out) const {
     int errors_shown = 0;
-    for (const Diagnostic* d : ordered) {
+    for (const Diagnostic* d : in_print_order()) {
         if (d->severity == Severity::Error && ++errors_shown > kMaxErrors) continue;
         out << format_diagnostic(*d);
     }

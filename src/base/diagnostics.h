@@ -81,8 +81,11 @@ public:
     bool saturated() const { return errors_ >= kMaxErrorsFound; }
     const std::deque<Diagnostic>& all() const { return list_; }
 
-    // Prints the diagnostics kept, file by file in line order (of the errors, the first
-    // kMaxErrors in that order), then notices of any limit hit.
+    // The diagnostics kept, file by file (in the order they first come up), each file in line
+    // order whatever stage found them; whole-file messages last within their file.
+    std::vector<const Diagnostic*> in_print_order() const;
+    // Prints the diagnostics kept in that order (of the errors, the first kMaxErrors), then
+    // notices of any limit hit.
     void print(std::ostream& out) const;
 
 private:
@@ -110,6 +113,9 @@ private:
 // `text` in single quotes for a message: at most 40 characters (then "..."), control bytes
 // shown as \xNN, so neither a megabyte token nor binary data reaches the terminal whole.
 std::string in_quotes(std::string_view text);
+
+// "error", "warning" or "note".
+const char* severity_name(Severity severity);
 
 // Formats one diagnostic (and its notes) exactly as `print` does.
 std::string format_diagnostic(const Diagnostic& diagnostic);

@@ -18,16 +18,18 @@ LoadResult load_scene_text(const std::string& path, std::string text, bool fragm
     const BlockSink check_and_build = [&](Block&& block) { return builder.add(block); };
     const EvaluatedScene evaluated = interpret(sources, result.diagnostics, parameters, limits, check_and_build);
     result.scene = builder.finish(evaluated.parameters);
+    for (size_t i = 1; i < sources.files(); ++i) result.included_paths.push_back(sources.file_at(i).path());
     if (result.scene)  // the files an output must never replace (with the scene and its meshes)
-        for (size_t i = 1; i < sources.files(); ++i) result.scene->included_paths.push_back(sources.file_at(i).path());
+        result.scene->included_paths = result.included_paths;
     return result;
 }
 
-LoadResult load_scene(const std::string& path, const ParameterValues& parameters, const InterpretLimits& limits) {
-    // "-": standard input, named <stdin> in messages; its mesh paths are relative to the
-    // working folder (the folder of a file named <stdin> there).
+LoadResult load_scene(const std::string& path, const ParameterValues& parameters, const InterpretLimits& limits,
+                      std::string_view standard_input_name) {
+    // "-": standard input, named <stdin> in messages by default; its relative paths start from
+    // the folder of its name (the working folder for <stdin>).
     const bool standard_input = path == "-";
-    const std::string name = standard_input ? std::string(kStandardInputName) : path;
+    const std::string name = standard_input ? std::string(standard_input_name) : path;
     InputFile input =
         standard_input ? read_standard_input(kMaxSceneFileBytes) : read_input_file(path, kMaxSceneFileBytes);
     if (input.problem.empty()) return load_scene_text(name, std::move(input.text), false, parameters, limits);

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "base/diagnostics.h"
 #include "lang/interpreter.h"
@@ -14,15 +15,16 @@ namespace tracer {
 struct LoadResult {
     std::optional<SceneDescription> scene;  // empty when there were errors
     Diagnostics diagnostics;
-    bool unreadable = false;  // the scene file itself could not be read
+    bool unreadable = false;                  // the scene file itself could not be read
+    std::vector<std::string> included_paths;  // every file included, also when there were errors
 };
 
 // Loads the scene at `path`; every problem found is in the result's diagnostics. A `path` of
-// "-" reads standard input, named kStandardInputName in messages (mesh paths relative to
-// the working folder).
+// "-" reads standard input, named `standard_input_name` in messages, relative paths starting
+// from that name's folder (by default kStandardInputName: the working folder).
 inline constexpr std::string_view kStandardInputName = "<stdin>";
 LoadResult load_scene(const std::string& path, const ParameterValues& parameters = {},
-                      const InterpretLimits& limits = {});
+                      const InterpretLimits& limits = {}, std::string_view standard_input_name = kStandardInputName);
 
 // Parses and validates scene text held in memory (`path` names it in messages and anchors
 // relative paths). A `fragment` (an example of the reference) needs no camera.

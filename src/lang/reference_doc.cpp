@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <string_view>
+#include <utility>
 
 #include "lang/builtins.h"
 #include "lang/schema.h"
@@ -30,6 +32,41 @@ std::string allowed_text(const KeySpec& key) {
     for (size_t i = 0; i < key.choices.size(); ++i) text += (i == 0 ? "`" : ", `") + std::string(key.choices[i]) + "`";
     return text.empty() ? "any" : text;
 }
+
+// The statements of the language, one row each: its keyword (empty: a call), how it is
+// written and what it does. The reference lists them; editors complete and explain them.
+struct StatementSpec {
+    std::string_view keyword;
+    std::string_view syntax;
+    std::string_view meaning;
+};
+const StatementSpec kStatements[] = {
+    {"let", "let NAME = value",
+     "names a value: a number, vector, boolean, string, list, `material { ... }` or `transform { ... }`"},
+    {"param", "param NAME = value", "a `let` that `-D NAME=VALUE` on the command line may change (top level only)"},
+    {"for", "for NAME in A..B { ... }", "runs its statements for NAME = A, A + 1, ..., B - 1"},
+    {"for", "for NAME in LIST { ... }", "runs its statements for each value of the list, in order"},
+    {"if", "if CONDITION { ... } else { ... }",
+     "runs the first statements if the condition is true, else the others (`else` and its braces may be left "
+     "out; `else if` chains)"},
+    {"fn", "fn NAME(A, B) { ... }", "defines a function; `return VALUE` ends it with a value"},
+    {"", "NAME(a, b)", "calls a function for the blocks it makes"},
+    {"group", "group { translate ... rotate ... scale ... transform ... statements }",
+     "places every block made inside by its placement (written first; nested groups compose)"},
+    {"include", "include \"file.scn\"", "runs another file in place (path relative to this file)"},
+};
+
+// The words of expressions: operators and literals.
+const std::pair<std::string_view, std::string_view> kExpressionWords[] = {
+    {"and", "true when both sides are true (the right side is not evaluated when the left is false)"},
+    {"or", "true when either side is true (the right side is not evaluated when the left is true)"},
+    {"not", "the opposite of a condition"},
+    {"true", "the condition that holds"},
+    {"false", "the condition that does not hold"},
+    {"in", "`for NAME in A..B` or `for NAME in LIST`"},
+    {"else", "the statements (or value) of an `if` when its condition is false"},
+    {"return", "ends a function, with a value when one follows"},
+};
 
 std::string occurs_text(Occurs occurs) {
     switch (occurs) {
@@ -69,20 +106,10 @@ std::string reference_markdown() {
     out << "\n## Statements\n\n"
            "Between blocks (and inside braces) a scene may also have these; what they mean is in\n"
            "[README.md](README.md).\n\n"
-           "| statement | what it does |\n|---|---|\n"
-           "| `let NAME = value` | names a value: a number, vector, boolean, string, list, `material { ... }` or "
-           "`transform { ... }` |\n"
-           "| `param NAME = value` | a `let` that `-D NAME=VALUE` on the command line may change (top level only) |\n"
-           "| `for NAME in A..B { ... }` | runs its statements for NAME = A, A + 1, ..., B - 1 |\n"
-           "| `for NAME in LIST { ... }` | runs its statements for each value of the list, in order |\n"
-           "| `if CONDITION { ... } else { ... }` | runs the first statements if the condition is true, else the "
-           "others (`else` and its braces may be left out; `else if` chains) |\n"
-           "| `fn NAME(A, B) { ... }` | defines a function; `return VALUE` ends it with a value |\n"
-           "| `NAME(a, b)` | calls a function for the blocks it makes |\n"
-           "| `group { translate ... rotate ... scale ... transform ... statements }` | places every block made "
-           "inside by its placement (written first; nested groups compose) |\n"
-           "| `include \"file.scn\"` | runs another file in place (path relative to this file) |\n"
-           "\nValues may be expressions: `+ - * /`, unary minus, parentheses, vectors `(a, b, c)`, components\n"
+           "| statement | what it does |\n|---|---|\n";
+    for (const StatementSpec& statement : kStatements)
+        out << "| `" << statement.syntax << "` | " << statement.meaning << " |\n";
+    out << "\nValues may be expressions: `+ - * /`, unary minus, parentheses, vectors `(a, b, c)`, components\n"
            "`v.x`, `v.y`, `v.z`, lists `[a, b, c]` and their items `list[i]` (from 0), comparisons\n"
            "`== != < <= > >=`, `and`, `or`, `not`, `true`, `false`, `if CONDITION { A } else { B }`, calls\n"
            "of the scene's functions, these names:\n\n"
@@ -94,6 +121,45 @@ std::string reference_markdown() {
     for (const Builtin& function : all_builtins())
         out << "| `" << function.name << "` | " << function.arity << " | " << function.meaning << " |\n";
     return out.str();
+}
+
+nlohmann::json language_json() {
+    nlohmann::json blocks = nlohmann::json::array();
+    for (const BlockSpec* spec : all_block_specs()) {
+        nlohmann::json keys = nlohmann::json::array();
+        for (const KeySpec& key : spec->keys)
+            keys.push_back({{"name", key.name},
+                            {"type", describe(key.type)},
+                            {"default", key.required() ? nlohmann::json(nullptr) : nlohmann::json(key.default_value)},
+                            {"allowed", allowed_text(key)},
+                            {"meaning", key.meaning},
+                            {"block", key.block ? nlohmann::json(key.block->kind) : nlohmann::json(nullptr)},
+                            {"choices", key.choices}});
+        blocks.push_back({{"kind", spec->kind},
+                          {"named", spec->named},
+                          {"top_level", spec->top_level},
+                          {"occurs", occurs_text(spec->occurs)},
+                          {"summary", spec->summary},
+                          {"example", spec->example},
+                          {"keys", std::move(keys)}});
+    }
+    nlohmann::json statements = nlohmann::json::array();
+    for (const StatementSpec& statement : kStatements)
+        statements.push_back(
+            {{"keyword", statement.keyword}, {"syntax", statement.syntax}, {"meaning", statement.meaning}});
+    nlohmann::json words = nlohmann::json::array();
+    for (const auto& [word, meaning] : kExpressionWords) words.push_back({{"word", word}, {"meaning", meaning}});
+    nlohmann::json constants = nlohmann::json::array();
+    for (const BuiltinConstant& constant : all_constants())
+        constants.push_back({{"name", constant.name}, {"meaning", constant.meaning}});
+    nlohmann::json functions = nlohmann::json::array();
+    for (const Builtin& function : all_builtins())
+        functions.push_back({{"name", function.name}, {"arity", function.arity}, {"meaning", function.meaning}});
+    return {{"blocks", std::move(blocks)},
+            {"statements", std::move(statements)},
+            {"words", std::move(words)},
+            {"constants", std::move(constants)},
+            {"functions", std::move(functions)}};
 }
 
 }  // namespace tracer

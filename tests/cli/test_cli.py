@@ -240,6 +240,53 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(result.returncode, 3)
         self.assertIn("<stdin>: error: cannot read the scene file: more than the limit of 134.2 MB", result.stderr)
 
+    def test_diagnostics_as_json_for_other_programs(self):
+        # --diagnostics json: one line of JSON on stdout, the same diagnostics as the text, with
+        # the text itself; --stdin-name checks unsaved text as if it were that file (an editor).
+        (self.tmp / "sub").mkdir()
+        (self.tmp / "sub" / "lib.scn").write_text("let r = 0.5\n")
+        text = (
+            SMALL_SCENE.replace("radius 1", "radius r")
+            + 'include "lib.scn"\nsphere { center (1, 0, 0) radius 1 material { kd 1 } fuzz 2 }\n'
+        )
+        result = run(
+            "--check", "--diagnostics", "json", "--stdin-name", self.tmp / "sub" / "unsaved.scn", "-", input=text
+        )
+        self.assertEqual(result.returncode, 1)
+        self.assertEqual(result.stderr, "")
+        lines = result.stdout.splitlines()
+        self.assertEqual(len(lines), 1)
+        report = json.loads(lines[0])
+        self.assertFalse(report["ok"])
+        self.assertEqual(report["errors"], 2)
+        first, second = report["diagnostics"]
+        self.assertEqual((first["line"], first["column"], first["length"]), (3, 34, 1))
+        self.assertEqual(first["message"], "undefined name 'r'")
+        self.assertEqual(second["line"], 6)
+        self.assertIn("unknown key 'fuzz'", second["message"])
+        self.assertTrue(first["path"].endswith("unsaved.scn"))
+        text_run = run("--check", "--stdin-name", self.tmp / "sub" / "unsaved.scn", "-", input=text)
+        self.assertEqual(report["text"], text_run.stderr)
+        self.assertEqual(first["text"] + second["text"], text_run.stderr)
+        self.assertEqual([pathlib.Path(p).name for p in report["files_read"]], ["lib.scn"])  # found beside the name
+        good = run("--check", "--diagnostics", "json", self.small)
+        self.assertEqual(good.returncode, 0)
+        self.assertEqual(json.loads(good.stdout)["ok"], True)
+        self.assertEqual(run("--dump-json", "--diagnostics", "json", self.small).returncode, 2)
+        self.assertEqual(run("--check", "--stdin-name", "x.scn", self.small).returncode, 2)
+        self.assertEqual(run("--check", "--diagnostics", "sarif", self.small).returncode, 2)
+
+    def test_language_json_holds_the_tables(self):
+        language = json.loads(run("--language-json").stdout)
+        blocks = {block["kind"]: block for block in language["blocks"]}
+        self.assertIn("sphere", blocks)
+        radius = next(key for key in blocks["sphere"]["keys"] if key["name"] == "radius")
+        self.assertEqual(radius["type"], "a number")
+        self.assertIn("fovy", [key["name"] for key in blocks["camera"]["keys"]])
+        self.assertIn("let", [s["keyword"] for s in language["statements"]])
+        self.assertIn("sqrt", [f["name"] for f in language["functions"]])
+        self.assertIn("pi", [c["name"] for c in language["constants"]])
+
     def test_render_writes_png_and_summary(self):
         out = self.tmp / "out.png"
         result = run(self.small, "-o", out, "--threads", "2")

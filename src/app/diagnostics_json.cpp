@@ -1,0 +1,41 @@
+#include "app/diagnostics_json.h"
+
+#include <sstream>
+
+namespace tracer {
+
+nlohmann::json diagnostic_json(const Diagnostic& diagnostic) {
+    const Location& at = diagnostic.location;
+    nlohmann::json notes = nlohmann::json::array();
+    for (const Diagnostic& note : diagnostic.notes) notes.push_back(diagnostic_json(note));
+    return {{"severity", severity_name(diagnostic.severity)},
+            {"path", at.path},
+            {"line", at.line},
+            {"column", at.column},
+            {"length", at.length},
+            {"message", diagnostic.message},
+            {"text", format_diagnostic(diagnostic)},
+            {"repeats", diagnostic.repeats},
+            {"notes", std::move(notes)}};
+}
+
+nlohmann::json load_report_json(const std::string& scene, const LoadReport& report) {
+    nlohmann::json diagnostics = nlohmann::json::array();
+    for (const Diagnostic* diagnostic : report.diagnostics.in_print_order())
+        diagnostics.push_back(diagnostic_json(*diagnostic));
+    std::ostringstream text;
+    report.diagnostics.print(text);
+    return {{"scene", scene},
+            {"ok", !report.diagnostics.has_errors()},
+            {"errors", report.diagnostics.error_count()},
+            {"warnings", report.diagnostics.warning_count()},
+            {"diagnostics", std::move(diagnostics)},
+            {"text", text.str()},
+            {"files_read", report.files_read}};
+}
+
+std::string json_line(const nlohmann::json& value) {
+    return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + '\n';
+}
+
+}  // namespace tracer
