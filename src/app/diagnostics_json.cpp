@@ -25,13 +25,22 @@ nlohmann::json load_report_json(const std::string& scene, const LoadReport& repo
         diagnostics.push_back(diagnostic_json(*diagnostic));
     std::ostringstream text;
     report.diagnostics.print(text);
+    nlohmann::json names = nlohmann::json::array();
+    if (report.names)
+        for (const DefinedName& defined : *report.names)
+            names.push_back({{"name", defined.name},
+                             {"kind", defined.kind},
+                             {"path", defined.path},
+                             {"line", defined.line},
+                             {"column", defined.column}});
     return {{"scene", scene},
             {"ok", !report.diagnostics.has_errors()},
             {"errors", report.diagnostics.error_count()},
             {"warnings", report.diagnostics.warning_count()},
             {"diagnostics", std::move(diagnostics)},
             {"text", text.str()},
-            {"files_read", report.files_read}};
+            {"files_read", report.files_read},
+            {"names", std::move(names)}};
 }
 
 std::string json_line(const nlohmann::json& value) {

@@ -26,7 +26,7 @@ std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
             loaded.diagnostics.report(Severity::Error, Diagnostics::whole_file(name),
                                       "with the command line's overrides, " + problem);
     }
-    LoadReport found{loaded.diagnostics, {}, loaded.unreadable};
+    LoadReport found{loaded.diagnostics, {}, loaded.unreadable, &loaded.names};
     if (input.path != "-") found.files_read.push_back(input.path);
     for (const std::string& path : loaded.included_paths) found.files_read.push_back(path);
     if (loaded.scene)

@@ -34,7 +34,8 @@ struct SceneInput {
 struct LoadReport {
     const Diagnostics& diagnostics;
     std::vector<std::string> files_read;
-    bool unreadable = false;  // the scene file itself could not be read
+    bool unreadable = false;                          // the scene file itself could not be read
+    const std::vector<DefinedName>* names = nullptr;  // every name the scene defines
 };
 using ReportLoad = std::function<void(const LoadReport&)>;
 

@@ -106,9 +106,15 @@ void Compiler::compile_scoped(const std::vector<Statement>& statements, std::vec
     close_scope();
 }
 
+// Keeps where `name` is defined, for editors.
+void Compiler::record(const std::string& name, Span defined_at, std::string_view kind) {
+    if (definitions_.size() < kMostNamesRecorded) definitions_.push_back({name, kind, defined_at});
+}
+
 // Binds `name` in the innermost scope to a new slot; a name already bound in that same scope is
 // an error (reported), and the old slot is kept.
-uint32_t Compiler::bind(const std::string& name, Span defined_at) {
+uint32_t Compiler::bind(const std::string& name, Span defined_at, std::string_view kind) {
+    record(name, defined_at, kind);
     FunctionLevel& level = functions_.back();
     Scope& scope = level.scopes.back();
     if (auto found = scope.find(name); found != scope.end()) {
@@ -172,6 +178,8 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Step>& 
         case Statement::Kind::Block: {
             step.op = Step::Op::Block;
             step.broken = statement.broken;
+            if (statement.word == "material" && !statement.name.empty())
+                record(statement.name, statement.name_span, "material");
             bool failed = false;
             step.body = compile_body(statement.body, statement.word, find_block_spec(statement.word), failed);
             step.broken = step.broken || failed;
@@ -185,7 +193,7 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Step>& 
             } catch (const CompileError&) {
                 step.value = constant(Val::broken(), statement.value.span);  // uses are not errors too
             }
-            step.slot = bind(statement.name, statement.name_span);
+            step.slot = bind(statement.name, statement.name_span, step.op == Step::Op::Let ? "let" : "param");
             if (step.op == Step::Op::Param) parameters_.emplace_back(statement.name, step.slot);
             break;
         }
@@ -253,7 +261,7 @@ void Compiler::compile_loop(const Statement& statement, std::vector<Step>& out) 
         return;
     }
     open_scope();
-    loop.slot = bind(statement.name, statement.name_span);
+    loop.slot = bind(statement.name, statement.name_span, "for");
     ++loops_;
     compile_statements(statement.statements, loop.steps);
     --loops_;
@@ -267,7 +275,7 @@ void Compiler::compile_function(const Statement& statement, std::vector<Step>& o
     step.keyword = statement.keyword;
     step.name = statement.name;
     step.name_span = statement.name_span;
-    step.slot = bind(statement.name, statement.name_span);
+    step.slot = bind(statement.name, statement.name_span, "fn");
     auto code = std::make_shared<FunctionCode>();
     code->name = statement.name;
     code->name_span = statement.name_span;
@@ -276,7 +284,7 @@ void Compiler::compile_function(const Statement& statement, std::vector<Step>& o
     functions_.emplace_back();
     functions_.back().code = code.get();
     functions_.back().scopes.emplace_back();
-    for (const auto& [name, span] : statement.parameters) bind(name, span);
+    for (const auto& [name, span] : statement.parameters) bind(name, span, "parameter");
     const int outer_loops = loops_;
     loops_ = 0;
     compile_statements(statement.statements, code->steps);

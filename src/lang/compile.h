@@ -13,6 +13,7 @@
 #include "base/diagnostics.h"
 #include "base/source.h"
 #include "lang/code.h"
+#include "lang/evaluated_scene.h"
 #include "lang/syntax_tree.h"
 
 namespace tracer {
@@ -47,6 +48,8 @@ public:
     uint32_t top_level_slots() const { return functions_.front().most_slots; }
     // The include stack starts with the scene file's canonical path (a scene including itself).
     void set_scene_path(std::string canonical) { include_stack_ = {std::move(canonical)}; }
+    // The names defined so far, in the order compiled (at most kMostNamesRecorded).
+    std::vector<NameDefinition> take_definitions() { return std::move(definitions_); }
     // The parameters declared so far, by name (their global slots).
     const std::vector<std::pair<std::string, uint32_t>>& parameters() const { return parameters_; }
 
@@ -84,7 +87,8 @@ private:
 
     // Names.
     bool resolve(const std::string& name, size_t level, Span span, Node& out);
-    uint32_t bind(const std::string& name, Span defined_at);
+    uint32_t bind(const std::string& name, Span defined_at, std::string_view kind);
+    void record(const std::string& name, Span defined_at, std::string_view kind);
     void open_scope();
     void close_scope();
     std::vector<std::string_view> names_in_scope() const;
@@ -96,6 +100,7 @@ private:
     std::map<std::string, uint32_t> included_;  // each file read, by canonical path: its first origin
     size_t included_bytes_ = 0;
     std::vector<std::pair<std::string, uint32_t>> parameters_;
+    std::vector<NameDefinition> definitions_;
     int loops_ = 0;  // loops around the statement compiled (at the top level of the file or function)
 };
 

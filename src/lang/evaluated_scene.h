@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -14,6 +15,16 @@
 namespace tracer {
 
 struct Body;
+
+// A name the scene defines, for editors: `let`, `param`, `for`, `fn`, a function's parameter
+// or a named material block, where it is written.
+struct NameDefinition {
+    std::string name;
+    std::string_view kind;  // "let", "param", "for", "fn", "parameter", "material"
+    Span span;
+};
+// Editors need no more of them than this (a generated scene may define millions).
+constexpr size_t kMostNamesRecorded = 100000;
 
 struct Value {
     enum class Kind { Number, Vector, String, Identifier, Block };
@@ -77,6 +88,7 @@ struct Block {
 struct EvaluatedScene {
     std::vector<Block> blocks;
     std::vector<std::pair<std::string, Value>> parameters;  // each `param` and the value it took
+    std::vector<NameDefinition> names;                      // the names defined, for editors
 };
 
 }  // namespace tracer

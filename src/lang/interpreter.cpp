@@ -115,6 +115,7 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
         diagnostics_.report(Severity::Error, Diagnostics::whole_file("<command line>"),
                             "-D " + name + ": the scene has no 'param " + name + "'" + did_you_mean(name, params));
     }
+    scene_.names = compiler_.take_definitions();
     return std::move(scene_);
 }
 

@@ -12,11 +12,20 @@
 
 namespace tracer {
 
+// A name the scene defines, located (NameDefinition with its place resolved).
+struct DefinedName {
+    std::string name;
+    std::string_view kind;
+    std::string path;
+    int line = 0, column = 0;
+};
+
 struct LoadResult {
     std::optional<SceneDescription> scene;  // empty when there were errors
     Diagnostics diagnostics;
     bool unreadable = false;                  // the scene file itself could not be read
     std::vector<std::string> included_paths;  // every file included, also when there were errors
+    std::vector<DefinedName> names;           // every name defined (up to kMostNamesRecorded)
 };
 
 // Loads the scene at `path`; every problem found is in the result's diagnostics. A `path` of

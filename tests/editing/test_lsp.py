@@ -1,0 +1,184 @@
+"""The language server (tools/lsp) spoken to as an editor does: JSON-RPC over a real pipe,
+initialize, didOpen, didChange with an error and with its fix, hover, completion, shutdown."""
+
+import json
+import os
+import pathlib
+import queue
+import subprocess
+import sys
+import threading
+
+import pytest
+from conftest import ROOT
+
+SCENE = """let r = 0.5
+material shiny { kd (1, 0.5, 0.2) ks 0.5 n 20 }
+camera { eye (0, 0, 7) lookat (0, 0, 0) }
+for i in 0..3 {
+  sphere { center (i, 0, 0) radius r material shiny }
+}
+light { position (2, 3, 4) color 1 }
+"""
+
+
+class Client:
+    """A minimal LSP client: Content-Length framed JSON-RPC on the server's stdin and stdout."""
+
+    def __init__(self, tracer):
+        environment = dict(os.environ, PYTHONPATH=str(ROOT / "tools"))
+        self.process = subprocess.Popen(
+            [sys.executable, "-m", "tracer_tools", "lsp", "--tracer", str(tracer)],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            env=environment,
+        )
+        self.messages = queue.Queue()
+        self.next_id = 0
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        stream = self.process.stdout
+        while True:
+            headers = {}
+            while (line := stream.readline().decode()) not in ("\r\n", ""):
+                name, _, value = line.partition(":")
+                headers[name.strip().lower()] = value.strip()
+            if not headers:
+                return
+            self.messages.put(json.loads(stream.read(int(headers["content-length"]))))
+
+    def send(self, message):
+        body = json.dumps(message).encode()
+        self.process.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+        self.process.stdin.flush()
+
+    def notify(self, method, params):
+        self.send({"jsonrpc": "2.0", "method": method, "params": params})
+
+    def request(self, method, params, timeout=30):
+        self.next_id += 1
+        self.send({"jsonrpc": "2.0", "id": self.next_id, "method": method, "params": params})
+        while True:
+            message = self.messages.get(timeout=timeout)
+            if message.get("id") == self.next_id and "method" not in message:
+                assert "error" not in message, message
+                return message["result"]
+
+    def diagnostics(self, uri, timeout=30):
+        """The next diagnostics published for `uri`."""
+        while True:
+            message = self.messages.get(timeout=timeout)
+            if message.get("method") == "textDocument/publishDiagnostics" and message["params"]["uri"] == uri:
+                return message["params"]["diagnostics"]
+
+
+@pytest.fixture
+def client(tracer_bin):
+    client = Client(tracer_bin)
+    result = client.request("initialize", {"processId": os.getpid(), "rootUri": None, "capabilities": {}})
+    capabilities = result["capabilities"]
+    assert capabilities["hoverProvider"]
+    assert capabilities["completionProvider"]
+    client.notify("initialized", {})
+    yield client
+    assert client.request("shutdown", None) is None
+    client.notify("exit", None)
+    assert client.process.wait(timeout=10) == 0
+
+
+def position_of(text, needle, delta=0):
+    before = text[: text.index(needle) + delta]
+    return {"line": before.count("\n"), "character": len(before.rsplit("\n", 1)[-1])}
+
+
+def open_document(client, tmp_path, text):
+    uri = pathlib.Path(tmp_path / "scene.scn").as_uri()
+    client.notify(
+        "textDocument/didOpen", {"textDocument": {"uri": uri, "languageId": "tracer", "version": 1, "text": text}}
+    )
+    return uri
+
+
+def change(client, uri, version, text):
+    client.notify(
+        "textDocument/didChange", {"textDocument": {"uri": uri, "version": version}, "contentChanges": [{"text": text}]}
+    )
+
+
+def test_diagnostics_follow_the_text_as_it_is_typed(client, tmp_path):
+    uri = open_document(client, tmp_path, SCENE)
+    assert client.diagnostics(uri) == []
+    broken = SCENE.replace("radius r", "radius rr").replace("color 1", "colour 1")
+    change(client, uri, 2, broken)
+    found = client.diagnostics(uri)
+    assert [d["message"] for d in found] == [
+        "undefined name 'rr'",
+        "unknown key 'colour' in light; did you mean 'color'?",
+    ]
+    assert found[0]["range"] == {"start": position_of(broken, "rr"), "end": position_of(broken, "rr", 2)}
+    assert found[0]["severity"] == 1 and found[0]["source"] == "tracer"
+    # The same messages as tracer --check gives in the terminal.
+    check = subprocess.run(
+        [client.process.args[-1], "--check", "--stdin-name", str(tmp_path / "scene.scn"), "-"],
+        input=broken,
+        capture_output=True,
+        text=True,
+    )
+    for diagnostic in found:
+        assert diagnostic["message"] in check.stderr
+    change(client, uri, 3, SCENE)
+    assert client.diagnostics(uri) == []
+
+
+def test_an_error_in_an_included_file_is_published_for_that_file(client, tmp_path):
+    (tmp_path / "lib.scn").write_text("let q = sqrt(-1)\n")
+    uri = open_document(client, tmp_path, 'include "lib.scn"\n' + SCENE)
+    lib = (tmp_path / "lib.scn").as_uri()
+    while True:  # published for the scene (with nothing) and for lib.scn, in either order
+        message = client.messages.get(timeout=30)
+        if message.get("method") == "textDocument/publishDiagnostics" and message["params"]["uri"] == lib:
+            assert message["params"]["diagnostics"][0]["range"]["start"]["line"] == 0
+            break
+    assert uri != lib
+
+
+def test_hover_explains_keys_blocks_builtins_and_names(client, tmp_path):
+    uri = open_document(client, tmp_path, SCENE)
+    client.diagnostics(uri)
+
+    def hover(needle, delta=1):
+        result = client.request(
+            "textDocument/hover", {"textDocument": {"uri": uri}, "position": position_of(SCENE, needle, delta)}
+        )
+        return result["contents"]["value"] if result else None
+
+    language = json.loads(
+        subprocess.run([client.process.args[-1], "--language-json"], capture_output=True, text=True).stdout
+    )
+    sphere = next(b for b in language["blocks"] if b["kind"] == "sphere")
+    radius = next(k for k in sphere["keys"] if k["name"] == "radius")
+    assert radius["meaning"] in hover("radius r")
+    assert sphere["summary"] in hover("sphere {")
+    assert "for NAME in" in hover("for i")
+    assert "defined at scene.scn:1" in hover("r material", 0)
+    assert hover("\n}", 0) is None
+
+
+def test_completion_offers_keys_blocks_materials_and_names_in_scope(client, tmp_path):
+    uri = open_document(client, tmp_path, SCENE)
+    client.diagnostics(uri)
+
+    def labels(needle, delta=0):
+        result = client.request(
+            "textDocument/completion", {"textDocument": {"uri": uri}, "position": position_of(SCENE, needle, delta)}
+        )
+        return {item["label"] for item in result["items"]}
+
+    in_sphere = labels("radius r")
+    assert {"center", "radius", "material", "r", "i", "shiny", "sqrt"} <= in_sphere
+    assert "camera" not in in_sphere  # not a key of sphere
+    top = labels("light {")
+    assert {"camera", "sphere", "light", "let", "for", "r", "shiny"} <= top
+    assert "i" not in top  # the loop variable is not in scope after its loop
+    assert "radius" not in top

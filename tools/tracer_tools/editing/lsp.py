@@ -1,0 +1,284 @@
+"""tools/lsp: tracer's language server, over stdio. It publishes tracer's own diagnostics as
+the user types (tracer --check --diagnostics json on the unsaved text, under the file's name, so
+that includes and meshes are found beside it), explains keys, blocks and built-ins on hover
+(tracer --language-json: the same tables as the reference) and completes block kinds, keys,
+material names and the names in scope.
+
+Usage: tools/lsp [--tracer build/release/tracer]  (an editor starts it; see docs/editing.md)"""
+
+import argparse
+import asyncio
+import json
+import os
+import pathlib
+import urllib.parse
+
+from lsprotocol import types
+from pygls.lsp.server import LanguageServer
+
+from tracer_tools import ROOT
+from tracer_tools.editing import scene_text
+from tracer_tools.editing.language import Entry, Language
+
+# A check starts this long after the last keystroke (one run per pause, not per key).
+CHECK_DELAY = 0.15
+SEVERITY = {
+    "error": types.DiagnosticSeverity.Error,
+    "warning": types.DiagnosticSeverity.Warning,
+    "note": types.DiagnosticSeverity.Information,
+}
+COMPLETION_KIND = {
+    "block": types.CompletionItemKind.Class,
+    "key": types.CompletionItemKind.Property,
+    "statement": types.CompletionItemKind.Keyword,
+    "word": types.CompletionItemKind.Keyword,
+    "function": types.CompletionItemKind.Function,
+    "constant": types.CompletionItemKind.Constant,
+    "let": types.CompletionItemKind.Variable,
+    "param": types.CompletionItemKind.Variable,
+    "for": types.CompletionItemKind.Variable,
+    "parameter": types.CompletionItemKind.Variable,
+    "fn": types.CompletionItemKind.Function,
+    "material": types.CompletionItemKind.Reference,
+}
+
+
+def uri_to_path(uri: str) -> str:
+    return urllib.parse.unquote(urllib.parse.urlparse(uri).path)
+
+
+def path_to_uri(path: str) -> str:
+    return pathlib.Path(os.path.abspath(path)).as_uri()
+
+
+def utf16_column(line: str, byte_column: int) -> int:
+    """The LSP character (UTF-16 units) of tracer's 1-based byte column on `line`."""
+    prefix = line.encode()[: max(byte_column - 1, 0)].decode(errors="ignore")
+    return len(prefix.encode("utf-16-le")) // 2
+
+
+def offset_of(text: str, position: types.Position) -> int:
+    """The string offset of an LSP position."""
+    starts = scene_text.line_offsets(text)
+    line = min(position.line, len(starts) - 1)
+    start = starts[line]
+    end = starts[line + 1] - 1 if line + 1 < len(starts) else len(text)
+    units = 0
+    for i, c in enumerate(text[start:end]):
+        if units >= position.character:
+            return start + i
+        units += 2 if ord(c) > 0xFFFF else 1
+    return end
+
+
+class TracerServer(LanguageServer):
+    def __init__(self, tracer: str):
+        super().__init__("tracer-lsp", "1")
+        self.tracer = tracer
+        self.language = Language.from_tracer(tracer)
+        self.pending: dict[str, asyncio.Task] = {}
+        self.names: dict[str, list[dict]] = {}  # by document: the names of its last check
+        self.published: dict[str, set[str]] = {}  # by document: the URIs given diagnostics
+
+    async def check(self, uri: str) -> None:
+        """Runs tracer on the document's text and publishes what it says, by file."""
+        document = self.workspace.get_text_document(uri)
+        path = uri_to_path(uri)
+        process = await asyncio.create_subprocess_exec(
+            self.tracer,
+            "--check",
+            "--diagnostics",
+            "json",
+            "--stdin-name",
+            path,
+            "-",
+            stdin=asyncio.subprocess.PIPE,
+            stdout=asyncio.subprocess.PIPE,
+            stderr=asyncio.subprocess.PIPE,
+        )
+        out, _ = await process.communicate(document.source.encode())
+        try:
+            report = json.loads(out.decode().splitlines()[0])
+        except (IndexError, ValueError):
+            return
+        if report["names"] or report["ok"]:
+            self.names[uri] = report["names"]
+        by_uri: dict[str, list[types.Diagnostic]] = {}
+        for found in report["diagnostics"]:
+            target = uri if found["path"] == path else path_to_uri(found["path"])
+            by_uri.setdefault(target, []).append(self.lsp_diagnostic(found))
+        for target in self.published.get(uri, set()) - set(by_uri):
+            by_uri[target] = []  # cleared
+        self.published[uri] = {target for target, items in by_uri.items() if items}
+        by_uri.setdefault(uri, [])
+        for target, items in by_uri.items():
+            self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(uri=target, diagnostics=items))
+
+    def lsp_range(self, found: dict) -> types.Range:
+        line = max(found["line"] - 1, 0)
+        text = self.line_text(found["path"], line)
+        start = utf16_column(text, found["column"]) if found["line"] > 0 else 0
+        end = start + max(found["length"], 1) if found["line"] > 0 else 0
+        return types.Range(types.Position(line, start), types.Position(line, end))
+
+    def line_text(self, path: str, line: int) -> str:
+        document = self.workspace.text_documents.get(path_to_uri(path))
+        try:
+            lines = document.lines if document else pathlib.Path(path).read_text(errors="replace").splitlines()
+            return lines[line] if line < len(lines) else ""
+        except OSError:
+            return ""
+
+    def lsp_diagnostic(self, found: dict) -> types.Diagnostic:
+        related = [
+            types.DiagnosticRelatedInformation(
+                location=types.Location(uri=path_to_uri(note["path"]), range=self.lsp_range(note)),
+                message=note["message"],
+            )
+            for note in found["notes"]
+        ]
+        message = found["message"]
+        if found["repeats"]:
+            message += f" (and {found['repeats']} more times at this place)"
+        return types.Diagnostic(
+            range=self.lsp_range(found),
+            message=message,
+            source="tracer",
+            severity=SEVERITY[found["severity"]],
+            related_information=related or None,
+        )
+
+    def schedule_check(self, uri: str) -> None:
+        if task := self.pending.get(uri):
+            task.cancel()
+
+        async def later():
+            await asyncio.sleep(CHECK_DELAY)
+            await self.check(uri)
+
+        self.pending[uri] = asyncio.ensure_future(later())
+
+    # Hover and completion.
+    def context_kind(self, text: str, offset: int) -> str | None:
+        """The block kind whose braces hold `offset`, or None at the top level or in statements."""
+        braces = scene_text.open_braces(text, offset)
+        return scene_text.block_kind(braces[-1], set(self.language.blocks)) if braces else None
+
+    def scene_names(self, uri: str, text: str, offset: int) -> list[dict]:
+        """The names of the last check visible at `offset` (material names everywhere)."""
+        path = uri_to_path(uri)
+        starts = scene_text.line_offsets(text)
+        visible = []
+        for name in self.names.get(uri, []):
+            if name["kind"] == "material" or name["path"] != path:
+                visible.append(name)
+                continue
+            line = name["line"] - 1
+            if line >= len(starts):
+                continue
+            line_end = starts[line + 1] if line + 1 < len(starts) else len(text)
+            prefix = text[starts[line] : line_end].encode()[: name["column"] - 1].decode(errors="ignore")
+            begin, end = scene_text.visible_range(text, starts[line] + len(prefix), name["kind"])
+            if begin <= offset <= end:
+                visible.append(name)
+        return visible
+
+    def hover_entry(self, uri: str, text: str, offset: int) -> Entry | None:
+        found = scene_text.word_at(text, offset)
+        if not found:
+            return None
+        word, start = found
+        kind = self.context_kind(text, start)
+        if kind and (entry := self.language.key_entry(kind, word)):
+            return entry
+        if word in self.language.blocks:
+            return self.language.block_entry(word)
+        if word in self.language.words:
+            return self.language.words[word]
+        for name in self.scene_names(uri, text, offset):
+            if name["name"] == word:
+                where = f"{pathlib.Path(name['path']).name}:{name['line']}"
+                return Entry(word, name["kind"], name["kind"], f"`{word}`: {name['kind']}, defined at {where}")
+        return None
+
+    def completions(self, uri: str, text: str, offset: int) -> list[types.CompletionItem]:
+        kind = self.context_kind(text, offset)
+        entries: list[Entry] = []
+        if kind:
+            entries += self.language.keys(kind)
+        else:
+            entries += [self.language.block_entry(k) for k in self.language.top_level]
+            entries += [e for e in self.language.words.values() if e.kind == "statement"]
+        entries += [e for e in self.language.words.values() if e.kind in ("function", "constant", "word")]
+        items = [
+            types.CompletionItem(
+                label=e.label,
+                kind=COMPLETION_KIND[e.kind],
+                detail=e.detail,
+                documentation=types.MarkupContent(types.MarkupKind.Markdown, e.documentation),
+            )
+            for e in entries
+        ]
+        seen = {item.label for item in items}
+        for name in self.scene_names(uri, text, offset):
+            if name["name"] not in seen:
+                seen.add(name["name"])
+                items.append(
+                    types.CompletionItem(
+                        label=name["name"],
+                        kind=COMPLETION_KIND[name["kind"]],
+                        detail=f"{name['kind']} ({pathlib.Path(name['path']).name}:" f"{name['line']})",
+                    )
+                )
+        return items
+
+
+def make_server(tracer: str) -> TracerServer:
+    server = TracerServer(tracer)
+
+    @server.feature(types.TEXT_DOCUMENT_DID_OPEN)
+    async def did_open(ls: TracerServer, params: types.DidOpenTextDocumentParams):
+        await ls.check(params.text_document.uri)
+
+    @server.feature(types.TEXT_DOCUMENT_DID_CHANGE)
+    def did_change(ls: TracerServer, params: types.DidChangeTextDocumentParams):
+        ls.schedule_check(params.text_document.uri)
+
+    @server.feature(types.TEXT_DOCUMENT_DID_SAVE)
+    async def did_save(ls: TracerServer, params: types.DidSaveTextDocumentParams):
+        await ls.check(params.text_document.uri)
+
+    @server.feature(types.TEXT_DOCUMENT_DID_CLOSE)
+    def did_close(ls: TracerServer, params: types.DidCloseTextDocumentParams):
+        ls.names.pop(params.text_document.uri, None)
+
+    @server.feature(types.TEXT_DOCUMENT_HOVER)
+    def hover(ls: TracerServer, params: types.HoverParams):
+        document = ls.workspace.get_text_document(params.text_document.uri)
+        offset = offset_of(document.source, params.position)
+        entry = ls.hover_entry(params.text_document.uri, document.source, offset)
+        if entry is None:
+            return None
+        return types.Hover(contents=types.MarkupContent(types.MarkupKind.Markdown, entry.documentation))
+
+    @server.feature(types.TEXT_DOCUMENT_COMPLETION, types.CompletionOptions(trigger_characters=[" "]))
+    def completion(ls: TracerServer, params: types.CompletionParams):
+        document = ls.workspace.get_text_document(params.text_document.uri)
+        offset = offset_of(document.source, params.position)
+        return types.CompletionList(
+            is_incomplete=False, items=ls.completions(params.text_document.uri, document.source, offset)
+        )
+
+    return server
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(prog="tools/lsp", description=__doc__.split("\n\n")[0])
+    parser.add_argument(
+        "--tracer",
+        default=str(ROOT / "build" / "release" / "tracer"),
+        help="the tracer executable (default: %(default)s)",
+    )
+    args = parser.parse_args()
+    make_server(args.tracer).start_io()
+    return 0
