@@ -141,6 +141,23 @@ def test_a_threshold_exceeded_exits_1(tracer_bin, tmp_path):
     result = run_tool("crosscheck", HERE / "asymmetric.scn", "--out", tmp_path, "--max-flip", "-1")
     assert result.returncode == 1
     assert "FAIL: FLIP mean" in result.stdout
+    # Each step is named as it starts and timed as it ends (the renders can take minutes).
+    for step in ("rendering with Mitsuba 3 (", "rendering with tracer", "comparing (FLIP)"):
+        assert f"crosscheck: {step}" in result.stderr, result.stderr
+    assert result.stderr.count(": done in ") == 3, result.stderr
+
+
+def test_a_long_step_says_it_is_still_running(capsys):
+    import time
+
+    from tracer_tools.xcheck import progress
+
+    with progress.step("crosscheck", "rendering with Mitsuba 3", heartbeat=0.05):
+        time.sleep(0.18)
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0] == "crosscheck: rendering with Mitsuba 3..."
+    assert 2 <= sum(line.startswith("crosscheck: still rendering with Mitsuba 3 (") for line in lines) <= 4
+    assert lines[-1].startswith("crosscheck: rendering with Mitsuba 3: done in 0.")
 
 
 def test_an_invalid_scene_exits_3_with_tracers_diagnostic(tracer_bin, tmp_path):

@@ -15,7 +15,7 @@ import pathlib
 import sys
 from typing import TYPE_CHECKING
 
-from . import run_reporting_errors, tracer_cli
+from . import progress, run_reporting_errors, tracer_cli
 
 if TYPE_CHECKING:
     from .metrics import Comparison
@@ -111,25 +111,31 @@ def crosscheck(args: argparse.Namespace) -> int:
     )
 
     peer_times = {}
+    render = scene["render"]
+    size = f"{render['width']}x{render['height']}, {render['samples']} spp"
     if args.peer == "povray":
         from . import povray
 
         peer, peer_name = "povray", "POV-Ray 3.7"
-        peer_image, peer_times = povray.render_scene(scene, out)
+        with progress.step("crosscheck", f"rendering with {peer_name} ({size})"):
+            peer_image, peer_times = povray.render_scene(scene, out)
         for note in peer_times["approximated"]:
             print(f"crosscheck: note: {note}", file=sys.stderr)
     else:
         peer, peer_name = "mitsuba", "Mitsuba 3"
-        peer_image = mitsuba_render.render_scene(scene, out)
-    tracer_cli.render(args.scene, out / "tracer.exr", extra)
+        with progress.step("crosscheck", f"rendering with {peer_name} ({size})"):
+            peer_image = mitsuba_render.render_scene(scene, out)
+    with progress.step("crosscheck", "rendering with tracer"):
+        tracer_cli.render(args.scene, out / "tracer.exr", extra)
     tracer_image = images.read_exr(out / "tracer.exr")
 
     # Step 3: compare, write the pictures, report.
-    comparison = metrics.compare(peer_image, tracer_image)
-    images.write_png(out / "tracer.png", tracer_image)
-    images.write_png(out / f"{peer}.png", peer_image)
-    images.write_png(out / "heatmap.png", metrics.heat_map(peer_image, tracer_image))
-    images.write_png(out / "side_by_side.png", metrics.side_by_side(peer_image, tracer_image, peer_name, "tracer"))
+    with progress.step("crosscheck", "comparing (FLIP) and writing the pictures"):
+        comparison = metrics.compare(peer_image, tracer_image)
+        images.write_png(out / "tracer.png", tracer_image)
+        images.write_png(out / f"{peer}.png", peer_image)
+        images.write_png(out / "heatmap.png", metrics.heat_map(peer_image, tracer_image))
+        images.write_png(out / "side_by_side.png", metrics.side_by_side(peer_image, tracer_image, peer_name, "tracer"))
     failed = failures(comparison, args)
     report = {
         "scene": str(args.scene),
@@ -146,7 +152,6 @@ def crosscheck(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(report, indent=2))
     else:
-        render = scene["render"]
         print(
             f"{args.scene}: tracer vs {peer_name} at {render['width']}x{render['height']}, "
             f"{render['samples']} spp\n{comparison.summary()}\nimages: {out}"
