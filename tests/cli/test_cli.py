@@ -269,6 +269,20 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(report["text"], text_run.stderr)
         self.assertEqual(first["text"] + second["text"], text_run.stderr)
         self.assertEqual([pathlib.Path(p).name for p in report["files_read"]], ["lib.scn"])  # found beside the name
+        # The names the scene defines, each with its kind and place (for editors' completion).
+        named = "let a = 1\nmaterial m { kd 1 }\nfn f(x) { return x }\nfor i in 0..2 { let b = i }\n"
+        names = json.loads(run("--check", "--diagnostics", "json", "-", input=SMALL_SCENE + named).stdout)["names"]
+        self.assertEqual(
+            [(n["name"], n["kind"], n["line"], n["column"]) for n in names],
+            [
+                ("a", "let", 5, 5),
+                ("m", "material", 6, 10),
+                ("f", "fn", 7, 4),
+                ("x", "parameter", 7, 6),
+                ("i", "for", 8, 5),
+                ("b", "let", 8, 21),
+            ],
+        )
         good = run("--check", "--diagnostics", "json", self.small)
         self.assertEqual(good.returncode, 0)
         self.assertEqual(json.loads(good.stdout)["ok"], True)
