@@ -8,6 +8,7 @@ import queue
 import subprocess
 import sys
 import threading
+import time
 
 import pytest
 from conftest import ROOT
@@ -182,3 +183,24 @@ def test_completion_offers_keys_blocks_materials_and_names_in_scope(client, tmp_
     assert {"camera", "sphere", "light", "let", "for", "r", "shiny"} <= top
     assert "i" not in top  # the loop variable is not in scope after its loop
     assert "radius" not in top
+
+
+def test_a_newer_change_stops_the_check_of_an_older_one(client, tmp_path):
+    import psutil
+
+    uri = open_document(client, tmp_path, SCENE)
+    client.diagnostics(uri)
+    body = " ".join(f"let z{n} = k * {n}" for n in range(9))
+    slow = SCENE + f"for k in 0..9000000 {{ {body} }}\n"  # seconds of work for tracer
+    change(client, uri, 2, slow)
+    server = psutil.Process(client.process.pid)
+    deadline = time.monotonic() + 10
+    while not [p for p in server.children() if "--stdin-name" in p.cmdline()]:
+        assert time.monotonic() < deadline, "the slow check never started"
+        time.sleep(0.02)
+    change(client, uri, 3, SCENE.replace("radius r", "radius q"))
+    assert [d["message"] for d in client.diagnostics(uri)] == ["undefined name 'q'"]
+    time.sleep(0.2)
+    assert not [
+        p for p in server.children() if p.is_running() and p.status() != psutil.STATUS_ZOMBIE
+    ], "the older check's tracer was stopped"

@@ -22,6 +22,8 @@ from tracer_tools.editing.language import Entry, Language
 
 # A check starts this long after the last keystroke (one run per pause, not per key).
 CHECK_DELAY = 0.15
+# A check still running after this long (a scene that loops for minutes) is stopped.
+CHECK_TIMEOUT = 30.0
 SEVERITY = {
     "error": types.DiagnosticSeverity.Error,
     "warning": types.DiagnosticSeverity.Warning,
@@ -96,7 +98,16 @@ class TracerServer(LanguageServer):
             stdout=asyncio.subprocess.PIPE,
             stderr=asyncio.subprocess.PIPE,
         )
-        out, _ = await process.communicate(document.source.encode())
+        try:  # a newer change cancels this check: its tracer is stopped, not left running
+            out, _ = await asyncio.wait_for(process.communicate(document.source.encode()), CHECK_TIMEOUT)
+        except asyncio.CancelledError:
+            process.kill()
+            await process.wait()
+            raise
+        except asyncio.TimeoutError:
+            process.kill()
+            await process.wait()
+            return
         try:
             report = json.loads(out.decode().splitlines()[0])
         except (IndexError, ValueError):
