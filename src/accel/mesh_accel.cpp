@@ -46,7 +46,8 @@ void release(std::vector<T>& v) {
 void PlacedTriangles::reserve_more(size_t more_positions, size_t more_normals, size_t more_triangles) {
     positions.reserve(positions.size() + more_positions);
     normals.reserve(normals.size() + more_normals);
-    for (auto* per_triangle : {&triangles, &normal_ids}) per_triangle->reserve(per_triangle->size() + more_triangles);
+    triangles.reserve(triangles.size() + more_triangles);
+    if (more_normals > 0 || !normal_ids.empty()) normal_ids.reserve(normal_ids.size() + more_triangles);
     for (auto* per_triangle : {&tags, &numbers}) per_triangle->reserve(per_triangle->size() + more_triangles);
 }
 
@@ -81,13 +82,18 @@ void append_part(PlacedTriangles& out, const MeshPart& part, int threads) {
     }
     const auto reversed_ids = mirrored ? reversed_winding(file.normal_ids) : std::vector<std::array<uint32_t, 3>>{};
     const auto& ids = file.normal_ids.empty() ? corners : mirrored ? reversed_ids : file.normal_ids;
+    // Normal ids are kept from the first smooth part on (the flat triangles before it get kFlat):
+    // a mesh of flat shapes alone has none (12 bytes a triangle).
+    constexpr std::array kAllFlat{PlacedTriangles::kFlat, PlacedTriangles::kFlat, PlacedTriangles::kFlat};
+    const bool keep_ids = !part.flat || !out.normal_ids.empty();
+    if (keep_ids) out.normal_ids.resize(out.triangles.size(), kAllFlat);
     for (uint32_t t = 0; t < corners.size(); ++t) {
         const auto& v = corners[t];
         const auto& n = ids[t];
         out.triangles.push_back({first_position + v[0], first_position + v[1], first_position + v[2]});
-        out.normal_ids.push_back(
-            part.flat ? std::array{PlacedTriangles::kFlat, PlacedTriangles::kFlat, PlacedTriangles::kFlat}
-                      : std::array{first_normal + n[0], first_normal + n[1], first_normal + n[2]});
+        if (keep_ids)
+            out.normal_ids.push_back(
+                part.flat ? kAllFlat : std::array{first_normal + n[0], first_normal + n[1], first_normal + n[2]});
         out.tags.push_back(part.tag);
         out.numbers.push_back(t);
     }
@@ -151,7 +157,7 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     size_t smooth = 0;
     for (size_t i = 0; i < n; ++i) {
         const uint32_t triangle = triangle_in_slot(i);
-        const bool flat = mesh.normal_ids[triangle][0] == PlacedTriangles::kFlat;
+        const bool flat = mesh.normal_ids.empty() || mesh.normal_ids[triangle][0] == PlacedTriangles::kFlat;
         hit_records_[i] = {mesh.numbers[triangle], mesh.tags[triangle], flat ? kFlat : uint32_t(smooth++)};
     }
     vertex_normals_.resize(smooth);

@@ -50,10 +50,11 @@ struct PlacedTriangles {
     static constexpr uint32_t kFlat = ~uint32_t(0);  // a normal id: shaded with its face normal
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;
-    std::vector<std::array<uint32_t, 3>> triangles;   // indices into positions
-    std::vector<std::array<uint32_t, 3>> normal_ids;  // indices into normals, or kFlat (all three)
-    std::vector<uint32_t> tags;                       // per triangle: its part's tag
-    std::vector<uint32_t> numbers;                    // per triangle: its number in its part's file
+    std::vector<std::array<uint32_t, 3>> triangles;  // indices into positions
+    // Per triangle: indices into normals, or kFlat (all three); empty while every triangle is flat.
+    std::vector<std::array<uint32_t, 3>> normal_ids;
+    std::vector<uint32_t> tags;     // per triangle: its part's tag
+    std::vector<uint32_t> numbers;  // per triangle: its number in its part's file
 
     // Room for this many more positions, normals and triangles.
     void reserve_more(size_t positions, size_t normals, size_t triangles);

@@ -57,7 +57,14 @@ Real half_diagonal(const Bounds& box) {
 }  // namespace
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared)
-    : materials_(scene.materials), lights_(scene.lights) {
+    : World(scene, meshes, threads, flatten_shared, nullptr) {}
+
+World::World(SceneDescription& scene, const SceneMeshes& meshes, int threads, ReleaseFlatShapes)
+    : World(scene, meshes, threads, false, &scene) {}
+
+World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
+             SceneDescription* releasable)
+    : materials_(scene.materials), lights_(scene.lights), releasable_(releasable) {
     static std::atomic<uint64_t> worlds{0};
     serial_ = ++worlds;
     for (const Material& material : materials_) refracts_ = refracts_ || material.kt != dvec3(0.0);
@@ -80,6 +87,7 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
     add_round_shapes(scene);
     // Step 3: the top level over every bounded object.
     build_top_level(settings);
+    releasable_ = nullptr;
 }
 
 void World::add_bounded(const Bounds& box, uint32_t object, uint32_t index, ObjectKind kind) {
@@ -170,6 +178,12 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
     for (const FlatTriangle& shape : scene.triangles) add_flat(shape, triangle_mesh(shape));
     for (const Quad& shape : scene.quads) add_flat(shape, triangle_mesh(shape));
     for (const Box& shape : scene.boxes) add_flat(shape, triangle_mesh(shape));
+    if (releasable_) {  // placed: their descriptions are not needed again
+        // Move-assigned, not `= {}`: that clears a vector but keeps its memory.
+        releasable_->triangles = std::vector<FlatTriangle>();
+        releasable_->quads = std::vector<Quad>();
+        releasable_->boxes = std::vector<Box>();
+    }
     for (uint32_t index : merged_instances) instances_[index].mesh = uint32_t(meshes_.size());
     merged_mesh_ = uint32_t(meshes_.size());
     // One shape alone needs no look-up of its triangles' tag (the hit record's cache line).
@@ -196,7 +210,7 @@ void World::build_top_level(const SearchSettings& settings) {
         for (uint32_t i : top_.order()) in_leaf_order.push_back(bounded_[i]);
         bounded_ = std::move(in_leaf_order);
     }
-    boxes_ = {};  // only the build needs them
+    boxes_ = decltype(boxes_)();  // only the build needs them (`= {}` would keep the memory)
     top_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -93,6 +93,10 @@ public:
     // scene's accelerator, built on `threads` threads (0: all). `flatten_shared` merges every
     // mesh block into one placed mesh, shared files too (for measuring instancing against it).
     World(const SceneDescription& scene, const SceneMeshes& meshes = {}, int threads = 0, bool flatten_shared = false);
+    // The same, emptying the scene's lists of flat shapes (triangles, quads, boxes) once they
+    // are placed, before their BVH is built: a million of them need that memory for the build.
+    struct ReleaseFlatShapes {};
+    World(SceneDescription& scene, const SceneMeshes& meshes, int threads, ReleaseFlatShapes);
 
     // The nearest surface along `ray` with t inside `range`.
     std::optional<Hit> nearest_hit(const Ray& ray, Interval range, SearchCounts& counts) const;
@@ -154,6 +158,8 @@ private:
         ObjectKind kind;
     };
 
+    World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
+          SceneDescription* releasable);
     void add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
                     bool flatten_shared);
     void add_bounded(const Bounds& box, uint32_t object, uint32_t index, ObjectKind kind = ObjectKind::MeshInstance);
@@ -188,6 +194,7 @@ private:
     std::vector<Material> materials_;
     std::vector<Light> lights_;
     uint64_t serial_;
+    SceneDescription* releasable_ = nullptr;  // whose flat shapes go once placed
 };
 
 }  // namespace tracer

@@ -225,7 +225,7 @@ int render_to_file(const Options& options) {
             std::cerr << "tracer: error: --" << *problem << '\n';
             return kUsageError;
         }
-    const tracer::World world(loaded->scene, loaded->meshes, options.threads);
+    const tracer::World world(loaded->scene, loaded->meshes, options.threads, tracer::World::ReleaseFlatShapes{});
     if (options.region_list) return render_regions(options, world, scene);
 
     // Step 2: render, stoppable with Ctrl-C (or a SIGTERM, even one that came while loading).

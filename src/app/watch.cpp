@@ -279,7 +279,7 @@ int watch_scene(const WatchSettings& settings, const LoadForWatch& load, const O
             if (auto clash = output_clash(loaded->scene)) {
                 events.problem(*clash);
             } else {
-                const World world(loaded->scene, loaded->meshes, pool.size());
+                const World world(loaded->scene, loaded->meshes, pool.size(), World::ReleaseFlatShapes{});
                 SceneDescription& scene = loaded->scene;
                 const RenderSettings& full = scene.render;
                 const long samples = long(full.width) * full.height * full.samples;
