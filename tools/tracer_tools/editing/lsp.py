@@ -126,6 +126,7 @@ class TracerServer(LanguageServer):
             self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(uri=target, diagnostics=items))
 
     def lsp_range(self, found: dict) -> types.Range:
+        """The LSP range of a diagnostic of tracer's JSON (the whole first line's start for a whole file)."""
         line = max(found["line"] - 1, 0)
         text = self.line_text(found["path"], line)
         start = utf16_column(text, found["column"]) if found["line"] > 0 else 0
@@ -133,6 +134,7 @@ class TracerServer(LanguageServer):
         return types.Range(types.Position(line, start), types.Position(line, end))
 
     def line_text(self, path: str, line: int) -> str:
+        """Line `line` (from 0) of `path`: the open document's text if open, else the file's ("" if unreadable)."""
         document = self.workspace.text_documents.get(path_to_uri(path))
         try:
             lines = document.lines if document else pathlib.Path(path).read_text(errors="replace").splitlines()
@@ -141,6 +143,7 @@ class TracerServer(LanguageServer):
             return ""
 
     def lsp_diagnostic(self, found: dict) -> types.Diagnostic:
+        """A diagnostic of tracer's JSON as the LSP's, its notes as related information."""
         related = [
             types.DiagnosticRelatedInformation(
                 location=types.Location(uri=path_to_uri(note["path"]), range=self.lsp_range(note)),
@@ -160,6 +163,7 @@ class TracerServer(LanguageServer):
         )
 
     def schedule_check(self, uri: str) -> None:
+        """Checks the document CHECK_DELAY after now, cancelling a check scheduled or running."""
         if task := self.pending.get(uri):
             task.cancel()
 
@@ -195,6 +199,7 @@ class TracerServer(LanguageServer):
         return visible
 
     def hover_entry(self, uri: str, text: str, offset: int) -> Entry | None:
+        """What the word at `offset` is: a key of the enclosing block, a block kind, a built-in or a scene name."""
         found = scene_text.word_at(text, offset)
         if not found:
             return None
@@ -213,6 +218,7 @@ class TracerServer(LanguageServer):
         return None
 
     def completions(self, uri: str, text: str, offset: int) -> list[types.CompletionItem]:
+        """What may be written at `offset`: keys in a block, else blocks and statements; built-ins; names in scope."""
         kind = self.context_kind(text, offset)
         entries: list[Entry] = []
         if kind:
@@ -245,6 +251,7 @@ class TracerServer(LanguageServer):
 
 
 def make_server(tracer: str) -> TracerServer:
+    """The server with its handlers, checking with the tracer executable at `tracer`."""
     server = TracerServer(tracer)
 
     @server.feature(types.TEXT_DOCUMENT_DID_OPEN)
@@ -284,6 +291,7 @@ def make_server(tracer: str) -> TracerServer:
 
 
 def main() -> int:
+    """tools/lsp: serves on stdin and stdout until the client says exit."""
     parser = argparse.ArgumentParser(prog="tools/lsp", description=__doc__.split("\n\n")[0])
     parser.add_argument(
         "--tracer",

@@ -77,6 +77,7 @@ class PreviewState:
         }
 
     def on_event(self, event: dict) -> None:
+        """Takes one event of tracer --watch --diagnostics json into the page's state."""
         with self.lock:
             if event["event"] == "load":
                 self.state["loads"] += 1
@@ -95,11 +96,13 @@ class PreviewState:
                 self.state["diagnostics"] = "tracer: error: " + event["message"]
 
     def snapshot(self) -> tuple[dict, bytes]:
+        """The page's state and the latest image's bytes, read together."""
         with self.lock:
             return dict(self.state), self.image
 
 
 def make_handler(state: PreviewState, title: str) -> type:
+    """The HTTP handler class: / (the page), /state (JSON), /image (the PNG)."""
     page = PAGE.format(title=html.escape(title)).encode()
 
     class Handler(http.server.BaseHTTPRequestHandler):
@@ -129,15 +132,18 @@ def make_handler(state: PreviewState, title: str) -> type:
 
 
 def follow(process: subprocess.Popen, state: PreviewState) -> None:
+    """Feeds tracer's events to `state` until tracer ends."""
     for line in process.stdout:
         state.on_event(json.loads(line))
 
 
 def stop_on_sigterm(*_: object) -> None:
+    """SIGTERM stops the server as Ctrl-C does (tracer is then stopped too)."""
     raise KeyboardInterrupt
 
 
 def main() -> int:
+    """tools/preview: serves until Ctrl-C or SIGTERM, then stops tracer."""
     parser = argparse.ArgumentParser(prog="tools/preview", description=__doc__.split("\n\n")[0])
     parser.add_argument("scene", type=pathlib.Path)
     parser.add_argument(
