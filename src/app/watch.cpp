@@ -119,6 +119,7 @@ class WatchEvents {
 public:
     explicit WatchEvents(const WatchSettings& settings) : settings_(settings) {}
 
+    // A load: its diagnostics, and when it failed, that the last image stays.
     void loaded(const std::string& scene, const LoadReport& report) const {
         if (settings_.json_events) {
             nlohmann::json event = load_report_json(scene, report);
@@ -131,6 +132,7 @@ public:
                           << "waiting for a change (Ctrl-C stops)\n";
         }
     }
+    // An image written: its summary line ("preview" or "full").
     void image(const char* stage, const std::string& summary, const Image& image, const RenderSettings& full,
                double seconds) {
         wrote_ = true;
@@ -147,12 +149,14 @@ public:
         else if (!settings_.quiet)
             std::cerr << summary << (std::string(stage) == "preview" ? " (preview)" : "") << '\n';
     }
+    // A problem outside the scene (an output that clashes with an input, a failed write).
     void problem(const std::string& message) const {
         if (settings_.json_events)
             emit({{"event", "error"}, {"message", message}});
         else
             std::cerr << "tracer: error: " << message << '\n';
     }
+    // A change seen: the first file that changed, and whether it cut a round short.
     void changed(const std::string& path, bool cancelled) const {
         if (settings_.json_events)
             emit({{"event", "changed"}, {"path", path}, {"cancelled_render", cancelled}});
