@@ -158,7 +158,15 @@ def main() -> int:
         parser.error("the preview page shows PNG images: give -o NAME.png")
     output.parent.mkdir(parents=True, exist_ok=True)
     state = PreviewState(output)
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", args.port), make_handler(state, str(args.scene)))
+    try:
+        server = http.server.ThreadingHTTPServer(("127.0.0.1", args.port), make_handler(state, str(args.scene)))
+    except OSError as error:
+        print(
+            f"tools/preview: error: cannot serve on 127.0.0.1:{args.port}: {error.strerror}; try another --port "
+            "(0: any free one)",
+            file=sys.stderr,
+        )
+        return 3
     process = subprocess.Popen(
         [args.tracer, str(args.scene), "-o", str(output), "--watch", "--diagnostics", "json", *args.tracer_options],
         stdout=subprocess.PIPE,
