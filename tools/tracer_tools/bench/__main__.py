@@ -18,6 +18,7 @@ BENCHMARKS = {
     "farm-engines": ("farm_engines", "Dask against Ray for the farm's tasks (docs/farm-engines.txt)"),
     "builds": ("builds", "this tree against an earlier commit on the single-mesh and many-objects scenes"),
     "compare-builds": ("compare_builds", "two builds of trace_parts alternated: time per query"),
+    "versus": ("versus", "issue 35's table: tracer against Embree (render, build) and POV-Ray (trace)"),
     "watch": ("watch", "tracer --watch: from a save to the preview and the full image (docs/bench-watch.txt)"),
     "adaptive": (
         "adaptive",

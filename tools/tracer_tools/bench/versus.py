@@ -1,0 +1,112 @@
+"""tracer against its two peers in one run, on the scenes of issue 35's table: Embree 3's
+single-ray kernels (render and build; compare_scene.py of the Embree anchor alternates
+tracer_bench and embree_scene, A B A B, medians of the per-pair ratios) and POV-Ray 3.7 (its
+reported Trace Time against tracer's render time, alternated the same way), 2 threads.
+Embree's anchor has no refraction: gears and mount are compared with it without kt and ior
+(and say so); POV-Ray renders them whole. Output as committed in docs/bench-versus.md.
+
+    tools/bench versus [--shared ../shared] [--pairs 3] [--runs 3] [--scenes task2,balls,...]
+"""
+
+import argparse
+import pathlib
+import re
+import statistics
+import subprocess
+import tempfile
+
+from tracer_tools import ROOT
+from tracer_tools.bench.common import TRACER, git, machine
+from tracer_tools.spd import steps
+
+# name: (scene as compare_scene.py takes it, POV-Ray too?)
+SCENES = {
+    "task2": ("scenes/task2.scn", True),
+    "bunny": ("scenes/bunny.scn", False),
+    "bunny_room": ("scenes/bunny_room.scn", False),
+    "bunnies_64": ("bunnies_64", False),
+    "spheres_4096": ("spheres_4096", False),
+    **{
+        name: (f"scenes/spd/{name}.scn", True)
+        for name in ("balls", "gears", "mount", "rings", "teapot", "tetra", "tree")
+    },
+}
+THREADS = 2
+
+
+def tracer_render_seconds(scene: pathlib.Path, folder: pathlib.Path) -> float:
+    """tracer's render time of the scene (the summary line's: the render loop alone)."""
+    done = subprocess.run(
+        [str(TRACER), str(scene), "-o", str(folder / "tracer.png"), "--threads", str(THREADS)],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return float(re.search(r", ([0-9.]+) s, ", done.stderr.strip().splitlines()[-1]).group(1))
+
+
+def versus_povray(scene: pathlib.Path, pairs: int, folder: pathlib.Path) -> dict:
+    """Median of the per-pair ratios tracer render / POV-Ray trace, alternating."""
+    from tracer_tools.xcheck import povray, tracer_cli
+
+    description = tracer_cli.dump_json(scene)
+    ratios, ours, theirs = [], [], []
+    for _ in range(pairs):
+        ours.append(tracer_render_seconds(scene, folder))
+        _, times = povray.render_scene(description, folder)
+        theirs.append(times["trace_seconds"])
+        ratios.append(ours[-1] / theirs[-1])
+    return {
+        "ratio": statistics.median(ratios),
+        "tracer_s": statistics.median(ours),
+        "povray_s": statistics.median(theirs),
+    }
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--shared", type=pathlib.Path, default=ROOT.parent / "shared")
+    parser.add_argument("--pairs", type=int, default=3)
+    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--scenes", default=",".join(SCENES))
+    args = parser.parse_args()
+    bench_folder = args.shared / "bench" / "embree-whitted"
+    if not bench_folder.is_dir():
+        parser.error(f"no Embree anchor at {bench_folder} (give --shared)")
+    embree = steps.build_embree(bench_folder, ROOT / "build" / "spd" / "embree")
+    print(f"# tools/bench versus: {git('log', '-1', '--format=%cs')}, {git('rev-parse', '--short', 'HEAD')}")
+    print(
+        f"# machine: {machine()}; threads used: {THREADS}; release preset (-O3 -march=native); "
+        f"{args.pairs} pairs, {args.runs} runs each\n"
+    )
+    print("| scene | render vs Embree single-ray | build vs Embree | trace vs POV-Ray 3.7 | tracer / POV-Ray s |")
+    print("|---|--:|--:|--:|--:|")
+    with tempfile.TemporaryDirectory() as temporary:
+        folder = pathlib.Path(temporary)
+        for name in args.scenes.split(","):
+            scene, with_povray = SCENES[name]
+            embree_scene, note = scene, ""
+            if name in ("gears", "mount"):
+                copy = ROOT / "scenes" / "spd" / f".{name}_no_refraction.scn"  # beside it: its meshes' paths
+                steps.without_refraction(ROOT / scene, copy)
+                embree_scene, note = str(copy), " (Embree: refraction off)"
+            try:
+                found = steps.compare_with_embree(
+                    bench_folder, embree, embree_scene, args.pairs, args.runs, folder / "compare.json"
+                )
+            finally:
+                if note:
+                    pathlib.Path(embree_scene).unlink(missing_ok=True)
+            render = f"{found['render_ratio']:.2f}" if "render_ratio" in found else "refused"
+            build = f"{found['build_ratio']:.2f}" if found.get("build_ratio") is not None else "–"
+            trace = times = "–"
+            if with_povray:
+                peer = versus_povray(ROOT / scene, args.pairs, folder)
+                trace, times = f"{peer['ratio']:.2f}", f"{peer['tracer_s']:.3f} / {peer['povray_s']:.2f}"
+            print(f"| {name}{note} | {render} | {build} | {trace} | {times} |", flush=True)
+            (folder / "compare.json").unlink(missing_ok=True)
+    print(
+        "\nRatios are tracer's time over the peer's (below 1: tracer is faster); issue 35's targets: render "
+        "≤ 0.7, build ≤ 1.0, trace ≤ 0.2."
+    )
+    return 0
