@@ -16,7 +16,7 @@ import subprocess
 import tempfile
 
 from tracer_tools import ROOT
-from tracer_tools.bench.common import TRACER, git, machine
+from tracer_tools.bench.common import TRACER, TRACER_BENCH, git, machine, run_json
 from tracer_tools.spd import steps
 
 # name: (scene as compare_scene.py takes it, POV-Ray too?)
@@ -63,6 +63,25 @@ def versus_povray(scene: pathlib.Path, pairs: int, folder: pathlib.Path) -> dict
     }
 
 
+def bunny_crop(embree_bench: pathlib.Path, pairs: int, runs: int) -> dict:
+    """The bunny's hit-dominated crop: tracer_bench against embree_bench single rays and 16-wide
+    packets, alternating (medians of the per-round ratios)."""
+    crop = ["--crop", "auto", "--threads", str(THREADS), "--runs", str(runs), "--json"]
+    single, packets, build = [], [], []
+    for _ in range(pairs):
+        one = run_json([embree_bench, *crop])
+        ours = run_json([TRACER_BENCH, ROOT / "scenes" / "bunny.scn", *crop])
+        sixteen = run_json([embree_bench, "--packet", "16", *crop])
+        single.append(ours["render_ms_median"] / one["render_ms_median"])
+        packets.append(ours["render_ms_median"] / sixteen["render_ms_median"])
+        build.append(ours["build_ms"] / one["build_ms"])
+    return {
+        "single": statistics.median(single),
+        "packets": statistics.median(packets),
+        "build": statistics.median(build),
+    }
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--shared", type=pathlib.Path, default=ROOT.parent / "shared")
@@ -105,8 +124,15 @@ def main() -> int:
                 trace, times = f"{peer['ratio']:.2f}", f"{peer['tracer_s']:.3f} / {peer['povray_s']:.2f}"
             print(f"| {name}{note} | {render} | {build} | {trace} | {times} |", flush=True)
             (folder / "compare.json").unlink(missing_ok=True)
+            if name == "bunny":
+                crop = bunny_crop(embree.parent / "embree_bench", args.pairs, args.runs)
+                print(
+                    f"| bunny, hit-dominated crop | {crop['single']:.2f} ({crop['packets']:.2f} against 16-wide "
+                    f"packets) | {crop['build']:.2f} | – | – |",
+                    flush=True,
+                )
     print(
         "\nRatios are tracer's time over the peer's (below 1: tracer is faster); issue 35's targets: render "
-        "≤ 0.7, build ≤ 1.0, trace ≤ 0.2."
+        "≤ 0.7 (the crop ≤ 1.0 against packets), build ≤ 1.0, trace ≤ 0.2."
     )
     return 0
