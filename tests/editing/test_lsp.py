@@ -204,3 +204,40 @@ def test_a_newer_change_stops_the_check_of_an_older_one(client, tmp_path):
     assert not [
         p for p in server.children() if p.is_running() and p.status() != psutil.STATUS_ZOMBIE
     ], "the older check's tracer was stopped"
+
+
+def test_go_to_definition_finds_the_name_in_scope(client, tmp_path):
+    (tmp_path / "lib.scn").write_text("let k = 2\n")
+    text = 'include "lib.scn"\n' + SCENE.replace("radius r", "radius r * k")
+    uri = open_document(client, tmp_path, text)
+    client.diagnostics(uri)
+
+    def definition(needle, delta=0):
+        return client.request(
+            "textDocument/definition", {"textDocument": {"uri": uri}, "position": position_of(text, needle, delta)}
+        )
+
+    assert definition("r * k") == {
+        "uri": uri,
+        "range": {"start": position_of(text, "r = 0.5"), "end": position_of(text, "r = 0.5", 1)},
+    }
+    assert definition("shiny }")["range"]["start"] == position_of(text, "shiny {")
+    assert definition("i, 0, 0")["range"]["start"] == position_of(text, "i in")
+    included = definition("k material")
+    assert included["uri"] == (tmp_path / "lib.scn").as_uri()
+    assert included["range"]["start"] == {"line": 0, "character": 4}
+    assert definition("sphere {") is None  # a block kind, not a name
+
+
+def test_go_to_definition_takes_the_inner_name_that_hides_an_outer_one(client, tmp_path):
+    text = SCENE + "for j in 0..2 {\n  let r = j + 1\n  sphere { center (j, 2, 0) radius r / 9 material shiny }\n}\n"
+    uri = open_document(client, tmp_path, text)
+    assert client.diagnostics(uri) == []
+    found = client.request(
+        "textDocument/definition", {"textDocument": {"uri": uri}, "position": position_of(text, "r / 9")}
+    )
+    assert found["range"]["start"] == position_of(text, "r = j")
+    outer = client.request(
+        "textDocument/definition", {"textDocument": {"uri": uri}, "position": position_of(text, "r material")}
+    )
+    assert outer["range"]["start"] == position_of(text, "r = 0.5")

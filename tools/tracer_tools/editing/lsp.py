@@ -217,6 +217,26 @@ class TracerServer(LanguageServer):
                 return Entry(word, name["kind"], name["kind"], f"`{word}`: {name['kind']}, defined at {where}")
         return None
 
+    def definition(self, uri: str, text: str, offset: int) -> types.Location | None:
+        """Where the scene name at `offset` is defined: of the definitions in scope there, the last
+        one written before it (an inner `let` hides an outer one), else any (a material, an include's)."""
+        found = scene_text.word_at(text, offset)
+        if not found:
+            return None
+        named = [n for n in self.scene_names(uri, text, offset) if n["name"] == found[0]]
+        if not named:
+            return None
+        path = uri_to_path(uri)
+        here = text[:offset].count("\n") + 1
+        before = [n for n in named if n["path"] == path and n["line"] <= here]
+        chosen = max(before, key=lambda n: (n["line"], n["column"])) if before else named[0]
+        line = chosen["line"] - 1
+        start = utf16_column(self.line_text(chosen["path"], line), chosen["column"])
+        end = start + len(found[0].encode("utf-16-le")) // 2
+        return types.Location(
+            uri=path_to_uri(chosen["path"]), range=types.Range(types.Position(line, start), types.Position(line, end))
+        )
+
     def completions(self, uri: str, text: str, offset: int) -> list[types.CompletionItem]:
         """What may be written at `offset`: keys in a block, else blocks and statements; built-ins; names in scope."""
         kind = self.context_kind(text, offset)
@@ -278,6 +298,12 @@ def make_server(tracer: str) -> TracerServer:
         if entry is None:
             return None
         return types.Hover(contents=types.MarkupContent(types.MarkupKind.Markdown, entry.documentation))
+
+    @server.feature(types.TEXT_DOCUMENT_DEFINITION)
+    def definition(ls: TracerServer, params: types.DefinitionParams):
+        document = ls.workspace.get_text_document(params.text_document.uri)
+        offset = offset_of(document.source, params.position)
+        return ls.definition(params.text_document.uri, document.source, offset)
 
     @server.feature(types.TEXT_DOCUMENT_COMPLETION, types.CompletionOptions(trigger_characters=[" "]))
     def completion(ls: TracerServer, params: types.CompletionParams):
