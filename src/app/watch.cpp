@@ -132,11 +132,13 @@ public:
                           << "waiting for a change (Ctrl-C stops)\n";
         }
     }
-    // An image written: its summary line ("preview" or "full").
+    // An image written: its summary line ("preview" or "full"), and the note when camera rays
+    // reached the bound of their ray trees.
     void image(const char* stage, const std::string& summary, const Image& image, const RenderSettings& full,
-               double seconds) {
+               const RenderStats& stats) {
         wrote_ = true;
-        if (settings_.json_events)
+        const std::string note = trees_cut_note(stats);  // the image is not what max_depth says
+        if (settings_.json_events) {
             emit({{"event", "image"},
                   {"stage", stage},
                   {"path", settings_.output},
@@ -144,10 +146,14 @@ public:
                   {"height", image.height},
                   {"full_width", full.width},
                   {"full_height", full.height},
-                  {"seconds", seconds},
-                  {"summary", summary}});
-        else if (!settings_.quiet)
-            std::cerr << summary << (std::string(stage) == "preview" ? " (preview)" : "") << '\n';
+                  {"seconds", stats.seconds},
+                  {"summary", summary},
+                  {"trees_cut", stats.rays.trees_cut},
+                  {"note", note}});
+            return;
+        }
+        if (!settings_.quiet) std::cerr << summary << (std::string(stage) == "preview" ? " (preview)" : "") << '\n';
+        if (!note.empty() && std::string(stage) == "full") std::cerr << note << '\n';  // even with --quiet
     }
     // A problem outside the scene (an output that clashes with an input, a failed write).
     void problem(const std::string& message) const {
@@ -241,7 +247,7 @@ bool render_and_write(const World& world, SceneDescription& scene, const RenderS
         events.problem(*problem);
         return false;
     }
-    events.image(stage, summary, image, full, stats.seconds);
+    events.image(stage, summary, image, full, stats);
     return true;
 }
 

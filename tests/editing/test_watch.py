@@ -189,3 +189,22 @@ def test_watch_refuses_what_it_cannot_do(tracer_bin, project, tmp_path):
         )
         assert result.returncode == 2, arguments
         assert "--watch" in result.stderr
+
+
+def test_the_bound_on_ray_trees_is_reported_as_a_render_reports_it(tracer_bin, tmp_path):
+    # Four parallel glass planes at max_depth 100000 (tests/cli/test_hostile.py's hall): camera
+    # rays reach the bound of 10,000 rays a tree, which the image events count and note.
+    scene = tmp_path / "hall.scn"
+    scene.write_text(
+        "camera { eye (0, 0, 0.5) lookat (1, 0.2, 0.5) fovy 60 }\nlight { position (0, 0, 0.5) }\n"
+        "material glass { kd 0.1 km 1 kt 1 ior 1.5 }\n"
+        "for x in [-1, -0.5, 0.5, 1] { plane { point (x, 0, 0) normal (1, 0, 0) material glass } }\n"
+        "render { width 16 height 12 max_depth 100000 }\n"
+    )
+    watcher = Watcher(tracer_bin, scene, tmp_path / "hall.png")
+    try:
+        event = watcher.next("image", "full")
+        assert event["trees_cut"] > 0
+        assert "reached the bound of 10000 reflected and refracted rays" in event["note"]
+    finally:
+        assert watcher.stop() == 130
