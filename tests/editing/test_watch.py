@@ -146,13 +146,18 @@ def test_a_burst_of_saves_renders_the_latest_only(tracer_bin, project, tmp_path)
     try:
         watcher.next("image", "full")
         watcher.drain(0.2)
+        started = time.monotonic()
         for width in range(81, 91):
             save(project, SCENE.format(width=width))
+        took = time.monotonic() - started
         events = watcher.drain(2.0)
         loads = [e for e in events if e["event"] == "load"]
         images = [e for e in events if e["event"] == "image" and e["stage"] == "full"]
-        assert len(loads) == 1, events
-        assert [e["width"] for e in images] == [90]
+        if took < 0.03:  # within the 40 ms that make one change (a loaded machine may take longer)
+            assert len(loads) == 1, events
+            assert [e["width"] for e in images] == [90]
+        else:
+            assert len(loads) < 10 and images[-1]["width"] == 90, events
         assert pixels(output).shape[:2] == (60, 90)
     finally:
         assert watcher.stop() == 130
