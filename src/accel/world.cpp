@@ -64,7 +64,7 @@ World::World(SceneDescription& scene, const SceneMeshes& meshes, int threads, Re
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
              SceneDescription* releasable)
-    : materials_(scene.materials), lights_(scene.lights), releasable_(releasable) {
+    : materials_(scene.materials), lights_(scene.lights) {
     static std::atomic<uint64_t> worlds{0};
     serial_ = ++worlds;
     for (const Material& material : materials_) refracts_ = refracts_ || material.kt != dvec3(0.0);
@@ -83,11 +83,10 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
     }
     // Step 2: the meshes, each file built once, and an instance per mesh block; then the cones
     // and discs (numbered after every older kind, so that older scenes keep their order).
-    add_meshes(scene, meshes, settings, flatten_shared);
+    add_meshes(scene, meshes, settings, flatten_shared, releasable);
     add_round_shapes(scene);
     // Step 3: the top level over every bounded object.
     build_top_level(settings);
-    releasable_ = nullptr;
 }
 
 void World::add_bounded(const Bounds& box, uint32_t object, uint32_t index, ObjectKind kind) {
@@ -124,7 +123,7 @@ void World::add_round_shapes(const SceneDescription& scene) {
 }
 
 void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
-                       bool flatten_shared) {
+                       bool flatten_shared, SceneDescription* releasable) {
     std::vector<int> blocks_of_file(meshes.files.size(), 0);
     for (uint32_t file : meshes.file_of_block) ++blocks_of_file[file];
     std::map<std::pair<uint32_t, bool>, uint32_t> shared_mesh;  // (file, flat) -> index into meshes_
@@ -178,11 +177,11 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
     for (const FlatTriangle& shape : scene.triangles) add_flat(shape, triangle_mesh(shape));
     for (const Quad& shape : scene.quads) add_flat(shape, triangle_mesh(shape));
     for (const Box& shape : scene.boxes) add_flat(shape, triangle_mesh(shape));
-    if (releasable_) {  // placed: their descriptions are not needed again
+    if (releasable) {  // placed: their descriptions are not needed again
         // Move-assigned, not `= {}`: that clears a vector but keeps its memory.
-        releasable_->triangles = std::vector<FlatTriangle>();
-        releasable_->quads = std::vector<Quad>();
-        releasable_->boxes = std::vector<Box>();
+        releasable->triangles = std::vector<FlatTriangle>();
+        releasable->quads = std::vector<Quad>();
+        releasable->boxes = std::vector<Box>();
     }
     for (uint32_t index : merged_instances) instances_[index].mesh = uint32_t(meshes_.size());
     merged_mesh_ = uint32_t(meshes_.size());

@@ -160,8 +160,9 @@ private:
 
     World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
           SceneDescription* releasable);
+    // `releasable`: the scene (the same object) whose flat shapes are emptied once placed, or null.
     void add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
-                    bool flatten_shared);
+                    bool flatten_shared, SceneDescription* releasable);
     void add_bounded(const Bounds& box, uint32_t object, uint32_t index, ObjectKind kind = ObjectKind::MeshInstance);
     void add_round_shapes(const SceneDescription& scene);
     bool hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
@@ -194,7 +195,6 @@ private:
     std::vector<Material> materials_;
     std::vector<Light> lights_;
     uint64_t serial_;
-    SceneDescription* releasable_ = nullptr;  // whose flat shapes go once placed
 };
 
 }  // namespace tracer

@@ -90,10 +90,14 @@ tracer::ParameterValues parameter_values(const Options& options) {
     return out;
 }
 
+// The name a scene read from standard input goes by (--stdin-name, else <stdin>).
+std::string standard_input_name(const Options& options) {
+    return options.stdin_name.empty() ? std::string(tracer::kStandardInputName) : options.stdin_name;
+}
+
 // The scene's name in messages.
 std::string scene_name(const Options& options) {
-    if (options.scene != "-") return options.scene;
-    return options.stdin_name.empty() ? std::string(tracer::kStandardInputName) : options.stdin_name;
+    return options.scene == "-" ? standard_input_name(options) : options.scene;
 }
 
 // How a load's diagnostics reach the user: as text on stderr, or as one line of JSON on stdout.
@@ -116,9 +120,7 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
 // The same, handing the diagnostics to `report`.
 std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code, const tracer::ReportLoad& report) {
     bool unreadable = false;
-    tracer::SceneInput input{options.scene,
-                             options.stdin_name.empty() ? std::string(tracer::kStandardInputName) : options.stdin_name,
-                             parameter_values(options)};
+    tracer::SceneInput input{options.scene, standard_input_name(options), parameter_values(options)};
     auto loaded = tracer::load_scene_with_meshes(
         input,
         [&](tracer::SceneDescription& scene) {

@@ -19,9 +19,10 @@ LoadResult load_scene_text(const std::string& path, std::string text, bool fragm
     const EvaluatedScene evaluated = interpret(sources, result.diagnostics, parameters, limits, check_and_build);
     result.scene = builder.finish(evaluated.parameters);
     for (size_t i = 1; i < sources.files(); ++i) result.included_paths.push_back(sources.file_at(i).path());
-    for (const NameDefinition& defined : evaluated.names) {
-        const Location at = Diagnostics::locate(sources, defined.span);
-        result.names.push_back({defined.name, defined.kind, at.path, at.line, at.column});
+    for (const NameDefinition& defined : evaluated.names) {  // line and column only: no line text copied
+        const SourceFile& file = sources.file(defined.span);
+        const LineCol at = file.locate(defined.span.begin);
+        result.names.push_back({defined.name, defined.kind, file.path(), at.line, at.column});
     }
     if (result.scene)  // the files an output must never replace (with the scene and its meshes)
         result.scene->included_paths = result.included_paths;
