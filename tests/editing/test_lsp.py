@@ -6,12 +6,11 @@ import os
 import pathlib
 import queue
 import subprocess
-import sys
 import threading
 import time
 
 import pytest
-from conftest import ROOT
+from conftest import start_tool
 
 SCENE = """let r = 0.5
 material shiny { kd (1, 0.5, 0.2) ks 0.5 n 20 }
@@ -27,13 +26,7 @@ class Client:
     """A minimal LSP client: Content-Length framed JSON-RPC on the server's stdin and stdout."""
 
     def __init__(self, tracer):
-        environment = dict(os.environ, PYTHONPATH=str(ROOT / "tools"))
-        self.process = subprocess.Popen(
-            [sys.executable, "-m", "tracer_tools", "lsp", "--tracer", str(tracer)],
-            stdin=subprocess.PIPE,
-            stdout=subprocess.PIPE,
-            env=environment,
-        )
+        self.process = start_tool("lsp", "--tracer", tracer, stdin=subprocess.PIPE, stdout=subprocess.PIPE)
         self.messages = queue.Queue()
         self.next_id = 0
         threading.Thread(target=self._read, daemon=True).start()
@@ -65,6 +58,10 @@ class Client:
             if message.get("id") == self.next_id and "method" not in message:
                 assert "error" not in message, message
                 return message["result"]
+
+    def request_at(self, method, uri, text, needle, delta=0):
+        """`method` at the place of `needle` (plus `delta` characters) in the document `text`."""
+        return self.request(method, {"textDocument": {"uri": uri}, "position": position_of(text, needle, delta)})
 
     def diagnostics(self, uri, timeout=30):
         """The next diagnostics published for `uri`."""
@@ -149,9 +146,7 @@ def test_hover_explains_keys_blocks_builtins_and_names(client, tmp_path):
     client.diagnostics(uri)
 
     def hover(needle, delta=1):
-        result = client.request(
-            "textDocument/hover", {"textDocument": {"uri": uri}, "position": position_of(SCENE, needle, delta)}
-        )
+        result = client.request_at("textDocument/hover", uri, SCENE, needle, delta)
         return result["contents"]["value"] if result else None
 
     language = json.loads(
@@ -171,9 +166,7 @@ def test_completion_offers_keys_blocks_materials_and_names_in_scope(client, tmp_
     client.diagnostics(uri)
 
     def labels(needle, delta=0):
-        result = client.request(
-            "textDocument/completion", {"textDocument": {"uri": uri}, "position": position_of(SCENE, needle, delta)}
-        )
+        result = client.request_at("textDocument/completion", uri, SCENE, needle, delta)
         return {item["label"] for item in result["items"]}
 
     in_sphere = labels("radius r")
@@ -213,9 +206,7 @@ def test_go_to_definition_finds_the_name_in_scope(client, tmp_path):
     client.diagnostics(uri)
 
     def definition(needle, delta=0):
-        return client.request(
-            "textDocument/definition", {"textDocument": {"uri": uri}, "position": position_of(text, needle, delta)}
-        )
+        return client.request_at("textDocument/definition", uri, text, needle, delta)
 
     assert definition("r * k") == {
         "uri": uri,
@@ -233,11 +224,7 @@ def test_go_to_definition_takes_the_inner_name_that_hides_an_outer_one(client, t
     text = SCENE + "for j in 0..2 {\n  let r = j + 1\n  sphere { center (j, 2, 0) radius r / 9 material shiny }\n}\n"
     uri = open_document(client, tmp_path, text)
     assert client.diagnostics(uri) == []
-    found = client.request(
-        "textDocument/definition", {"textDocument": {"uri": uri}, "position": position_of(text, "r / 9")}
-    )
+    found = client.request_at("textDocument/definition", uri, text, "r / 9")
     assert found["range"]["start"] == position_of(text, "r = j")
-    outer = client.request(
-        "textDocument/definition", {"textDocument": {"uri": uri}, "position": position_of(text, "r material")}
-    )
+    outer = client.request_at("textDocument/definition", uri, text, "r material")
     assert outer["range"]["start"] == position_of(text, "r = 0.5")

@@ -6,11 +6,9 @@ import os
 import pathlib
 import shutil
 import signal
-import subprocess
-import sys
 
 import pytest
-from conftest import ROOT
+from conftest import start_preview
 
 SCENE = """camera {{ eye (0, 0, 7) lookat (0, 0, 0) }}
 render {{ width {width} height 40 }}
@@ -30,25 +28,7 @@ pytestmark = pytest.mark.skipif(
 def preview(tracer_bin, tmp_path):
     scene = tmp_path / "scene.scn"
     scene.write_text(SCENE.format(width=60))
-    environment = dict(os.environ, PYTHONPATH=str(ROOT / "tools"))
-    process = subprocess.Popen(
-        [
-            sys.executable,
-            "-m",
-            "tracer_tools",
-            "preview",
-            str(scene),
-            "-o",
-            str(tmp_path / "out.png"),
-            "--port",
-            "0",
-            "--tracer",
-            str(tracer_bin),
-        ],
-        stdout=subprocess.PIPE,
-        text=True,
-        env=environment,
-    )
+    process = start_preview(tracer_bin, scene, tmp_path / "out.png", 0)
     line = process.stdout.readline()
     assert line.startswith("tools/preview: http://127.0.0.1:"), line
     yield scene, line.split()[1]

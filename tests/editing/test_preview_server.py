@@ -2,15 +2,12 @@
 on 127.0.0.1 only, and a clear refusal of a port already in use."""
 
 import json
-import os
 import signal
 import socket
-import subprocess
-import sys
 import time
 import urllib.request
 
-from conftest import ROOT
+from conftest import start_preview
 
 SCENE = """camera { eye (0, 0, 7) lookat (0, 0, 0) }
 render { width 50 height 30 }
@@ -30,33 +27,10 @@ def outward_address():
     return None if address.startswith("127.") else address
 
 
-def start(tracer_bin, scene, output, port):
-    environment = dict(os.environ, PYTHONPATH=str(ROOT / "tools"))
-    return subprocess.Popen(
-        [
-            sys.executable,
-            "-m",
-            "tracer_tools",
-            "preview",
-            str(scene),
-            "-o",
-            str(output),
-            "--port",
-            str(port),
-            "--tracer",
-            str(tracer_bin),
-        ],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        env=environment,
-    )
-
-
 def test_it_serves_the_page_the_state_and_the_image_on_localhost_only(tracer_bin, tmp_path):
     scene = tmp_path / "s.scn"
     scene.write_text(SCENE)
-    process = start(tracer_bin, scene, tmp_path / "out.png", 0)
+    process = start_preview(tracer_bin, scene, tmp_path / "out.png", 0)
     try:
         url = process.stdout.readline().split()[1]
         port = int(url.rsplit(":", 1)[1].strip("/"))
@@ -86,7 +60,7 @@ def test_a_port_in_use_is_refused_with_a_message(tracer_bin, tmp_path):
     with socket.socket() as taken:
         taken.bind(("127.0.0.1", 0))
         taken.listen()
-        process = start(tracer_bin, scene, tmp_path / "out.png", taken.getsockname()[1])
+        process = start_preview(tracer_bin, scene, tmp_path / "out.png", taken.getsockname()[1])
         _, error = process.communicate(timeout=30)
     assert process.returncode == 3
     assert "cannot serve on 127.0.0.1:" in error and "try another --port" in error

@@ -16,9 +16,12 @@ sys.path.insert(0, str(ROOT / "tools"))
 
 @pytest.fixture(scope="session")
 def tracer_bin():
-    path = pathlib.Path(os.environ.get("TRACER_BIN", ROOT / "build" / "release" / "tracer"))
-    if not path.is_file():
-        pytest.fail(f"no tracer executable at {path} (build it, or set TRACER_BIN)")
+    from tracer_tools.xcheck import ToolError, tracer_cli
+
+    try:
+        path = tracer_cli.executable()  # $TRACER_BIN, else build/release/tracer
+    except ToolError as error:
+        pytest.fail(str(error))
     return path
 
 
