@@ -26,9 +26,12 @@ def words(names: list[str]) -> str:
 
 
 def grammar(tables: dict) -> dict:
-    keywords = sorted({s["keyword"] for s in tables["statements"] if s["keyword"]} | {"in", "else", "return"})
+    # The expression words are operators (and, or, not), literals (true, false) or, like the
+    # statements' keywords, control words (in, else, return).
     operators = [w["word"] for w in tables["words"] if w["word"] in ("and", "or", "not")]
     literals = [w["word"] for w in tables["words"] if w["word"] in ("true", "false")]
+    control = {w["word"] for w in tables["words"]} - set(operators) - set(literals)
+    keywords = sorted({s["keyword"] for s in tables["statements"] if s["keyword"]} | control)
     kinds = [b["kind"] for b in tables["blocks"]]
     keys = sorted({k["name"] for b in tables["blocks"] for k in b["keys"]} - set(kinds))
     choices = sorted({c for b in tables["blocks"] for k in b["keys"] for c in k["choices"]})
