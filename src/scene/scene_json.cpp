@@ -69,7 +69,6 @@ void add_array(Json& out, const char* key, size_t count, std::function<Json(size
     for (size_t i = 0; i < count; ++i) out[key].push_back(entry(i));
 }
 
-// As tracer --dump-json has always printed it: keys sorted (nlohmann::json), indent 2.
 // The same, an entry per item of `items` (kept by reference: the caller's must outlive `later`).
 template <typename Item, typename Entry>
 void add_array(Json& out, const char* key, const std::vector<Item>& items, Entry entry,
@@ -78,6 +77,7 @@ void add_array(Json& out, const char* key, const std::vector<Item>& items, Entry
         out, key, items.size(), [&items, entry](size_t i) -> Json { return entry(items[i]); }, later);
 }
 
+// As tracer --dump-json has always printed it: keys sorted (nlohmann::json), indent 2.
 std::string text_of(const Json& value) {
     return nlohmann::json(value).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
