@@ -557,6 +557,23 @@ class Messages(Hostile):
         self.assertEqual(process.returncode, 130, stderr)
         self.assertEqual(self.files(), ["grid.obj", "s.scn"])
 
+    def test_editor_input_binary_text_and_huge_names_give_json_not_a_crash(self):
+        # --diagnostics json and --stdin-name take an editor's unsaved text: binary bytes, a NUL,
+        # a 100,000-character name, a special file's name, 10^5 mistakes in a row.
+        texts = {
+            "binary": b"\xff\xfe bad \x00 bytes\n",
+            "mistakes": (CAMERA + "sphere { radius r }\n" * 100_000).encode(),
+        }
+        for name in ("x" * 100_000, "/dev/zero", str(self.tmp / "sub" / "s.scn")):
+            for kind, text in texts.items():
+                with self.subTest(name=name[:20], kind=kind):
+                    result = run("--check", "--diagnostics", "json", "--stdin-name", name, "-", input=text)
+                    self.assertEqual(result.returncode, 1)
+                    report = json.loads(result.stdout)  # one valid JSON line, whatever the bytes
+                    self.assertFalse(report["ok"])
+                    self.assertLessEqual(len(report["diagnostics"]), 200)
+                    self.assertTrue(all(d["path"] == name for d in report["diagnostics"] if d["line"] > 0))
+
 
 def main():
     global TRACER
