@@ -1,6 +1,8 @@
 #include "accel/bvh.h"
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <future>
@@ -44,46 +46,50 @@ struct FloatBounds {
     }
 };
 
-// Four floats in one vector register (GCC/Clang vector extensions: portable, no intrinsics).
+// Four floats (four ints) in one vector register (GCC/Clang vector extensions: portable, no
+// intrinsics).
 typedef float v4f __attribute__((vector_size(16)));
+typedef int v4i __attribute__((vector_size(16)));
 
-// One SAH bin: the boxes and centres that fell into it, lane by lane (lane 3 unused).
-struct VectorBin {
+v4f load_v4f(const glm::vec3& first) {  // the three floats and the next four bytes (never read back)
+    v4f lanes;
+    std::memcpy(&lanes, &first, sizeof lanes);
+    return lanes;
+}
+
+// Lower and upper bounds of boxes or points, lane by lane (lane 3 unused). Uninitialised until
+// set: arrays of bins are cleared only where used.
+struct VectorBounds {
     static constexpr float kInf = std::numeric_limits<float>::infinity();
-    v4f lower, upper, centre_lower, centre_upper;
+    v4f lower, upper;
+
+    static VectorBounds empty() {
+        VectorBounds bounds;
+        bounds.lower = v4f{} + kInf, bounds.upper = v4f{} - kInf;
+        return bounds;
+    }
+
+    void extend(v4f box_lower, v4f box_upper) {
+        lower = lane_min(lower, box_lower), upper = lane_max(upper, box_upper);
+    }
+    void extend(const VectorBounds& other) { extend(other.lower, other.upper); }
+    FloatBounds floats() const { return {{lower[0], lower[1], lower[2]}, {upper[0], upper[1], upper[2]}}; }
+};
+
+// One SAH bin: the boxes that fell into it and how many.
+struct VectorBin {
+    VectorBounds box;
     uint32_t count;
 
-    VectorBin() = default;  // uninitialised: arrays of bins are cleared only where used
-    static VectorBin empty() {
-        VectorBin bin;
-        bin.clear();
-        return bin;
-    }
-    void clear() {
-        lower = centre_lower = v4f{kInf, kInf, kInf, kInf};
-        upper = centre_upper = v4f{-kInf, -kInf, -kInf, -kInf};
-        count = 0;
-    }
+    static VectorBin empty() { return {VectorBounds::empty(), 0}; }
 
-    void add(v4f box_lower, v4f box_upper, v4f centre) {
-        ++count;
-        lower = lane_min(lower, box_lower), upper = lane_max(upper, box_upper);
-        centre_lower = lane_min(centre_lower, centre), centre_upper = lane_max(centre_upper, centre);
-    }
     void add(const VectorBin& other) {
         count += other.count;
-        lower = lane_min(lower, other.lower), upper = lane_max(upper, other.upper);
-        centre_lower = lane_min(centre_lower, other.centre_lower);
-        centre_upper = lane_max(centre_upper, other.centre_upper);
+        box.extend(other.box);
     }
     float half_area() const {
-        const v4f d = upper - lower;
+        const v4f d = box.upper - box.lower;
         return count == 0 ? 0.0f : d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
-    }
-    FloatBounds bounds() const { return {{lower[0], lower[1], lower[2]}, {upper[0], upper[1], upper[2]}}; }
-    FloatBounds centres() const {
-        return {{centre_lower[0], centre_lower[1], centre_lower[2]},
-                {centre_upper[0], centre_upper[1], centre_upper[2]}};
     }
 };
 
@@ -103,12 +109,32 @@ Range measure(const PrimRef* refs, uint32_t begin, uint32_t end) {
     return range;
 }
 
+// Moves the references for which goes_left holds before the others (as std::partition does),
+// extending `left` and `right` by the centres of each side; returns the first of the others.
+template <typename GoesLeft>
+PrimRef* partition(PrimRef* begin, PrimRef* end, GoesLeft goes_left, VectorBounds& left, VectorBounds& right) {
+    auto centre = [](const PrimRef& ref) { return (load_v4f(ref.lower) + load_v4f(ref.upper)) * 0.5f; };
+    for (;;) {
+        for (; begin < end && goes_left(*begin); ++begin) {
+            const v4f c = centre(*begin);
+            left.extend(c, c);
+        }
+        for (; begin < end && !goes_left(end[-1]); --end) {
+            const v4f c = centre(end[-1]);
+            right.extend(c, c);
+        }
+        if (begin == end) return begin;
+        std::swap(*begin, end[-1]);  // now each is on its side
+    }
+}
+
 }  // namespace
 
-// Builds the tree into slots of one node array. A subtree over n references gets 2n - 1 slots
-// (the most its nodes can need), its root first, then the left child's slots, then the right
-// child's: subtrees never share a slot, so the large ones near the root are built in parallel
-// with no copying, and the used slots in increasing order are the tree depth first.
+// Builds the tree into one node array, its root in slot 0. An inner node's two children take
+// two slots side by side, and its `index` is the first of them. Slots are handed out in chunks
+// (an atomic count: the large subtrees near the root are built in parallel, each task taking
+// chunks of its own), so only about as many slots as the tree has nodes are touched, mostly in
+// the order the nodes are made.
 class BvhBuilder {
 public:
     BvhBuilder(PrimRef* refs, BvhNode* slots, BvhBuild method, int leaf_size, int leaf_lanes, bool parallel)
@@ -116,11 +142,22 @@ public:
           slots_(slots),
           method_(method),
           leaf_size_(leaf_size),
-          leaf_lanes_(uint32_t(leaf_lanes)),
+          lanes_shift_(uint32_t(std::bit_width(uint32_t(leaf_lanes)) - 1)),
           parallel_(parallel) {}
 
-    // Builds the subtree over `range` with its root in slot `first`.
-    void build(const Range& range, int depth, uint32_t first);
+    static constexpr uint32_t kChunk = 1024;  // slots a task takes at a time (even)
+    // Slots taken by one task and not yet used.
+    struct Chunk {
+        uint32_t next = 0, end = 0;
+    };
+    // The most slots a tree over n references can touch: its 2n - 1 nodes and each task's last
+    // chunk partly unused.
+    static size_t slots_for(uint32_t n) { return 2 * size_t(n) - 1 + (2u << kParallelDepth) * size_t(kChunk); }
+
+    // Builds the subtree over `range` with its root in slot `first`, its nodes in `chunk`'s slots.
+    void build(const Range& range, int depth, uint32_t first, Chunk& chunk);
+    // Slots handed out (an upper bound of the tree's nodes).
+    uint32_t used_slots() const { return used_slots_.load(); }
 
 private:
     // Subtrees of at least kParallelFrom primitives, down to depth kParallelDepth, are built in
@@ -136,16 +173,18 @@ private:
 
     PrimRef* refs_;
     BvhNode* slots_;
+    std::atomic<uint32_t> used_slots_{1};  // the root's, then chunks
     BvhBuild method_;
     int leaf_size_;
-    uint32_t leaf_lanes_;
+    uint32_t lanes_shift_;  // log2 of the leaf test's lanes
     bool parallel_;
 
-    // The SAH's cost of testing n primitives: one per group of leaf_lanes_.
-    double tests(uint32_t n) const { return double((n + leaf_lanes_ - 1) / leaf_lanes_); }
+    // The SAH's cost of testing n primitives: one per group of the leaf test's lanes (a shift:
+    // a division here took a third of the time of small nodes).
+    double tests(uint32_t n) const { return double((n + (1u << lanes_shift_) - 1) >> lanes_shift_); }
 };
 
-void BvhBuilder::build(const Range& range, int depth, uint32_t first) {
+void BvhBuilder::build(const Range& range, int depth, uint32_t first, Chunk& chunk) {
     BvhNode& node = slots_[first];
     for (int axis = 0; axis < 3; ++axis) {
         node.box[0][axis] = range.bounds.lower[axis];
@@ -157,15 +196,21 @@ void BvhBuilder::build(const Range& range, int depth, uint32_t first) {
         node.count = range.count();
         return;
     }
-    // The left child follows its parent; the right child's slots follow the left child's.
+    if (chunk.next == chunk.end) {
+        chunk.next = used_slots_.fetch_add(kChunk, std::memory_order_relaxed);
+        chunk.end = chunk.next + kChunk;
+    }
+    const uint32_t children = chunk.next;
+    chunk.next += 2;
     node.count = 0;
-    node.index = first + 2 * left.count();
+    node.index = children;
     if (parallel_ && depth < kParallelDepth && range.count() >= kParallelFrom) {
-        run_both([&] { build(left, depth + 1, first + 1); }, [&] { build(right, depth + 1, node.index); });
+        Chunk own;  // the other task's
+        run_both([&] { build(left, depth + 1, children, own); }, [&] { build(right, depth + 1, children + 1, chunk); });
         return;
     }
-    build(left, depth + 1, first + 1);
-    build(right, depth + 1, node.index);
+    build(left, depth + 1, children, chunk);
+    build(right, depth + 1, children + 1, chunk);
 }
 
 bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right) {
@@ -180,6 +225,9 @@ bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right)
         }
         return split_median(range, depth % 3, left, right);
     }
+    // A leaf tested in one group of lanes costs no more than the traversal step that any split
+    // adds (kIntersectionCost <= kTraversalCost), so the SAH would keep it: no need to bin it.
+    if (count <= uint32_t(leaf_size_) && tests(count) * kIntersectionCost <= kTraversalCost) return false;
     return split_sah(range, depth, left, right);
 }
 
@@ -197,11 +245,12 @@ void BvhBuilder::split_at(const Range& range, uint32_t middle, Range& left, Rang
     right = measure(refs_, middle, range.end);
 }
 
-// Binned SAH: up to kSahBins bins of centroids per axis (no more bins than primitives, so small
-// nodes stay cheap), all three axes binned in one pass; the cheapest boundary between bins wins.
+// Binned SAH: 4 + n / 20 bins of centroids per axis for n primitives, at most kSahBins and no
+// more than n (Embree's rule: small nodes, which are most of the nodes, take few bins), all three
+// axes binned in one pass; the cheapest boundary between bins wins.
 bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& right) {
     const uint32_t count = range.count();
-    const int bin_count = int(std::min<uint32_t>(count, kSahBins));
+    const int bin_count = int(std::min<uint32_t>({count, kSahBins, 4 + count / 20}));
     const glm::vec3 extent = range.centres.upper - range.centres.lower;
     v4f factor = {0, 0, 0, 0};
     for (int axis = 0; axis < 3; ++axis) {
@@ -210,27 +259,29 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
     }
     const v4f origin = {range.centres.lower.x, range.centres.lower.y, range.centres.lower.z, 0};
 
-    // Step 1: bins (boxes, centres and counts) for every axis, four lanes at a time. Only the
-    // bins in use are cleared: small nodes are most of the nodes. The large ranges near the
-    // root (where build() runs subtrees in parallel) are binned in two halves at once.
+    // Step 1: bins (boxes and counts) for every axis, four lanes at a time. Only the bins in
+    // use are cleared: small nodes are most of the nodes. The large ranges near the root (where
+    // build() runs subtrees in parallel) are binned in two halves at once.
     using AxisBins = VectorBin[3][kSahBins];
+    const v4f last_bin = v4f{} + float(bin_count - 1);
+    auto bin_of = [&](const PrimRef& ref) {
+        // Clamped as floats first: converting a NaN or out-of-range float is undefined.
+        const v4f at = (load_v4f(ref.lower) + load_v4f(ref.upper)) * 0.5f - origin;
+        return __builtin_convertvector(lane_min(lane_max(at * factor, v4f{}), last_bin), v4i);
+    };
     auto bin_refs = [&](uint32_t begin, uint32_t end, AxisBins& bins) {
-        for (auto& axis_bins : bins)
-            for (int b = 0; b < bin_count; ++b) axis_bins[b].clear();
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < bin_count; ++b) bins[axis][b] = VectorBin::empty();
         for (uint32_t i = begin; i < end; ++i) {
-            v4f lower, upper;
-            std::memcpy(&lower, &refs_[i].lower, sizeof lower);  // lane 3: the id or the bins, never read back
-            std::memcpy(&upper, &refs_[i].upper, sizeof upper);
-            const v4f centre = (lower + upper) * 0.5f;
-            const v4f at = (centre - origin) * factor;
-            uint32_t saved = 0;
+            PrimRef& ref = refs_[i];
+            const v4i bin = bin_of(ref);
+            const v4f lower = load_v4f(ref.lower), upper = load_v4f(ref.upper);
             for (int axis = 0; axis < 3; ++axis) {
-                // Clamped as floats first: int() of a NaN or out-of-range float is undefined.
-                const int bin = int(std::min(std::max(0.0f, at[axis]), float(bin_count - 1)));
-                bins[axis][bin].add(lower, upper, centre);
-                saved |= uint32_t(bin) << (8 * axis);
+                VectorBin& into = bins[axis][bin[axis]];
+                into.box.extend(lower, upper);
+                ++into.count;
             }
-            refs_[i].bins = saved;
+            ref.bins = uint32_t(bin[0]) | uint32_t(bin[1]) << 8 | uint32_t(bin[2]) << 16;
         }
     };
     const bool in_parallel = parallel_ && depth < kParallelDepth && count >= kParallelFrom;
@@ -245,9 +296,9 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
         bin_refs(range.begin, range.end, bins);
     }
 
-    // Step 2: the cheapest boundary, sweeping right-hand sides from the end.
-    const double node_area = range.bounds.half_area() > 0 ? range.bounds.half_area() : 1.0;
-    double best_cost = std::numeric_limits<double>::infinity();
+    // Step 2: the cheapest boundary, sweeping right-hand sides from the end. Boundaries are
+    // compared by their children's area-weighted tests; the node's area divides the best only.
+    double best_weighted = std::numeric_limits<double>::infinity();
     int best_axis = -1, best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
         if (!(extent[axis] > 0)) continue;
@@ -263,13 +314,13 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
             accumulated.add(bins[axis][b]);
             const uint32_t right_count = total - accumulated.count;
             if (accumulated.count == 0 || right_count == 0) continue;
-            const double cost = kTraversalCost + kIntersectionCost *
-                                                     (double(accumulated.half_area()) * tests(accumulated.count) +
-                                                      double(right_area[b + 1]) * tests(right_count)) /
-                                                     node_area;
-            if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
+            const double weighted = double(accumulated.half_area()) * tests(accumulated.count) +
+                                    double(right_area[b + 1]) * tests(right_count);
+            if (weighted < best_weighted) best_weighted = weighted, best_axis = axis, best_bin = b;
         }
     }
+    const double node_area = range.bounds.half_area() > 0 ? range.bounds.half_area() : 1.0;
+    const double best_cost = kTraversalCost + kIntersectionCost * best_weighted / node_area;
     const double leaf_cost = kIntersectionCost * tests(count);
     if (count <= uint32_t(leaf_size_) && (best_axis < 0 || leaf_cost <= best_cost)) return false;
     if (best_axis < 0) {  // all centres coincide: any halves will do
@@ -277,34 +328,40 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
         return true;
     }
 
-    // Step 3: partition, and the children's bounds from the bins.
+    // Step 3: partition, measuring the centres on each side; the children's boxes from the bins.
     const uint32_t shift = 8 * uint32_t(best_axis);
     auto goes_left = [&](const PrimRef& ref) { return int((ref.bins >> shift) & 0xFF) <= best_bin; };
+    VectorBounds left_centres = VectorBounds::empty(), right_centres = VectorBounds::empty();
     PrimRef* middle;
     if (in_parallel) {
         // Both halves at once, then the first half's right part and the second half's left
         // part trade places (as many references as the smaller of the two holds).
         PrimRef *first_middle, *second_middle;
-        run_both([&] { first_middle = std::partition(refs_ + range.begin, refs_ + half, goes_left); },
-                 [&] { second_middle = std::partition(refs_ + half, refs_ + range.end, goes_left); });
+        VectorBounds first_left = VectorBounds::empty(), first_right = VectorBounds::empty();
+        run_both(
+            [&] { first_middle = partition(refs_ + range.begin, refs_ + half, goes_left, first_left, first_right); },
+            [&] {
+                second_middle = partition(refs_ + half, refs_ + range.end, goes_left, left_centres, right_centres);
+            });
         const size_t trade = std::min(refs_ + half - first_middle, second_middle - (refs_ + half));
         std::swap_ranges(first_middle, first_middle + trade, second_middle - trade);
         middle = first_middle + (second_middle - (refs_ + half));
+        left_centres.extend(first_left), right_centres.extend(first_right);
     } else {
-        middle = std::partition(refs_ + range.begin, refs_ + range.end, goes_left);
+        middle = partition(refs_ + range.begin, refs_ + range.end, goes_left, left_centres, right_centres);
     }
     VectorBin left_bins = VectorBin::empty(), right_bins = VectorBin::empty();
     for (int b = 0; b < bin_count; ++b) (b <= best_bin ? left_bins : right_bins).add(bins[best_axis][b]);
-    left = {range.begin, uint32_t(middle - refs_), left_bins.bounds(), left_bins.centres()};
-    right = {left.end, range.end, right_bins.bounds(), right_bins.centres()};
+    left = {range.begin, uint32_t(middle - refs_), left_bins.box.floats(), left_centres.floats()};
+    right = {left.end, range.end, right_bins.box.floats(), right_centres.floats()};
     return true;
 }
 
-// The builder's tree without its unused slots, depth first: an inner node's left child
-// follows it, its right child is at `index`.
-static NodeArray compact_depth_first(const NodeArray& slots) {
-    NodeArray compact;
-    compact.reserve(slots.size());
+// The builder's tree (whose inner nodes' children are at `index` and `index` + 1) depth first:
+// an inner node's left child follows it, its right child is at `index`.
+static NodeArray depth_first(const NodeArray& slots, size_t used) {
+    NodeArray ordered;
+    ordered.reserve(used);
     constexpr uint32_t kNoParent = ~uint32_t(0);
     struct Move {
         uint32_t from, parent;  // parent: the node whose `index` is to point here (right children)
@@ -313,18 +370,18 @@ static NodeArray compact_depth_first(const NodeArray& slots) {
     while (!pending.empty()) {
         const Move move = pending.back();
         pending.pop_back();
-        const uint32_t to = uint32_t(compact.size());
-        compact.push_back(slots[move.from]);
-        if (move.parent != kNoParent) compact[move.parent].index = to;
+        const uint32_t to = uint32_t(ordered.size());
+        ordered.push_back(slots[move.from]);
+        if (move.parent != kNoParent) ordered[move.parent].index = to;
         if (slots[move.from].count > 0) continue;
-        pending.push_back({slots[move.from].index, to});
-        pending.push_back({move.from + 1, kNoParent});
+        pending.push_back({slots[move.from].index + 1, to});
+        pending.push_back({slots[move.from].index, kNoParent});
     }
-    return compact;
+    return ordered;
 }
 
-// Sah's wide tree from the builder's binary one (whose inner nodes have their left child next
-// and their right child at `index`). A wide node starts from a binary node's two children and,
+// Sah's wide tree from the builder's binary one (whose inner nodes' children are at `index`
+// and `index` + 1). A wide node starts from a binary node's two children and,
 // while it has fewer than kWide, replaces its inner child of largest surface area by that
 // child's two children. A binary tree that is one leaf becomes a wide root with one child.
 static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
@@ -348,22 +405,18 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
         int count = 1;
         auto add = [&](int k, uint32_t child) {
             children[k] = child;
-            const bool inner = nodes[child].count == 0;
-            area[k] = inner ? half_area(child) : -1.0f;
-            // An inner child's right child is far away in the large slots array: a cache miss
-            // when the child is opened, here or as a wide node of its own; started now.
-            if (inner) __builtin_prefetch(&nodes[nodes[child].index]);
+            area[k] = nodes[child].count == 0 ? half_area(child) : -1.0f;
         };
         if (nodes[move.from].count == 0) {
-            add(0, move.from + 1), add(1, nodes[move.from].index);
+            add(0, nodes[move.from].index), add(1, nodes[move.from].index + 1);
             count = 2;
         }
         while (count < kWide) {
             const int largest = int(std::max_element(area, area + count) - area);
             if (area[largest] < 0) break;
             const uint32_t opened = children[largest];
-            add(largest, opened + 1);
-            add(count++, nodes[opened].index);
+            add(largest, nodes[opened].index);
+            add(count++, nodes[opened].index + 1);
         }
         // Step 2: their boxes lane by lane, leaves as ranges, inner children as new wide nodes.
         WideNode node;
@@ -407,17 +460,18 @@ Bvh::Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int thre
     leaf_size = std::max(leaf_size, 1);
     const Range root = measure(refs.data(), 0, n);
 
-    NodeArray slots(2 * size_t(n) - 1);  // uninitialised; only the tree's nodes are written
+    NodeArray slots(BvhBuilder::slots_for(n));  // uninitialised: only the tree's nodes are touched
     BvhBuilder builder(refs.data(), slots.data(), method, leaf_size, std::max(leaf_lanes, 1),
                        thread_count(threads) > 1);
-    builder.build(root, 0, 0);
+    BvhBuilder::Chunk chunk;
+    builder.build(root, 0, 0, chunk);
     parallel_for(
         n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
     refs = LargeArray<PrimRef>();
     if (method == BvhBuild::Sah)
         wide_ = collapse_to_wide(slots);
     else
-        nodes_ = compact_depth_first(slots);
+        nodes_ = depth_first(slots, builder.used_slots());
     for (int axis = 0; axis < 3; ++axis) {
         root_box_.lower[axis] = root.bounds.lower[axis];
         root_box_.upper[axis] = root.bounds.upper[axis];

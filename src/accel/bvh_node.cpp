@@ -5,29 +5,6 @@
 #include <cmath>
 
 namespace tracer {
-namespace {
-
-// The next float towards +infinity (or -infinity), by stepping the bit pattern; no libm call.
-float next_up(float f) {
-    if (!(f < std::numeric_limits<float>::infinity())) return f;  // +inf and NaN stay
-    if (f == 0) return std::numeric_limits<float>::denorm_min();
-    const uint32_t bits = std::bit_cast<uint32_t>(f);
-    return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
-}
-float next_down(float f) {
-    return -next_up(-f);
-}
-
-}  // namespace
-
-float round_down(Real x) {
-    const float f = float(x);
-    return Real(f) > x ? next_down(f) : f;
-}
-float round_up(Real x) {
-    const float f = float(x);
-    return Real(f) < x ? next_up(f) : f;
-}
 
 TraversalRay::TraversalRay(const Ray& ray, Interval range) {
     for (int axis = 0; axis < 3; ++axis) {

@@ -3,6 +3,7 @@
 // through (see TraversalRay; tests/unit/bvh_node_test.cpp checks them).
 #pragma once
 
+#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -118,8 +119,23 @@ struct TraversalRay {
 };
 
 // The largest float <= x and the smallest float >= x: bounds that never shrink what they bound.
-float round_down(Real x);
-float round_up(Real x);
+// Branch-free (a build rounds six per primitive, and which way is a coin toss): x rounded to
+// the nearest float, then stepped by one ulp where that went the wrong way. The step is on the
+// bit pattern, away from zero for one sign and towards it for the other; it is never taken
+// where it would leave the floats (+-0 going the wrong way is -0 below a negative x, +0 above
+// a positive one; NaN and the infinity past a huge x stay).
+inline float round_down(Real x) {
+    const float nearest = float(x);
+    const uint32_t bits = std::bit_cast<uint32_t>(nearest);
+    const uint32_t wrong_way = 0u - uint32_t(Real(nearest) > x);  // all ones, or zero
+    return std::bit_cast<float>(bits + ((2 * (bits >> 31) - 1) & wrong_way));
+}
+inline float round_up(Real x) {
+    const float nearest = float(x);
+    const uint32_t bits = std::bit_cast<uint32_t>(nearest);
+    const uint32_t wrong_way = 0u - uint32_t(Real(nearest) < x);
+    return std::bit_cast<float>(bits + ((1 - 2 * (bits >> 31)) & wrong_way));
+}
 
 // Entry distance of the ray into the node's box, or +infinity if it misses within
 // [t_min, t_max]. Comparisons are written so that a NaN (0 * infinity: an origin exactly on a

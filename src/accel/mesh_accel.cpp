@@ -140,7 +140,7 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     triangle_count_ = n;
     auto triangle_in_slot = [&](size_t i) { return brute_force_ ? uint32_t(i) : bvh_.order()[i]; };
     const size_t stride = n + kTriangleLanes - 1;
-    columns_.assign(9 * stride, Real(0));  // the spare entries too: never hit (no area)
+    columns_.resize(9 * stride);  // uninitialised (LargeArray): each entry is written once
     Real* const columns = columns_.data();
     parallel_for(
         n,
@@ -151,6 +151,8 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
                     columns[size_t(3 * vertex + axis) * stride + i] = mesh.positions[v[vertex]][axis];
         },
         threads);
+    for (size_t column = 0; column < 9; ++column)  // the spare entries: never hit (no area)
+        std::fill(columns + column * stride + n, columns + (column + 1) * stride, Real(0));
     release(mesh.positions);
     release(mesh.triangles);
     hit_records_.resize(n);

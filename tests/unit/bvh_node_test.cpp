@@ -4,8 +4,11 @@
 // enter boxes that a ray clearly misses, or the first check could not fail.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "accel/bvh_node.h"
 
@@ -121,3 +124,41 @@ TEST(BoxTests, EnterNoBoxTheRayClearlyMisses) {
 
 }  // namespace
 }  // namespace tracer
+
+// round_down and round_up (branch-free) against their definition: the largest float <= x and
+// the smallest float >= x, found with std::nextafter, on random doubles of every magnitude and
+// on the edges (zeros of both signs, subnormals, float's largest, past it, infinities, NaN).
+TEST(BoxTests, RoundingToFloatNeverShrinksWhatItBounds) {
+    auto down = [](double x) {
+        float f = float(x);
+        return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+    };
+    auto up = [](double x) {
+        float f = float(x);
+        return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+    };
+    std::vector<double> values = {0.0,
+                                  -0.0,
+                                  1e-50,
+                                  -1e-50,
+                                  double(std::numeric_limits<float>::denorm_min()),
+                                  double(std::numeric_limits<float>::denorm_min()) * 0.75,
+                                  -double(std::numeric_limits<float>::denorm_min()) * 1.5,
+                                  double(std::numeric_limits<float>::max()),
+                                  double(std::numeric_limits<float>::max()) * (1 + 1e-12),
+                                  -double(std::numeric_limits<float>::max()) * (1 + 1e-12),
+                                  1e39,
+                                  -1e39,
+                                  std::numeric_limits<double>::infinity(),
+                                  -std::numeric_limits<double>::infinity()};
+    std::mt19937_64 random(7);
+    std::uniform_real_distribution<double> exponent(-160, 140), mantissa(-1, 1);
+    for (int i = 0; i < 200000; ++i) values.push_back(mantissa(random) * std::exp2(exponent(random)));
+    for (double x : values) {
+        if constexpr (sizeof(tracer::Real) == 4) x = double(float(x));  // a float build rounds nothing
+        ASSERT_EQ(std::bit_cast<uint32_t>(tracer::round_down(tracer::Real(x))), std::bit_cast<uint32_t>(down(x))) << x;
+        ASSERT_EQ(std::bit_cast<uint32_t>(tracer::round_up(tracer::Real(x))), std::bit_cast<uint32_t>(up(x))) << x;
+    }
+    EXPECT_TRUE(std::isnan(tracer::round_down(tracer::Real(NAN))));
+    EXPECT_TRUE(std::isnan(tracer::round_up(tracer::Real(NAN))));
+}
