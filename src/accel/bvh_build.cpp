@@ -5,8 +5,9 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <future>
 
+#include <oneapi/tbb/parallel_invoke.h>
+#include <oneapi/tbb/task_arena.h>
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
@@ -15,12 +16,11 @@
 namespace tracer {
 namespace {
 
-// Runs `first` on a thread of its own and `second` on this one; returns when both are done.
+// Runs `first` and `second`, in parallel where a thread of the build's arena is free (oneTBB's
+// work stealing); returns when both are done.
 template <typename First, typename Second>
-void run_both(First first, Second second) {
-    auto first_done = std::async(std::launch::async, first);
-    second();
-    first_done.get();
+void run_both(const First& first, const Second& second) {
+    tbb::parallel_invoke(first, second);
 }
 
 // A primitive as the builder sees it: its float bounds (rounded outwards) and its id. The
@@ -131,10 +131,10 @@ PrimRef* partition(PrimRef* begin, PrimRef* end, GoesLeft goes_left, VectorBound
 }  // namespace
 
 // Builds the tree into one node array, its root in slot 0. An inner node's two children take
-// two slots side by side, and its `index` is the first of them. Slots are handed out in chunks
-// (an atomic count: the large subtrees near the root are built in parallel, each task taking
-// chunks of its own), so only about as many slots as the tree has nodes are touched, mostly in
-// the order the nodes are made.
+// two slots side by side, and its `index` is the first of them. Subtrees of kTaskFrom
+// primitives or more, down to depth kTaskDepth, are built as tasks of their own; slots are
+// handed out to each task in chunks (an atomic count), so only about as many slots as the tree
+// has nodes are touched, mostly in the order the nodes are made.
 class BvhBuilder {
 public:
     BvhBuilder(PrimRef* refs, BvhNode* slots, BvhBuild method, int leaf_size, int leaf_lanes, bool parallel)
@@ -145,23 +145,30 @@ public:
           lanes_shift_(uint32_t(std::bit_width(uint32_t(leaf_lanes)) - 1)),
           parallel_(parallel) {}
 
-    static constexpr uint32_t kChunk = 1024;  // slots a task takes at a time (even)
+    static constexpr uint32_t kChunk = 256;  // slots a task takes at a time (even)
     // Slots taken by one task and not yet used.
     struct Chunk {
         uint32_t next = 0, end = 0;
     };
     // The most slots a tree over n references can touch: its 2n - 1 nodes and each task's last
-    // chunk partly unused.
-    static size_t slots_for(uint32_t n) { return 2 * size_t(n) - 1 + (2u << kParallelDepth) * size_t(kChunk); }
+    // chunk partly unused (a task per inner node above depth kTaskDepth, and the root's).
+    static size_t slots_for(uint32_t n) { return 2 * size_t(n) - 1 + (size_t(2) << kTaskDepth) * kChunk; }
 
     // Builds the subtree over `range` with its root in slot `first`, its nodes in `chunk`'s slots.
     void build(const Range& range, int depth, uint32_t first, Chunk& chunk);
     // Slots handed out (an upper bound of the tree's nodes).
     uint32_t used_slots() const { return used_slots_.load(); }
+    // Whether subtrees may be built in parallel.
+    bool parallel() const { return parallel_; }
+
+    // Subtrees of at least kTaskFrom primitives, down to depth kTaskDepth, are tasks of their
+    // own (a task costs about a microsecond; 1024 primitives take some 300).
+    static constexpr uint32_t kTaskFrom = 1024;
+    static constexpr int kTaskDepth = 8;
 
 private:
-    // Subtrees of at least kParallelFrom primitives, down to depth kParallelDepth, are built in
-    // parallel: 4 tasks, enough to keep two or three cores busy despite uneven SAH splits.
+    // Nodes of at least kParallelFrom primitives, down to depth kParallelDepth (above the
+    // subtrees' tasks), are binned and partitioned in two halves at once.
     static constexpr uint32_t kParallelFrom = 50000;
     static constexpr int kParallelDepth = 2;
 
@@ -204,7 +211,7 @@ void BvhBuilder::build(const Range& range, int depth, uint32_t first, Chunk& chu
     chunk.next += 2;
     node.count = 0;
     node.index = children;
-    if (parallel_ && depth < kParallelDepth && range.count() >= kParallelFrom) {
+    if (parallel_ && depth < kTaskDepth && range.count() >= kTaskFrom) {
         Chunk own;  // the other task's
         run_both([&] { build(left, depth + 1, children, own); }, [&] { build(right, depth + 1, children + 1, chunk); });
         return;
@@ -462,9 +469,14 @@ Bvh::Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int thre
 
     NodeArray slots(BvhBuilder::slots_for(n));  // uninitialised: only the tree's nodes are touched
     BvhBuilder builder(refs.data(), slots.data(), method, leaf_size, std::max(leaf_lanes, 1),
-                       thread_count(threads) > 1);
+                       thread_count(threads) > 1 && n >= 2 * BvhBuilder::kTaskFrom);
     BvhBuilder::Chunk chunk;
-    builder.build(root, 0, 0, chunk);
+    if (builder.parallel()) {
+        tbb::task_arena arena(thread_count(threads));
+        arena.execute([&] { builder.build(root, 0, 0, chunk); });
+    } else {
+        builder.build(root, 0, 0, chunk);
+    }
     parallel_for(
         n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
     refs = LargeArray<PrimRef>();
