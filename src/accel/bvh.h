@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -24,6 +25,8 @@
 #include "base/large_array.h"
 
 namespace tracer {
+
+struct BvhBuildRef;  // a primitive as the builder sees it (bvh_build.cpp)
 
 // A test of a leaf's entries [first, first + count) at once, which Bvh::closest and Bvh::any
 // take in place of a test of one entry: test_leaf(first, count, range) returns true on a hit
@@ -56,6 +59,10 @@ struct Bounds {
     }
     Vec3 centre() const { return (lower + upper) * Real(0.5); }
 };
+
+// Writes the bounds of primitives [first, first + count) to out[0 .. count). Called for
+// disjoint blocks from several threads at once.
+using BoundsSource = std::function<void(size_t first, size_t count, Bounds* out)>;
 
 // Per-ray work, for --stats.
 struct TraversalCounts {
@@ -98,6 +105,9 @@ public:
     // `primitives` is freed once read, and each work array once used: the peak stays near the
     // tree's size plus the input's.
     Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1);
+    // The same over `count` primitives whose bounds `source` gives a block at a time: they are
+    // rounded to float as they come, never all kept in double.
+    Bvh(size_t count, const BoundsSource& source, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1);
 
     // Box's and Median's binary tree, depth first: an inner node's left child follows it, its
     // right child is at `index` (empty for Sah).
@@ -134,6 +144,9 @@ public:
     }
 
 private:
+    // Builds the tree over the references (rounded bounds and ids), freeing them once read.
+    void build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, int threads, int leaf_lanes);
+
     // A child waiting on a wide traversal's stack: a node (count kInner) or a leaf's range.
     struct WideRef {
         uint32_t index, count;

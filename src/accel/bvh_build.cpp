@@ -14,6 +14,18 @@
 #include "base/parallel.h"
 
 namespace tracer {
+
+// A primitive as the builder sees it: its float bounds (rounded outwards) and its id. The
+// builder partitions an array of these in place, so every pass reads memory in order.
+struct BvhBuildRef {
+    glm::vec3 lower;
+    uint32_t id;
+    glm::vec3 upper;
+    uint32_t bins;  // scratch: the SAH bin per axis, 8 bits each, from binning to partitioning
+    glm::vec3 centre() const { return (lower + upper) * 0.5f; }
+};
+static_assert(sizeof(BvhBuildRef) == 32);
+
 namespace {
 
 // Runs `first` and `second`, in parallel where a thread of the build's arena is free (oneTBB's
@@ -23,16 +35,7 @@ void run_both(const First& first, const Second& second) {
     tbb::parallel_invoke(first, second);
 }
 
-// A primitive as the builder sees it: its float bounds (rounded outwards) and its id. The
-// builder partitions an array of these in place, so every pass reads memory in order.
-struct PrimRef {
-    glm::vec3 lower;
-    uint32_t id;
-    glm::vec3 upper;
-    uint32_t bins;  // scratch: the SAH bin per axis, 8 bits each, from binning to partitioning
-    glm::vec3 centre() const { return (lower + upper) * 0.5f; }
-};
-static_assert(sizeof(PrimRef) == 32);
+using PrimRef = BvhBuildRef;
 
 struct FloatBounds {
     glm::vec3 lower{std::numeric_limits<float>::infinity()};
@@ -448,22 +451,45 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
     return wide;
 }
 
+// Each primitive's bounds rounded outwards to float, with its id; `source` is asked for blocks.
+static LargeArray<PrimRef> float_refs(size_t n, const BoundsSource& source, int threads) {
+    constexpr size_t kBlock = 256;
+    LargeArray<PrimRef> refs(n);
+    parallel_for((n + kBlock - 1) / kBlock,
+                 [&](size_t block) {
+                     Bounds bounds[kBlock];
+                     const size_t first = block * kBlock, count = std::min(kBlock, n - first);
+                     source(first, count, bounds);
+                     for (size_t k = 0; k < count; ++k) {
+                         PrimRef& ref = refs[first + k];
+                         for (int axis = 0; axis < 3; ++axis) {
+                             ref.lower[axis] = round_down(bounds[k].lower[axis]);
+                             ref.upper[axis] = round_up(bounds[k].upper[axis]);
+                         }
+                         ref.id = uint32_t(first + k);
+                     }
+                 },
+                 threads, kSerialBelow / kBlock);
+    return refs;
+}
+
 Bvh::Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
-    const uint32_t n = uint32_t(primitives.size());
+    LargeArray<PrimRef> refs = float_refs(
+        primitives.size(),
+        [&](size_t first, size_t count, Bounds* out) { std::copy_n(primitives.data() + first, count, out); }, threads);
+    primitives = LargeArray<Bounds>();
+    build(refs, method, leaf_size, threads, leaf_lanes);
+}
+
+Bvh::Bvh(size_t count, const BoundsSource& source, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
+    LargeArray<PrimRef> refs = float_refs(count, source, threads);
+    build(refs, method, leaf_size, threads, leaf_lanes);
+}
+
+void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
+    const uint32_t n = uint32_t(refs.size());
     order_.resize(n);
     if (n == 0) return;
-    LargeArray<PrimRef> refs(n);
-    parallel_for(
-        n,
-        [&](size_t i) {
-            for (int axis = 0; axis < 3; ++axis) {
-                refs[i].lower[axis] = round_down(primitives[i].lower[axis]);
-                refs[i].upper[axis] = round_up(primitives[i].upper[axis]);
-            }
-            refs[i].id = uint32_t(i);
-        },
-        threads);
-    primitives = LargeArray<Bounds>();
     leaf_size = std::max(leaf_size, 1);
     const Range root = measure(refs.data(), 0, n);
 

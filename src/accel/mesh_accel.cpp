@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <type_traits>
 
@@ -124,17 +125,26 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     const size_t n = mesh.triangles.size();
     const auto start = std::chrono::steady_clock::now();
 
-    // Step 2: the accelerator over the triangles' bounds, and the leaf order.
-    LargeArray<Bounds> boxes(n);
-    parallel_for(
-        n,
-        [&](size_t i) {
-            boxes[i] = Bounds{};
-            for (uint32_t v : mesh.triangles[i]) boxes[i].extend(mesh.positions[v]);
-        },
-        threads);
-    for (const Bounds& box : boxes) bounds_.extend(box);
-    if (!brute_force_) bvh_ = Bvh(std::move(boxes), settings.build, settings.leaf_size, threads, kTriangleLanes);
+    // Step 2: the accelerator over the triangles' bounds (handed over a block at a time, the
+    // mesh's box grown by each block's), and the leaf order.
+    std::mutex growing;
+    auto triangle_bounds = [&](size_t first, size_t count, Bounds* out) {
+        Bounds block;
+        for (size_t k = 0; k < count; ++k) {
+            out[k] = Bounds{};
+            for (uint32_t v : mesh.triangles[first + k]) out[k].extend(mesh.positions[v]);
+            block.extend(out[k]);
+        }
+        const std::lock_guard lock(growing);
+        bounds_.extend(block);
+    };
+    if (brute_force_) {
+        constexpr size_t kBlock = 256;
+        Bounds out[kBlock];
+        for (size_t first = 0; first < n; first += kBlock) triangle_bounds(first, std::min(kBlock, n - first), out);
+    } else {
+        bvh_ = Bvh(n, triangle_bounds, settings.build, settings.leaf_size, threads, kTriangleLanes);
+    }
 
     // Step 3: the triangles in that order; then their hit records (each input freed once read).
     triangle_count_ = n;

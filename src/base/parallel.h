@@ -17,13 +17,15 @@ inline int thread_count(int requested) {
     return requested > 0 ? requested : hardware;
 }
 
+// Loops shorter than this run on the calling thread alone: starting threads costs more.
+constexpr size_t kSerialBelow = 20000;
+
 // Calls body(i) for every i in [0, n), in contiguous chunks on `threads` threads (0: one per
-// core). Small loops run on the calling thread alone.
+// core). Loops shorter than `serial_below` run on the calling thread alone.
 template <typename Body>
-void parallel_for(size_t n, Body body, int threads_wanted = 0) {
-    constexpr size_t kSerialBelow = 20000;
+void parallel_for(size_t n, Body body, int threads_wanted = 0, size_t serial_below = kSerialBelow) {
     const size_t threads = size_t(std::min(thread_count(threads_wanted), 8));
-    if (n < kSerialBelow || threads == 1) {
+    if (n < serial_below || threads == 1) {
         for (size_t i = 0; i < n; ++i) body(i);
         return;
     }
