@@ -99,11 +99,12 @@ public:
     Bvh() = default;
     // Builds over the primitives' bounds. `leaf_size`: Median splits nodes with more primitives
     // than this; Sah never makes larger leaves (and makes smaller ones where the SAH says so).
-    // Large inputs are built on `threads` threads (0: one per core), the subtrees near the
-    // root in parallel. A leaf's primitives are tested `leaf_lanes` at a time (LeafTest): the
-    // SAH counts a leaf's cost by such groups (a power of two), which makes fuller leaves.
-    // `primitives` is freed once read, and each work array once used: the peak stays near the
-    // tree's size plus the input's.
+    // Large inputs are built on `threads` threads (0: one per core): subtrees of 1024
+    // primitives or more as oneTBB tasks, the splits near the root in two halves at once.
+    // A leaf's primitives are tested `leaf_lanes` at a time (LeafTest): the SAH counts a
+    // leaf's cost by such groups (a power of two), which makes fuller leaves. `primitives` is
+    // freed once read, and each work array once used: the peak stays near the tree's size plus
+    // the input's.
     Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1);
     // The same over `count` primitives whose bounds `source` gives a block at a time: they are
     // rounded to float as they come, never all kept in double.
