@@ -167,10 +167,20 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     release(mesh.triangles);
     hit_records_.resize(n);
     size_t smooth = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const uint32_t triangle = triangle_in_slot(i);
-        const bool flat = mesh.normal_ids.empty() || mesh.normal_ids[triangle][0] == PlacedTriangles::kFlat;
-        hit_records_[i] = {mesh.numbers[triangle], mesh.tags[triangle], flat ? kFlat : uint32_t(smooth++)};
+    if (mesh.normal_ids.empty()) {  // every triangle flat: no numbering of the smooth ones
+        parallel_for(
+            n,
+            [&](size_t i) {
+                const uint32_t triangle = triangle_in_slot(i);
+                hit_records_[i] = {mesh.numbers[triangle], mesh.tags[triangle], kFlat};
+            },
+            threads);
+    } else {
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t triangle = triangle_in_slot(i);
+            const bool flat = mesh.normal_ids[triangle][0] == PlacedTriangles::kFlat;
+            hit_records_[i] = {mesh.numbers[triangle], mesh.tags[triangle], flat ? kFlat : uint32_t(smooth++)};
+        }
     }
     vertex_normals_.resize(smooth);
     parallel_for(
