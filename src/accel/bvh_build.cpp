@@ -394,14 +394,16 @@ static NodeArray depth_first(const NodeArray& slots, size_t used) {
 // and `index` + 1). A wide node starts from a binary node's two children and,
 // while it has fewer than kWide, replaces its inner child of largest surface area by that
 // child's two children. A binary tree that is one leaf becomes a wide root with one child.
-static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
+static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes, uint32_t primitives) {
     auto half_area = [&](uint32_t i) {
         const float(&box)[2][3] = nodes[i].box;
         const float dx = box[1][0] - box[0][0], dy = box[1][1] - box[0][1], dz = box[1][2] - box[0][2];
         return dx * dy + dy * dz + dz * dx;
     };
     LargeArray<WideNode> wide(1);
-    wide.reserve(nodes.size() / 8);  // n / 4: a little more than the trees here need (0.16-0.22 n)
+    // n / 4 for n primitives: a little more than the trees here need (0.16-0.22 n). Not the
+    // node array's size: it has room for each task's chunk of slots besides the tree.
+    wide.reserve(primitives / 4 + 1);
     struct Move {
         uint32_t from, to;  // the binary node whose children make wide node `to`
     };
@@ -507,9 +509,9 @@ void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, i
         n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
     refs = LargeArray<PrimRef>();
     if (method == BvhBuild::Sah)
-        wide_ = collapse_to_wide(slots);
+        wide_ = collapse_to_wide(slots, n);
     else
-        nodes_ = depth_first(slots, builder.used_slots());
+        nodes_ = depth_first(slots, std::min<size_t>(builder.used_slots(), 2 * size_t(n) - 1));  // the tree at most
     for (int axis = 0; axis < 3; ++axis) {
         root_box_.lower[axis] = root.bounds.lower[axis];
         root_box_.upper[axis] = root.bounds.upper[axis];
