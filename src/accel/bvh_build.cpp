@@ -165,7 +165,7 @@ public:
     bool parallel() const { return parallel_; }
 
     // Subtrees of at least kTaskFrom primitives, down to depth kTaskDepth, are tasks of their
-    // own (a task costs about a microsecond; 1024 primitives take some 300).
+    // own (a task costs about a microsecond; a subtree of 1024 primitives some 300).
     static constexpr uint32_t kTaskFrom = 1024;
     static constexpr int kTaskDepth = 8;
 
@@ -189,8 +189,8 @@ private:
     uint32_t lanes_shift_;  // log2 of the leaf test's lanes
     bool parallel_;
 
-    // The SAH's cost of testing n primitives: one per group of the leaf test's lanes (a shift:
-    // a division here took a third of the time of small nodes).
+    // The SAH's cost of testing n primitives: one per group of the leaf test's lanes (a shift,
+    // not an integer division: it runs twice at every boundary of every node).
     double tests(uint32_t n) const { return double((n + (1u << lanes_shift_) - 1) >> lanes_shift_); }
 };
 
