@@ -35,8 +35,6 @@ void run_both(const First& first, const Second& second) {
     tbb::parallel_invoke(first, second);
 }
 
-using PrimRef = BvhBuildRef;
-
 struct FloatBounds {
     glm::vec3 lower{std::numeric_limits<float>::infinity()};
     glm::vec3 upper{-std::numeric_limits<float>::infinity()};
@@ -58,6 +56,11 @@ v4f load_v4f(const glm::vec3& first) {  // the three floats and the next four by
     v4f lanes;
     std::memcpy(&lanes, &first, sizeof lanes);
     return lanes;
+}
+
+// A reference's centre, lane by lane (lane 3 unused): the same floats as BvhBuildRef::centre.
+v4f centre_lanes(const BvhBuildRef& ref) {
+    return (load_v4f(ref.lower) + load_v4f(ref.upper)) * 0.5f;
 }
 
 // Lower and upper bounds of boxes or points, lane by lane (lane 3 unused). Uninitialised until
@@ -103,7 +106,7 @@ struct Range {
     uint32_t count() const { return end - begin; }
 };
 
-Range measure(const PrimRef* refs, uint32_t begin, uint32_t end) {
+Range measure(const BvhBuildRef* refs, uint32_t begin, uint32_t end) {
     Range range{begin, end, {}, {}};
     for (uint32_t i = begin; i < end; ++i) {
         range.bounds.extend(refs[i].lower, refs[i].upper);
@@ -115,15 +118,15 @@ Range measure(const PrimRef* refs, uint32_t begin, uint32_t end) {
 // Moves the references for which goes_left holds before the others (as std::partition does),
 // extending `left` and `right` by the centres of each side; returns the first of the others.
 template <typename GoesLeft>
-PrimRef* partition(PrimRef* begin, PrimRef* end, GoesLeft goes_left, VectorBounds& left, VectorBounds& right) {
-    auto centre = [](const PrimRef& ref) { return (load_v4f(ref.lower) + load_v4f(ref.upper)) * 0.5f; };
+BvhBuildRef* partition(BvhBuildRef* begin, BvhBuildRef* end, GoesLeft goes_left, VectorBounds& left,
+                       VectorBounds& right) {
     for (;;) {
         for (; begin < end && goes_left(*begin); ++begin) {
-            const v4f c = centre(*begin);
+            const v4f c = centre_lanes(*begin);
             left.extend(c, c);
         }
         for (; begin < end && !goes_left(end[-1]); --end) {
-            const v4f c = centre(end[-1]);
+            const v4f c = centre_lanes(end[-1]);
             right.extend(c, c);
         }
         if (begin == end) return begin;
@@ -140,7 +143,7 @@ PrimRef* partition(PrimRef* begin, PrimRef* end, GoesLeft goes_left, VectorBound
 // has nodes are touched, mostly in the order the nodes are made.
 class BvhBuilder {
 public:
-    BvhBuilder(PrimRef* refs, BvhNode* slots, BvhBuild method, int leaf_size, int leaf_lanes, bool parallel)
+    BvhBuilder(BvhBuildRef* refs, BvhNode* slots, BvhBuild method, int leaf_size, int leaf_lanes, bool parallel)
         : refs_(refs),
           slots_(slots),
           method_(method),
@@ -181,7 +184,7 @@ private:
     bool split_median(const Range& range, int axis, Range& left, Range& right);
     bool split_sah(const Range& range, int depth, Range& left, Range& right);
 
-    PrimRef* refs_;
+    BvhBuildRef* refs_;
     BvhNode* slots_;
     std::atomic<uint32_t> used_slots_{1};  // the root's, then chunks
     BvhBuild method_;
@@ -244,7 +247,7 @@ bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right)
 // The assignment's split: sort by centroid along the axis, first half left.
 bool BvhBuilder::split_median(const Range& range, int axis, Range& left, Range& right) {
     std::sort(refs_ + range.begin, refs_ + range.end,
-              [axis](const PrimRef& a, const PrimRef& b) { return a.centre()[axis] < b.centre()[axis]; });
+              [axis](const BvhBuildRef& a, const BvhBuildRef& b) { return a.centre()[axis] < b.centre()[axis]; });
     split_at(range, range.begin + range.count() / 2, left, right);
     return true;
 }
@@ -274,16 +277,16 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
     // build() runs subtrees in parallel) are binned in two halves at once.
     using AxisBins = VectorBin[3][kSahBins];
     const v4f last_bin = v4f{} + float(bin_count - 1);
-    auto bin_of = [&](const PrimRef& ref) {
+    auto bin_of = [&](const BvhBuildRef& ref) {
         // Clamped as floats first: converting a NaN or out-of-range float is undefined.
-        const v4f at = (load_v4f(ref.lower) + load_v4f(ref.upper)) * 0.5f - origin;
+        const v4f at = centre_lanes(ref) - origin;
         return __builtin_convertvector(lane_min(lane_max(at * factor, v4f{}), last_bin), v4i);
     };
     auto bin_refs = [&](uint32_t begin, uint32_t end, AxisBins& bins) {
         for (int axis = 0; axis < 3; ++axis)
             for (int b = 0; b < bin_count; ++b) bins[axis][b] = VectorBin::empty();
         for (uint32_t i = begin; i < end; ++i) {
-            PrimRef& ref = refs_[i];
+            BvhBuildRef& ref = refs_[i];
             const v4i bin = bin_of(ref);
             const v4f lower = load_v4f(ref.lower), upper = load_v4f(ref.upper);
             for (int axis = 0; axis < 3; ++axis) {
@@ -340,13 +343,13 @@ bool BvhBuilder::split_sah(const Range& range, int depth, Range& left, Range& ri
 
     // Step 3: partition, measuring the centres on each side; the children's boxes from the bins.
     const uint32_t shift = 8 * uint32_t(best_axis);
-    auto goes_left = [&](const PrimRef& ref) { return int((ref.bins >> shift) & 0xFF) <= best_bin; };
+    auto goes_left = [&](const BvhBuildRef& ref) { return int((ref.bins >> shift) & 0xFF) <= best_bin; };
     VectorBounds left_centres = VectorBounds::empty(), right_centres = VectorBounds::empty();
-    PrimRef* middle;
+    BvhBuildRef* middle;
     if (in_parallel) {
         // Both halves at once, then the first half's right part and the second half's left
         // part trade places (as many references as the smaller of the two holds).
-        PrimRef *first_middle, *second_middle;
+        BvhBuildRef *first_middle, *second_middle;
         VectorBounds first_left = VectorBounds::empty(), first_right = VectorBounds::empty();
         run_both(
             [&] { first_middle = partition(refs_ + range.begin, refs_ + half, goes_left, first_left, first_right); },
@@ -454,16 +457,16 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes, uint32_t pr
 }
 
 // Each primitive's bounds rounded outwards to float, with its id; `source` is asked for blocks.
-static LargeArray<PrimRef> float_refs(size_t n, const BoundsSource& source, int threads) {
+static LargeArray<BvhBuildRef> float_refs(size_t n, const BoundsSource& source, int threads) {
     constexpr size_t kBlock = 256;
-    LargeArray<PrimRef> refs(n);
+    LargeArray<BvhBuildRef> refs(n);
     parallel_for((n + kBlock - 1) / kBlock,
                  [&](size_t block) {
                      Bounds bounds[kBlock];
                      const size_t first = block * kBlock, count = std::min(kBlock, n - first);
                      source(first, count, bounds);
                      for (size_t k = 0; k < count; ++k) {
-                         PrimRef& ref = refs[first + k];
+                         BvhBuildRef& ref = refs[first + k];
                          for (int axis = 0; axis < 3; ++axis) {
                              ref.lower[axis] = round_down(bounds[k].lower[axis]);
                              ref.upper[axis] = round_up(bounds[k].upper[axis]);
@@ -476,7 +479,7 @@ static LargeArray<PrimRef> float_refs(size_t n, const BoundsSource& source, int 
 }
 
 Bvh::Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
-    LargeArray<PrimRef> refs = float_refs(
+    LargeArray<BvhBuildRef> refs = float_refs(
         primitives.size(),
         [&](size_t first, size_t count, Bounds* out) { std::copy_n(primitives.data() + first, count, out); }, threads);
     primitives = LargeArray<Bounds>();
@@ -484,7 +487,7 @@ Bvh::Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int thre
 }
 
 Bvh::Bvh(size_t count, const BoundsSource& source, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
-    LargeArray<PrimRef> refs = float_refs(count, source, threads);
+    LargeArray<BvhBuildRef> refs = float_refs(count, source, threads);
     build(refs, method, leaf_size, threads, leaf_lanes);
 }
 
@@ -507,7 +510,7 @@ void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, i
     }
     parallel_for(
         n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
-    refs = LargeArray<PrimRef>();
+    refs = LargeArray<BvhBuildRef>();
     if (method == BvhBuild::Sah)
         wide_ = collapse_to_wide(slots, n);
     else
