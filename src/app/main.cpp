@@ -15,6 +15,7 @@
 #include <iostream>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <new>
@@ -52,6 +53,17 @@ extern "C" void on_interrupt(int) {
     g_interrupted = true;
 }
 
+// --adaptive's THRESHOLD[:DEPTH[:CELL]] split at its colons (empty parts kept, to be refused).
+std::vector<std::string> adaptive_parts(const std::string& text) {
+    std::vector<std::string> parts{""};
+    for (char c : text)
+        if (c == ':')
+            parts.emplace_back();
+        else
+            parts.back().push_back(c);
+    return parts;
+}
+
 struct Options {
     std::string scene;
     std::string output;
@@ -67,7 +79,7 @@ struct Options {
     std::string width;
     std::string height;
     std::string samples;
-    std::string adaptive;  // THRESHOLD[:DEPTH]
+    std::string adaptive;  // THRESHOLD[:DEPTH[:CELL]]
     std::string max_depth;
     std::vector<std::string> defines;  // -D NAME=VALUE
     std::vector<int> region;           // --region X0 Y0 W H (empty: the whole frame)
@@ -134,10 +146,11 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code, 
             if (!options.adaptive.empty()) {
                 // The command line's choice of sampling wins over the scene's samples, unless it
                 // gives --samples too (then render_settings_problem names the clash).
-                const size_t colon = options.adaptive.find(':');
+                const std::vector<std::string> parts = adaptive_parts(options.adaptive);  // checked
                 render.antialias = tracer::Antialias::Adaptive;
-                render.adaptive_threshold = std::stod(options.adaptive.substr(0, colon));  // checked
-                if (colon != std::string::npos) render.adaptive_depth = std::stoi(options.adaptive.substr(colon + 1));
+                render.adaptive_threshold = std::stod(parts[0]);
+                if (parts.size() > 1) render.adaptive_depth = std::stoi(parts[1]);
+                if (parts.size() > 2) render.adaptive_cell = std::stod(parts[2]);
                 if (options.samples.empty()) render.samples = 1;
             }
             render.max_depth = whole(options.max_depth, render.max_depth);
@@ -364,18 +377,20 @@ int run(int argc, char** argv) {
     app.add_option("--samples", options.samples, "Override the scene's samples per pixel (N*N: 1, 4, 9, 16, ...)")
         ->check(render_key("samples"));
     app.add_option("--adaptive", options.adaptive,
-                   "Adaptive antialiasing: split a pixel's cells where their corners differ by THRESHOLD "
-                   "(0..1 per channel), down to DEPTH levels (default: the scene's, else 3); replaces --samples")
-        ->type_name("THRESHOLD[:DEPTH]")
+                   "Adaptive antialiasing: split cells where their corners differ by THRESHOLD (0..1 per "
+                   "channel), down to DEPTH levels below a pixel, from cells CELL pixels wide (defaults: the "
+                   "scene's, else 3 and 1); replaces --samples")
+        ->type_name("THRESHOLD[:DEPTH[:CELL]]")
         ->check(CLI::Validator(
             [](std::string& text) {
-                const size_t colon = text.find(':');
-                if (colon == 0 || colon + 1 == text.size())
-                    return std::string("expected THRESHOLD[:DEPTH], e.g. 0.05:3");
-                std::string problem = tracer::setting_problem("render", "adaptive_threshold", text.substr(0, colon));
-                if (problem.empty() && colon != std::string::npos)
-                    problem = tracer::setting_problem("render", "adaptive_depth", text.substr(colon + 1));
-                return problem;
+                const std::vector<std::string> parts = adaptive_parts(text);
+                if (parts.size() > 3 || std::any_of(parts.begin(), parts.end(), [](auto& p) { return p.empty(); }))
+                    return std::string("expected THRESHOLD[:DEPTH[:CELL]], e.g. 0.05:3 or 0.05:3:4");
+                const char* keys[] = {"adaptive_threshold", "adaptive_depth", "adaptive_cell"};
+                for (size_t i = 0; i < parts.size(); ++i)
+                    if (std::string problem = tracer::setting_problem("render", keys[i], parts[i]); !problem.empty())
+                        return problem;
+                return std::string();
             },
             "", "adaptive"));
     app.add_option("--max-depth", options.max_depth, "Override the scene's reflection and refraction depth")

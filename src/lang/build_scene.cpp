@@ -129,6 +129,7 @@ void Validator::build_render(const Block& block, const Fields& fields) {
     render.antialias = fields.text("antialias") == "adaptive" ? Antialias::Adaptive : Antialias::Uniform;
     render.adaptive_threshold = fields.number("adaptive_threshold");
     render.adaptive_depth = fields.integer("adaptive_depth");
+    render.adaptive_cell = fields.number("adaptive_cell");
     accelerator_from_name(fields.text("accel"), render.accel);
     render.leaf_size = fields.integer("leaf_size");
 

@@ -28,6 +28,7 @@ std::string allowed_text(const KeySpec& key) {
     if (key.type == ValueType::Triple && has_min) text += " (each component)";
     if (key.nonzero) text += text.empty() ? "not zero length" : "; not zero length";
     if (key.perfect_square) text += "; a perfect square";
+    if (key.power_of_two) text += "; a power of two";
     if (key.mirror_size) text += "not 0, at least 1e-30 in size (each component; negative mirrors)";
     for (size_t i = 0; i < key.choices.size(); ++i) text += (i == 0 ? "`" : ", `") + std::string(key.choices[i]) + "`";
     return text.empty() ? "any" : text;

@@ -34,6 +34,10 @@ KeySpec square(KeySpec spec) {
     spec.perfect_square = true;
     return spec;
 }
+KeySpec power_of_two(KeySpec spec) {
+    spec.power_of_two = true;
+    return spec;
+}
 KeySpec mirror_size(KeySpec spec) {
     spec.mirror_size = true;
     return spec;
@@ -81,8 +85,8 @@ const BlockSpec kRender{
                    "`adaptive`: one sample at each pixel corner, shared with the neighbours; a cell "
                    "whose corners differ by at least `adaptive_threshold` in a channel is split into "
                    "four, down to `adaptive_depth` levels; a cell's colour is the mean of its corners "
-                   "(threshold 0 splits every cell to the full depth). The image is the same for any "
-                   "thread count, tile or region."),
+                   "(threshold 0 splits every cell to the full depth). Cells start `adaptive_cell` pixels "
+                   "wide. The image is the same for any thread count, tile or region."),
                {"uniform", "adaptive"}),
         ranged(key("adaptive_threshold", ValueType::Number, "0.05",
                    "With `antialias adaptive`: the difference in one colour channel (clamped to 0..1; "
@@ -90,6 +94,13 @@ const BlockSpec kRender{
         ranged(key("adaptive_depth", ValueType::Integer, "3",
                    "With `antialias adaptive`: the most times a pixel is split, into 2^depth x 2^depth "
                    "cells at most ((2^depth + 1)^2 samples)."), 0, 8),
+        power_of_two(ranged(key("adaptive_cell", ValueType::Number, "1",
+                                "With `antialias adaptive`: the side, in pixels, of the cells sampling "
+                                "starts from, a power of two from 1/2^adaptive_depth to 16. 1: a pixel's "
+                                "corners. Above 1, flat areas take less than a ray per pixel (a pixel in a "
+                                "cell left whole is its corners' bilinear blend), and a detail smaller than "
+                                "a cell can be missed whole; below 1, every pixel is split at least that far."),
+                            1.0 / 256, 16)),
         one_of(key("accel", ValueType::Choice, "sah",
                    "How rays find a mesh's triangles: `none` tests every triangle, `box` one bounding "
                    "box around the mesh, `median` a BVH split at the median centroid (x, y, z by "

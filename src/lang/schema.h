@@ -34,6 +34,7 @@ struct KeySpec {
     bool max_open = false;
     bool nonzero = false;         // vectors: must not have zero length
     bool perfect_square = false;  // whole numbers: must be N * N (samples)
+    bool power_of_two = false;    // numbers: must be 2^k (adaptive_cell)
     bool mirror_size = false;     // sizes that may be negative (mirroring): |x| >= kSmallestSize
     std::string_view meaning;
     const BlockSpec* block = nullptr;       // ValueType::Block: the nested block's table

@@ -352,7 +352,9 @@ bool Validator::check_number(double number, Span span, const KeySpec& key) {
     }
     bool below = key.min_open ? number <= key.min : number < key.min;
     bool above = key.max_open ? number >= key.max : number > key.max;
-    if (!below && !above) return !key.perfect_square || check_perfect_square(number, span, key);
+    if (!below && !above)
+        return (!key.perfect_square || check_perfect_square(number, span, key)) &&
+               (!key.power_of_two || check_power_of_two(number, span, key));
     std::string name = "'" + std::string(key.name) + "'";
     std::string rule;
     if (std::isinf(key.max))
@@ -380,6 +382,17 @@ bool Validator::check_perfect_square(double number, Span span, const KeySpec& ke
     diagnostics_.error(file_, span,
                        "'" + std::string(key.name) + "' must be a perfect square (N x N stratified samples); try " +
                            std::to_string(lower * lower) + " or " + std::to_string((lower + 1) * (lower + 1)));
+    return false;
+}
+
+// A number that must be 2^k, k whole (within the key's range, checked before).
+bool Validator::check_power_of_two(double number, Span span, const KeySpec& key) {
+    int exponent = 0;
+    if (std::frexp(number, &exponent) == 0.5) return true;
+    const double lower = std::ldexp(1.0, exponent - 1);
+    diagnostics_.error(file_, span,
+                       "'" + std::string(key.name) + "' must be a power of two (..., 0.5, 1, 2, 4, ...); try " +
+                           format_number(lower) + " or " + format_number(2 * lower));
     return false;
 }
 

@@ -58,6 +58,7 @@ private:
     bool check_value(const Value& value, const KeySpec& key, Fields& fields);
     bool check_number(double number, Span span, const KeySpec& key);
     bool check_perfect_square(double number, Span span, const KeySpec& key);
+    bool check_power_of_two(double number, Span span, const KeySpec& key);
     bool type_error(const Value& value, const KeySpec& key, const std::string& extra = "");
 
     // Builders: checked fields -> scene description.

@@ -2,106 +2,89 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <utility>
 
 namespace tracer {
 
+namespace {
+
+// 2^a in lattice steps of 2^-depth pixels, for a power of two `cell` in [2^-depth, 16].
+int64_t lattice_steps(double cell, int depth) {
+    return std::llround(std::ldexp(cell, depth));
+}
+
+}  // namespace
+
 AdaptivePixels::AdaptivePixels(const World& world, const PinholeCamera& camera, const RenderSettings& settings,
-                               const std::atomic<bool>* cancel, int x0, int width)
+                               const std::atomic<bool>* cancel, int x0, int y0, int width, int height)
     : world_(world),
       camera_(camera),
       settings_(settings),
       cancel_(cancel),
       x0_(x0),
+      y0_(y0),
       width_(width),
+      height_(height),
+      shift_(settings.adaptive_depth),
       cells_(int64_t(1) << settings.adaptive_depth),
-      step_(Real(1) / Real(int64_t(1) << settings.adaptive_depth)) {
+      step_(Real(1) / Real(int64_t(1) << settings.adaptive_depth)),
+      first_cell_(std::max<int64_t>(1, lattice_steps(settings.adaptive_cell, settings.adaptive_depth))),
+      cell_pixels_(int(std::max<int64_t>(1, first_cell_ >> settings.adaptive_depth))),
+      left_column_(int64_t(x0) / cell_pixels_ * cell_pixels_),
+      frame_columns_(int64_t(settings.width) + 1) {
+    const int64_t right_column = (int64_t(x0) + width + cell_pixels_ - 1) / cell_pixels_ * cell_pixels_;
+    corners_.resize(size_t(2 * cell_pixels_));  // a power of two above the cell row's cell_pixels_ + 1 lines
+    for (Line& line : corners_) line.resize(size_t(right_column - left_column_) + 1);
     const size_t line = size_t(width) * size_t(cells_) + 1, side = size_t(cells_) + 1;
-    top_.resize(line), bottom_.resize(line);
+    edges_[0].resize(line), edges_[1].resize(line);
     left_.resize(side), right_.resize(side);
     inside_.resize(side * side);
-    rays_.resize(size_t(width) + 1);
+    pixels_.resize(size_t(cell_pixels_) * size_t(width) * 3);
+    rays_.resize(size_t((right_column - left_column_) / cell_pixels_) + 1);
 }
 
-Color AdaptivePixels::trace_at(int64_t x, int64_t y, RayCounts& counts) const {
-    // Lattice coordinates times a power of two: exact, so a point has one ray wherever it is asked.
-    return trace(world_, settings_, camera_.ray_through(Real(x) * step_, Real(y) * step_), counts, cancel_);
-}
-
-void AdaptivePixels::row(int y, double* out, RayCounts& counts) {
-    // Step 1: the edges. The row before's bottom edge is this one's top edge (stamped with the
-    // number of the row whose bottom edge it is). The pixel corners missing from either are
-    // traced first, their rays made before any is traced (as uniform sampling does: a ray made
-    // just before the call that takes it stalls the processor on every sample).
-    std::swap(top_, bottom_);
-    y_ = y;
-    for (int edge = y; edge <= y + 1; ++edge) {
-        Line& line = edge == y ? top_ : bottom_;
-        const int64_t stamp = edge - 1;                     // the row whose bottom edge it is
-        if (edge == y && line.stamp[0] == stamp) continue;  // shared with the row before
-        for (int k = 0; k <= width_; ++k) rays_[size_t(k)] = camera_.ray_through(Real(x0_ + k), Real(edge));
-        for (int k = 0; k <= width_; ++k) {
-            if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
-            const size_t at = size_t(k) * size_t(cells_);
-            line.colour[at] = trace(world_, settings_, rays_[size_t(k)], counts, cancel_);
-            line.stamp[at] = stamp;
-        }
+AdaptivePixels::Slot AdaptivePixels::slot(int64_t x, int64_t y) {
+    // Pixel corners in the ring of corner rows; other points of a pixel row's edge on that
+    // edge's line; points on a pixel's sides on that side (keyed by the side's place in the
+    // frame); the rest inside the pixel being worked out.
+    const int64_t mask = cells_ - 1;
+    if ((y & mask) == 0) {
+        const int64_t row = y >> shift_;
+        if ((x & mask) == 0)
+            return {&corners_[size_t(row) & (corners_.size() - 1)], size_t((x >> shift_) - left_column_), row};
+        return {&edges_[row & 1], size_t(x - int64_t(x0_) * cells_), row};
     }
-    // Step 2: the pixels, left to right, each passing its right edge to the next.
-    ++pixel_stamp_;  // the first pixel has no left neighbour
-    for (int x = x0_; x < x0_ + width_; ++x) {
-        if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
-        x_ = x;
-        std::swap(left_, right_);
-        ++pixel_stamp_;
-        const Color c = cell(0, 0, cells_, counts);
-        double* pixel = out + size_t(x - x0_) * 3;
-        pixel[0] = c.r, pixel[1] = c.g, pixel[2] = c.b;
+    if ((x & mask) == 0) {
+        const int64_t column = x >> shift_;
+        return {column == x_ ? &left_ : &right_, size_t(y - int64_t(y_) * cells_),
+                int64_t(y_) * frame_columns_ + column};
     }
+    return {&inside_, size_t((y - int64_t(y_) * cells_) * (cells_ + 1) + (x - int64_t(x_) * cells_)), pixel_stamp_};
 }
 
-AdaptivePixels::Slot AdaptivePixels::slot(int64_t i, int64_t j) {
-    // Where the point (i, j) of the pixel is kept: on the row's edges, the pixel's sides, inside.
-    Line* line;
-    size_t at;
-    int64_t stamp;
-    if (j == 0 || j == cells_) {
-        line = j == 0 ? &top_ : &bottom_;
-        at = size_t(x_ - x0_) * size_t(cells_) + size_t(i);
-        stamp = j == 0 ? y_ - 1 : y_;
-    } else if (i == 0 || i == cells_) {
-        line = i == 0 ? &left_ : &right_;
-        at = size_t(j);
-        stamp = i == 0 ? pixel_stamp_ - 1 : pixel_stamp_;
-    } else {
-        line = &inside_;
-        at = size_t(j) * size_t(cells_ + 1) + size_t(i);
-        stamp = pixel_stamp_;
-    }
-    return {line, at, stamp};
-}
-
-Color AdaptivePixels::sample(int64_t i, int64_t j, RayCounts& counts) {
-    const Slot s = slot(i, j);
-    if (s.line->stamp[s.at] == s.stamp) return s.line->colour[s.at];
+Color AdaptivePixels::sample(int64_t x, int64_t y, RayCounts& counts) {
+    const Slot s = slot(x, y);
+    if (s.known()) return s.line->colour[s.at];
     s.line->stamp[s.at] = s.stamp;
-    return s.line->colour[s.at] = trace_at(int64_t(x_) * cells_ + i, int64_t(y_) * cells_ + j, counts);
+    // Lattice coordinates times a power of two: exact, so a point has one ray wherever it is asked.
+    return s.line->colour[s.at] =
+               trace(world_, settings_, camera_.ray_through(Real(x) * step_, Real(y) * step_), counts, cancel_);
 }
 
-void AdaptivePixels::split_samples(int64_t i, int64_t j, int64_t half, RayCounts& counts) {
+void AdaptivePixels::split_samples(int64_t x, int64_t y, int64_t half, RayCounts& counts) {
     // The five points a split adds (edge midpoints and centre), their rays made before any is
-    // traced.
+    // traced (a ray made just before the call that takes it stalls the processor on every sample).
     const int64_t points[5][2] = {
-        {i + half, j}, {i, j + half}, {i + half, j + half}, {i + 2 * half, j + half}, {i + half, j + 2 * half}};
+        {x + half, y}, {x, y + half}, {x + half, y + half}, {x + 2 * half, y + half}, {x + half, y + 2 * half}};
     Slot missing[5];
     Ray rays[5];
     int count = 0;
-    for (const auto& [pi, pj] : points) {
-        const Slot s = slot(pi, pj);
-        if (s.line->stamp[s.at] == s.stamp) continue;
+    for (const auto& [px, py] : points) {
+        const Slot s = slot(px, py);
+        if (s.known()) continue;
         missing[count] = s;
-        rays[count++] =
-            camera_.ray_through(Real(int64_t(x_) * cells_ + pi) * step_, Real(int64_t(y_) * cells_ + pj) * step_);
+        rays[count++] = camera_.ray_through(Real(px) * step_, Real(py) * step_);
     }
     for (int k = 0; k < count; ++k) {
         missing[k].line->colour[missing[k].at] = trace(world_, settings_, rays[k], counts, cancel_);
@@ -109,27 +92,114 @@ void AdaptivePixels::split_samples(int64_t i, int64_t j, int64_t half, RayCounts
     }
 }
 
-// The cell of the current pixel with corners (i, j) and (i + size, j + size).
-Color AdaptivePixels::cell(int64_t i, int64_t j, int64_t size, RayCounts& counts) {
-    const Color corners[4] = {sample(i, j, counts), sample(i + size, j, counts), sample(i, j + size, counts),
-                              sample(i + size, j + size, counts)};
-    if (size > 1 && !(cancel_ && cancel_->load(std::memory_order_relaxed))) {
-        double spread = 0;
-        for (int channel = 0; channel < 3; ++channel) {
-            double low = 1, high = 0;
-            for (const Color& c : corners) {
-                const double v = std::clamp(c[channel], 0.0, 1.0);
-                low = std::min(low, v), high = std::max(high, v);
-            }
-            spread = std::max(spread, high - low);
+bool AdaptivePixels::must_split(const Color (&corners)[4], int64_t size) const {
+    if (size > first_cell_) return true;  // finer than adaptive_cell: always split
+    double spread = 0;
+    for (int channel = 0; channel < 3; ++channel) {
+        double low = 1, high = 0;
+        for (const Color& c : corners) {
+            const double v = std::clamp(c[channel], 0.0, 1.0);
+            low = std::min(low, v), high = std::max(high, v);
         }
-        if (spread >= settings_.adaptive_threshold) {
-            const int64_t half = size / 2;
-            split_samples(i, j, half, counts);
-            return (cell(i, j, half, counts) + cell(i + half, j, half, counts) + cell(i, j + half, half, counts) +
-                    cell(i + half, j + half, half, counts)) *
-                   0.25;
+        spread = std::max(spread, high - low);
+    }
+    return spread >= settings_.adaptive_threshold;
+}
+
+void AdaptivePixels::row(int y, double* out, RayCounts& counts) {
+    const int top = y / cell_pixels_ * cell_pixels_;
+    if (top != top_) cell_row(top, counts);
+    const double* from = &pixels_[size_t(y - top_) * size_t(width_) * 3];
+    std::copy(from, from + size_t(width_) * 3, out);
+}
+
+void AdaptivePixels::cell_row(int top, RayCounts& counts) {
+    top_ = top;
+    split_pixels_.clear();
+    // Step 1: the cells' corners on the row's top and bottom edges that neither this thread's
+    // cell row before nor anything else traced yet, their rays made before any is traced.
+    const int64_t right_column = left_column_ + int64_t(rays_.size() - 1) * cell_pixels_;
+    std::vector<Slot> missing;
+    missing.reserve(rays_.size());
+    for (const int64_t edge : {int64_t(top), int64_t(top) + cell_pixels_}) {
+        missing.clear();
+        for (int64_t column = left_column_; column <= right_column; column += cell_pixels_) {
+            const Slot s = slot(column * cells_, edge * cells_);
+            if (s.known()) continue;
+            rays_[missing.size()] = camera_.ray_through(Real(column), Real(edge));
+            missing.push_back(s);
         }
+        for (size_t k = 0; k < missing.size(); ++k) {
+            if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
+            missing[k].line->colour[missing[k].at] = trace(world_, settings_, rays_[k], counts, cancel_);
+            missing[k].line->stamp[missing[k].at] = missing[k].stamp;
+        }
+    }
+    // Step 2: the cells, left to right; those split down to single pixels leave them in split_pixels_.
+    const int64_t size = int64_t(cell_pixels_) * cells_;
+    for (int64_t column = left_column_; column <= right_column - cell_pixels_; column += cell_pixels_) {
+        if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
+        coarse_cell(column * cells_, int64_t(top) * cells_, size, counts);
+    }
+    // Step 3: those pixels in row order, each passing its right side to the next.
+    std::sort(split_pixels_.begin(), split_pixels_.end());
+    for (const auto& [y, x] : split_pixels_) {
+        if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
+        const Color c = pixel(x, y, counts);
+        double* out = pixel_out(x, y);
+        out[0] = c.r, out[1] = c.g, out[2] = c.b;
+    }
+}
+
+void AdaptivePixels::coarse_cell(int64_t x, int64_t y, int64_t size, RayCounts& counts) {
+    // A cell with no pixel of the region in it is left alone.
+    const int64_t px = x >> shift_, py = y >> shift_, pixels = size >> shift_;
+    if (px >= x0_ + width_ || px + pixels <= x0_ || py >= y0_ + height_ || py + pixels <= y0_) return;
+    if (size == cells_) {  // a pixel: its own cells decide
+        split_pixels_.emplace_back(int(py), int(px));
+        return;
+    }
+    const Color corners[4] = {sample(x, y, counts), sample(x + size, y, counts), sample(x, y + size, counts),
+                              sample(x + size, y + size, counts)};
+    if (must_split(corners, size)) {
+        const int64_t half = size / 2;
+        split_samples(x, y, half, counts);
+        coarse_cell(x, y, half, counts), coarse_cell(x + half, y, half, counts);
+        coarse_cell(x, y + half, half, counts), coarse_cell(x + half, y + half, half, counts);
+        return;
+    }
+    // Left whole: each pixel of the region in it takes the corners' bilinear blend at its centre.
+    const int64_t row_end = std::min<int64_t>(py + pixels, y0_ + height_);
+    const int64_t column_end = std::min<int64_t>(px + pixels, x0_ + width_);
+    for (int64_t row = std::max<int64_t>(py, y0_); row < row_end; ++row)
+        for (int64_t column = std::max<int64_t>(px, x0_); column < column_end; ++column) {
+            const double u = (double(column - px) + 0.5) / double(pixels),
+                         v = (double(row - py) + 0.5) / double(pixels);
+            const Color c = corners[0] * ((1 - u) * (1 - v)) + corners[1] * (u * (1 - v)) + corners[2] * ((1 - u) * v) +
+                            corners[3] * (u * v);
+            double* out = pixel_out(int(column), int(row));
+            out[0] = c.r, out[1] = c.g, out[2] = c.b;
+        }
+}
+
+Color AdaptivePixels::pixel(int x, int y, RayCounts& counts) {
+    // The left side is the pixel before's right side if that pixel was (x - 1, y) (its stamp says).
+    x_ = x, y_ = y;
+    std::swap(left_, right_);
+    ++pixel_stamp_;
+    return cell(int64_t(x) * cells_, int64_t(y) * cells_, cells_, counts);
+}
+
+// The cell of the current pixel with corners (x, y) and (x + size, y + size), in lattice steps.
+Color AdaptivePixels::cell(int64_t x, int64_t y, int64_t size, RayCounts& counts) {
+    const Color corners[4] = {sample(x, y, counts), sample(x + size, y, counts), sample(x, y + size, counts),
+                              sample(x + size, y + size, counts)};
+    if (size > 1 && !(cancel_ && cancel_->load(std::memory_order_relaxed)) && must_split(corners, size)) {
+        const int64_t half = size / 2;
+        split_samples(x, y, half, counts);
+        return (cell(x, y, half, counts) + cell(x + half, y, half, counts) + cell(x, y + half, half, counts) +
+                cell(x + half, y + half, half, counts)) *
+               0.25;
     }
     return (corners[0] + corners[1] + corners[2] + corners[3]) * 0.25;
 }

@@ -53,7 +53,8 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     // their edges' samples). The time is the render loop's (as embree_bench's): it leaves out
     // the image's allocation.
     const bool adaptive = settings.antialias == Antialias::Adaptive;
-    const int band = adaptive ? 16 : 1;
+    const int band = adaptive ? kMostAdaptiveCell : 1;
+    const int band_offset = adaptive ? area.y0 % band : 0;  // bands start at the frame's multiples of a cell row
     const auto start = std::chrono::steady_clock::now();
     const int threads = options.pool ? options.pool->size()
                                      : std::max(1, std::min(thread_count(options.threads), std::max(area.height, 1)));
@@ -73,9 +74,9 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
         // own code, full frame).
         std::vector<Ray> rays(size_t(area.width));
         std::optional<AdaptivePixels> corners;
-        if (adaptive) corners.emplace(world, camera, settings, cancel, area.x0, area.width);
-        for (int first; (first = next_row.fetch_add(band)) < area.height;)
-            for (int row = first; row < std::min(first + band, area.height); ++row) {
+        if (adaptive) corners.emplace(world, camera, settings, cancel, area.x0, area.y0, area.width, area.height);
+        for (int first; (first = next_row.fetch_add(band) - band_offset) < area.height;)
+            for (int row = std::max(first, 0); row < std::min(first + band, area.height); ++row) {
                 if (cancel && cancel->load()) break;
                 const int y = area.y0 + row;
                 if (adaptive) {

@@ -71,6 +71,7 @@ struct RenderSettings {
     Antialias antialias = Antialias::Uniform;
     double adaptive_threshold = 0.05;  // a cell is split where a channel of its corners differs by this much
     int adaptive_depth = 3;            // the most times a pixel is split (into 2^depth x 2^depth cells)
+    double adaptive_cell = 1;          // the side of the first cells, in pixels: a power of two, 2^-depth .. 16
     Accelerator accel = Accelerator::Sah;
     int leaf_size = 4;  // most triangles in a BVH leaf (median; sah may make smaller leaves)
 };

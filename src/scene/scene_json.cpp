@@ -108,6 +108,7 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
         out["render"]["antialias"] = "adaptive";
         out["render"]["adaptive_threshold"] = r.adaptive_threshold;
         out["render"]["adaptive_depth"] = r.adaptive_depth;
+        out["render"]["adaptive_cell"] = r.adaptive_cell;
     }
     const Camera& c = scene.camera;
     out["camera"] = {{"eye", vec(c.eye)},

@@ -100,6 +100,8 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(
             json.loads(run("--dump-json", self.small, "--adaptive", "0.1").stdout)["render"]["adaptive_depth"], 3
         )
+        render = json.loads(run("--dump-json", self.small, "--adaptive", "0.1:2:8").stdout)["render"]
+        self.assertEqual((render["adaptive_depth"], render["adaptive_cell"]), (2, 8))
         out = self.tmp / "out.png"
         result = run(self.small, "-o", out, "--adaptive", "0.05:2")
         self.assertEqual(result.returncode, 0, result.stderr)
@@ -109,7 +111,10 @@ class CommandLine(unittest.TestCase):
             ("2", "'adaptive_threshold' must be between 0 and 1, found 2"),
             ("0.1:9", "'adaptive_depth' must be between 0 and 8, found 9"),
             ("abc", "'adaptive_threshold' expects a number, found 'abc'"),
-            ("0.1:", "expected THRESHOLD[:DEPTH], e.g. 0.05:3"),
+            ("0.1:", "expected THRESHOLD[:DEPTH[:CELL]], e.g. 0.05:3 or 0.05:3:4"),
+            ("0.1:3:4:1", "expected THRESHOLD[:DEPTH[:CELL]], e.g. 0.05:3 or 0.05:3:4"),
+            ("0.1:3:3", "'adaptive_cell' must be a power of two (..., 0.5, 1, 2, 4, ...); try 2 or 4"),
+            ("0.1:3:32", "'adaptive_cell' must be between 0.00390625 and 16, found 32"),
         ):
             with self.subTest(value=value):
                 result = run(self.small, "-o", out, "--adaptive", value)
@@ -118,6 +123,9 @@ class CommandLine(unittest.TestCase):
         result = run(self.small, "-o", out, "--adaptive", "0.1", "--samples", "4")
         self.assertEqual(result.returncode, 1)
         self.assertIn("'samples' is for uniform antialiasing", result.stderr)
+        result = run(self.small, "-o", out, "--adaptive", "0.1:2:0.125")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("'adaptive_cell' 0.125 is finer than the 1/4 pixel that 'adaptive_depth' 2", result.stderr)
 
     def test_overrides_are_checked_by_the_scene_rules(self):
         # Each override against the same key written in the scene's render block: refused alike,

@@ -59,6 +59,7 @@ std::vector<DefaultRow> rows() {
         {"render", "adaptive_threshold",
          [=](auto& s) { EXPECT_EQ(s.render.adaptive_threshold, render.adaptive_threshold); }},
         {"render", "adaptive_depth", [=](auto& s) { EXPECT_EQ(s.render.adaptive_depth, render.adaptive_depth); }},
+        {"render", "adaptive_cell", [=](auto& s) { EXPECT_EQ(s.render.adaptive_cell, render.adaptive_cell); }},
         {"render", "accel", [=](auto& s) { EXPECT_EQ(s.render.accel, render.accel); }},
         {"render", "leaf_size", [=](auto& s) { EXPECT_EQ(s.render.leaf_size, render.leaf_size); }},
         {"camera", "up", [=](auto& s) { EXPECT_EQ(s.camera.up, camera.up); }},
