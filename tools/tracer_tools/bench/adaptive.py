@@ -150,25 +150,32 @@ def cheapest(rows: list[dict], kind: str, most_error: float, cost: str = "second
     return min(fitting, key=lambda r: r[cost]) if fitting else None
 
 
+def pairing(adaptive: dict, uniform: dict) -> dict:
+    return {
+        "uniform": uniform["variant"],
+        "uniform_levels": uniform["mean_levels"],
+        "adaptive": adaptive["variant"],
+        "adaptive_levels": adaptive["mean_levels"],
+        "ratio": adaptive["rays"] / uniform["rays"],
+    }
+
+
 def matched(rows: list[dict]) -> dict:
     """The scene's comparisons at matched error: rays at 1 level, uniform and POV-Ray against adaptive."""
     out = {}
-    # Each adaptive point of at most 1 level against the cheapest uniform N x N as good as it;
-    # the best of these ratios.
+    # The target's reading: the cheapest of each under 1 level, by rays.
+    uniform, adaptive = cheapest(rows, "uniform", 1.0, "rays"), cheapest(rows, "adaptive", 1.0, "rays")
+    if uniform and adaptive:
+        out["rays_at_1_level"] = pairing(adaptive, uniform)
+    # A stricter one: each adaptive point under 1 level against the cheapest uniform N x N as
+    # good as it; the best of these ratios.
     pairs = []
     for row in (r for r in rows if r["kind"] == "adaptive" and r["mean_levels"] <= 1.0):
-        uniform = cheapest(rows, "uniform", row["mean_levels"], "rays")
-        if uniform:
-            pairs.append((row["rays"] / uniform["rays"], row, uniform))
+        as_good = cheapest(rows, "uniform", row["mean_levels"], "rays")
+        if as_good:
+            pairs.append(pairing(row, as_good))
     if pairs:
-        ratio, adaptive, uniform = min(pairs, key=lambda p: p[0])
-        out["rays_at_1_level"] = {
-            "uniform": uniform["variant"],
-            "uniform_levels": uniform["mean_levels"],
-            "adaptive": adaptive["variant"],
-            "adaptive_levels": adaptive["mean_levels"],
-            "ratio": ratio,
-        }
+        out["rays_as_good"] = min(pairs, key=lambda p: p["ratio"])
     for kind in ("uniform", "povray"):
         pairs = []
         for row in (r for r in rows if r["kind"] == kind):
@@ -205,9 +212,16 @@ def table(name: str, rows: list[dict], found: dict) -> str:
     if "rays_at_1_level" in found:
         m = found["rays_at_1_level"]
         lines.append(
-            f"At a mean error of at most 1 level: adaptive {m['adaptive']} ({m['adaptive_levels']:.3f} levels) "
-            f"against the cheapest uniform as good, {m['uniform']} ({m['uniform_levels']:.3f} levels); "
+            f"At a mean error of at most 1 level, the fewest rays of each: adaptive {m['adaptive']} "
+            f"({m['adaptive_levels']:.3f} levels) against uniform {m['uniform']} ({m['uniform_levels']:.3f} levels); "
             f"adaptive's rays / uniform's: **{m['ratio']:.3f}**."
+        )
+    if "rays_as_good" in found:
+        m = found["rays_as_good"]
+        lines.append(
+            f"Each adaptive point under 1 level against the cheapest uniform at least as good, the best pair: "
+            f"adaptive {m['adaptive']} ({m['adaptive_levels']:.3f} levels) against {m['uniform']} "
+            f"({m['uniform_levels']:.3f}): **{m['ratio']:.3f}**."
         )
     rays = [p for p in found["adaptive_against_uniform"] if p["rays_ratio"] is not None]
     if rays:
@@ -284,7 +298,7 @@ def report(results: dict) -> None:
         "",
     ]
     for name, scene in results["scenes"].items():
-        body.append(table(name, scene["rows"], scene["matched"]))
+        body.append(table(name, scene["rows"], matched(scene["rows"])))
     body.append(END)
     text = DOC.read_text()
     start, end = text.find(BEGIN), text.find(END)
@@ -307,7 +321,11 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     data = DOCS / "adaptive-data.json"
     if args.report_only:
-        report(json.loads(data.read_text()))
+        results = json.loads(data.read_text())
+        for scene in results["scenes"].values():
+            scene["matched"] = matched(scene["rows"])
+        data.write_text(json.dumps(results, indent=1) + "\n")
+        report(results)
         return 0
     OUT.mkdir(parents=True, exist_ok=True)
     results = {"provenance": provenance(), "threads": args.threads, "width": args.width, "runs": args.runs}
