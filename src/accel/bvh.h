@@ -110,6 +110,12 @@ public:
     // rounded to float as they come, never all kept in double.
     Bvh(size_t count, const BoundsSource& source, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1);
 
+    // Makes each primitive a run of entries: primitive p of the build becomes entries
+    // first_entry[p] .. first_entry[p + 1] - 1 (a box's twelve triangles, say), in that order;
+    // order() and the leaves count entries from then on. first_entry has one element more than
+    // the build had primitives, and ends with the number of entries.
+    void expand(const std::vector<uint32_t>& first_entry);
+
     // Box's and Median's binary tree, depth first: an inner node's left child follows it, its
     // right child is at `index` (empty for Sah).
     const NodeArray& nodes() const { return nodes_; }

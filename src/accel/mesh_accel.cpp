@@ -117,6 +117,24 @@ PlacedTriangles place(const std::vector<MeshPart>& parts, int threads, size_t fl
 
 // Placing is loading, as reading the file is: not in build_seconds, which times what Embree's
 // build does.
+std::vector<uint32_t> small_shapes(const std::vector<uint32_t>& tags) {
+    // Runs of one tag: a run of at most kMostShapeTriangles is a shape, a longer one (a mesh
+    // block's) gives a shape per triangle.
+    std::vector<uint32_t> first_of_shape;
+    for (size_t run = 0; run < tags.size();) {
+        size_t end = run + 1;
+        while (end < tags.size() && tags[end] == tags[run]) ++end;
+        if (end - run <= kMostShapeTriangles)
+            first_of_shape.push_back(uint32_t(run));
+        else
+            for (size_t t = run; t < end; ++t) first_of_shape.push_back(uint32_t(t));
+        run = end;
+    }
+    if (first_of_shape.size() * 2 > tags.size()) return {};  // not worth it
+    first_of_shape.push_back(uint32_t(tags.size()));
+    return first_of_shape;
+}
+
 MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& settings)
     : MeshAccel(place(parts, settings.threads), settings) {}
 
@@ -125,14 +143,24 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     const size_t n = mesh.triangles.size();
     const auto start = std::chrono::steady_clock::now();
 
-    // Step 2: the accelerator over the triangles' bounds (handed over a block at a time, the
+    // Step 1: small shapes (a box's twelve triangles, a quad's two) as one primitive each of the
+    // BVH's build, where that at least halves its primitives; its leaves then hold whole shapes.
+    const std::vector<uint32_t> first_of_shape =
+        brute_force_ || settings.build != BvhBuild::Sah ? std::vector<uint32_t>{} : small_shapes(mesh.tags);
+    const size_t primitives = first_of_shape.empty() ? n : first_of_shape.size() - 1;
+
+    // Step 2: the accelerator over the primitives' bounds (handed over a block at a time, the
     // mesh's box grown by each block's), and the leaf order.
     std::mutex growing;
-    auto triangle_bounds = [&](size_t first, size_t count, Bounds* out) {
+    auto primitive_bounds = [&](size_t first, size_t count, Bounds* out) {
         Bounds block;
         for (size_t k = 0; k < count; ++k) {
+            const size_t p = first + k;
             out[k] = Bounds{};
-            for (uint32_t v : mesh.triangles[first + k]) out[k].extend(mesh.positions[v]);
+            const size_t begin = first_of_shape.empty() ? p : first_of_shape[p];
+            const size_t end = first_of_shape.empty() ? p + 1 : first_of_shape[p + 1];
+            for (size_t triangle = begin; triangle < end; ++triangle)
+                for (uint32_t v : mesh.triangles[triangle]) out[k].extend(mesh.positions[v]);
             block.extend(out[k]);
         }
         const std::lock_guard lock(growing);
@@ -141,9 +169,16 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     if (brute_force_) {
         constexpr size_t kBlock = 256;
         Bounds out[kBlock];
-        for (size_t first = 0; first < n; first += kBlock) triangle_bounds(first, std::min(kBlock, n - first), out);
+        for (size_t first = 0; first < n; first += kBlock) primitive_bounds(first, std::min(kBlock, n - first), out);
+    } else if (first_of_shape.empty()) {
+        bvh_ = Bvh(n, primitive_bounds, settings.build, settings.leaf_size, threads, kTriangleLanes);
     } else {
-        bvh_ = Bvh(n, triangle_bounds, settings.build, settings.leaf_size, threads, kTriangleLanes);
+        // A shape of about `mean` triangles counts as kTriangleLanes / mean tests' worth of lanes.
+        const uint32_t mean = uint32_t(std::max<size_t>(1, (n + primitives / 2) / primitives));
+        const int lanes = int(std::bit_floor(std::max<uint32_t>(1, kTriangleLanes / mean)));
+        const int leaf_size = std::max(1, settings.leaf_size / int(mean));
+        bvh_ = Bvh(primitives, primitive_bounds, settings.build, leaf_size, threads, lanes);
+        bvh_.expand(first_of_shape);
     }
 
     // Step 3: the triangles in that order; then their hit records (each input freed once read).

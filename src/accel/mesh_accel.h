@@ -155,6 +155,13 @@ private:
     double build_seconds_ = 0;
 };
 
+// The most triangles of a shape built as one primitive of a mesh's BVH (a box's twelve).
+constexpr size_t kMostShapeTriangles = 12;
+// The first triangle of each small shape, for a mesh whose triangles carry these tags: a run
+// of one tag up to kMostShapeTriangles long is a shape, a longer run a shape per triangle; then
+// the number of triangles. Empty if that would not at least halve the primitives.
+std::vector<uint32_t> small_shapes(const std::vector<uint32_t>& tags);
+
 // Area-weighted vertex normals (zero-area faces add nothing; a vertex with no area gets the
 // zero vector, which shading replaces by the face normal).
 std::vector<Vec3> area_weighted_normals(std::span<const Vec3> positions,

@@ -304,7 +304,7 @@ class Memory(Hostile):
         # placed, before the BVH is built. Under the sanitizers only the run is checked.
         shapes = {
             "quad": ("corner (i, j, 0) edge1 (0.5, 0, 0) edge2 (0, 0.5, 0)", 2, 240),
-            "box": ("min (i, j, 0) max (i + 0.5, j + 0.5, 0.5)", 12, 180),
+            "box": ("min (i, j, 0) max (i + 0.5, j + 0.5, 0.5)", 12, 150),
             "triangle": ("a (i, j, 0) b (i + 0.5, j, 0) c (i, j + 0.5, 0)", 1, 400),
         }
         for kind, (keys, triangles, most_bytes) in shapes.items():

@@ -1,6 +1,6 @@
 // The finite flat shapes (triangle, quad, box) and placing by transform steps: hits, misses,
 // shared edges, both faces, closed boxes with outward faces, mirroring, and agreement between
-// the acceleration structure and testing every triangle.
+// the acceleration structure (which builds small shapes whole) and testing every triangle.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -227,6 +227,64 @@ TEST(FlatShapes, AccelerationStructureAgreesWithTestingEveryTriangle) {
         EXPECT_EQ(world.surface(ray, *found).material, world.objects()[found->object].material);
     }
     EXPECT_GT(hits, 20000);
+}
+
+TEST(FlatShapes, SmallShapesAreBuiltWhole) {
+    // Runs of one tag up to twelve long are shapes; a longer run is a triangle each.
+    EXPECT_EQ(small_shapes({7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 7, 8, 8, 9, 9}), (std::vector<uint32_t>{0, 12, 14, 16}));
+    const std::vector<uint32_t> long_run(13, 5);
+    EXPECT_TRUE(small_shapes(long_run).empty());  // thirteen primitives for thirteen triangles
+    std::vector<uint32_t> mixed(13, 5);
+    for (uint32_t tag : {6u, 6u, 6u, 6u, 6u, 6u, 6u, 6u, 6u, 6u, 6u, 6u}) mixed.push_back(tag);
+    EXPECT_TRUE(small_shapes(mixed).empty());  // 14 primitives for 25 triangles: not halved
+}
+
+TEST(FlatShapes, BoxesBuiltWholeAgreeWithTestingEveryTriangle) {
+    // 2,000 boxes from a loop: the BVH's leaves hold one box each, and the nearest hit and the
+    // shadow test agree with testing every triangle.
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(0, 1);
+    SceneDescription scene;
+    scene.materials.resize(2);
+    for (int i = 0; i < 2000; ++i) {
+        Box b;
+        b.material = i % 2;
+        b.steps = {
+            step(TransformStep::Kind::Rotate, glm::normalize(dvec3(unit(random), 1, unit(random))), 90 * unit(random)),
+            step(TransformStep::Kind::Translate, dvec3(unit(random), unit(random), unit(random)) * 20.0)};
+        b.min = -dvec3(0.05) - dvec3(unit(random), unit(random), unit(random)) * 0.3;
+        b.max = dvec3(0.05) + dvec3(unit(random), unit(random), unit(random)) * 0.3;
+        scene.boxes.push_back(b);
+    }
+    const World world(scene);
+    scene.render.accel = Accelerator::None;
+    const World brute(scene);
+    const BvhStats stats = world.meshes()[0].bvh().stats();
+    EXPECT_EQ(stats.leaves, 2000u);
+    EXPECT_EQ(stats.min_leaf, 12u);
+    EXPECT_EQ(stats.max_leaf, 12u);
+    int hits = 0, blocked = 0;
+    for (int i = 0; i < 40000; ++i) {
+        const dvec3 origin = dvec3(unit(random), unit(random), unit(random)) * 40.0 - dvec3(10);
+        const dvec3 target = dvec3(unit(random), unit(random), unit(random)) * 20.0;
+        const Ray ray{Vec3(origin), Vec3(glm::normalize(target - origin))};
+        SearchCounts counts;
+        const auto expected = brute.nearest_hit(ray, {0, kInfinity}, counts);
+        const auto found = world.nearest_hit(ray, {0, kInfinity}, counts);
+        ASSERT_EQ(found.has_value(), expected.has_value());
+        const Interval shadow{0, Real(glm::length(target - origin))};
+        Occluder a, b;
+        const bool in_way = world.occluded(ray, shadow, counts, a);
+        ASSERT_EQ(in_way, brute.occluded(ray, shadow, counts, b));
+        blocked += in_way;
+        if (!found) continue;
+        ++hits;
+        ASSERT_EQ(found->object, expected->object);
+        ASSERT_EQ(found->t, expected->t);
+        ASSERT_EQ(world.surface(ray, *found).normal, brute.surface(ray, *expected).normal);
+    }
+    EXPECT_GT(hits, 5000);
+    EXPECT_GT(blocked, 5000);
 }
 
 }  // namespace
