@@ -1,6 +1,6 @@
 """tools/bench adaptive: adaptive antialiasing against uniform N x N and POV-Ray's method 2.
 
-    tools/bench adaptive [--width 400] [--runs 3] [--threads 2] [--scenes task2 room ...] [--no-povray]
+    tools/bench adaptive [--width 400] [--runs 3] [--threads 2] [--scenes task2 room ...] [--no-povray] [--merge]
 
 Each scene is rendered --width pixels wide (its aspect kept): a reference at 32 x 32 uniform
 samples, then uniform 1 to 16 x 16, adaptive over a range of thresholds at each of
@@ -289,7 +289,7 @@ def report(results: dict) -> None:
     body = [
         BEGIN,
         "",
-        f"Machine: {source['machine']}; {source['date']}, commit {source['commit']}; {results['threads']} threads; "
+        f"Machine: {source['machine']}; {results['threads']} threads; "
         f"{results['width'] or 'each scene at its own size'}; median of {results['runs']} runs. Reference: tracer at "
         f"{REFERENCE_GRID}x{REFERENCE_GRID} uniform samples. POV-Ray {results.get('povray_version', '3.7')}: its "
         "reported Trace Time.",
@@ -298,7 +298,10 @@ def report(results: dict) -> None:
         "",
     ]
     for name, scene in results["scenes"].items():
-        body.append(table(name, scene["rows"], matched(scene["rows"])))
+        measured = scene.get("provenance", source)
+        text = table(name, scene["rows"], matched(scene["rows"]))
+        heading, rest = text.split("\n", 1)
+        body.append(f"{heading}\n\nMeasured {measured['date']} at commit {measured['commit']}.\n{rest}")
     body.append(END)
     text = DOC.read_text()
     start, end = text.find(BEGIN), text.find(END)
@@ -318,6 +321,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--scenes", nargs="+", default=list(SCENES), choices=list(SCENES))
     parser.add_argument("--no-povray", dest="povray", action="store_false")
     parser.add_argument("--report-only", action="store_true", help="redraw from docs/adaptive-data.json")
+    parser.add_argument(
+        "--merge", action="store_true", help="keep the other scenes of docs/adaptive-data.json, replace these"
+    )
     args = parser.parse_args(argv)
     data = DOCS / "adaptive-data.json"
     if args.report_only:
@@ -329,10 +335,14 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     OUT.mkdir(parents=True, exist_ok=True)
     results = {"provenance": provenance(), "threads": args.threads, "width": args.width, "runs": args.runs}
-    results["scenes"] = {}
+    kept = json.loads(data.read_text())["scenes"] if args.merge and data.exists() else {}
+    measured = {}
     for name in args.scenes:
         rows = measure_scene(name, args)
-        results["scenes"][name] = {"rows": rows, "matched": matched(rows)}
+        measured[name] = {"rows": rows, "matched": matched(rows), "provenance": results["provenance"]}
+    results["scenes"] = {
+        name: measured.get(name, kept.get(name)) for name in SCENES if name in measured or name in kept
+    }
     data.write_text(json.dumps(results, indent=1) + "\n")
     report(results)
     return 0
