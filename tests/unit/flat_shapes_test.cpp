@@ -24,6 +24,15 @@ SceneDescription one_material() {
     return scene;
 }
 
+// A box around the origin, each side reaching between `least` and `least + spread` from it.
+Box random_box(std::mt19937& random, double least, double spread) {
+    std::uniform_real_distribution<double> unit(0, 1);
+    Box b;
+    b.min = -dvec3(least) - dvec3(unit(random), unit(random), unit(random)) * spread;
+    b.max = dvec3(least) + dvec3(unit(random), unit(random), unit(random)) * spread;
+    return b;
+}
+
 std::optional<SurfaceHit> shoot(const World& world, dvec3 origin, dvec3 direction) {
     SearchCounts counts;
     return world.intersect({Vec3(origin), Vec3(glm::normalize(direction))}, {0, kInfinity}, counts);
@@ -200,10 +209,8 @@ TEST(FlatShapes, AccelerationStructureAgreesWithTestingEveryTriangle) {
             q.corner = random_vector(1), q.edge1 = random_vector(1), q.edge2 = random_vector(1);
             scene.quads.push_back(q);
         } else {
-            Box b;
+            Box b = random_box(random, 0.1, 0.5);
             static_cast<Placed&>(b) = placed;
-            b.min = -dvec3(0.1) - dvec3(unit(random), unit(random), unit(random)) * 0.5;
-            b.max = dvec3(0.1) + dvec3(unit(random), unit(random), unit(random)) * 0.5;
             scene.boxes.push_back(b);
         }
     }
@@ -247,13 +254,11 @@ TEST(FlatShapes, BoxesBuiltWholeAgreeWithTestingEveryTriangle) {
     SceneDescription scene;
     scene.materials.resize(2);
     for (int i = 0; i < 2000; ++i) {
-        Box b;
+        Box b = random_box(random, 0.05, 0.3);
         b.material = i % 2;
         b.steps = {
             step(TransformStep::Kind::Rotate, glm::normalize(dvec3(unit(random), 1, unit(random))), 90 * unit(random)),
             step(TransformStep::Kind::Translate, dvec3(unit(random), unit(random), unit(random)) * 20.0)};
-        b.min = -dvec3(0.05) - dvec3(unit(random), unit(random), unit(random)) * 0.3;
-        b.max = dvec3(0.05) + dvec3(unit(random), unit(random), unit(random)) * 0.3;
         scene.boxes.push_back(b);
     }
     const World world(scene);
