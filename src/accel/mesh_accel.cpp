@@ -115,8 +115,6 @@ PlacedTriangles place(const std::vector<MeshPart>& parts, int threads, size_t fl
     return mesh;
 }
 
-// Placing is loading, as reading the file is: not in build_seconds, which times what Embree's
-// build does.
 std::vector<uint32_t> small_shapes(const std::vector<uint32_t>& tags) {
     // Runs of one tag: a run of at most kMostShapeTriangles is a shape, a longer one (a mesh
     // block's) gives a shape per triangle.
@@ -135,6 +133,8 @@ std::vector<uint32_t> small_shapes(const std::vector<uint32_t>& tags) {
     return first_of_shape;
 }
 
+// Placing is loading, as reading the file is: not in build_seconds, which times what Embree's
+// build does.
 MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& settings)
     : MeshAccel(place(parts, settings.threads), settings) {}
 
@@ -146,7 +146,8 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     // Step 1: small shapes (a box's twelve triangles, a quad's two) as one primitive each of the
     // BVH's build, where that at least halves its primitives; its leaves then hold whole shapes.
     const std::vector<uint32_t> first_of_shape =
-        brute_force_ || settings.build != BvhBuild::Sah ? std::vector<uint32_t>{} : small_shapes(mesh.tags);
+        brute_force_ || settings.build != BvhBuild::Sah || mesh.tags.size() != n ? std::vector<uint32_t>{}
+                                                                                 : small_shapes(mesh.tags);
     const size_t primitives = first_of_shape.empty() ? n : first_of_shape.size() - 1;
 
     // Step 2: the accelerator over the primitives' bounds (handed over a block at a time, the
@@ -173,7 +174,8 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     } else if (first_of_shape.empty()) {
         bvh_ = Bvh(n, primitive_bounds, settings.build, settings.leaf_size, threads, kTriangleLanes);
     } else {
-        // A shape of about `mean` triangles counts as kTriangleLanes / mean tests' worth of lanes.
+        // The SAH and the leaf size count shapes: one of about `mean` triangles fills
+        // kTriangleLanes / mean of a test's lanes.
         const uint32_t mean = uint32_t(std::max<size_t>(1, (n + primitives / 2) / primitives));
         const int lanes = int(std::bit_floor(std::max<uint32_t>(1, kTriangleLanes / mean)));
         const int leaf_size = std::max(1, settings.leaf_size / int(mean));
