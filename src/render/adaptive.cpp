@@ -9,7 +9,7 @@ namespace tracer {
 
 namespace {
 
-// 2^a in lattice steps of 2^-depth pixels, for a power of two `cell` in [2^-depth, 16].
+// `cell` pixels (a power of two in [2^-depth, 16]) in lattice steps of 2^-depth pixels: exact.
 int64_t lattice_steps(double cell, int depth) {
     return std::llround(std::ldexp(cell, depth));
 }
