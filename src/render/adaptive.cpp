@@ -42,6 +42,7 @@ AdaptivePixels::AdaptivePixels(const World& world, const PinholeCamera& camera, 
     inside_.resize(side * side);
     pixels_.resize(size_t(cell_pixels_) * size_t(width) * 3);
     rays_.resize(size_t((right_column - left_column_) / cell_pixels_) + 1);
+    missing_.resize(rays_.size());
 }
 
 AdaptivePixels::Slot AdaptivePixels::slot(int64_t x, int64_t y) {
@@ -86,9 +87,14 @@ void AdaptivePixels::split_samples(int64_t x, int64_t y, int64_t half, RayCounts
         missing[count] = s;
         rays[count++] = camera_.ray_through(Real(px) * step_, Real(py) * step_);
     }
-    for (int k = 0; k < count; ++k) {
-        missing[k].line->colour[missing[k].at] = trace(world_, settings_, rays[k], counts, cancel_);
-        missing[k].line->stamp[missing[k].at] = missing[k].stamp;
+    trace_missing(missing, rays, size_t(count), counts);
+}
+
+void AdaptivePixels::trace_missing(const Slot* slots, const Ray* rays, size_t count, RayCounts& counts) {
+    for (size_t k = 0; k < count; ++k) {
+        if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
+        slots[k].line->colour[slots[k].at] = trace(world_, settings_, rays[k], counts, cancel_);
+        slots[k].line->stamp[slots[k].at] = slots[k].stamp;
     }
 }
 
@@ -119,21 +125,16 @@ void AdaptivePixels::cell_row(int top, RayCounts& counts) {
     // Step 1: the cells' corners on the row's top and bottom edges that neither this thread's
     // cell row before nor anything else traced yet, their rays made before any is traced.
     const int64_t right_column = left_column_ + int64_t(rays_.size() - 1) * cell_pixels_;
-    std::vector<Slot> missing;
-    missing.reserve(rays_.size());
     for (const int64_t edge : {int64_t(top), int64_t(top) + cell_pixels_}) {
-        missing.clear();
+        size_t count = 0;
         for (int64_t column = left_column_; column <= right_column; column += cell_pixels_) {
             const Slot s = slot(column * cells_, edge * cells_);
             if (s.known()) continue;
-            rays_[missing.size()] = camera_.ray_through(Real(column), Real(edge));
-            missing.push_back(s);
+            rays_[count] = camera_.ray_through(Real(column), Real(edge));
+            missing_[count++] = s;
         }
-        for (size_t k = 0; k < missing.size(); ++k) {
-            if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
-            missing[k].line->colour[missing[k].at] = trace(world_, settings_, rays_[k], counts, cancel_);
-            missing[k].line->stamp[missing[k].at] = missing[k].stamp;
-        }
+        trace_missing(missing_.data(), rays_.data(), count, counts);
+        if (cancel_ && cancel_->load(std::memory_order_relaxed)) return;
     }
     // Step 2: the cells, left to right; those split down to single pixels leave them in split_pixels_.
     const int64_t size = int64_t(cell_pixels_) * cells_;

@@ -57,6 +57,8 @@ private:
     Color sample(int64_t x, int64_t y, RayCounts& counts);
     // Traces the points that splitting the cell at (x, y) of side 2 half adds, if not known.
     void split_samples(int64_t x, int64_t y, int64_t half, RayCounts& counts);
+    // Traces rays[k] for each of the `count` samples in `slots` and keeps its colour there.
+    void trace_missing(const Slot* slots, const Ray* rays, size_t count, RayCounts& counts);
     // The cells of the rows top .. top + cell_pixels_ - 1 into pixels_.
     void cell_row(int top, RayCounts& counts);
     // A cell of whole pixels (lattice corner (x, y), side size): split, blended or a pixel.
@@ -92,7 +94,8 @@ private:
     Line edges_[2], left_, right_, inside_;
     int x_ = 0, y_ = 0;
     int64_t pixel_stamp_ = 0;
-    std::vector<Ray> rays_;  // a cell row's first corners
+    std::vector<Ray> rays_;      // a cell row's first corners not yet traced
+    std::vector<Slot> missing_;  // ... and where they are kept
 };
 
 }  // namespace tracer

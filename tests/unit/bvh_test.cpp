@@ -332,23 +332,23 @@ TEST(Bvh, ParallelBuildsMakeTheSingleThreadedTree) {
     }
 }
 
-}  // namespace
-}  // namespace tracer
-
 // The tree's arrays are sized by the primitives, not by the builder's work space (which has
 // room for every task's chunk of node slots besides the tree): 19 and 4,096 boxes keep a few
 // hundred bytes per box at most, in every build.
 TEST(Bvh, SmallTreesKeepSmallArrays) {
     for (uint32_t count : {19u, 4096u}) {
-        for (tracer::BvhBuild method : {tracer::BvhBuild::Box, tracer::BvhBuild::Median, tracer::BvhBuild::Sah}) {
-            tracer::LargeArray<tracer::Bounds> boxes(count);
+        for (BvhBuild method : {BvhBuild::Box, BvhBuild::Median, BvhBuild::Sah}) {
+            LargeArray<Bounds> boxes(count);
             for (uint32_t i = 0; i < count; ++i) {
-                boxes[i] = tracer::Bounds{};
-                boxes[i].extend(tracer::Vec3(i % 64, i / 64, 0));
-                boxes[i].extend(tracer::Vec3(i % 64 + 0.5, i / 64 + 0.5, 0.5));
+                boxes[i] = Bounds{};
+                boxes[i].extend(Vec3(i % 64, i / 64, 0));
+                boxes[i].extend(Vec3(i % 64 + 0.5, i / 64 + 0.5, 0.5));
             }
-            const tracer::Bvh bvh(std::move(boxes), method, 4, 2);
+            const Bvh bvh(std::move(boxes), method, 4, 2);
             EXPECT_LE(bvh.memory_bytes(), 200 * size_t(count) + 1024) << count << " boxes, build " << int(method);
         }
     }
 }
+
+}  // namespace
+}  // namespace tracer
