@@ -20,6 +20,10 @@ BENCHMARKS = {
     "compare-builds": ("compare_builds", "two builds of trace_parts alternated: time per query"),
     "versus": ("versus", "issue 35's table: tracer against Embree (render, build) and POV-Ray (trace)"),
     "watch": ("watch", "tracer --watch: from a save to the preview and the full image (docs/bench-watch.txt)"),
+    "flat-shapes": (
+        "flat_shapes",
+        "issue 34's figure: 10^6 quads, triangles, boxes from a loop (docs/bench-flat-shapes.md)",
+    ),
     "adaptive": (
         "adaptive",
         "adaptive antialiasing against uniform and POV-Ray at matched error (docs/speed-vs-error.md)",
