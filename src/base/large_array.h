@@ -1,18 +1,15 @@
 // Arrays for the big per-primitive data of a build (hundreds of MB for a million triangles):
-// 64-byte aligned, and from 4 MiB on placed on 2 MiB boundaries with Linux asked for
-// transparent huge pages, so first touching them faults once per 2 MiB instead of per 4 KiB.
-// Resizing leaves new elements of trivial types uninitialised, as `new T[n]` would.
+// 64-byte aligned. Resizing leaves new elements of trivial types uninitialised, as `new T[n]`
+// would. Not asked onto transparent huge pages (madvise): measured on this machine, faulting
+// 2 MiB pages cleared in full and compacted for them made whole runs slower (10^6 boxes from a
+// loop: load + build 2.5-3.1 s with them, 1.8 s without; the 940k-triangle bunny 0.24-0.36 s
+// against 0.26-0.27 s) for 2-4% of render time on the biggest meshes (docs/performance.md).
 #pragma once
 
 #include <cstddef>
-#include <cstdlib>
 #include <new>
 #include <utility>
 #include <vector>
-
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace tracer {
 
@@ -20,30 +17,13 @@ template <typename T>
 struct LargeArrayAllocator {
     using value_type = T;
     static constexpr std::align_val_t kCacheLine{64};
-    static constexpr size_t kHugePage = size_t(2) << 20;
-    static constexpr size_t kHugeFrom = size_t(4) << 20;
 
     LargeArrayAllocator() = default;
     template <typename U>
     LargeArrayAllocator(const LargeArrayAllocator<U>&) {}
 
-    T* allocate(size_t n) {
-        const size_t bytes = n * sizeof(T);
-        if (bytes < kHugeFrom) return static_cast<T*>(::operator new(bytes, kCacheLine));
-        const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
-        void* memory = std::aligned_alloc(kHugePage, rounded);
-        if (!memory) throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-        madvise(memory, rounded, MADV_HUGEPAGE);  // a hint: without huge pages all still works
-#endif
-        return static_cast<T*>(memory);
-    }
-    void deallocate(T* p, size_t n) {
-        if (n * sizeof(T) < kHugeFrom)
-            ::operator delete(p, kCacheLine);
-        else
-            std::free(p);
-    }
+    T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kCacheLine)); }
+    void deallocate(T* p, size_t) { ::operator delete(p, kCacheLine); }
     // Elements made without arguments are default-initialised, not zeroed: a large array is
     // filled by its user, often in parallel, and zeroing it first would touch it all twice.
     template <typename U>
@@ -54,9 +34,7 @@ struct LargeArrayAllocator {
     void construct(U* p, Args&&... args) {
         ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
     }
-    bool operator==(const LargeArrayAllocator&) const {
-        return true;
-    }
+    bool operator==(const LargeArrayAllocator&) const { return true; }
 };
 
 template <typename T>
