@@ -38,6 +38,14 @@ def test_time_at_matched_error_takes_the_fastest_adaptive_as_good():
     assert pairs["4x4"]["adaptive"] == "d" and pairs["4x4"]["time_ratio"] == 20.0 / 16.0
 
 
+def test_the_same_error_within_one_percent_admits_a_point_just_over():
+    rows = ROWS + [row("adaptive", "e", 10.0, 0.2 * 1.005, 900)]  # 0.5% over 4x4's error
+    pairs = {p["at"]: p for p in adaptive.matched(rows)["adaptive_against_uniform"]}
+    assert pairs["4x4"]["adaptive"] == "d"  # strictly: only d is as good
+    assert pairs["4x4"]["adaptive_within"] == "e" and pairs["4x4"]["time_ratio_within"] == 10.0 / 16.0
+    assert pairs["2x2"]["adaptive_within"] == "b"  # nothing within 1% is cheaper than b
+
+
 def test_the_front_keeps_only_points_nothing_beats():
     assert adaptive.front(ROWS) == [(0.5, 0.9), (2.0, 0.45), (20.0, 0.1)]
 
