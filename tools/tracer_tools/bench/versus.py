@@ -2,8 +2,10 @@
 single-ray kernels (render and build; compare_scene.py of the Embree anchor alternates
 tracer_bench and embree_scene, A B A B, medians of the per-pair ratios) and POV-Ray 3.7 (its
 reported Trace Time against tracer's render time, alternated the same way), 2 threads.
-Embree's anchor has no refraction: gears and mount are compared with it without kt and ior
-(and say so); POV-Ray renders them whole. Output as committed in docs/bench-versus.md.
+Embree's anchor has no refraction and no cones: gears and mount are compared with it without kt
+and ior, rings and tree with their cones tessellated (tools/nff2scn --cones mesh from the SPD's
+NFF under --shared), and say so; POV-Ray renders the scenes whole, cones analytic. Output as
+committed in docs/bench-versus.md.
 
     tools/bench versus [--shared ../shared] [--pairs 3] [--runs 3] [--scenes task2,balls,...]
 """
@@ -109,13 +111,19 @@ def main() -> int:
                 copy = ROOT / "scenes" / "spd" / f".{name}_no_refraction.scn"  # beside it: its meshes' paths
                 steps.without_refraction(ROOT / scene, copy)
                 embree_scene, note = str(copy), " (Embree: refraction off)"
+            if name in ("rings", "tree"):
+                tessellated = folder / f"{name}_tessellated.scn"
+                nff = args.shared / "spd" / "nff" / f"{name}.nff"
+                convert = [ROOT / "tools" / "nff2scn", nff, "-o", tessellated, "--cones", "mesh"]
+                subprocess.run([str(c) for c in convert], check=True, capture_output=True)
+                embree_scene, note = str(tessellated), " (Embree: cones tessellated in both)"
             try:
                 found = steps.compare_with_embree(
                     bench_folder, embree, embree_scene, args.pairs, args.runs, folder / "compare.json"
                 )
             finally:
                 if note:
-                    pathlib.Path(embree_scene).unlink(missing_ok=True)
+                    pathlib.Path(embree_scene).unlink(missing_ok=True)  # (the tessellated meshes go with folder)
             render = f"{found['render_ratio']:.2f}" if "render_ratio" in found else "refused"
             build = f"{found['build_ratio']:.2f}" if found.get("build_ratio") is not None else "–"
             trace = times = "–"
