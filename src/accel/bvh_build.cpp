@@ -393,20 +393,57 @@ static NodeArray depth_first(const NodeArray& slots, size_t used) {
     return ordered;
 }
 
-// Sah's wide tree from the builder's binary one (whose inner nodes' children are at `index`
-// and `index` + 1). A wide node starts from a binary node's two children and,
-// while it has fewer than kWide, replaces its inner child of largest surface area by that
-// child's two children. A binary tree that is one leaf becomes a wide root with one child.
-static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes, uint32_t primitives) {
+// The children a wide node made from binary node `from` takes (whose inner nodes' children are
+// at `index` and `index` + 1): its two children and, while it has fewer than kWide, the two
+// children of its inner child of largest surface area in place of that child. A binary leaf
+// takes itself. Returns how many (at most kWide), written to `children`.
+static int wide_children(const NodeArray& nodes, uint32_t from, uint32_t (&children)[kWide]) {
     auto half_area = [&](uint32_t i) {
         const float(&box)[2][3] = nodes[i].box;
         const float dx = box[1][0] - box[0][0], dy = box[1][1] - box[0][1], dz = box[1][2] - box[0][2];
         return dx * dy + dy * dz + dz * dx;
     };
+    float area[kWide] = {-1};  // -1: a leaf, never opened
+    auto add = [&](int k, uint32_t child) {
+        children[k] = child;
+        area[k] = nodes[child].count == 0 ? half_area(child) : -1.0f;
+    };
+    children[0] = from;
+    if (nodes[from].count > 0) return 1;
+    add(0, nodes[from].index), add(1, nodes[from].index + 1);
+    int count = 2;
+    while (count < kWide) {
+        const int largest = int(std::max_element(area, area + count) - area);
+        if (area[largest] < 0) break;
+        const uint32_t opened = children[largest];
+        add(largest, nodes[opened].index);
+        add(count++, nodes[opened].index + 1);
+    }
+    return count;
+}
+
+// How many wide nodes collapse_to_wide makes of the binary tree (so that it allocates them once).
+static size_t wide_node_count(const NodeArray& nodes) {
+    size_t made = 0;
+    std::vector<uint32_t> pending{0};
+    while (!pending.empty()) {
+        const uint32_t from = pending.back();
+        pending.pop_back();
+        ++made;
+        uint32_t children[kWide];
+        const int count = wide_children(nodes, from, children);
+        for (int lane = 0; lane < count; ++lane)
+            if (nodes[children[lane]].count == 0) pending.push_back(children[lane]);
+    }
+    return made;
+}
+
+// Sah's wide tree from the builder's binary one: a wide node per binary node that
+// wide_children does not open, starting from the root. A binary tree that is one leaf becomes
+// a wide root with one child.
+static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
     LargeArray<WideNode> wide(1);
-    // n / 4 for n primitives: a little more than the trees here need (0.16-0.22 n). Not the
-    // node array's size: it has room for each task's chunk of slots besides the tree.
-    wide.reserve(primitives / 4 + 1);
+    wide.reserve(wide_node_count(nodes));  // exactly: no growth, no capacity left unused
     struct Move {
         uint32_t from, to;  // the binary node whose children make wide node `to`
     };
@@ -414,25 +451,9 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes, uint32_t pr
     while (!pending.empty()) {
         const Move move = pending.back();
         pending.pop_back();
-        // Step 1: the children, opening the largest inner one while there is room (-1: a leaf).
-        uint32_t children[kWide] = {move.from};
-        float area[kWide] = {-1};
-        int count = 1;
-        auto add = [&](int k, uint32_t child) {
-            children[k] = child;
-            area[k] = nodes[child].count == 0 ? half_area(child) : -1.0f;
-        };
-        if (nodes[move.from].count == 0) {
-            add(0, nodes[move.from].index), add(1, nodes[move.from].index + 1);
-            count = 2;
-        }
-        while (count < kWide) {
-            const int largest = int(std::max_element(area, area + count) - area);
-            if (area[largest] < 0) break;
-            const uint32_t opened = children[largest];
-            add(largest, nodes[opened].index);
-            add(count++, nodes[opened].index + 1);
-        }
+        // Step 1: the children.
+        uint32_t children[kWide];
+        const int count = wide_children(nodes, move.from, children);
         // Step 2: their boxes lane by lane, leaves as ranges, inner children as new wide nodes.
         WideNode node;
         for (int lane = 0; lane < kWide; ++lane) {
@@ -512,7 +533,7 @@ void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, i
         n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
     refs = LargeArray<BvhBuildRef>();
     if (method == BvhBuild::Sah)
-        wide_ = collapse_to_wide(slots, n);
+        wide_ = collapse_to_wide(slots);
     else
         nodes_ = depth_first(slots, std::min<size_t>(builder.used_slots(), 2 * size_t(n) - 1));  // the tree at most
     for (int axis = 0; axis < 3; ++axis) {

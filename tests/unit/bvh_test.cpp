@@ -277,6 +277,24 @@ TEST(Bvh, WideNodesContainTheirChildren) {
     EXPECT_EQ(inner, wide.size() - 1);  // every node but the root is some node's child, once
 }
 
+// The wide tree is allocated once at its exact size (counted before it is filled): a grid of
+// equal boxes at leaf size 1 collapses into 0.3 nodes per box, past any fixed reserve, and a
+// mesh into 0.08, far under one.
+TEST(Bvh, WideTreesHoldNoUnusedNodes) {
+    for (uint32_t side : {40u, 300u}) {
+        LargeArray<Bounds> boxes(size_t(side) * side);
+        for (uint32_t i = 0; i < side * side; ++i) {
+            boxes[i] = Bounds{};
+            boxes[i].extend(Vec3(i % side, i / side, 0));
+            boxes[i].extend(Vec3(i % side + 0.8, i / side + 0.8, 0.8));
+        }
+        for (int leaf_size : {1, 4}) {
+            const Bvh bvh(boxes, BvhBuild::Sah, leaf_size, 2);
+            EXPECT_EQ(bvh.wide_nodes().capacity(), bvh.wide_nodes().size()) << side << ", leaf size " << leaf_size;
+        }
+    }
+}
+
 // Large inputs are built on several threads (subtrees, and the root's binning and
 // partitioning, in parallel): the tree must be the one a single thread builds, holding every
 // primitive once, each inside its leaf's box.
