@@ -69,14 +69,18 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
     serial_ = ++worlds;
     for (const Material& material : materials_) refracts_ = refracts_ || material.kt != dvec3(0.0);
     const SearchSettings settings = search_settings(scene.render, threads);
-    // Step 1: spheres and planes.
+    // Step 1: spheres and planes (room for them at once: a million spheres would otherwise
+    // leave up to a million records' room unused).
+    objects_.reserve(scene.spheres.size() + scene.planes.size());
+    bounded_.reserve(scene.spheres.size());
+    boxes_.reserve(scene.spheres.size());
     for (const Sphere& s : scene.spheres) {
-        const uint32_t index = uint32_t(spheres_.size()), object = uint32_t(objects_.size());
-        objects_.push_back({ObjectKind::Sphere, index, s.material});
-        spheres_.push_back({Vec3(s.center), Real(s.radius)});
-        bounded_.push_back({Vec3(s.center), Real(s.radius), object, index, ObjectKind::Sphere});
+        const uint32_t entry = uint32_t(bounded_.size()), object = uint32_t(objects_.size());
+        objects_.push_back({ObjectKind::Sphere, entry, s.material});
+        bounded_.push_back({Vec3(s.center), Real(s.radius), object, entry, ObjectKind::Sphere});
         boxes_.push_back({Vec3(s.center) - Real(s.radius), Vec3(s.center) + Real(s.radius)});
     }
+    sphere_count_ = uint32_t(bounded_.size());
     for (const Plane& p : scene.planes) {
         objects_.push_back({ObjectKind::Plane, uint32_t(planes_.size()), p.material});
         planes_.push_back({Vec3(p.point), Vec3(p.normal), uint32_t(objects_.size() - 1)});
@@ -208,6 +212,10 @@ void World::build_top_level(const SearchSettings& settings) {
         in_leaf_order.reserve(bounded_.size());
         for (uint32_t i : top_.order()) in_leaf_order.push_back(bounded_[i]);
         bounded_ = std::move(in_leaf_order);
+        for (uint32_t entry = 0; entry < bounded_.size(); ++entry) {  // a sphere's object follows it
+            Bounded& b = bounded_[entry];
+            if (b.kind == ObjectKind::Sphere) b.index = objects_[b.object].index = entry;
+        }
     }
     boxes_ = decltype(boxes_)();  // only the build needs them (`= {}` would keep the memory)
     top_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -223,9 +231,8 @@ bool World::may_hit(const Ray& ray) const {
 
 size_t World::top_level_memory_bytes() const {
     return top_.memory_bytes() + bounded_.capacity() * sizeof(Bounded) + objects_.capacity() * sizeof(Object) +
-           instances_.capacity() * sizeof(MeshInstance) + spheres_.capacity() * sizeof(SphereShape) +
-           planes_.capacity() * sizeof(PlaneShape) + cones_.capacity() * sizeof(ConeShape) +
-           discs_.capacity() * sizeof(DiscShape);
+           instances_.capacity() * sizeof(MeshInstance) + planes_.capacity() * sizeof(PlaneShape) +
+           cones_.capacity() * sizeof(ConeShape) + discs_.capacity() * sizeof(DiscShape);
 }
 
 }  // namespace tracer

@@ -63,7 +63,7 @@ struct SearchCounts {
 // One shape of the scene: its kind, its index among the shapes of that kind, its material.
 struct Object {
     ObjectKind kind;
-    uint32_t index;  // into spheres, planes, instances, cones or discs
+    uint32_t index;  // a sphere: its entry in the top level; into planes, instances, cones or discs
     int material;
 };
 
@@ -138,10 +138,6 @@ public:
     size_t top_level_memory_bytes() const;
 
 private:
-    struct SphereShape {
-        Vec3 center;
-        Real radius;
-    };
     struct PlaneShape {
         Vec3 point;
         Vec3 normal;
@@ -154,7 +150,7 @@ private:
         Vec3 centre;  // sphere: the sphere; others: a sphere around their box
         Real radius;
         uint32_t object;  // index into objects_, or kObjectOfTriangle
-        uint32_t index;   // into spheres_, instances_, cones_ or discs_
+        uint32_t index;   // a sphere: this entry (it holds all of the sphere); into instances_, cones_ or discs_
         ObjectKind kind;
     };
 
@@ -177,7 +173,6 @@ private:
     bool nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
 
     std::vector<Object> objects_;
-    std::vector<SphereShape> spheres_;
     std::vector<PlaneShape> planes_;
     std::vector<MeshAccel> meshes_;
     std::vector<MeshInstance> instances_;
@@ -185,7 +180,8 @@ private:
     std::vector<ConeShape> cones_;
     std::vector<DiscShape> discs_;
     std::vector<Bounded> bounded_;
-    LargeArray<Bounds> boxes_;  // of bounded_, while the world is built
+    uint32_t sphere_count_ = 0;  // the spheres: bounded_'s first entries while the top level is linear
+    LargeArray<Bounds> boxes_;   // of bounded_, while the world is built
     Bvh top_;
     bool linear_ = true;
     double top_build_seconds_ = 0;

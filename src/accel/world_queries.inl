@@ -112,15 +112,16 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     // Spheres, planes, then meshes (objects are numbered in this order; bounded_ lists the
     // spheres, then the meshes).
     bool found = false;
-    for (const SphereShape& s : spheres_) {
-        if (auto t = intersect_sphere(ray, s.center, s.radius, range)) {
+    for (uint32_t i = 0; i < sphere_count_; ++i) {
+        const Bounded& s = bounded_[i];
+        if (auto t = intersect_sphere(ray, s.centre, s.radius, range)) {
             range.max = *t;
-            hit = {uint32_t(&s - spheres_.data()), 0, *t, 0, 0};
+            hit = {s.object, 0, *t, 0, 0};
             found = true;
         }
     }
     found = nearest_plane(ray, range, hit) || found;
-    for (size_t i = spheres_.size(); i < bounded_.size(); ++i) {
+    for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
         const Bounded& b = bounded_[i];
         if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
             found = hit_bounded(b, ray, range, hit, counts) || found;
@@ -161,18 +162,18 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     if constexpr (!kRobust) out.point = ray.at(hit.t);
     switch (object.kind) {
         case ObjectKind::Sphere: {
-            const SphereShape& s = spheres_[object.index];
+            const Bounded& s = bounded_[object.index];
             if constexpr (kRobust) {
                 // The point put back on the sphere (pbrt-v4): its error is then gamma(5) of the
                 // offset from the centre, plus the rounding of adding the centre.
-                const Vec3 from_centre = ray.at(hit.t) - s.center;
+                const Vec3 from_centre = ray.at(hit.t) - s.centre;
                 const Real length = glm::length(from_centre);
                 out.normal = length > 0 ? from_centre * (1 / length) : Vec3(0, 0, 1);
                 const Vec3 on_sphere = out.normal * s.radius;
-                out.point = s.center + on_sphere;
-                out.error = gamma(6) * (abs_each(s.center) + abs_each(on_sphere));
+                out.point = s.centre + on_sphere;
+                out.error = gamma(6) * (abs_each(s.centre) + abs_each(on_sphere));
             } else {
-                out.normal = (out.point - s.center) / s.radius;
+                out.normal = (out.point - s.centre) / s.radius;
             }
             out.geometric_normal = out.normal;
             break;
@@ -261,9 +262,9 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
         last.entry = Occluder::kNone;
     }
     if (linear_) {
-        for (const SphereShape& s : spheres_) {
-            if (intersect_sphere(ray, s.center, s.radius, range)) {
-                last = {uint32_t(&s - spheres_.data()), {}};  // bounded_ lists the spheres first, in order
+        for (uint32_t i = 0; i < sphere_count_; ++i) {
+            if (intersect_sphere(ray, bounded_[i].centre, bounded_[i].radius, range)) {
+                last = {i, {}};
                 return true;
             }
         }
@@ -271,8 +272,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     for (const PlaneShape& p : planes_)
         if (intersect_plane(ray, p.point, p.normal, range)) return true;
     if (linear_) {
-        counts.objects.primitive_tests += spheres_.size();
-        for (size_t i = spheres_.size(); i < bounded_.size(); ++i) {
+        counts.objects.primitive_tests += sphere_count_;
+        for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
             const Bounded& b = bounded_[i];
             ++counts.objects.primitive_tests;
             if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius) &&
