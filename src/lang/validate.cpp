@@ -335,7 +335,10 @@ static std::string beyond_range_reason(std::string_view key) {
 }
 
 bool Validator::check_number(double number, Span span, const KeySpec& key) {
-    if (std::abs(number) > kLargestMagnitude) {
+    // A key whose own range lies within +-1e30 (an angle of view, a depth, a threshold) is told
+    // that range; the +-1e30 rule, and its reason, are for the others.
+    const bool own_range = std::abs(key.min) <= kLargestMagnitude && std::abs(key.max) <= kLargestMagnitude;
+    if (std::abs(number) > kLargestMagnitude && !own_range) {
         diagnostics_.error(file_, span,
                            "'" + std::string(key.name) + "' must lie between -1e30 and 1e30 (" +
                                beyond_range_reason(key.name) + "), found " + format_number(number));
