@@ -10,10 +10,10 @@ docs/bench-cones.md with the machine. Ray counts come from the same runs.
 
 import argparse
 import statistics
-import subprocess
 import sys
 
 from tracer_tools import ROOT
+from tracer_tools.nff import nff2scn
 
 from .common import DOCS, OUT, TRACER_BENCH, provenance, run_json
 
@@ -35,8 +35,7 @@ def main(argv: list[str] | None = None) -> int:
         scenes = {}
         for mode in ("analytic", "mesh"):
             scenes[mode] = OUT / f"{name}_{mode}.scn"
-            convert = [ROOT / "tools" / "nff2scn", f"{args.spd}/{name}.nff", "-o", scenes[mode], "--cones", mode]
-            subprocess.run([str(c) for c in convert], check=True, capture_output=True)
+            nff2scn.convert_file(f"{args.spd}/{name}.nff", scenes[mode], cones=mode)
         times = {"analytic": [], "mesh": []}
         ratios, results = [], {}
         for pair in range(args.pairs):

@@ -19,6 +19,7 @@ import tempfile
 
 from tracer_tools import ROOT
 from tracer_tools.bench.common import TRACER, TRACER_BENCH, git, machine, run_json
+from tracer_tools.nff import nff2scn
 from tracer_tools.spd import steps
 
 # name: (scene as compare_scene.py takes it, POV-Ray too?)
@@ -113,9 +114,7 @@ def main() -> int:
                 embree_scene, note = str(copy), " (Embree: refraction off)"
             if name in ("rings", "tree"):
                 tessellated = folder / f"{name}_tessellated.scn"
-                nff = args.shared / "spd" / "nff" / f"{name}.nff"
-                convert = [ROOT / "tools" / "nff2scn", nff, "-o", tessellated, "--cones", "mesh"]
-                subprocess.run([str(c) for c in convert], check=True, capture_output=True)
+                nff2scn.convert_file(args.shared / "spd" / "nff" / f"{name}.nff", tessellated, cones="mesh")
                 embree_scene, note = str(tessellated), " (Embree: cones tessellated in both)"
             try:
                 found = steps.compare_with_embree(
