@@ -77,7 +77,7 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
     for (const Sphere& s : scene.spheres) {
         const uint32_t entry = uint32_t(bounded_.size()), object = uint32_t(objects_.size());
         objects_.push_back({ObjectKind::Sphere, entry, s.material});
-        bounded_.push_back({Vec3(s.center), Real(s.radius), object, entry, ObjectKind::Sphere});
+        bounded_.push_back({Vec3(s.center), Real(s.radius), object, 0, ObjectKind::Sphere});
         boxes_.push_back({Vec3(s.center) - Real(s.radius), Vec3(s.center) + Real(s.radius)});
     }
     sphere_count_ = uint32_t(bounded_.size());
@@ -212,10 +212,8 @@ void World::build_top_level(const SearchSettings& settings) {
         in_leaf_order.reserve(bounded_.size());
         for (uint32_t i : top_.order()) in_leaf_order.push_back(bounded_[i]);
         bounded_ = std::move(in_leaf_order);
-        for (uint32_t entry = 0; entry < bounded_.size(); ++entry) {  // a sphere's object follows it
-            Bounded& b = bounded_[entry];
-            if (b.kind == ObjectKind::Sphere) b.index = objects_[b.object].index = entry;
-        }
+        for (uint32_t entry = 0; entry < bounded_.size(); ++entry)  // a sphere's object follows it
+            if (bounded_[entry].kind == ObjectKind::Sphere) objects_[bounded_[entry].object].index = entry;
     }
     boxes_ = decltype(boxes_)();  // only the build needs them (`= {}` would keep the memory)
     top_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

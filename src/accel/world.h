@@ -150,7 +150,7 @@ private:
         Vec3 centre;  // sphere: the sphere; others: a sphere around their box
         Real radius;
         uint32_t object;  // index into objects_, or kObjectOfTriangle
-        uint32_t index;   // a sphere: this entry (it holds all of the sphere); into instances_, cones_ or discs_
+        uint32_t index;   // into instances_, cones_ or discs_ (a sphere's is not read: the entry is the sphere)
         ObjectKind kind;
     };
 
