@@ -56,7 +56,7 @@ constexpr Real kEdgeSlack = gamma(6);
     const Vec3 o = ray.origin - cone.base;
     const Vec3& d = ray.direction;
     const Vec3& w = cone.axis;
-    const Real oz = glm::dot(o, w), dz = glm::dot(d, w);
+    const Real oz = dot(o, w), dz = dot(d, w);
     const Vec3 op = o - oz * w, dp = d - dz * w;
     std::optional<ConeHit> best;
     // Step 2: the side, rho^2 = R(h)^2 with R(h) = base_radius + slope h, a quadratic in t. Its
@@ -65,16 +65,16 @@ constexpr Real kEdgeSlack = gamma(6);
     // far from the ray's origin.
     const Real k = cone.slope;
     const Real radius_here = cone.base_radius + k * oz;
-    const Real a = glm::dot(dp, dp) - k * k * dz * dz;
-    const Real b = glm::dot(op, dp) - k * dz * radius_here;
-    const Real c = glm::dot(op, op) - radius_here * radius_here;
+    const Real a = dot(dp, dp) - k * k * dz * dz;
+    const Real b = dot(op, dp) - k * dz * radius_here;
+    const Real c = dot(op, op) - radius_here * radius_here;
     const Vec3 o_cross_d = std::is_same_v<Real, float> ? Vec3{difference_of_products(o.y, d.z, o.z, d.y),
                                                               difference_of_products(o.z, d.x, o.x, d.z),
                                                               difference_of_products(o.x, d.y, o.y, d.x)}
                                                        : glm::cross(o, d);
-    const Real across = glm::dot(w, o_cross_d);
+    const Real across = dot(w, o_cross_d);
     const Vec3 e = radius_here * dp - k * dz * op;
-    const Real discriminant = glm::dot(e, e) - across * across;
+    const Real discriminant = dot(e, e) - across * across;
     if (discriminant >= 0) {
         // The root with the larger magnitude first (no cancellation), the other from t0 t1 = c/a;
         // a ray along the slope (a = 0) gets its one root as c/q.
@@ -103,7 +103,7 @@ constexpr Real kEdgeSlack = gamma(6);
             const Vec3 p = op + t * dp;
             const Real extent = std::abs(p.x) + std::abs(p.y) + std::abs(p.z);
             const Real most = radius + kEdgeSlack * (extent + std::abs(op.x) + std::abs(op.y) + std::abs(op.z));
-            if (glm::dot(p, p) <= most * most) {
+            if (dot(p, p) <= most * most) {
                 best = ConeHit{t, part};
                 range.max = t;
             }

@@ -35,6 +35,13 @@ constexpr Real gamma(int n) {
     return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
 }
 
+// glm::dot, always inlined (GCC called glm's from the cone test: 3% of SPD rings' time). The
+// same sum as glm's, in the same order.
+[[gnu::always_inline]] inline Real dot(const Vec3& a, const Vec3& b) {
+    const Vec3 products = a * b;
+    return products.x + products.y + products.z;
+}
+
 struct Ray {
     Vec3 origin;
     Vec3 direction;  // unit length

@@ -54,6 +54,52 @@ Real half_diagonal(const Bounds& box) {
     return std::isfinite(radius) ? radius : kInfinity;
 }
 
+// The box around a disc of `radius` at `centre` across the unit `axis`: on each coordinate
+// radius sqrt(1 - axis_i^2), padded for the slack of the tests at the edges.
+Bounds disc_box(const glm::dvec3& centre, const glm::dvec3& axis, double radius) {
+    const glm::dvec3 reach = radius * glm::sqrt(glm::max(glm::dvec3(0.0), 1.0 - axis * axis));
+    const glm::dvec3 pad = 1e-6 * radius + double(gamma(64)) * glm::abs(centre);
+    return Bounds{Vec3(centre - reach - pad), Vec3(centre + reach + pad)};
+}
+
+double surface_area(const Bounds& box) {
+    const glm::dvec3 size = glm::dvec3(box.upper) - glm::dvec3(box.lower);
+    return 2 * (size.x * size.y + size.y * size.z + size.z * size.x);
+}
+
+// A long cone leaning across the axes fills little of its box, which then overlaps its
+// neighbours' and is entered by rays that pass it by. Cut along its axis into pieces, each with
+// the box of its own stretch (early split clipping, Ernst and Greiner 2007, for one shape), the
+// boxes hug it; a ray entering any piece tests the whole cone. One more piece while it cuts the
+// boxes' total area by kConePieceGain (SPD rings: 2.5 pieces a cylinder, 0.9x the render time;
+// gains of 0.8 to 0.98 measured alike).
+constexpr int kMostConePieces = 16;
+constexpr double kConePieceGain = 0.9;
+
+// The boxes of `cone` (its unit `axis` given) cut into at most `most` pieces.
+std::vector<Bounds> cone_piece_boxes(const Cone& cone, const glm::dvec3& axis, int most) {
+    auto pieces = [&](int count) {
+        std::vector<Bounds> boxes(count);
+        double area = 0;
+        for (int i = 0; i < count; ++i) {
+            const double from = double(i) / count, to = double(i + 1) / count;
+            boxes[i] =
+                disc_box(glm::mix(cone.base, cone.top, from), axis, std::lerp(cone.base_radius, cone.top_radius, from));
+            boxes[i].extend(
+                disc_box(glm::mix(cone.base, cone.top, to), axis, std::lerp(cone.base_radius, cone.top_radius, to)));
+            area += surface_area(boxes[i]);
+        }
+        return std::pair{boxes, area};
+    };
+    auto best = pieces(1);
+    for (int count = 2; count <= most; ++count) {
+        auto more = pieces(count);
+        if (!(more.second < kConePieceGain * best.second)) break;
+        best = std::move(more);
+    }
+    return best.first;
+}
+
 }  // namespace
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared)
@@ -88,7 +134,7 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
     // Step 2: the meshes, each file built once, and an instance per mesh block; then the cones
     // and discs (numbered after every older kind, so that older scenes keep their order).
     add_meshes(scene, meshes, settings, flatten_shared, releasable);
-    add_round_shapes(scene);
+    add_round_shapes(scene, settings);
     // Step 3: the top level over every bounded object.
     build_top_level(settings);
 }
@@ -98,14 +144,10 @@ void World::add_bounded(const Bounds& box, uint32_t object, uint32_t index, Obje
     boxes_.push_back(box);
 }
 
-void World::add_round_shapes(const SceneDescription& scene) {
-    // The box around a disc of `radius` at `centre` across the unit `axis`: on each coordinate
-    // radius sqrt(1 - axis_i^2), padded for the slack of the tests at the edges.
-    auto disc_box = [](const glm::dvec3& centre, const glm::dvec3& axis, double radius) {
-        const glm::dvec3 reach = radius * glm::sqrt(glm::max(glm::dvec3(0.0), 1.0 - axis * axis));
-        const glm::dvec3 pad = 1e-6 * radius + double(gamma(64)) * glm::abs(centre);
-        return Bounds{Vec3(centre - reach - pad), Vec3(centre + reach + pad)};
-    };
+void World::add_round_shapes(const SceneDescription& scene, const SearchSettings& settings) {
+    // Pieces only help a BVH: tested one by one, a cone is tested once, whole.
+    const bool bvh =
+        !settings.brute_force && bounded_.size() + scene.cones.size() + scene.discs.size() > kLinearObjects;
     for (const Cone& c : scene.cones) {
         const glm::dvec3 along = c.top - c.base;
         const double height = glm::length(along);
@@ -114,9 +156,9 @@ void World::add_round_shapes(const SceneDescription& scene) {
         objects_.push_back({ObjectKind::Cone, index, c.material});
         cones_.push_back({Vec3(c.base), Vec3(axis), Real(height), Real(c.base_radius),
                           Real((c.top_radius - c.base_radius) / height), Real(c.top_radius), c.caps});
-        Bounds box = disc_box(c.base, axis, c.base_radius);
-        box.extend(disc_box(c.top, axis, c.top_radius));
-        add_bounded(box, object, index, ObjectKind::Cone);
+        const std::vector<Bounds> pieces = cone_piece_boxes(c, axis, bvh ? kMostConePieces : 1);
+        for (const Bounds& box : pieces) add_bounded(box, object, index, ObjectKind::Cone);
+        extra_entries_ += pieces.size() - 1;
     }
     for (const Disc& d : scene.discs) {
         const uint32_t index = uint32_t(discs_.size()), object = uint32_t(objects_.size());
@@ -205,7 +247,7 @@ void World::build_top_level(const SearchSettings& settings) {
         sphere_centre_ = all.centre();
         sphere_radius2_ = radius * radius;
     }
-    linear_ = settings.brute_force || bounded_.size() <= kLinearObjects;
+    linear_ = settings.brute_force || bounded_.size() - extra_entries_ <= kLinearObjects;
     if (!linear_) {
         top_ = Bvh(std::move(boxes_), BvhBuild::Sah, kTopLeafSize, settings.threads);
         std::vector<Bounded> in_leaf_order;

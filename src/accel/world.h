@@ -30,6 +30,9 @@ struct Hit {
     Real u = 0, v = 0;  // barycentric coordinates of a triangle hit
 };
 
+// No object: a query that skips none (SurfaceHit::convex_object, World::nearest_hit).
+constexpr uint32_t kNoObject = ~uint32_t(0);
+
 // The surface at a hit, for shading.
 struct SurfaceHit {
     Real t = 0;
@@ -38,7 +41,20 @@ struct SurfaceHit {
     int material = 0;          // index into World::materials()
     Vec3 error{0};             // a bound on each coordinate's rounding error in `point`
     Vec3 geometric_normal{0};  // the surface's own unit normal (for spawning rays off it)
+    // The object hit, if a ray leaving it along its geometric normal's side cannot meet it
+    // again: a sphere or cone (the outward side of a convex solid), a disc (either side);
+    // kNoObject for planes (tested beside the top level) and triangles.
+    uint32_t convex_object = kNoObject;
+    bool flat = false;  // convex_object is a disc: rays leave it for good on either side
 };
+
+// The object that a ray spawned off `hit` in `direction` cannot meet again, for a query to
+// skip it, or kNoObject. The naive rule (TRACER_ROBUST=OFF) skips nothing: its self-hits are
+// what it shows.
+inline uint32_t object_left_behind(const SurfaceHit& hit, const Vec3& direction) {
+    if constexpr (!kRobust) return kNoObject;
+    return hit.flat || glm::dot(hit.geometric_normal, direction) > 0 ? hit.convex_object : kNoObject;
+}
 
 // The shape that blocked a shadow ray (World::occluded): an entry of the top level and, in a
 // mesh, the run of triangles tested together that held the blocker.
@@ -98,8 +114,10 @@ public:
     struct ReleaseFlatShapes {};
     World(SceneDescription& scene, const SceneMeshes& meshes, int threads, ReleaseFlatShapes);
 
-    // The nearest surface along `ray` with t inside `range`.
-    std::optional<Hit> nearest_hit(const Ray& ray, Interval range, SearchCounts& counts) const;
+    // The nearest surface along `ray` with t inside `range`, not counting object `left_behind`
+    // (object_left_behind: the convex shape the ray leaves, which it cannot meet again).
+    std::optional<Hit> nearest_hit(const Ray& ray, Interval range, SearchCounts& counts,
+                                   uint32_t left_behind = kNoObject) const;
     // The surface at a hit that nearest_hit returned for `ray`.
     SurfaceHit surface(const Ray& ray, const Hit& hit) const;
     // nearest_hit, then surface.
@@ -112,7 +130,9 @@ public:
     // occluded, testing `last` first: the shape that blocked an earlier shadow ray towards the
     // same light, which mostly blocks its neighbours too (Haines & Greenberg's shadow cache).
     // The answer is the same either way; `last` becomes the shape that blocked this ray, if any.
-    bool occluded(const Ray& ray, Interval range, SearchCounts& counts, Occluder& last) const;
+    // Object `left_behind` is not tested (as for nearest_hit).
+    bool occluded(const Ray& ray, Interval range, SearchCounts& counts, Occluder& last,
+                  uint32_t left_behind = kNoObject) const;
     // A number no other World of this process has (for caches kept between rays).
     uint64_t serial() const { return serial_; }
     // False only if the ray's line misses a bounding sphere of every bounded object, and there
@@ -133,7 +153,9 @@ public:
     bool top_level_linear() const { return linear_; }
     const Bvh& top_level() const { return top_; }
     double top_level_build_seconds() const { return top_build_seconds_; }
-    size_t bounded_objects() const { return bounded_.size(); }
+    size_t bounded_objects() const { return bounded_.size() - extra_entries_; }
+    // The top level's entries: one per bounded object, and the pieces of long cones beyond their first.
+    size_t top_level_entries() const { return bounded_.size(); }
     // Bytes held by the top level (its BVH, the objects, the instances; not the meshes).
     size_t top_level_memory_bytes() const;
 
@@ -160,17 +182,19 @@ private:
     void add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
                     bool flatten_shared, SceneDescription* releasable);
     void add_bounded(const Bounds& box, uint32_t object, uint32_t index, ObjectKind kind = ObjectKind::MeshInstance);
-    void add_round_shapes(const SceneDescription& scene);
+    void add_round_shapes(const SceneDescription& scene, const SearchSettings& settings);
     bool hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
     bool bounded_blocks(uint32_t entry, const Ray& ray, Interval range, SearchCounts& counts, Occluder& blocker) const;
     void build_top_level(const SearchSettings& settings);
     bool hit_instance(uint32_t index, uint32_t object, const Ray& ray, Interval& range, Hit& hit,
                       SearchCounts& counts) const;
     bool instance_blocks(uint32_t entry, const Ray& ray, Interval range, SearchCounts& counts, Occluder& blocker) const;
-    bool occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range, SearchCounts& counts) const;
+    bool occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range, SearchCounts& counts,
+                         uint32_t left_behind) const;
     bool nearest_plane(const Ray& ray, Interval& range, Hit& hit) const;
     SurfaceHit surface_at(const Ray& ray, const Hit& hit) const;
-    bool nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
+    bool nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts,
+                            uint32_t left_behind) const;
 
     std::vector<Object> objects_;
     std::vector<PlaneShape> planes_;
@@ -180,6 +204,7 @@ private:
     std::vector<ConeShape> cones_;
     std::vector<DiscShape> discs_;
     std::vector<Bounded> bounded_;
+    size_t extra_entries_ = 0;   // the pieces of long cones beyond the first (cone_piece_boxes)
     uint32_t sphere_count_ = 0;  // the spheres: bounded_'s first entries while the top level is linear
     LargeArray<Bounds> boxes_;   // of bounded_, while the world is built
     Bvh top_;

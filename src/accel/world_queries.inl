@@ -76,9 +76,10 @@ inline bool World::bounded_blocks(uint32_t entry, const Ray& ray, Interval range
     return blocked;
 }
 
-inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range,
-                                   SearchCounts& counts) const {
+inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range, SearchCounts& counts,
+                                   uint32_t left_behind) const {
     const Bounded& b = bounded_[occluder.entry];
+    if (b.kind != ObjectKind::MeshInstance && b.object == left_behind) return false;
     if (b.kind == ObjectKind::Sphere) {
         ++counts.objects.primitive_tests;
         return intersect_sphere(ray, b.centre, b.radius, range).has_value();
@@ -108,12 +109,13 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
 }
 
 [[gnu::always_inline]] inline bool World::nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit,
-                                                             SearchCounts& counts) const {
+                                                             SearchCounts& counts, uint32_t left_behind) const {
     // Spheres, planes, then meshes (objects are numbered in this order; bounded_ lists the
     // spheres, then the meshes).
     bool found = false;
     for (uint32_t i = 0; i < sphere_count_; ++i) {
         const Bounded& s = bounded_[i];
+        if (s.object == left_behind) continue;
         if (auto t = intersect_sphere(ray, s.centre, s.radius, range)) {
             range.max = *t;
             hit = {s.object, 0, *t, 0, 0};
@@ -123,7 +125,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     found = nearest_plane(ray, range, hit) || found;
     for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
         const Bounded& b = bounded_[i];
-        if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
+        if ((b.kind == ObjectKind::MeshInstance || b.object != left_behind) &&
+            line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
             found = hit_bounded(b, ray, range, hit, counts) || found;
     }
     counts.objects.primitive_tests += bounded_.size();
@@ -131,21 +134,28 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
 }
 
 [[gnu::always_inline]] inline std::optional<Hit> World::nearest_hit(const Ray& ray, Interval range,
-                                                                    SearchCounts& counts) const {
+                                                                    SearchCounts& counts, uint32_t left_behind) const {
     // Two records, so that the one-by-one search's can stay in registers: the BVH's test, out
     // of line, holds the address of its own (task2 0.97x, bunny_room 0.97x).
     if (linear_) {
         Hit hit;
-        if (!nearest_one_by_one(ray, range, hit, counts)) return std::nullopt;
+        if (!nearest_one_by_one(ray, range, hit, counts, left_behind)) return std::nullopt;
         return hit;
     }
     // Each hit shrinks range.max, so later objects only count when they are nearer. Planes
     // first: a floor's hit lets the top level skip every box behind it.
     Hit hit;
     bool found = nearest_plane(ray, range, hit);
+    // A long cone's pieces (cone_piece_boxes) are tested once: the last cone tested is skipped.
+    uint32_t cone_tested = ~uint32_t(0);
     auto test = [&](uint32_t i, Interval& r) {
         const Bounded& b = bounded_[i];
         if (b.kind == ObjectKind::MeshInstance) return hit_instance(b.index, b.object, ray, r, hit, counts);
+        if (b.object == left_behind) return false;
+        if (b.kind == ObjectKind::Cone) {
+            if (b.index == cone_tested) return false;
+            cone_tested = b.index;
+        }
         return hit_bounded(b, ray, r, hit, counts);
     };
     found = top_.closest(ray, range, counts.objects, test) || found;
@@ -176,6 +186,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
                 out.normal = (out.point - s.centre) / s.radius;
             }
             out.geometric_normal = out.normal;
+            out.convex_object = hit.object;
             break;
         }
         case ObjectKind::Plane: {
@@ -202,9 +213,12 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
             }
             out.normal = round.normal;
             out.geometric_normal = round.normal;
-            if (out.normal == Vec3(0)) [[unlikely]] {
+            out.convex_object = hit.object;
+            out.flat = object.kind == ObjectKind::Disc;
+            if (out.normal == Vec3(0)) [[unlikely]] {  // no side to leave by: skip nothing
                 out.normal = -normalize_or_zero(ray.direction);
                 out.geometric_normal = out.normal;
+                out.convex_object = kNoObject;
             }
             break;
         }
@@ -255,15 +269,16 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     return surface_at(ray, *hit);
 }
 
-[[gnu::always_inline]] inline bool World::occluded(const Ray& ray, Interval range, SearchCounts& counts,
-                                                   Occluder& last) const {
+[[gnu::always_inline]] inline bool World::occluded(const Ray& ray, Interval range, SearchCounts& counts, Occluder& last,
+                                                   uint32_t left_behind) const {
     if (last.entry != Occluder::kNone) {
-        if (occluder_blocks(last, ray, range, counts)) return true;
+        if (occluder_blocks(last, ray, range, counts, left_behind)) return true;
         last.entry = Occluder::kNone;
     }
     if (linear_) {
         for (uint32_t i = 0; i < sphere_count_; ++i) {
-            if (intersect_sphere(ray, bounded_[i].centre, bounded_[i].radius, range)) {
+            if (bounded_[i].object != left_behind &&
+                intersect_sphere(ray, bounded_[i].centre, bounded_[i].radius, range)) {
                 last = {i, {}};
                 return true;
             }
@@ -276,7 +291,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
         for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
             const Bounded& b = bounded_[i];
             ++counts.objects.primitive_tests;
-            if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius) &&
+            if ((b.kind == ObjectKind::MeshInstance || b.object != left_behind) &&
+                line_may_meet_sphere(ray, b.centre, b.radius * b.radius) &&
                 bounded_blocks(uint32_t(i), ray, range, counts, last))
                 return true;
         }
@@ -284,11 +300,20 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     }
     // Through the BVH the ray has entered an instance's box before it is tested, so the
     // bounding sphere (which holds the box) would rule nothing out.
+    uint32_t cone_tested = ~uint32_t(0);
     auto test = [&](uint32_t i, Interval& r) {
         const Bounded& b = bounded_[i];
         if (b.kind == ObjectKind::MeshInstance) return instance_blocks(i, ray, r, counts, last);
-        if (b.kind != ObjectKind::Sphere) return bounded_blocks(i, ray, r, counts, last);
-        if (!intersect_sphere(ray, b.centre, b.radius, r)) return false;
+        if (b.object == left_behind) return false;
+        if (b.kind == ObjectKind::Cone) {
+            if (b.index == cone_tested) return false;
+            cone_tested = b.index;
+            if (!intersect_cone(ray, cones_[b.index], r)) return false;
+        } else if (b.kind != ObjectKind::Sphere) {
+            return bounded_blocks(i, ray, r, counts, last);
+        } else if (!intersect_sphere(ray, b.centre, b.radius, r)) {
+            return false;
+        }
         last = {i, {}};
         return true;
     };

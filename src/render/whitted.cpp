@@ -42,17 +42,19 @@ constexpr int kMostShadowCrossings = 1024;
 // The fraction of a light's colour that reaches the point along `shadow` (transparent shadows):
 // the product of kt over the surfaces crossed, 0 at the first that transmits nothing. Each
 // crossing continues as a ray of its own, from the far side of the surface, counted as a shadow
-// ray.
-static Color light_through(const World& world, SpawnedRay shadow, const Vec3& light, RayCounts& counts) {
+// ray. `left_behind`: the object the first ray cannot meet again (object_left_behind).
+static Color light_through(const World& world, SpawnedRay shadow, const Vec3& light, uint32_t left_behind,
+                           RayCounts& counts) {
     Color through(1.0);
     for (int crossings = 0; crossings < kMostShadowCrossings; ++crossings) {
-        const auto found = world.nearest_hit(shadow.ray, shadow.range, counts.traversal);
+        const auto found = world.nearest_hit(shadow.ray, shadow.range, counts.traversal, left_behind);
         if (!found) return through;
         const SurfaceHit hit = world.surface(shadow.ray, *found);
         through *= world.materials()[size_t(hit.material)].kt;
         if (through == Color(0.0)) return through;
         ++counts.shadow;
         shadow = spawn_ray_to(hit, light);
+        left_behind = object_left_behind(hit, shadow.ray.direction);
     }
     return Color(0.0);
 }
@@ -84,9 +86,10 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         if (settings.shadows) {
             ++counts.shadow;
             const SpawnedRay shadow = spawn.ray_to(light_offset, distance);
+            const uint32_t left_behind = object_left_behind(hit, to_light);
             if (through_glass) {
-                term *= light_through(world, shadow, Vec3(light.position), counts);
-            } else if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l])) {
+                term *= light_through(world, shadow, Vec3(light.position), left_behind, counts);
+            } else if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l], left_behind)) {
                 continue;
             }
         }
@@ -110,6 +113,7 @@ struct Branch {
     Interval range;
     Color weight;
     int depth;
+    uint32_t left_behind;  // the object the ray cannot meet again (object_left_behind)
 };
 
 // Refraction makes the ray tree branch: a transmitting surface sends a second, refracted ray.
@@ -154,14 +158,15 @@ template <bool kRefracts>
         ++tree_rays;
         return (tree_rays & 255) != 0 || !cancel || !cancel->load(std::memory_order_relaxed);
     };
-    Branch path{ray, kPrimaryRange, Color(1.0), 0};
+    Branch path{ray, kPrimaryRange, Color(1.0), 0, kNoObject};
     for (;;) {
         Color weight = path.weight;
         Interval range = path.range;
+        uint32_t left_behind = path.left_behind;
         ray = path.ray;
         for (int depth = path.depth;; ++depth) {
             // Step 1: the nearest surface, or the background.
-            const auto found = world.nearest_hit(ray, range, counts.traversal);
+            const auto found = world.nearest_hit(ray, range, counts.traversal, left_behind);
             if (!found) {
                 color += weight * settings.background;
                 break;
@@ -194,7 +199,8 @@ template <bool kRefracts>
                         ++counts.refraction, ++spawned;
                         const SpawnedRay next = spawn.ray(*direction);
                         if (!pending) pending = &branch_stack();
-                        pending->push_back({next.ray, next.range, branch_weight, depth + 1});
+                        pending->push_back({next.ray, next.range, branch_weight, depth + 1,
+                                            object_left_behind(hit, next.ray.direction)});
                     }
                 } else {
                     reflect += material.kt;
@@ -214,6 +220,7 @@ template <bool kRefracts>
             const SpawnedRay reflected = spawn.ray(ray.direction - 2 * glm::dot(ray.direction, normal) * normal);
             ray = reflected.ray;
             range = reflected.range;
+            left_behind = object_left_behind(hit, ray.direction);
         }
         if (!kRefracts || !pending || pending->empty()) {
             counts.trees_cut += cut;

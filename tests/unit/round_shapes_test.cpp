@@ -8,6 +8,7 @@
 
 #include "accel/round_shapes.h"
 #include "accel/world.h"
+#include "render/spawn.h"
 
 namespace tracer {
 namespace {
@@ -200,6 +201,58 @@ TEST(RoundShapes, BvhAgreesWithBruteForce) {
         disagree += bvh.occluded(ray, {0, 20}, counts) != brute.occluded(ray, {0, 20}, counts);
     }
     EXPECT_GT(hits, 4000);
+    EXPECT_EQ(disagree, 0);
+    // Long cones leaning across the axes are cut into pieces at the top level (cone_piece_boxes).
+    EXPECT_GT(bvh.top_level_entries(), bvh.bounded_objects() + 100);
+    EXPECT_EQ(brute.top_level_entries(), brute.bounded_objects());
+}
+
+// A ray leaving a sphere or cone outwards, or a disc on either side, cannot meet it again, so
+// the searches skip it (object_left_behind): for rays spawned off hits as the renderer spawns
+// them, in every direction, a search that skips the object finds what one testing it finds, and
+// that is never the object itself. A ray going in does meet it again, and is not skipped.
+TEST(RoundShapes, RaysLeavingAConvexShapeNeverMeetItAgain) {
+    if constexpr (!kRobust) GTEST_SKIP() << "the naive rule skips nothing (its self-hits are what it shows)";
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> unit(0, 1);
+    auto point = [&](double size) { return size * dvec3(unit(random), unit(random), unit(random)) - size / 2; };
+    SceneDescription scene;
+    scene.materials.resize(1);
+    for (int i = 0; i < 300; ++i) {
+        const dvec3 base = point(6);
+        const double r = 0.05 + 0.3 * unit(random);
+        scene.cones.push_back({base, base + point(2), r, i % 2 == 0 ? r : 0.3 * r, i % 3 == 0, 0});
+        scene.discs.push_back({point(6), glm::normalize(point(2)), 0.05 + 0.3 * unit(random), 0});
+        scene.spheres.push_back({point(6), 0.05 + 0.3 * unit(random), 0});
+    }
+    const World world(scene);
+    int skipped = 0, met_again_going_in = 0, disagree = 0;
+    for (int i = 0; i < 20000; ++i) {
+        SearchCounts counts;
+        const Ray primary{Vec3(point(10)), Vec3(glm::normalize(point(2)))};
+        const auto first = world.nearest_hit(primary, {0, kInfinity}, counts);
+        if (!first) continue;
+        const SurfaceHit hit = world.surface(primary, *first);
+        const Vec3 direction = glm::normalize(Vec3(point(2)));
+        const SpawnedRay spawned = SpawnPoint(hit).ray(direction);
+        const uint32_t left_behind = object_left_behind(hit, direction);
+        const auto testing_all = world.nearest_hit(spawned.ray, spawned.range, counts);
+        if (left_behind == kNoObject) {
+            met_again_going_in += testing_all && testing_all->object == first->object;
+            continue;
+        }
+        ++skipped;
+        const auto skipping = world.nearest_hit(spawned.ray, spawned.range, counts, left_behind);
+        disagree += testing_all.has_value() != skipping.has_value() ||
+                    (testing_all && (testing_all->object == left_behind || testing_all->object != skipping->object ||
+                                     testing_all->t != skipping->t));
+        Occluder none, last;
+        const Interval to_light{spawned.range.min, 3};
+        disagree += world.occluded(spawned.ray, to_light, counts, none) !=
+                    world.occluded(spawned.ray, to_light, counts, last, left_behind);
+    }
+    EXPECT_GT(skipped, 3000);
+    EXPECT_GT(met_again_going_in, 1000);
     EXPECT_EQ(disagree, 0);
 }
 
