@@ -64,6 +64,14 @@ struct Bounds {
 // disjoint blocks from several threads at once.
 using BoundsSource = std::function<void(size_t first, size_t count, Bounds* out)>;
 
+// Small subtrees that a wide tree gathers into one leaf instead of a node of their own (a node
+// per handful of primitives leaves most of its lanes empty): those of at most `most`
+// primitives, each of which `gatherable(id)` allows. The default gathers none.
+struct LeafGathering {
+    uint32_t most = 1;
+    std::function<bool(uint32_t id)> gatherable;
+};
+
 // Per-ray work, for --stats.
 struct TraversalCounts {
     uint64_t box_tests = 0;
@@ -105,7 +113,8 @@ public:
     // leaf's cost by such groups (a power of two), which makes fuller leaves. `primitives` is
     // freed once read, and each work array once used: the peak stays near the tree's size plus
     // the input's.
-    Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1);
+    Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1,
+        const LeafGathering& gathering = {});
     // The same over `count` primitives whose bounds `source` gives a block at a time: they are
     // rounded to float as they come, never all kept in double.
     Bvh(size_t count, const BoundsSource& source, BvhBuild method, int leaf_size, int threads = 0, int leaf_lanes = 1);
@@ -122,6 +131,8 @@ public:
     // Sah's wide tree, root at 0 (empty for Box and Median).
     const LargeArray<WideNode>& wide_nodes() const { return wide_; }
     const std::vector<uint32_t>& order() const { return order_; }
+    // order(), moved out: for an owner that puts its primitives in leaf order, and needs it no more.
+    std::vector<uint32_t> take_order() { return std::move(order_); }
     // The box around every primitive (empty if there are none).
     const Bounds& bounds() const { return root_box_; }
     BvhStats stats() const;
@@ -152,7 +163,8 @@ public:
 
 private:
     // Builds the tree over the references (rounded bounds and ids), freeing them once read.
-    void build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, int threads, int leaf_lanes);
+    void build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, int threads, int leaf_lanes,
+               const LeafGathering& gathering = {});
 
     // A child waiting on a wide traversal's stack: a node (count kInner) or a leaf's range.
     struct WideRef {

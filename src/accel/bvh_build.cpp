@@ -393,11 +393,55 @@ static NodeArray depth_first(const NodeArray& slots, size_t used) {
     return ordered;
 }
 
+// Whether the wide tree takes binary node i as a leaf: a binary leaf, or a subtree that
+// `gathering` gathers (its primitives, a run of the leaf order, in first and count).
+class LeafRule {
+public:
+    LeafRule(const NodeArray& nodes, const std::vector<uint32_t>& order, const LeafGathering& gathering)
+        : nodes_(nodes), order_(order), gathering_(gathering) {}
+
+    bool is_leaf(uint32_t i, uint32_t& first, uint32_t& count) const {
+        if (nodes_[i].count > 0) {
+            first = nodes_[i].index, count = nodes_[i].count;
+            return true;
+        }
+        if (gathering_.most <= 1 || !small(i, gathering_.most, first, count)) return false;
+        for (uint32_t k = first; k < first + count; ++k)
+            if (!gathering_.gatherable(order_[k])) return false;
+        return true;
+    }
+    bool is_leaf(uint32_t i) const {
+        uint32_t first, count;
+        return is_leaf(i, first, count);
+    }
+
+private:
+    // True if subtree i holds at most `most` primitives (its depth is then below `most`, which
+    // bounds the walk): their run in first and count.
+    bool small(uint32_t i, uint32_t most, uint32_t& first, uint32_t& count) const {
+        const BvhNode& node = nodes_[i];
+        if (node.count > 0) {
+            first = node.index, count = node.count;
+            return count <= most;
+        }
+        uint32_t right_first, right_count;
+        if (most < 2 || !small(node.index, most - 1, first, count)) return false;
+        if (!small(node.index + 1, most - count, right_first, right_count)) return false;
+        count += right_count;
+        return right_first == first + count - right_count;
+    }
+
+    const NodeArray& nodes_;
+    const std::vector<uint32_t>& order_;
+    const LeafGathering& gathering_;
+};
+
 // The children a wide node made from binary node `from` takes (whose inner nodes' children are
 // at `index` and `index` + 1): its two children and, while it has fewer than kWide, the two
-// children of its inner child of largest surface area in place of that child. A binary leaf
-// takes itself. Returns how many (at most kWide), written to `children`.
-static int wide_children(const NodeArray& nodes, uint32_t from, uint32_t (&children)[kWide]) {
+// children of its inner child of largest surface area in place of that child (leaves, as
+// `leaves` takes them, are never opened). A binary leaf takes itself. Returns how many (at most
+// kWide), written to `children`.
+static int wide_children(const NodeArray& nodes, const LeafRule& leaves, uint32_t from, uint32_t (&children)[kWide]) {
     auto half_area = [&](uint32_t i) {
         const float(&box)[2][3] = nodes[i].box;
         const float dx = box[1][0] - box[0][0], dy = box[1][1] - box[0][1], dz = box[1][2] - box[0][2];
@@ -406,7 +450,7 @@ static int wide_children(const NodeArray& nodes, uint32_t from, uint32_t (&child
     float area[kWide] = {-1};  // -1: a leaf, never opened
     auto add = [&](int k, uint32_t child) {
         children[k] = child;
-        area[k] = nodes[child].count == 0 ? half_area(child) : -1.0f;
+        area[k] = leaves.is_leaf(child) ? -1.0f : half_area(child);
     };
     children[0] = from;
     if (nodes[from].count > 0) return 1;
@@ -423,7 +467,7 @@ static int wide_children(const NodeArray& nodes, uint32_t from, uint32_t (&child
 }
 
 // How many wide nodes collapse_to_wide makes of the binary tree (so that it allocates them once).
-static size_t wide_node_count(const NodeArray& nodes) {
+static size_t wide_node_count(const NodeArray& nodes, const LeafRule& leaves) {
     size_t made = 0;
     std::vector<uint32_t> pending{0};
     while (!pending.empty()) {
@@ -431,9 +475,9 @@ static size_t wide_node_count(const NodeArray& nodes) {
         pending.pop_back();
         ++made;
         uint32_t children[kWide];
-        const int count = wide_children(nodes, from, children);
+        const int count = wide_children(nodes, leaves, from, children);
         for (int lane = 0; lane < count; ++lane)
-            if (nodes[children[lane]].count == 0) pending.push_back(children[lane]);
+            if (!leaves.is_leaf(children[lane])) pending.push_back(children[lane]);
     }
     return made;
 }
@@ -441,9 +485,9 @@ static size_t wide_node_count(const NodeArray& nodes) {
 // Sah's wide tree from the builder's binary one: a wide node per binary node that
 // wide_children does not open, starting from the root. A binary tree that is one leaf becomes
 // a wide root with one child.
-static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
+static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes, const LeafRule& leaves) {
     LargeArray<WideNode> wide(1);
-    wide.reserve(wide_node_count(nodes));  // exactly: no growth, no capacity left unused
+    wide.reserve(wide_node_count(nodes, leaves));  // exactly: no growth, no capacity left unused
     struct Move {
         uint32_t from, to;  // the binary node whose children make wide node `to`
     };
@@ -453,7 +497,7 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
         pending.pop_back();
         // Step 1: the children.
         uint32_t children[kWide];
-        const int count = wide_children(nodes, move.from, children);
+        const int count = wide_children(nodes, leaves, move.from, children);
         // Step 2: their boxes lane by lane, leaves as ranges, inner children as new wide nodes.
         WideNode node;
         for (int lane = 0; lane < kWide; ++lane) {
@@ -463,11 +507,7 @@ static LargeArray<WideNode> collapse_to_wide(const NodeArray& nodes) {
             }
             node.index[lane] = 0, node.count[lane] = 0;  // no child
             if (lane >= count) continue;
-            const BvhNode& child = nodes[children[lane]];
-            if (child.count > 0) {
-                node.index[lane] = child.index, node.count[lane] = child.count;
-                continue;
-            }
+            if (leaves.is_leaf(children[lane], node.index[lane], node.count[lane])) continue;
             node.index[lane] = uint32_t(wide.size()), node.count[lane] = WideNode::kInner;
             pending.push_back({children[lane], uint32_t(wide.size())});
             wide.emplace_back();
@@ -499,12 +539,13 @@ static LargeArray<BvhBuildRef> float_refs(size_t n, const BoundsSource& source, 
     return refs;
 }
 
-Bvh::Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
+Bvh::Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int threads, int leaf_lanes,
+         const LeafGathering& gathering) {
     LargeArray<BvhBuildRef> refs = float_refs(
         primitives.size(),
         [&](size_t first, size_t count, Bounds* out) { std::copy_n(primitives.data() + first, count, out); }, threads);
     primitives = LargeArray<Bounds>();
-    build(refs, method, leaf_size, threads, leaf_lanes);
+    build(refs, method, leaf_size, threads, leaf_lanes, gathering);
 }
 
 Bvh::Bvh(size_t count, const BoundsSource& source, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
@@ -512,7 +553,8 @@ Bvh::Bvh(size_t count, const BoundsSource& source, BvhBuild method, int leaf_siz
     build(refs, method, leaf_size, threads, leaf_lanes);
 }
 
-void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
+void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, int threads, int leaf_lanes,
+                const LeafGathering& gathering) {
     const uint32_t n = uint32_t(refs.size());
     order_.resize(n);
     if (n == 0) return;
@@ -533,7 +575,7 @@ void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, i
         n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
     refs = LargeArray<BvhBuildRef>();
     if (method == BvhBuild::Sah)
-        wide_ = collapse_to_wide(slots);
+        wide_ = collapse_to_wide(slots, LeafRule(slots, order_, gathering));
     else
         nodes_ = depth_first(slots, std::min<size_t>(builder.used_slots(), 2 * size_t(n) - 1));  // the tree at most
     for (int axis = 0; axis < 3; ++axis) {

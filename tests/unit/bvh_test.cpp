@@ -295,6 +295,70 @@ TEST(Bvh, WideTreesHoldNoUnusedNodes) {
     }
 }
 
+// LeafGathering: subtrees of at most `most` gatherable primitives become one leaf; every
+// primitive stays in exactly one leaf, inside its box; others keep leaves of the leaf size;
+// the tree has fewer nodes, and its nearest hits are those of the ungathered tree.
+TEST(Bvh, GatheredLeavesHoldSmallSubtreesOfGatherablePrimitives) {
+    constexpr uint32_t kSide = 120, kMost = 6;
+    LargeArray<Bounds> boxes(size_t(kSide) * kSide);
+    for (uint32_t i = 0; i < kSide * kSide; ++i) {
+        boxes[i] = Bounds{};
+        boxes[i].extend(Vec3(i % kSide, i / kSide, 0));
+        boxes[i].extend(Vec3(i % kSide + 0.8, i / kSide + 0.8, 0.8));
+    }
+    auto gatherable = [](uint32_t id) { return id % 7 != 0; };  // every seventh may not be gathered
+    const Bvh plain(boxes, BvhBuild::Sah, 1, 2);
+    const Bvh gathered(boxes, BvhBuild::Sah, 1, 2, 1, LeafGathering{kMost, gatherable});
+    std::vector<int> seen(boxes.size(), 0);
+    int gathered_leaves = 0;
+    gathered.for_each_leaf([&](const Bounds& box, uint32_t first, uint32_t count, int) {
+        EXPECT_LE(count, kMost);
+        gathered_leaves += count > 1;
+        for (uint32_t k = first; k < first + count; ++k) {
+            const uint32_t id = gathered.order()[k];
+            ++seen[id];
+            if (count > 1) {
+                EXPECT_TRUE(gatherable(id)) << id;
+            }
+            for (int axis = 0; axis < 3; ++axis) {
+                EXPECT_LE(box.lower[axis], boxes[id].lower[axis]);
+                EXPECT_GE(box.upper[axis], boxes[id].upper[axis]);
+            }
+        }
+    });
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(boxes.size()));
+    EXPECT_GT(gathered_leaves, 500);
+    EXPECT_LT(gathered.wide_nodes().size(), plain.wide_nodes().size() * 2 / 3);
+    EXPECT_EQ(gathered.wide_nodes().capacity(), gathered.wide_nodes().size());
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> unit(0, 1);
+    int hits = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const Ray ray{Vec3(kSide * unit(random), kSide * unit(random), 5),
+                      Vec3(glm::normalize(glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, -1)))};
+        auto nearest = [&](const Bvh& bvh) {
+            Interval range{0, kInfinity};
+            TraversalCounts counts;
+            uint32_t found = ~0u;
+            bvh.closest(ray, range, counts, [&](uint32_t k, Interval& r) {
+                const Bounds& box = boxes[bvh.order()[k]];
+                const float t = (float(box.upper.z) - float(ray.origin.z)) / float(ray.direction.z);
+                const Vec3 p = ray.at(t);
+                if (!(r.contains(t) && p.x >= box.lower.x && p.x <= box.upper.x && p.y >= box.lower.y &&
+                      p.y <= box.upper.y))
+                    return false;
+                r.max = t, found = bvh.order()[k];
+                return true;
+            });
+            return found;
+        };
+        const uint32_t a = nearest(plain), b = nearest(gathered);
+        EXPECT_EQ(a, b) << "ray " << i;
+        hits += a != ~0u;
+    }
+    EXPECT_GT(hits, 1000);
+}
+
 // Large inputs are built on several threads (subtrees, and the root's binning and
 // partitioning, in parallel): the tree must be the one a single thread builds, holding every
 // primitive once, each inside its leaf's box.
