@@ -183,9 +183,11 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
         bvh_.expand(first_of_shape);
     }
 
-    // Step 3: the triangles in that order; then their hit records (each input freed once read).
+    // Step 3: the triangles in that order; then their hit records (each input freed once read,
+    // the BVH's leaf order too: the hit records keep each slot's triangle number).
     triangle_count_ = n;
-    auto triangle_in_slot = [&](size_t i) { return brute_force_ ? uint32_t(i) : bvh_.order()[i]; };
+    const std::vector<uint32_t> order = brute_force_ ? std::vector<uint32_t>{} : bvh_.take_order();
+    auto triangle_in_slot = [&](size_t i) { return brute_force_ ? uint32_t(i) : order[i]; };
     const size_t stride = n + kTriangleLanes - 1;
     columns_.resize(9 * stride);  // uninitialised (LargeArray): each entry is written once
     Real* const columns = columns_.data();
