@@ -116,6 +116,13 @@ public:
     size_t triangle_count() const { return triangle_count_; }
     const Bvh& bvh() const { return bvh_; }
     bool brute_force() const { return brute_force_; }
+    // True if every vertex has the same coordinate on one axis: a ray leaving the mesh's plane
+    // never comes back to it (World skips such a mesh for rays that leave it, when it is one
+    // object placed as built).
+    bool on_axis_plane() const {
+        return bounds_.lower.x == bounds_.upper.x || bounds_.lower.y == bounds_.upper.y ||
+               bounds_.lower.z == bounds_.upper.z;
+    }
     // The BVH's build and the triangles' storage in its order (not placing the vertices).
     double build_seconds() const { return build_seconds_; }
     // Bytes held by the triangles, their hit records and the BVH.

@@ -42,10 +42,10 @@ struct SurfaceHit {
     Vec3 error{0};             // a bound on each coordinate's rounding error in `point`
     Vec3 geometric_normal{0};  // the surface's own unit normal (for spawning rays off it)
     // The object hit, if a ray leaving it along its geometric normal's side cannot meet it
-    // again: a sphere or cone (the outward side of a convex solid), a disc (either side);
-    // kNoObject for planes (tested beside the top level) and triangles.
+    // again: a sphere or cone (the outward side of a convex solid), a disc or a mesh on an axis
+    // plane (either side); kNoObject for planes (tested beside the top level) and other meshes.
     uint32_t convex_object = kNoObject;
-    bool flat = false;  // convex_object is a disc: rays leave it for good on either side
+    bool flat = false;  // convex_object is flat: rays leave it for good on either side
 };
 
 // The object that a ray spawned off `hit` in `direction` cannot meet again, for a query to
@@ -165,8 +165,9 @@ private:
         Vec3 normal;
         uint32_t object;  // index into objects_
     };
-    // Bounded::object of the merged mesh: each triangle's object is its hit record's tag.
-    static constexpr uint32_t kObjectOfTriangle = ~uint32_t(0);
+    // Bounded::object of the merged mesh: each triangle's object is its hit record's tag. Not
+    // kNoObject: a search skips the entry whose object is the one its ray left behind.
+    static constexpr uint32_t kObjectOfTriangle = kNoObject - 1;
     // An entry of the top level, in its BVH's leaf order.
     struct Bounded {
         Vec3 centre;  // sphere: the sphere; others: a sphere around their box

@@ -79,7 +79,7 @@ inline bool World::bounded_blocks(uint32_t entry, const Ray& ray, Interval range
 inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range, SearchCounts& counts,
                                    uint32_t left_behind) const {
     const Bounded& b = bounded_[occluder.entry];
-    if (b.kind != ObjectKind::MeshInstance && b.object == left_behind) return false;
+    if (b.object == left_behind) return false;
     if (b.kind == ObjectKind::Sphere) {
         ++counts.objects.primitive_tests;
         return intersect_sphere(ray, b.centre, b.radius, range).has_value();
@@ -125,8 +125,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     found = nearest_plane(ray, range, hit) || found;
     for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
         const Bounded& b = bounded_[i];
-        if ((b.kind == ObjectKind::MeshInstance || b.object != left_behind) &&
-            line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
+        if (b.object != left_behind && line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
             found = hit_bounded(b, ray, range, hit, counts) || found;
     }
     counts.objects.primitive_tests += bounded_.size();
@@ -150,8 +149,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     uint32_t cone_tested = ~uint32_t(0);
     auto test = [&](uint32_t i, Interval& r) {
         const Bounded& b = bounded_[i];
-        if (b.kind == ObjectKind::MeshInstance) return hit_instance(b.index, b.object, ray, r, hit, counts);
         if (b.object == left_behind) return false;
+        if (b.kind == ObjectKind::MeshInstance) return hit_instance(b.index, b.object, ray, r, hit, counts);
         if (b.kind == ObjectKind::Cone) {
             if (b.index == cone_tested) return false;
             cone_tested = b.index;
@@ -226,6 +225,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
             const MeshInstance& instance = instances_[object.index];
             const MeshAccel& mesh = meshes_[instance.mesh];
             if constexpr (kRobust) out.point = mesh.surface_point(hit.primitive, hit.u, hit.v, out.error);
+            // A mesh on an axis plane, as built: rays leaving it skip it (if it is one object).
+            if (instance.placed && mesh.on_axis_plane()) out.convex_object = hit.object, out.flat = true;
             out.geometric_normal = mesh.geometric_normal(hit.primitive);
             if (instance.placed) {
                 out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v);
@@ -291,8 +292,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
         for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
             const Bounded& b = bounded_[i];
             ++counts.objects.primitive_tests;
-            if ((b.kind == ObjectKind::MeshInstance || b.object != left_behind) &&
-                line_may_meet_sphere(ray, b.centre, b.radius * b.radius) &&
+            if (b.object != left_behind && line_may_meet_sphere(ray, b.centre, b.radius * b.radius) &&
                 bounded_blocks(uint32_t(i), ray, range, counts, last))
                 return true;
         }
@@ -303,8 +303,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     uint32_t cone_tested = ~uint32_t(0);
     auto test = [&](uint32_t i, Interval& r) {
         const Bounded& b = bounded_[i];
-        if (b.kind == ObjectKind::MeshInstance) return instance_blocks(i, ray, r, counts, last);
         if (b.object == left_behind) return false;
+        if (b.kind == ObjectKind::MeshInstance) return instance_blocks(i, ray, r, counts, last);
         if (b.kind == ObjectKind::Cone) {
             if (b.index == cone_tested) return false;
             cone_tested = b.index;
