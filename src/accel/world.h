@@ -177,6 +177,19 @@ private:
         ObjectKind kind;
     };
 
+    // The cone a search tested last: a long cone's pieces (cone_piece_boxes) cost one test.
+    struct LastCone {
+        uint32_t index = ~uint32_t(0);
+        // False if `b` is a piece of the cone just tested (its answer to the search is known);
+        // true for any other entry, which a cone then becomes the last of.
+        bool untested(const Bounded& b) {
+            if (b.kind != ObjectKind::Cone) return true;
+            if (b.index == index) return false;
+            index = b.index;
+            return true;
+        }
+    };
+
     World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
           SceneDescription* releasable);
     // `releasable`: the scene (the same object) whose flat shapes are emptied once placed, or null.

@@ -145,16 +145,11 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     // first: a floor's hit lets the top level skip every box behind it.
     Hit hit;
     bool found = nearest_plane(ray, range, hit);
-    // A long cone's pieces (cone_piece_boxes) are tested once: the last cone tested is skipped.
-    uint32_t cone_tested = ~uint32_t(0);
+    LastCone last_cone;
     auto test = [&](uint32_t i, Interval& r) {
         const Bounded& b = bounded_[i];
-        if (b.object == left_behind) return false;
+        if (b.object == left_behind || !last_cone.untested(b)) return false;
         if (b.kind == ObjectKind::MeshInstance) return hit_instance(b.index, b.object, ray, r, hit, counts);
-        if (b.kind == ObjectKind::Cone) {
-            if (b.index == cone_tested) return false;
-            cone_tested = b.index;
-        }
         return hit_bounded(b, ray, r, hit, counts);
     };
     found = top_.closest(ray, range, counts.objects, test) || found;
@@ -300,20 +295,13 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     }
     // Through the BVH the ray has entered an instance's box before it is tested, so the
     // bounding sphere (which holds the box) would rule nothing out.
-    uint32_t cone_tested = ~uint32_t(0);
+    LastCone last_cone;
     auto test = [&](uint32_t i, Interval& r) {
         const Bounded& b = bounded_[i];
-        if (b.object == left_behind) return false;
+        if (b.object == left_behind || !last_cone.untested(b)) return false;
         if (b.kind == ObjectKind::MeshInstance) return instance_blocks(i, ray, r, counts, last);
-        if (b.kind == ObjectKind::Cone) {
-            if (b.index == cone_tested) return false;
-            cone_tested = b.index;
-            if (!intersect_cone(ray, cones_[b.index], r)) return false;
-        } else if (b.kind != ObjectKind::Sphere) {
-            return bounded_blocks(i, ray, r, counts, last);
-        } else if (!intersect_sphere(ray, b.centre, b.radius, r)) {
-            return false;
-        }
+        if (b.kind != ObjectKind::Sphere) return bounded_blocks(i, ray, r, counts, last);
+        if (!intersect_sphere(ray, b.centre, b.radius, r)) return false;
         last = {i, {}};
         return true;
     };
