@@ -35,12 +35,15 @@ def main(argv: list[str] | None = None) -> int:
     OUT.mkdir(parents=True, exist_ok=True)
     rows = []
     for name in ("rings", "tree"):
-        scenes = {mode: OUT / f"{name}_{mode}.scn" for mode in MODES}
+        # Without cones: the analytic scene less its cone lines (next to it: the same meshes folder).
+        scenes = {
+            "analytic": OUT / f"{name}_analytic.scn",
+            "mesh": OUT / f"{name}_mesh.scn",
+            "none": OUT / f"{name}_analytic_without_cones.scn",
+        }
         for mode in ("analytic", "mesh"):
             nff2scn.convert_file(f"{args.spd}/{name}.nff", scenes[mode], cones=mode)
-        # Without cones: the analytic scene less its cone lines (the same meshes folder).
         analytic_lines = scenes["analytic"].read_text().splitlines(keepends=True)
-        scenes["none"] = scenes["analytic"].with_name(f"{name}_analytic_without_cones.scn")
         scenes["none"].write_text("".join(line for line in analytic_lines if not line.startswith("cone {")))
         times = {mode: [] for mode in MODES}
         ratios, results = [], {}
