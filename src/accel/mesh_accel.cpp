@@ -11,7 +11,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "base/parallel.h"
+#include "accel/parallel_for.h"
 
 namespace tracer {
 
@@ -212,6 +212,18 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
             [&](size_t i) {
                 const uint32_t triangle = triangle_in_slot(i);
                 hit_records_[i] = {mesh.numbers[triangle], mesh.tags[triangle], kFlat};
+            },
+            threads);
+    } else if (std::none_of(mesh.normal_ids.begin(), mesh.normal_ids.end(),
+                            [](const auto& ids) { return ids[0] == PlacedTriangles::kFlat; })) {
+        // Every triangle smooth: each numbered by its slot, in parallel (the 940k-triangle
+        // bunny's serial numbering took 10% of its build).
+        smooth = n;
+        parallel_for(
+            n,
+            [&](size_t i) {
+                const uint32_t triangle = triangle_in_slot(i);
+                hit_records_[i] = {mesh.numbers[triangle], mesh.tags[triangle], uint32_t(i)};
             },
             threads);
     } else {

@@ -413,6 +413,50 @@ TEST(Bvh, ParallelBuildsMakeTheSingleThreadedTree) {
     }
 }
 
+// Sah's wide tree built directly (from kDirectWideFrom primitives) is the tree collapsed from
+// the binary build, byte for byte, on one thread and on two: for scattered boxes, for boxes
+// whose centres all coincide (split in halves), for one and two boxes, and with small subtrees
+// gathered into leaves (whose entries the binary build orders otherwise: compared as sets).
+TEST(Bvh, DirectWideBuildsMakeTheCollapsedTree) {
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> unit(0, 1);
+    auto scattered = [&](size_t count) {
+        LargeArray<Bounds> boxes(count);
+        for (Bounds& box : boxes) {
+            const Vec3 corner(unit(random), unit(random), unit(random) * 0.1);
+            box = Bounds{};
+            box.extend(corner);
+            box.extend(corner + Real(0.02) * Vec3(unit(random), unit(random), unit(random)));
+        }
+        return boxes;
+    };
+    LargeArray<Bounds> same(300);
+    for (Bounds& box : same) box = Bounds{}, box.extend(Vec3(1, 2, 3)), box.extend(Vec3(2, 3, 4));
+    const std::vector<LargeArray<Bounds>> inputs{scattered(20000), scattered(1), scattered(2), same};
+    const LeafGathering none, some{6, [](uint32_t id) { return id % 5 != 0; }};
+    auto leaf_sets = [](const Bvh& bvh) {
+        std::vector<std::vector<uint32_t>> sets;
+        bvh.for_each_leaf([&](const Bounds&, uint32_t first, uint32_t count, int) {
+            sets.emplace_back(bvh.order().begin() + first, bvh.order().begin() + first + count);
+            std::sort(sets.back().begin(), sets.back().end());
+        });
+        return sets;
+    };
+    for (const LargeArray<Bounds>& boxes : inputs)
+        for (int threads : {1, 2})
+            for (const LeafGathering* gathering : {&none, &some}) {
+                const Bvh direct(boxes, BvhBuild::Sah, 4, threads, 4, *gathering, 0);
+                const Bvh collapsed(boxes, BvhBuild::Sah, 4, threads, 4, *gathering, ~uint32_t(0));
+                const auto &a = direct.wide_nodes(), &b = collapsed.wide_nodes();
+                ASSERT_EQ(a.size(), b.size()) << boxes.size() << " boxes, " << threads << " threads";
+                EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof a[0]), 0) << boxes.size() << " boxes";
+                if (gathering == &none) {
+                    EXPECT_EQ(direct.order(), collapsed.order()) << boxes.size() << " boxes";
+                }
+                EXPECT_EQ(leaf_sets(direct), leaf_sets(collapsed)) << boxes.size() << " boxes";
+            }
+}
+
 // The tree's arrays are sized by the primitives, not by the builder's work space (which has
 // room for every task's chunk of node slots besides the tree): 19 and 4,096 boxes keep a few
 // hundred bytes per box at most, in every build.
