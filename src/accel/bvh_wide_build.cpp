@@ -208,10 +208,10 @@ void BvhBuilder::build_wide(const Range& left, const Range& right, int depth, ui
     split_sides(left, right, depth + 1, children[0], children[1]);
     int count = 2;
     while (count < kWide) {
-        int largest = -1;
-        for (int k = 0; k < count; ++k)
-            if (children[k].inner && (largest < 0 || children[largest].area < children[k].area)) largest = k;
-        if (largest < 0) break;
+        int largest = 0;  // as std::max_element, so that NaN areas choose as in collapse_to_wide
+        for (int k = 1; k < count; ++k)
+            if (children[largest].area < children[k].area) largest = k;
+        if (children[largest].area < 0) break;  // leaves only
         const WideChild opened = children[largest];
         split_sides(opened.left, opened.right, opened.depth + 1, children[largest], children[count]);
         ++count;
