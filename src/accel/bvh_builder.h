@@ -159,13 +159,14 @@ NodeArray depth_first(const NodeArray& slots, size_t used);
 // Sah's wide tree made from the binary tree in `slots`: a wide node per binary node that no wide
 // node above opens (the one of largest area first, while it has fewer than kWide children; the
 // leaves, and the subtrees `gathering` gathers, are never opened). `order` maps the leaves'
-// entries to primitive ids.
+// entries to primitive ids. The nodes are numbered by a walk from the root that numbers each
+// node's inner children side by side when it reaches the node, and goes on from the last.
 LargeArray<WideNode> collapse_to_wide(const NodeArray& slots, const std::vector<uint32_t>& order,
                                       const LeafGathering& gathering);
 
 // The wide tree that BvhBuilder::build_wide_tree wrote to `slots` (root at 0, `used` nodes),
-// in an array of exactly that size and in collapse_to_wide's order (see there): the same bytes
-// whichever thread took which slot, and whichever of the two builds made it.
+// in an array of exactly that size, numbered as collapse_to_wide numbers its nodes: the same
+// bytes whichever thread took which slot, and whichever of the two builds made it.
 LargeArray<WideNode> in_traversal_order(const LargeArray<WideNode>& slots, uint32_t used);
 
 }  // namespace tracer
