@@ -345,8 +345,7 @@ void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, i
     const bool parallel = thread_count(threads) > 1 && n >= 2 * BvhBuilder::kTaskFrom;
     auto run = [&](const auto& build_tree) {
         if (!parallel) return build_tree();
-        tbb::task_arena arena(thread_count(threads));
-        arena.execute(build_tree);
+        build_arena(thread_count(threads)).execute(build_tree);
     };
     const int lanes = std::max(leaf_lanes, 1);
     NodeArray slots;  // the binary tree, unless Sah's wide one is built directly

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <map>
+#include <memory>
+#include <mutex>
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_for.h>
@@ -12,6 +15,18 @@
 #include "base/parallel.h"
 
 namespace tracer {
+
+// oneTBB's arena of `threads` threads for builds, made once for each count asked for and kept
+// to the end (never destroyed: oneTBB may be gone by then). An arena made per build cost the
+// first builds of a process most: the bunny's (3,674 triangles) 1.2x, gears' 1.05x.
+inline tbb::task_arena& build_arena(int threads) {
+    static std::mutex guard;
+    static auto* arenas = new std::map<int, std::unique_ptr<tbb::task_arena>>;
+    const std::lock_guard lock(guard);
+    auto& arena = (*arenas)[threads];
+    if (!arena) arena = std::make_unique<tbb::task_arena>(threads);
+    return *arena;
+}
 
 // Loops shorter than this run on the calling thread alone: handing out work costs more.
 constexpr size_t kSerialBelow = 20000;
@@ -27,8 +42,7 @@ void parallel_for(size_t n, Body body, int threads_wanted = 0, size_t serial_bel
         for (size_t i = 0; i < n; ++i) body(i);
         return;
     }
-    tbb::task_arena arena(threads);
-    arena.execute([&] {
+    build_arena(threads).execute([&] {
         tbb::parallel_for(
             tbb::blocked_range<size_t>(0, n),
             [&](const tbb::blocked_range<size_t>& chunk) {
