@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 
-#include <oneapi/tbb/parallel_invoke.h>
 #include <oneapi/tbb/task_arena.h>
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>

@@ -68,6 +68,14 @@ class BvhBuilder {
 public:
     using Range = bvh_build::Range;
 
+    // A child of a wide node in the making: its range and, if split (inner), its split.
+    struct WideChild {
+        Range range, left, right;
+        int depth;   // its depth in the binary tree
+        bool inner;  // split: a wide node of its own unless opened
+        float area;  // its box's half area if inner (the larger, the sooner opened), else -1
+    };
+
     // `slots` receive binary nodes, `wide_slots` Sah's wide ones built directly.
     BvhBuilder(BvhBuildRef* refs, BvhNode* slots, WideNode* wide_slots, BvhBuild method, int leaf_size, int leaf_lanes,
                bool parallel, const LeafGathering& gathering)
@@ -120,13 +128,6 @@ private:
     bool split_median(const Range& range, int axis, Range& left, Range& right);
     bool split_sah(const Range& range, Range& left, Range& right);
 
-    // A child of a wide node in the making: its range and, if split (inner), its split.
-    struct WideChild {
-        Range range, left, right;
-        int depth;   // its depth in the binary tree
-        bool inner;  // split: a wide node of its own unless opened
-        float area;  // its box's half area if inner (the larger, the sooner opened), else -1
-    };
     // The child over `range` at binary depth `depth`, split now unless it is to be a leaf.
     WideChild wide_child(const Range& range, int depth);
     // True if `range` is small enough for gathering_ and all of its primitives may be gathered.

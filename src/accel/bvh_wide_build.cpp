@@ -175,6 +175,25 @@ BvhBuilder::WideChild BvhBuilder::wide_child(const Range& range, int depth) {
     return child;
 }
 
+// A wide node of `children` (at most kWide), lane by lane: leaves as ranges of the order, inner
+// children as the nodes in consecutive slots from `first_inner`; lanes without a child hold an
+// empty box.
+static WideNode wide_node(const BvhBuilder::WideChild* children, int count, uint32_t first_inner) {
+    WideNode node;
+    for (int lane = 0; lane < kWide; ++lane) {
+        for (int axis = 0; axis < 3; ++axis) {
+            node.planes[0][axis][lane] = lane < count ? children[lane].range.bounds.lower[axis] : float(kInfinity);
+            node.planes[1][axis][lane] = lane < count ? children[lane].range.bounds.upper[axis] : -float(kInfinity);
+        }
+        node.index[lane] = 0, node.count[lane] = 0;  // no child
+        if (lane >= count) continue;
+        const BvhBuilder::WideChild& child = children[lane];
+        node.index[lane] = child.inner ? first_inner++ : child.range.begin;
+        node.count[lane] = child.inner ? WideNode::kInner : child.range.count();
+    }
+    return node;
+}
+
 void BvhBuilder::build_wide_tree(const Range& root) {
     Range left, right;
     if (split(root, 0, left, right)) {
@@ -182,16 +201,8 @@ void BvhBuilder::build_wide_tree(const Range& root) {
         return;
     }
     // A root that is a leaf: a wide root with that one child.
-    WideNode node;
-    for (int lane = 0; lane < kWide; ++lane) {
-        for (int axis = 0; axis < 3; ++axis) {
-            node.planes[0][axis][lane] = lane == 0 ? root.bounds.lower[axis] : float(kInfinity);
-            node.planes[1][axis][lane] = lane == 0 ? root.bounds.upper[axis] : -float(kInfinity);
-        }
-        node.index[lane] = lane == 0 ? root.begin : 0;
-        node.count[lane] = lane == 0 ? root.count() : 0;
-    }
-    wide_slots_[0] = node;
+    const WideChild leaf{root, {}, {}, 0, false, -1.0f};
+    wide_slots_[0] = wide_node(&leaf, 1, 0);
 }
 
 void BvhBuilder::build_wide(const Range& left, const Range& right, int depth, uint32_t to) {
@@ -217,31 +228,18 @@ void BvhBuilder::build_wide(const Range& left, const Range& right, int depth, ui
         ++count;
     }
 
-    // Step 2: the node, its boxes lane by lane: leaves as ranges, inner children as wide nodes
-    // of their own in consecutive slots.
-    int inner = 0;
-    for (int k = 0; k < count; ++k) inner += children[k].inner;
-    uint32_t next = inner > 0 ? used_wide_.fetch_add(uint32_t(inner), std::memory_order_relaxed) : 0;
-    WideNode node;
-    for (int lane = 0; lane < kWide; ++lane) {
-        for (int axis = 0; axis < 3; ++axis) {
-            node.planes[0][axis][lane] = lane < count ? children[lane].range.bounds.lower[axis] : float(kInfinity);
-            node.planes[1][axis][lane] = lane < count ? children[lane].range.bounds.upper[axis] : -float(kInfinity);
-        }
-        node.index[lane] = 0, node.count[lane] = 0;  // no child
-        if (lane >= count) continue;
-        const WideChild& child = children[lane];
-        node.index[lane] = child.inner ? next++ : child.range.begin;
-        node.count[lane] = child.inner ? WideNode::kInner : child.range.count();
-    }
+    // Step 2: the node, its inner children's nodes in consecutive slots.
+    int inner_lanes[kWide], inner_count = 0;
+    for (int lane = 0; lane < count; ++lane)
+        if (children[lane].inner) inner_lanes[inner_count++] = lane;
+    const uint32_t first_inner =
+        inner_count > 0 ? used_wide_.fetch_add(uint32_t(inner_count), std::memory_order_relaxed) : 0;
+    const WideNode node = wide_node(children, count, first_inner);
     wide_slots_[to] = node;
 
     // Step 3: the inner children's subtrees, in parallel if the node holds kTaskFrom primitives
     // or more (its children are then often smaller: 3,674 triangles make eight of some 460
     // each, which the other thread should share): the lanes in halves, each half a task.
-    int inner_lanes[kWide], inner_count = 0;
-    for (int lane = 0; lane < count; ++lane)
-        if (children[lane].inner) inner_lanes[inner_count++] = lane;
     auto build_lanes = [&](auto& self, int first, int end) -> void {
         if (end - first > 1 && parallel_ && left.count() + right.count() >= kTaskFrom) {
             const int middle = (first + end) / 2;
