@@ -19,8 +19,9 @@ each where the two renderers' defaults differ:
   T at each surface (tracer's `transparent_shadows true`); tracer's default opaque shadows differ
   there, and the report says so.
 - shapes: spheres, planes, discs, cones and cylinders as POV-Ray's own (analytic); meshes as
-  `mesh2` with tracer's placed corners and normals (xcheck.exact_meshes); the flat shapes as
-  triangles.
+  `mesh2` with tracer's placed corners and normals (xcheck.exact_meshes), each with an
+  `inside_vector` (see _mesh2: without one POV-Ray may miss a mesh's farther faces); the flat
+  shapes as triangles.
 """
 
 from __future__ import annotations
@@ -126,8 +127,11 @@ def _mesh2(corners: np.ndarray, normals: np.ndarray, material: dict) -> str:
     lines.append(f"  face_indices {{ {count},")
     lines += [f"    <{3 * t}, {3 * t + 1}, {3 * t + 2}>" for t in range(count)]
     lines.append("  }")
-    if any(material.get("kt", [0, 0, 0])):
-        lines.append("  inside_vector <0, 0, 1>")  # a solid (closed) mesh: refraction needs an inside
+    # Every mesh a solid: refraction needs an inside, and without one POV-Ray's search of the
+    # mesh stops at the first hit it finds, even one the ray then ignores as nearer than its
+    # tolerance, hiding the mesh's farther faces (shadow rays from a tooth's root passed
+    # through the next tooth: 0.14% of SPD gears' pixels).
+    lines.append("  inside_vector <0, 0, 1>")
     lines.append(f"  {texture(material)}\n}}")
     return "\n".join(lines)
 

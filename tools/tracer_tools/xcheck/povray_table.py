@@ -104,26 +104,32 @@ Where they differ:
   transmittance, and skips the surface's own mirror term there (its source says so in
   `Trace::ComputeLightedTexture`: "If total internal reflection occured the transmitted light
   is not filtered"); tracer turns the transmitted share back, km + kt (README.md, "Rendering rules").
-  Measured on 2026-11-27: tracer switched to POV-Ray's rule (an experiment, not kept) agrees on
-  all but 0.3048% of pixels over 2 levels (0.0977% over 8), against 1.3798% (0.8919%). Next,
-  POV-Ray's tolerances (its source, `core/render/trace.cpp`): a shadow ray ignores whatever lies
-  within SMALL_TOLERANCE = 0.001 of where it starts, and of each surface it crosses on its way
-  through glass, and within SHADOW_TOLERANCE = 0.001 of the light; any other ray ignores hits
-  nearer than MIN_ISECT_DEPTH = 1e-4. So near a glass tooth's edges, where a shadow ray's path
-  through the glass is shorter than 0.001, POV-Ray counts one surface instead of two and lets
-  more light through (0.001 is a fifth of a pixel there). With those tolerances as well, tracer
-  (the same experiment) agrees on all but **0.1656%** (0.0874% over 8); the shadow tolerance
-  alone takes 0.3048% to 0.1736%. These are POV-Ray's approximations, not tracer's: tracer
-  bounds its self-intersection margins by the rounding error (docs/robustness.md), some 10^-15
-  of the coordinates. The last 0.17%, single pixels and short segments inside the glass gears
-  with POV-Ray brighter in six of seven, is not explained: not the mesh's inside_vector (another
-  direction changes POV-Ray's image in 15 pixels), not vertex precision (tracer with every vertex
-  rounded to float changes 2 pixels), not tracer's triangle test at edges (its non-watertight
-  build against its watertight one: 0.030%), not the depth limit (both at depth 30: 0.18%).
-  POV-Ray's own mesh test is not watertight (a 2D test on the dominant axis's projection, float
-  vertices), which would let rays through edges inside the glass; that is not measured. Each
-  gear is a closed mesh, its faces turned outward (checked: no open or shared-by-three edges),
-  so which side is inside is not in doubt.
+  Measured on 2026-11-27 (tracer switched to POV-Ray's choices in an experiment build, not
+  kept; against POV-Ray with every mesh given an `inside_vector`, as the converter now writes):
+  POV-Ray's total-internal-reflection rule takes tracer from 1.2577% of pixels over 2 levels to
+  0.1740%. Then POV-Ray's tolerances (its source, `core/render/trace.cpp`): a shadow ray ignores
+  whatever lies within SMALL_TOLERANCE = 0.001 of where it starts, and of each surface it
+  crosses on its way through glass, and within SHADOW_TOLERANCE = 0.001 of the light; any other
+  ray ignores hits nearer than MIN_ISECT_DEPTH = 1e-4. Near a glass tooth's edges, where a
+  shadow ray's path through the glass is shorter than 0.001 (a fifth of a pixel there), POV-Ray
+  counts one surface instead of two and lets more light through. With those tolerances as well
+  the experiment agrees on all but **0.0271%** (71 pixels; 0.0149% over 8), 50 of them one short
+  segment inside a glass gear, not investigated further. These are POV-Ray's approximations, not
+  tracer's: tracer bounds its self-intersection margins by the rounding error
+  (docs/robustness.md), some 10^-15 of the coordinates.
+- **POV-Ray's search of a mesh without an `inside_vector`** can stop at a hit that its caller
+  then ignores as nearer than the tolerances above (`Mesh::intersect_bbox_tree` leaves its queue
+  once a box lies beyond the best hit so far, unless the mesh has an inside), so it misses the
+  mesh's farther faces. A shadow ray that meets an opaque gear within 0.001 of where it starts
+  (from the root of a tooth, or where it leaves a glass tooth beside it) can then pass through
+  the next tooth and light a point in shadow. SPD gears at max_depth 0: POV-Ray brighter in 113
+  of the 115 pixels over 2 levels; traced by brute force, 112 of the 115 have a light whose
+  shadow ray meets a gear within 0.001 and is then blocked by that same gear, against 4 of 400
+  pixels drawn at random from those that agree. Giving every mesh an `inside_vector` turns the
+  early exit off and changes nothing else for an opaque mesh: 115 pixels became 3, the
+  experiment above went from 0.1663% to 0.0271%, and gears with every gear opaque (max_depth 0)
+  from 76 pixels to 2 (`test_povray_finds_a_meshs_far_faces_past_a_near_hit`, at 256 x 256: 20
+  to 0). The converter writes one on every mesh since then.
 - **a coloured ks or kt on a surface with ka or kd** (bunny_room's clay): POV-Ray's `phong` and
   `transmit` are one number each; the converter writes the mean, and the highlights differ a
   little.
