@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstdint>
 #include <mutex>
+#include <new>
 #include <optional>
 #include <type_traits>
 
 #include <glm/geometric.hpp>
 
 #include "accel/parallel_for.h"
+#include "accel/ray_packet.h"
 
 namespace tracer {
 
@@ -266,19 +268,25 @@ static Real next_up(Real x) {
     return glm::dot(v0 - glm::dvec3(ray.origin), normal) / along;
 }
 
-bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const {
-    [[maybe_unused]] const Interval asked = range;
+// One ray's search for its nearest triangle, leaf by leaf (intersect, intersect_packet).
+// Ties: once a hit is found at t, a triangle at exactly t wins if it comes first in its file
+// (lower part, then lower triangle number), whatever order the search meets them in
+// (docs/robustness.md, hard case D2). So the test admits t up to one Real past r.max.
+struct MeshAccel::NearestSearch {
+    const MeshAccel& mesh;
+    LaneTester tester;
+    Real admit_max;
     uint32_t best = 0;
     TriangleHit best_hit;
     bool found = false;
-    // Ties: once a hit is found at t, a triangle at exactly t wins if it comes first in its
-    // file (lower part, then lower triangle number), whatever order the search meets them in
-    // (docs/robustness.md, hard case D2). So the test admits t up to one Real past r.max.
-    Real admit_max = range.max;
-    auto take = [&](uint32_t i, const TriangleHit& hit, Interval& r) {
+
+    NearestSearch(const MeshAccel& m, const Ray& ray, Interval range)
+        : mesh(m), tester(ray, m.columns()), admit_max(range.max) {}
+
+    bool take(uint32_t i, const TriangleHit& hit, Interval& r) {
         if (hit.t == r.max) {
             if (!found) return false;  // the range is open: its end is no hit
-            const HitRecord &a = hit_records_[i], &b = hit_records_[best];
+            const HitRecord &a = mesh.hit_records_[i], &b = mesh.hit_records_[best];
             if (!(a.tag < b.tag || (a.tag == b.tag && a.triangle < b.triangle))) return false;
         }
         r.max = hit.t;
@@ -287,12 +295,11 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
         best_hit = hit;
         found = true;
         // Read when the search ends, if no nearer hit.
-        __builtin_prefetch(&hit_records_[i]);
+        __builtin_prefetch(&mesh.hit_records_[i]);
         return true;
-    };
+    }
     // Four triangles at a time; those that pass the vector steps are finished in order.
-    const LaneTester tester(ray, columns());
-    search<false>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
+    bool test_leaf(uint32_t first, uint32_t count, Interval& r) {
         bool hit_here = false;
         for (uint32_t chunk = first; chunk < first + count; chunk += kTriangleLanes) {
             const int lanes = int(std::min<uint32_t>(kTriangleLanes, first + count - chunk));
@@ -305,12 +312,67 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
             }
         }
         return hit_here;
-    });
-    if constexpr (std::is_same_v<Real, float>) {
-        const auto t = found ? plane_t(ray, triangle(best)) : std::nullopt;
-        if (t && Real(*t) > 0 && asked.contains(Real(*t))) best_hit.t = range.max = Real(*t);
     }
-    if (found) out = {best, best_hit};
+    // The search's answer for `ray`, asked with range `asked`, now ending at `range`.
+    bool finish(const Ray& ray, Interval asked, Interval& range, MeshHit& out) {
+        if constexpr (std::is_same_v<Real, float>) {
+            const auto t = found ? plane_t(ray, mesh.triangle(best)) : std::nullopt;
+            if (t && Real(*t) > 0 && asked.contains(Real(*t))) best_hit.t = range.max = Real(*t);
+        }
+        if (found) out = {best, best_hit};
+        return found;
+    }
+};
+
+bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const {
+    const Interval asked = range;
+    NearestSearch nearest(*this, ray, range);
+    search<false>(ray, range, counts,
+                  [&](uint32_t first, uint32_t count, Interval& r) { return nearest.test_leaf(first, count, r); });
+    return nearest.finish(ray, asked, range, out);
+}
+
+unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval* ranges, MeshHit* out,
+                                     TraversalCounts& counts) const {
+    // Step 1: the rays' box tests side by side, if they agree in form (else one by one).
+    unsigned found = 0;
+    // Made in place: a copy out of the constructor's just-written temporary stalls (store-to-load
+    // forwarding fails on the wide loads), a third of this function's time on the bunny room.
+    alignas(TraversalRay) unsigned char fast_storage[kPacket][sizeof(TraversalRay)];
+    TraversalRay* fast = std::launder(reinterpret_cast<TraversalRay*>(fast_storage));
+    for (int i = 0; i < count; ++i) new (&fast[i]) TraversalRay(*rays[i], ranges[i]);
+    TraversalPacket packet;
+    if (brute_force_ || bvh_.wide_nodes().empty() || !TraversalPacket::make(fast, count, packet)) {
+        for (int i = 0; i < count; ++i) found |= unsigned(intersect(*rays[i], ranges[i], out[i], counts)) << i;
+        return found;
+    }
+    // Step 2: each ray's own leaf search, through the nodes together.
+    alignas(NearestSearch) unsigned char storage[kPacket][sizeof(NearestSearch)];
+    auto search = [&](int i) -> NearestSearch& { return *std::launder(reinterpret_cast<NearestSearch*>(storage[i])); };
+    unsigned started = 0;  // the rays whose search is set up: those that reached a leaf
+    Interval asked[kPacket];
+    std::copy(ranges, ranges + count, asked);
+    auto leaf = [&](unsigned in_leaf, uint32_t first, uint32_t n) {
+        counts.primitive_tests += n * uint32_t(std::popcount(in_leaf));
+        for (unsigned fresh = in_leaf & ~started; fresh != 0; fresh &= fresh - 1) {
+            const int i = __builtin_ctz(fresh);
+            new (storage[i]) NearestSearch(*this, *rays[i], ranges[i]);
+        }
+        started |= in_leaf;
+        for (; in_leaf != 0; in_leaf &= in_leaf - 1) {
+            const int i = __builtin_ctz(in_leaf);
+            if (search(i).test_leaf(first, n, ranges[i]))
+                packet.t_max[i] = std::min(packet.t_max[i], round_up(ranges[i].max));
+        }
+    };
+    if (packet.fused)
+        search_packet<false, true>(bvh_.wide_nodes(), packet, counts, leaf);
+    else
+        search_packet<false, false>(bvh_.wide_nodes(), packet, counts, leaf);
+    for (unsigned m = started; m != 0; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        found |= unsigned(search(i).finish(*rays[i], asked[i], ranges[i], out[i])) << i;
+    }
     return found;
 }
 
@@ -333,6 +395,51 @@ bool MeshAccel::search(const Ray& ray, Interval& range, TraversalCounts& counts,
         if (LaneTester::finish(candidates, __builtin_ctz(m), range, hit)) return true;
     }
     return false;
+}
+
+unsigned MeshAccel::occluded_packet(const Ray* const* rays, int count, const Interval* ranges, TraversalCounts& counts,
+                                    TriangleRun* blockers) const {
+    // Step 1: the rays' box tests side by side, if they agree in form (else one by one).
+    alignas(TraversalRay) unsigned char fast_storage[kPacket][sizeof(TraversalRay)];
+    TraversalRay* fast = std::launder(reinterpret_cast<TraversalRay*>(fast_storage));
+    for (int i = 0; i < count; ++i) new (&fast[i]) TraversalRay(*rays[i], ranges[i]);
+    TraversalPacket packet;
+    unsigned blocked = 0;
+    if (brute_force_ || bvh_.wide_nodes().empty() || !TraversalPacket::make(fast, count, packet)) {
+        for (int i = 0; i < count; ++i) blocked |= unsigned(occluded(*rays[i], ranges[i], counts, blockers[i])) << i;
+        return blocked;
+    }
+    // Step 2: each ray's own leaf tests (occluded's), through the nodes together.
+    alignas(LaneTester) unsigned char storage[kPacket][sizeof(LaneTester)];
+    auto tester = [&](int i) -> LaneTester& { return *std::launder(reinterpret_cast<LaneTester*>(storage[i])); };
+    unsigned started = 0;
+    auto leaf = [&](unsigned in_leaf, uint32_t first, uint32_t n) {
+        counts.primitive_tests += n * uint32_t(std::popcount(in_leaf));
+        for (unsigned fresh = in_leaf & ~started; fresh != 0; fresh &= fresh - 1) {
+            const int i = __builtin_ctz(fresh);
+            new (storage[i]) LaneTester(*rays[i], columns());
+        }
+        started |= in_leaf;
+        unsigned now_blocked = 0;
+        for (; in_leaf != 0; in_leaf &= in_leaf - 1) {
+            const int i = __builtin_ctz(in_leaf);
+            for (uint32_t start = first; start < first + n; start += kTriangleLanes) {
+                const TriangleRun run{start, std::min(uint32_t(kTriangleLanes), first + n - start)};
+                if (run_blocks(tester(i), run, ranges[i])) {
+                    blockers[i] = run;
+                    now_blocked |= 1u << i;
+                    break;
+                }
+            }
+        }
+        blocked |= now_blocked;
+        return now_blocked;
+    };
+    if (packet.fused)
+        search_packet<true, true>(bvh_.wide_nodes(), packet, counts, leaf);
+    else
+        search_packet<true, false>(bvh_.wide_nodes(), packet, counts, leaf);
+    return blocked;
 }
 
 bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts, TriangleRun& blocker) const {

@@ -82,6 +82,11 @@ public:
 
     // The nearest triangle with t inside `range`; shrinks range.max to it.
     bool intersect(const Ray& ray, Interval& range, MeshHit& out, TraversalCounts& counts) const;
+    // intersect for each of *rays[0 .. count) (count at most kPacket), traced together where
+    // they allow it (accel/ray_packet.h): the same answers. Bit i of the result is set if ray i
+    // hit; out[i] and ranges[i] are then its hit and its range shrunk to it.
+    unsigned intersect_packet(const Ray* const* rays, int count, Interval* ranges, MeshHit* out,
+                              TraversalCounts& counts) const;
     // True if any triangle lies along the ray inside `range`; `blocker` is then the run of at
     // most kTriangleLanes triangles tested together that holds one.
     bool occluded(const Ray& ray, Interval range, TraversalCounts& counts, TriangleRun& blocker) const;
@@ -89,6 +94,11 @@ public:
         TriangleRun blocker;
         return occluded(ray, range, counts, blocker);
     }
+    // occluded for each of *rays[0 .. count) (count at most kPacket), traced together where
+    // they allow it: the same answers. Bit i of the result is set if ray i is blocked;
+    // blockers[i] is then the run that blocks it.
+    unsigned occluded_packet(const Ray* const* rays, int count, const Interval* ranges, TraversalCounts& counts,
+                             TriangleRun* blockers) const;
     // True if a triangle of `run` lies along the ray inside `range` (the test occluded makes).
     bool blocks(TriangleRun run, const Ray& ray, Interval range) const;
     // The triangle in `slot`, as the mesh places it.
@@ -133,6 +143,7 @@ private:
     // triangle without a BVH: for the nearest hit (Bvh::closest), or any (kAny, Bvh::any).
     template <bool kAny, typename TestLeaf>
     bool search(const Ray& ray, Interval& range, TraversalCounts& counts, TestLeaf test_leaf) const;
+    struct NearestSearch;  // one ray's nearest-hit search, leaf by leaf
     // The four-lane test of the build's rules (kRobust): watertight, or Moller-Trumbore.
     using LaneTester = std::conditional_t<kRobust, TriangleLaneTester, MollerTrumboreLaneTester>;
     // True if a triangle of `run` (at most kTriangleLanes) lies along the tester's ray inside

@@ -1,5 +1,6 @@
 #include "accel/world.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -255,6 +256,8 @@ void World::build_top_level(const SearchSettings& settings) {
         sphere_radius2_ = radius * radius;
     }
     linear_ = settings.brute_force || bounded_.size() - extra_entries_ <= kLinearObjects;
+    packets_pay_ = linear_ && std::any_of(bounded_.begin(), bounded_.end(),
+                                          [](const Bounded& b) { return b.kind == ObjectKind::MeshInstance; });
     if (!linear_) {
         LeafGathering gathering;
         if (bounded_.size() >= kGatherFrom)
@@ -285,6 +288,88 @@ size_t World::top_level_memory_bytes() const {
     return top_.memory_bytes() + bounded_.capacity() * sizeof(Bounded) + objects_.capacity() * sizeof(Object) +
            instances_.capacity() * sizeof(MeshInstance) + planes_.capacity() * sizeof(PlaneShape) +
            cones_.capacity() * sizeof(ConeShape) + discs_.capacity() * sizeof(DiscShape);
+}
+
+// Fewer rays than this that may meet a mesh search it one by one (nearest_hits).
+constexpr int kFewestInPacket = 2;
+
+bool World::packet_pays(const Ray* const* rays, int count) const {
+    if (!packets_pay_) return false;
+    for (size_t e = sphere_count_; e < bounded_.size(); ++e) {
+        const Bounded& b = bounded_[e];
+        if (b.kind != ObjectKind::MeshInstance) continue;
+        int n = 0;
+        for (int i = 0; i < count; ++i) n += line_may_meet_sphere(*rays[i], b.centre, b.radius * b.radius);
+        if (n >= kFewestInPacket) return true;
+    }
+    return false;
+}
+
+void World::nearest_hits(const Ray* const* rays, int count, Interval range, std::optional<Hit>* out,
+                         SearchCounts& counts) const {
+    if (!linear_ || count == 1) {
+        for (int i = 0; i < count; ++i) out[i] = nearest_hit(*rays[i], range, counts);
+        return;
+    }
+    // Step 1: spheres and planes, ray by ray (as nearest_one_by_one, in the same order).
+    Interval ranges[kPacket];
+    Hit hits[kPacket];
+    bool found[kPacket] = {};
+    for (int i = 0; i < count; ++i) {
+        Interval r = range;  // kept in registers while the ray's spheres are tested
+        Hit hit;
+        bool met = false;
+        for (uint32_t s = 0; s < sphere_count_; ++s) {
+            const Bounded& b = bounded_[s];
+            if (auto t = intersect_sphere(*rays[i], b.centre, b.radius, r)) {
+                r.max = *t;
+                hit = {b.object, 0, *t, 0, 0};
+                met = true;
+            }
+        }
+        found[i] = nearest_plane(*rays[i], r, hit) || met;
+        ranges[i] = r;
+        hits[i] = hit;
+    }
+    // Step 2: the other objects in order; each mesh for the rays that may meet it, together.
+    for (size_t e = sphere_count_; e < bounded_.size(); ++e) {
+        const Bounded& b = bounded_[e];
+        int members[kPacket];
+        int n = 0;
+        for (int i = 0; i < count; ++i)
+            if (line_may_meet_sphere(*rays[i], b.centre, b.radius * b.radius)) members[n++] = i;
+        if (b.kind != ObjectKind::MeshInstance || n < kFewestInPacket) {
+            for (int k = 0; k < n; ++k)
+                found[members[k]] = hit_bounded(b, *rays[members[k]], ranges[members[k]], hits[members[k]], counts) ||
+                                    found[members[k]];
+            continue;
+        }
+        const MeshInstance& instance = instances_[b.index];
+        const MeshAccel& mesh = meshes_[instance.mesh];
+        Ray placed[kPacket];  // the rays in the mesh's coordinates, if it is not built placed
+        const Ray* local[kPacket];
+        Interval local_ranges[kPacket];
+        MeshHit mesh_hits[kPacket];
+        for (int k = 0; k < n; ++k) {
+            if (instance.placed) {
+                local[k] = rays[members[k]];
+            } else {
+                placed[k] = instance.to_mesh(*rays[members[k]]);
+                local[k] = &placed[k];
+            }
+            local_ranges[k] = ranges[members[k]];
+        }
+        const unsigned met = n == 0 ? 0 : mesh.intersect_packet(local, n, local_ranges, mesh_hits, counts.triangles);
+        for (unsigned m = met; m != 0; m &= m - 1) {
+            const int k = __builtin_ctz(m), i = members[k];
+            ranges[i] = local_ranges[k];
+            hits[i] = {b.object != kObjectOfTriangle ? b.object : mesh.tag_of(mesh_hits[k].slot), mesh_hits[k].slot,
+                       ranges[i].max, mesh_hits[k].hit.u, mesh_hits[k].hit.v};
+            found[i] = true;
+        }
+    }
+    counts.objects.primitive_tests += bounded_.size() * size_t(count);
+    for (int i = 0; i < count; ++i) out[i] = found[i] ? std::optional<Hit>(hits[i]) : std::nullopt;
 }
 
 }  // namespace tracer

@@ -12,6 +12,7 @@
 
 #include "accel/bvh.h"
 #include "accel/mesh_accel.h"
+#include "accel/ray_packet.h"
 #include "accel/round_shapes.h"
 #include "accel/types.h"
 #include "scene/placement.h"
@@ -118,6 +119,17 @@ public:
     // (object_left_behind: the convex shape the ray leaves, which it cannot meet again).
     std::optional<Hit> nearest_hit(const Ray& ray, Interval range, SearchCounts& counts,
                                    uint32_t left_behind = kNoObject) const;
+    // nearest_hit for each of *rays[0 .. count) (at most kPacket) with t inside `range`, skipping
+    // no object: the same answers. Where the objects are few enough to be tested one by one,
+    // each mesh is searched for all the rays that may meet it together (intersect_packet).
+    void nearest_hits(const Ray* const* rays, int count, Interval range, std::optional<Hit>* out,
+                      SearchCounts& counts) const;
+    // True if nearest_hits may do better than nearest_hit ray by ray: the objects are tested one
+    // by one and some are meshes.
+    bool packets_pay() const { return packets_pay_; }
+    // True if nearest_hits does better than nearest_hit on *rays[0 .. count): enough of them may
+    // meet a mesh for its search together to pay.
+    bool packet_pays(const Ray* const* rays, int count) const;
     // The surface at a hit that nearest_hit returned for `ray`.
     SurfaceHit surface(const Ray& ray, const Hit& hit) const;
     // nearest_hit, then surface.
@@ -223,6 +235,7 @@ private:
     LargeArray<Bounds> boxes_;   // of bounded_, while the world is built
     Bvh top_;
     bool linear_ = true;
+    bool packets_pay_ = false;
     double top_build_seconds_ = 0;
     Vec3 sphere_centre_{0};  // around every bounded object, for may_hit
     Real sphere_radius2_ = -1;

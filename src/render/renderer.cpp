@@ -13,6 +13,11 @@
 
 namespace tracer {
 
+// Primary rays are traced in tiles this many rows high and columns wide (one packet each:
+// measured on the bunny's crop, 2 x 4 tiles needed fewer box and triangle tests than 1 x 8).
+constexpr int kTileRows = 2;
+constexpr int kTileColumns = kPacket / kTileRows;
+
 // The mean of N x N rays through the centres of a regular grid of sub-pixel cells (N = 1:
 // the pixel centre).
 static Color shade_pixel(const World& world, const PinholeCamera& camera, const RenderSettings& settings, int x, int y,
@@ -27,6 +32,39 @@ static Color shade_pixel(const World& world, const PinholeCamera& camera, const 
             sum += trace(world, settings, camera.ray_through(px, py), counts, cancel);
         }
     return grid == 1 ? sum : sum * (1.0 / double(grid * grid));
+}
+
+// Rows first .. first + rows - 1 of `area` (rows at most kTileRows), one sample a pixel, in
+// tiles of kTileRows x kTileColumns rays traced together (trace_packet).
+static void trace_tiles(const World& world, const PinholeCamera& camera, const RenderSettings& settings,
+                        const PixelRect& area, int first, int rows, Image& image, RayCounts& counts,
+                        const std::atomic<bool>* cancel) {
+    // The rows' rays are made before any is traced (see render's worker).
+    thread_local std::vector<Ray> row_rays[kTileRows];
+    thread_local std::vector<Vec3> directions;
+    directions.resize(size_t(area.width));
+    for (int r = 0; r < rows; ++r) {
+        camera.row_directions(area.x0 + Real(0.5), area.y0 + first + r + Real(0.5), area.width, directions.data());
+        row_rays[r].resize(size_t(area.width));
+        for (size_t i = 0; i < directions.size(); ++i) row_rays[r][i] = {camera.eye(), directions[i]};
+    }
+    for (int x = 0; x < area.width; x += kTileColumns) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return;
+        const int columns = std::min(kTileColumns, area.width - x);
+        const Ray* rays[kPacket];
+        Color colors[kPacket];
+        int n = 0;
+        for (int r = 0; r < rows; ++r)
+            for (int c = 0; c < columns; ++c) rays[n++] = &row_rays[r][size_t(x + c)];
+        trace_packet(world, settings, rays, n, colors, counts, cancel);
+        n = 0;
+        for (int r = 0; r < rows; ++r)
+            for (int c = 0; c < columns; ++c) {
+                double* out = &image.rgb[(size_t(first + r) * size_t(area.width) + size_t(x + c)) * 3];
+                out[0] = colors[n].r, out[1] = colors[n].g, out[2] = colors[n].b;
+                ++n;
+            }
+    }
 }
 
 bool render(const World& world, const SceneDescription& scene, const RenderOptions& options, Image& image,
@@ -53,7 +91,9 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     // their edges' samples). The time is the render loop's (as embree_bench's): it leaves out
     // the image's allocation.
     const bool adaptive = settings.antialias == Antialias::Adaptive;
-    const int band = adaptive ? kMostAdaptiveCell : 1;
+    // One sample a pixel: tiles of kTileRows x kTileColumns primary rays traced as one packet.
+    const bool tiles = !adaptive && grid == 1 && world.packets_pay();
+    const int band = adaptive ? kMostAdaptiveCell : tiles ? kTileRows : 1;
     const int band_offset = adaptive ? area.y0 % band : 0;  // bands start at the frame's multiples of a cell row
     const auto start = std::chrono::steady_clock::now();
     const int threads = options.pool ? options.pool->size()
@@ -75,7 +115,14 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
         std::vector<Ray> rays(size_t(area.width));
         std::optional<AdaptivePixels> corners;
         if (adaptive) corners.emplace(world, camera, settings, cancel, area.x0, area.y0, area.width, area.height);
-        for (int first; (first = next_row.fetch_add(band) - band_offset) < area.height;)
+        for (int first; (first = next_row.fetch_add(band) - band_offset) < area.height;) {
+            if (tiles) {
+                const int rows = std::min(band, area.height - first);
+                trace_tiles(world, camera, settings, area, first, rows, image, counts, cancel);
+                const int done = rows_done.fetch_add(rows) + rows;
+                if (index == 0 && options.progress) options.progress(double(done) / area.height);
+                continue;
+            }
             for (int row = std::max(first, 0); row < std::min(first + band, area.height); ++row) {
                 if (cancel && cancel->load()) break;
                 const int y = area.y0 + row;
@@ -97,6 +144,7 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
                 const int done = rows_done.fetch_add(1) + 1;
                 if (index == 0 && options.progress) options.progress(double(done) / area.height);
             }
+        }
         std::lock_guard lock(merge);
         stats.rays += counts;
     };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -139,9 +140,11 @@ static std::vector<Branch>& branch_stack() {
 // soon as a surface reflects nothing. Refracted rays are further paths (Branch) of their own.
 // Compiled twice: without refraction (kRefracts false) it is the single-path loop alone.
 // Every secondary ray counts towards kMostRaysPerTree; every 256th looks at `cancel`.
+// `first_hit`: the primary ray's nearest hit, if already searched for (trace_packet), else null.
 template <bool kRefracts>
 [[gnu::noinline]] static Color trace_surfaces(const World& world, const RenderSettings& settings, Ray ray,
-                                              RayCounts& counts, const std::atomic<bool>* cancel) {
+                                              RayCounts& counts, const std::atomic<bool>* cancel,
+                                              const std::optional<Hit>* first_hit = nullptr) {
     Color color(0.0);
     std::vector<Branch>* pending = nullptr;  // this thread's stack, once a branch is made
     const bool spd_rules = settings.spawn_rules == SpawnRules::Spd;
@@ -166,7 +169,8 @@ template <bool kRefracts>
         ray = path.ray;
         for (int depth = path.depth;; ++depth) {
             // Step 1: the nearest surface, or the background.
-            const auto found = world.nearest_hit(ray, range, counts.traversal, left_behind);
+            const auto found = first_hit ? *std::exchange(first_hit, nullptr)
+                                         : world.nearest_hit(ray, range, counts.traversal, left_behind);
             if (!found) {
                 color += weight * settings.background;
                 break;
@@ -240,6 +244,33 @@ Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCoun
     if (!world.may_hit(ray)) return settings.background;
     return world.refracts() ? trace_surfaces<true>(world, settings, ray, counts, cancel)
                             : trace_surfaces<false>(world, settings, ray, counts, cancel);
+}
+
+void trace_packet(const World& world, const RenderSettings& settings, const Ray* const* rays, int count, Color* out,
+                  RayCounts& counts, const std::atomic<bool>* cancel) {
+    if (!world.packet_pays(rays, count)) {
+        for (int i = 0; i < count; ++i) out[i] = trace(world, settings, *rays[i], counts, cancel);
+        return;
+    }
+    counts.primary += uint64_t(count);
+    const Ray* hitting[kPacket];
+    int pixel[kPacket];
+    int n = 0;
+    for (int i = 0; i < count; ++i) {
+        if (world.may_hit(*rays[i])) {
+            hitting[n] = rays[i];
+            pixel[n++] = i;
+        } else {
+            out[i] = settings.background;
+        }
+    }
+    if (n == 0) return;
+    std::optional<Hit> first[kPacket];
+    world.nearest_hits(hitting, n, kPrimaryRange, first, counts.traversal);
+    for (int k = 0; k < n; ++k)
+        out[pixel[k]] = world.refracts()
+                            ? trace_surfaces<true>(world, settings, *hitting[k], counts, cancel, &first[k])
+                            : trace_surfaces<false>(world, settings, *hitting[k], counts, cancel, &first[k]);
 }
 
 }  // namespace tracer

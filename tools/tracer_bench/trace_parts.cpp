@@ -1,9 +1,10 @@
 // trace_parts: where a frame's time goes, part by part, on one thread: the rays of the
 // hit-dominated crop (or the full frame) are made once, then each query is timed on its own
 // (fastest of 15 passes): the box test's set-up (TraversalRay), the nearest-hit query of the
-// mesh and of the whole world, the shadow rays' any-hit query, trace() and render(); for the
-// mesh queries also the box and triangle tests per ray. Used to compare two builds of the
-// renderer run by run (tools/bench compare-builds).
+// mesh and of the whole world, ray by ray and in packets of 2 x 4 (accel/ray_packet.h), the
+// shadow rays' any-hit query, alone and in packets of 8 towards one light, trace() and
+// render(); for the mesh queries also the box and triangle tests per ray. Used to compare two
+// builds of the renderer run by run (tools/bench compare-builds).
 //
 //   build/release/trace_parts [scene] [--full] [--repeat K] [--leaf-size N] [--obj FILE]
 //
@@ -11,6 +12,7 @@
 // ray's path, so the time saved is roughly what mispredicted branches cost.
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <iostream>
 #include <type_traits>
@@ -19,6 +21,7 @@
 #include <CLI/CLI.hpp>
 #include <glm/geometric.hpp>
 
+#include "accel/ray_packet.h"
 #include "accel/world.h"
 #include "auto_crop.h"
 #include "bench_scene.h"
@@ -124,6 +127,54 @@ int main(int argc, char** argv) {
     report_work(mesh_counts, primary.size());
     std::cout << '\n';
     if (repeat > 1) return 0;
+    // The same rays in packets of 2 x 4 (as the renderer's tiles: MeshAccel::intersect_packet),
+    // checked against the one-by-one answers; rows past the last pair are left out.
+    const size_t row_length = size_t(crop.width);
+    auto tiles = [&](auto each_tile) {
+        for (size_t row = 0; row + 2 * row_length <= primary.size(); row += 2 * row_length)
+            for (size_t i = row; i < row + row_length; i += kPacket / 2) {
+                const int columns = int(std::min<size_t>(kPacket / 2, row + row_length - i));
+                const Ray* rays[kPacket];
+                int n = 0;
+                for (int r = 0; r < 2; ++r)
+                    for (int c = 0; c < columns; ++c) rays[n++] = &primary[i + size_t(r) * row_length + size_t(c)];
+                each_tile(rays, n);
+            }
+    };
+    auto packets = [&](auto each_packet) {
+        tiles([&](const Ray* const* rays, int n) {
+            Interval ranges[kPacket];
+            std::fill(ranges, ranges + n, kPrimaryRange);
+            MeshHit hits[kPacket];
+            const unsigned found = mesh.intersect_packet(rays, n, ranges, hits, mesh_counts);
+            each_packet(rays, n, found, ranges, hits);
+        });
+    };
+    report("mesh.packets   ", fastest_ms([&] {
+               double sum = 0;
+               mesh_counts = {};
+               packets([&](const Ray* const*, int n, unsigned found, const Interval* ranges, const MeshHit*) {
+                   for (int k = 0; k < n; ++k)
+                       if (found >> k & 1) sum += ranges[k].max;
+               });
+               sink = sum;
+           }),
+           primary.size());
+    report_work(mesh_counts, primary.size());
+    size_t differ = 0;
+    packets([&](const Ray* const* rays, int n, unsigned found, const Interval* ranges, const MeshHit* hits) {
+        for (int k = 0; k < n; ++k) {
+            Interval range = kPrimaryRange;
+            MeshHit alone;
+            TraversalCounts ignored;
+            const bool hit = mesh.intersect(*rays[k], range, alone, ignored);
+            const bool same =
+                hit == bool(found >> k & 1) && (!hit || (alone.slot == hits[k].slot && range.max == ranges[k].max &&
+                                                         alone.hit.u == hits[k].hit.u && alone.hit.v == hits[k].hit.v));
+            differ += !same;
+        }
+    });
+    std::cout << "; " << differ << " rays answered differently\n";
     report("world.intersect", fastest_ms([&] {
                double sum = 0;
                for (const Ray& ray : primary)
@@ -135,6 +186,17 @@ int main(int argc, char** argv) {
                double sum = 0;
                for (const Ray& ray : primary)
                    if (const auto hit = world.nearest_hit(ray, kPrimaryRange, counts)) sum += hit->t;
+               sink = sum;
+           }),
+           primary.size());
+    report("world.packets  ", fastest_ms([&] {
+               double sum = 0;
+               tiles([&](const Ray* const* rays, int n) {
+                   std::optional<Hit> hits[kPacket];
+                   world.nearest_hits(rays, n, kPrimaryRange, hits, counts);
+                   for (int k = 0; k < n; ++k)
+                       if (hits[k]) sum += hits[k]->t;
+               });
                sink = sum;
            }),
            primary.size());
@@ -150,6 +212,38 @@ int main(int argc, char** argv) {
            shadow.size());
     report_work(shadow_counts, shadow.size());
     std::cout << "; " << blocked << " blocked\n";
+    // The shadow rays in packets of kPacket toward the same light (shadow lists each hit's
+    // rays light by light: every lights()-th ray goes to the same light).
+    const size_t lights = world.lights().size();
+    size_t packet_blocked = 0, shadow_differ = 0;
+    auto shadow_packets = [&](auto each) {
+        for (size_t light = 0; light < lights; ++light)
+            for (size_t start = light; start < shadow.size(); start += kPacket * lights) {
+                const Ray* rays[kPacket];
+                Interval ranges[kPacket];
+                int n = 0;
+                for (size_t i = start; i < shadow.size() && n < kPacket; i += lights, ++n)
+                    rays[n] = &shadow[i].first, ranges[n] = shadow[i].second;
+                TriangleRun blockers[kPacket];
+                each(rays, ranges, n, mesh.occluded_packet(rays, n, ranges, shadow_counts, blockers));
+            }
+    };
+    report("mesh.occl.pack ", fastest_ms([&] {
+               shadow_counts = {};
+               packet_blocked = 0;
+               shadow_packets(
+                   [&](const Ray* const*, const Interval*, int, unsigned b) { packet_blocked += std::popcount(b); });
+               sink = double(packet_blocked);
+           }),
+           shadow.size());
+    report_work(shadow_counts, shadow.size());
+    shadow_packets([&](const Ray* const* rays, const Interval* ranges, int n, unsigned b) {
+        for (int k = 0; k < n; ++k) {
+            TraversalCounts ignored;
+            shadow_differ += mesh.occluded(*rays[k], ranges[k], ignored) != bool(b >> k & 1);
+        }
+    });
+    std::cout << "; " << packet_blocked << " blocked, " << shadow_differ << " answered differently\n";
     report("trace          ", fastest_ms([&] {
                RayCounts ray_counts;
                double sum = 0;
