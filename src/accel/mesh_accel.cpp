@@ -366,9 +366,9 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
         }
     };
     if (packet.fused)
-        search_packet<false, true>(bvh_.wide_nodes(), packet, counts, leaf);
+        closest_in_packet<true>(bvh_.wide_nodes(), packet, counts, leaf);
     else
-        search_packet<false, false>(bvh_.wide_nodes(), packet, counts, leaf);
+        closest_in_packet<false>(bvh_.wide_nodes(), packet, counts, leaf);
     for (unsigned m = started; m != 0; m &= m - 1) {
         const int i = __builtin_ctz(m);
         found |= unsigned(search(i).finish(*rays[i], asked[i], ranges[i], out[i])) << i;
@@ -395,51 +395,6 @@ bool MeshAccel::search(const Ray& ray, Interval& range, TraversalCounts& counts,
         if (LaneTester::finish(candidates, __builtin_ctz(m), range, hit)) return true;
     }
     return false;
-}
-
-unsigned MeshAccel::occluded_packet(const Ray* const* rays, int count, const Interval* ranges, TraversalCounts& counts,
-                                    TriangleRun* blockers) const {
-    // Step 1: the rays' box tests side by side, if they agree in form (else one by one).
-    alignas(TraversalRay) unsigned char fast_storage[kPacket][sizeof(TraversalRay)];
-    TraversalRay* fast = std::launder(reinterpret_cast<TraversalRay*>(fast_storage));
-    for (int i = 0; i < count; ++i) new (&fast[i]) TraversalRay(*rays[i], ranges[i]);
-    TraversalPacket packet;
-    unsigned blocked = 0;
-    if (brute_force_ || bvh_.wide_nodes().empty() || !TraversalPacket::make(fast, count, packet)) {
-        for (int i = 0; i < count; ++i) blocked |= unsigned(occluded(*rays[i], ranges[i], counts, blockers[i])) << i;
-        return blocked;
-    }
-    // Step 2: each ray's own leaf tests (occluded's), through the nodes together.
-    alignas(LaneTester) unsigned char storage[kPacket][sizeof(LaneTester)];
-    auto tester = [&](int i) -> LaneTester& { return *std::launder(reinterpret_cast<LaneTester*>(storage[i])); };
-    unsigned started = 0;
-    auto leaf = [&](unsigned in_leaf, uint32_t first, uint32_t n) {
-        counts.primitive_tests += n * uint32_t(std::popcount(in_leaf));
-        for (unsigned fresh = in_leaf & ~started; fresh != 0; fresh &= fresh - 1) {
-            const int i = __builtin_ctz(fresh);
-            new (storage[i]) LaneTester(*rays[i], columns());
-        }
-        started |= in_leaf;
-        unsigned now_blocked = 0;
-        for (; in_leaf != 0; in_leaf &= in_leaf - 1) {
-            const int i = __builtin_ctz(in_leaf);
-            for (uint32_t start = first; start < first + n; start += kTriangleLanes) {
-                const TriangleRun run{start, std::min(uint32_t(kTriangleLanes), first + n - start)};
-                if (run_blocks(tester(i), run, ranges[i])) {
-                    blockers[i] = run;
-                    now_blocked |= 1u << i;
-                    break;
-                }
-            }
-        }
-        blocked |= now_blocked;
-        return now_blocked;
-    };
-    if (packet.fused)
-        search_packet<true, true>(bvh_.wide_nodes(), packet, counts, leaf);
-    else
-        search_packet<true, false>(bvh_.wide_nodes(), packet, counts, leaf);
-    return blocked;
 }
 
 bool MeshAccel::occluded(const Ray& ray, Interval range, TraversalCounts& counts, TriangleRun& blocker) const {

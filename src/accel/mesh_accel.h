@@ -94,11 +94,6 @@ public:
         TriangleRun blocker;
         return occluded(ray, range, counts, blocker);
     }
-    // occluded for each of *rays[0 .. count) (count at most kPacket), traced together where
-    // they allow it: the same answers. Bit i of the result is set if ray i is blocked;
-    // blockers[i] is then the run that blocks it.
-    unsigned occluded_packet(const Ray* const* rays, int count, const Interval* ranges, TraversalCounts& counts,
-                             TriangleRun* blockers) const;
     // True if a triangle of `run` lies along the ray inside `range` (the test occluded makes).
     bool blocks(TriangleRun run, const Ray& ray, Interval range) const;
     // The triangle in `slot`, as the mesh places it.

@@ -151,17 +151,16 @@ inline WideEntry enter_frustum(const WideNode& node, const TraversalPacket& pack
     return {near, lane_mask(near <= far)};
 }
 
-// The searches of a packet through `nodes` (a Bvh's wide tree), every ray starting at the
-// root: inner nodes are tested against the packet's frustum (enter_frustum), each leaf against
-// each ray (enter_child), and leaf(rays, first, count) tests leaf entries [first, first +
-// count) for the rays in the bit mask `rays`. Nearest hit (kAny false): leaf shrinks each hit
-// ray's range and packet.t_max's lane, nodes are visited nearest first, and skipped once every
-// ray has a hit before them. Any hit (kAny true): leaf returns the rays it found blocked, which
-// leave the search (their t_max lane becomes -infinity); farther nodes first (see any_binary);
-// the search ends when every ray is blocked.
-template <bool kAny, bool kFused, typename Leaf>
-void search_packet(const LargeArray<WideNode>& nodes, TraversalPacket& packet, TraversalCounts& counts, Leaf leaf) {
-    constexpr float kInf = std::numeric_limits<float>::infinity();
+// The nearest-hit search of a packet through `nodes` (a Bvh's wide tree), every ray starting
+// at the root: inner nodes are tested against the packet's frustum (enter_frustum), each leaf
+// against each ray (enter_child); leaf(rays, first, count) tests leaf entries [first, first +
+// count) for the rays in the bit mask `rays`, each shrinking its own search's range and
+// packet.t_max's lane on a hit. Nodes are visited nearest first, and skipped once every ray
+// has a hit before them. (The frustum suits rays from one point: for shadow rays from a row's
+// hits, whose origins spread over several surfaces, an any-hit search built the same way took
+// 0.92x the time of single rays on the bunny but 1.87x on SPD gears; see docs/performance.md.)
+template <bool kFused, typename Leaf>
+void closest_in_packet(const LargeArray<WideNode>& nodes, TraversalPacket& packet, TraversalCounts& counts, Leaf leaf) {
     struct Waiting {
         float t;        // no ray enters the box before this
         uint32_t node;  // the parent (a leaf), or the node itself
@@ -174,37 +173,26 @@ void search_packet(const LargeArray<WideNode>& nodes, TraversalPacket& packet, T
     while (top > 0) {
         const Waiting waiting = stack[--top];
         const float t_max = -lowest_lane(-packet.t_max);
-        if (waiting.t > t_max) {
-            if (t_max == -kInf) return;  // every ray blocked, or none left
-            continue;
-        }
+        if (waiting.t > t_max) continue;
         const WideNode& node = nodes[waiting.node];
         if (waiting.lane >= 0) {
             // A leaf: which rays enter it, each by its own arithmetic.
             const PacketLanes t = enter_child<kFused>(node, waiting.lane, packet);
             const unsigned rays = lane_mask(t <= packet.t_max);
             counts.box_tests += 1;
-            if (rays == 0) continue;
-            if constexpr (kAny) {
-                for (unsigned blocked = leaf(rays, node.index[waiting.lane], node.count[waiting.lane]); blocked != 0;
-                     blocked &= blocked - 1)
-                    packet.t_max[__builtin_ctz(blocked)] = -kInf;
-            } else {
-                leaf(rays, node.index[waiting.lane], node.count[waiting.lane]);
-            }
+            if (rays != 0) leaf(rays, node.index[waiting.lane], node.count[waiting.lane]);
             continue;
         }
         counts.box_tests += kWide;
         const WideEntry entry = enter_frustum(node, packet, t_min, t_max);
-        // The children entered, those to come off first pushed last.
+        // The children entered, nearer ones pushed last (they come off first).
         const int bottom = top;
         for (unsigned mask = entry.mask; mask != 0; mask &= mask - 1) {
             const int lane = __builtin_ctz(mask);
             const bool inner = node.count[lane] == WideNode::kInner;
             const Waiting child{entry.t[lane], inner ? node.index[lane] : waiting.node, inner ? -1 : lane};
             int at = top++;
-            for (; at > bottom && (kAny ? stack[at - 1].t > child.t : stack[at - 1].t < child.t); --at)
-                stack[at] = stack[at - 1];
+            for (; at > bottom && stack[at - 1].t < child.t; --at) stack[at] = stack[at - 1];
             stack[at] = child;
         }
     }

@@ -2,8 +2,8 @@
 // hit-dominated crop (or the full frame) are made once, then each query is timed on its own
 // (fastest of 15 passes): the box test's set-up (TraversalRay), the nearest-hit query of the
 // mesh and of the whole world, ray by ray and in packets of 2 x 4 (accel/ray_packet.h), the
-// shadow rays' any-hit query, alone and in packets of 8 towards one light, trace() and
-// render(); for the mesh queries also the box and triangle tests per ray. Used to compare two
+// shadow rays' any-hit query, trace() and render(); for the mesh queries also the box and
+// triangle tests per ray. Used to compare two
 // builds of the renderer run by run (tools/bench compare-builds).
 //
 //   build/release/trace_parts [scene] [--full] [--repeat K] [--leaf-size N] [--obj FILE]
@@ -12,7 +12,6 @@
 // ray's path, so the time saved is roughly what mispredicted branches cost.
 
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <iostream>
 #include <type_traits>
@@ -212,38 +211,6 @@ int main(int argc, char** argv) {
            shadow.size());
     report_work(shadow_counts, shadow.size());
     std::cout << "; " << blocked << " blocked\n";
-    // The shadow rays in packets of kPacket toward the same light (shadow lists each hit's
-    // rays light by light: every lights()-th ray goes to the same light).
-    const size_t lights = world.lights().size();
-    size_t packet_blocked = 0, shadow_differ = 0;
-    auto shadow_packets = [&](auto each) {
-        for (size_t light = 0; light < lights; ++light)
-            for (size_t start = light; start < shadow.size(); start += kPacket * lights) {
-                const Ray* rays[kPacket];
-                Interval ranges[kPacket];
-                int n = 0;
-                for (size_t i = start; i < shadow.size() && n < kPacket; i += lights, ++n)
-                    rays[n] = &shadow[i].first, ranges[n] = shadow[i].second;
-                TriangleRun blockers[kPacket];
-                each(rays, ranges, n, mesh.occluded_packet(rays, n, ranges, shadow_counts, blockers));
-            }
-    };
-    report("mesh.occl.pack ", fastest_ms([&] {
-               shadow_counts = {};
-               packet_blocked = 0;
-               shadow_packets(
-                   [&](const Ray* const*, const Interval*, int, unsigned b) { packet_blocked += std::popcount(b); });
-               sink = double(packet_blocked);
-           }),
-           shadow.size());
-    report_work(shadow_counts, shadow.size());
-    shadow_packets([&](const Ray* const* rays, const Interval* ranges, int n, unsigned b) {
-        for (int k = 0; k < n; ++k) {
-            TraversalCounts ignored;
-            shadow_differ += mesh.occluded(*rays[k], ranges[k], ignored) != bool(b >> k & 1);
-        }
-    });
-    std::cout << "; " << packet_blocked << " blocked, " << shadow_differ << " answered differently\n";
     report("trace          ", fastest_ms([&] {
                RayCounts ray_counts;
                double sum = 0;
