@@ -346,19 +346,66 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
         for (int i = 0; i < count; ++i) found |= unsigned(intersect(*rays[i], ranges[i], out[i], counts)) << i;
         return found;
     }
-    // Step 2: each ray's own leaf search, through the nodes together.
+    // Step 2: each ray's own leaf search, through the nodes together. Set up when the first
+    // leaf is reached (most rays that miss the mesh never reach one), for every ray at once.
     alignas(NearestSearch) unsigned char storage[kPacket][sizeof(NearestSearch)];
     auto search = [&](int i) -> NearestSearch& { return *std::launder(reinterpret_cast<NearestSearch*>(storage[i])); };
-    unsigned started = 0;  // the rays whose search is set up: those that reached a leaf
+    bool started = false;
     Interval asked[kPacket];
     std::copy(ranges, ranges + count, asked);
+    // Rays whose shears share their axes (all, most often) test a leaf's triangles one at a time
+    // against four rays at once (RayLaneTester): groups of rays 0-3 and 4-7.
+    constexpr int kGroups = kPacket / kTriangleLanes;
+    alignas(RayLaneTester) unsigned char group_storage[kGroups][sizeof(RayLaneTester)];
+    auto group = [&](int g) -> RayLaneTester& {
+        return *std::launder(reinterpret_cast<RayLaneTester*>(group_storage[g]));
+    };
+    bool sideways = false;
+    auto start = [&] {
+        for (int i = 0; i < count; ++i) new (storage[i]) NearestSearch(*this, *rays[i], ranges[i]);
+        started = true;
+        if constexpr (kRobust) {
+            const RayShear* shears[kPacket];
+            sideways = true;
+            for (int i = 0; i < count; ++i) {
+                shears[i] = &search(i).tester.shear;
+                sideways = sideways && shears[i]->kx == shears[0]->kx && shears[i]->ky == shears[0]->ky;
+            }
+            for (int g = 0; sideways && g * kTriangleLanes < count; ++g)
+                new (group_storage[g]) RayLaneTester(shears + g * kTriangleLanes,
+                                                     std::min(kTriangleLanes, count - g * kTriangleLanes), columns());
+        }
+    };
     auto leaf = [&](unsigned in_leaf, uint32_t first, uint32_t n) {
         counts.primitive_tests += n * uint32_t(std::popcount(in_leaf));
-        for (unsigned fresh = in_leaf & ~started; fresh != 0; fresh &= fresh - 1) {
-            const int i = __builtin_ctz(fresh);
-            new (storage[i]) NearestSearch(*this, *rays[i], ranges[i]);
+        if (!started) start();
+        if constexpr (kRobust) {
+            if (sideways) {
+                for (int g = 0; g < kGroups; ++g) {
+                    const unsigned lanes = in_leaf >> (g * kTriangleLanes) & ((1u << kTriangleLanes) - 1);
+                    if (lanes == 0) continue;
+                    RealLanes range_min, range_max;
+                    for (int lane = 0; lane < kTriangleLanes; ++lane) {
+                        const int i = g * kTriangleLanes + (lanes >> lane & 1 ? lane : __builtin_ctz(lanes));
+                        range_min[lane] = ranges[i].min, range_max[lane] = search(i).admit_max;
+                    }
+                    for (uint32_t triangle = first; triangle < first + n; ++triangle) {
+                        ShearedTriangle sheared[kTriangleLanes];
+                        unsigned m = group(g).candidates(triangle, range_min, range_max, sheared) & lanes;
+                        for (; m != 0; m &= m - 1) {
+                            const int lane = __builtin_ctz(m), i = g * kTriangleLanes + lane;
+                            TriangleHit hit;
+                            if (!LaneTester::finish(sheared, lane, {ranges[i].min, search(i).admit_max}, hit) ||
+                                !search(i).take(triangle, hit, ranges[i]))
+                                continue;
+                            range_max[lane] = search(i).admit_max;
+                            packet.t_max[i] = std::min(packet.t_max[i], round_up(ranges[i].max));
+                        }
+                    }
+                }
+                return;
+            }
         }
-        started |= in_leaf;
         for (; in_leaf != 0; in_leaf &= in_leaf - 1) {
             const int i = __builtin_ctz(in_leaf);
             if (search(i).test_leaf(first, n, ranges[i]))
@@ -369,10 +416,8 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
         closest_in_packet<true>(bvh_.wide_nodes(), packet, counts, leaf);
     else
         closest_in_packet<false>(bvh_.wide_nodes(), packet, counts, leaf);
-    for (unsigned m = started; m != 0; m &= m - 1) {
-        const int i = __builtin_ctz(m);
+    for (int i = 0; started && i < count; ++i)
         found |= unsigned(search(i).finish(*rays[i], asked[i], ranges[i], out[i])) << i;
-    }
     return found;
 }
 

@@ -134,6 +134,67 @@ inline unsigned TriangleLaneTester::candidates(uint32_t first, int lanes, Interv
     return mask;
 }
 
+// TriangleLaneTester turned sideways: one triangle against up to four rays, one per lane, for
+// rays whose shears share their axes (kx, ky, kz: the same permutation of the columns). Each
+// lane does the very operations of the scalar test on its ray, so each gives the same answer
+// bit for bit. For a packet of rays that enter the same leaves (accel/ray_packet.h): a leaf
+// holds fewer than four triangles on average, which left most of the other form's lanes idle.
+struct RayLaneTester {
+    // shears[0 .. count) (count at most kTriangleLanes) with the same axes; lanes past count copy
+    // shears[0] (their answers are for the caller to ignore).
+    RayLaneTester(const RayShear* const* shears, int count, const TriangleColumns& columns) {
+        const int axes[3] = {shears[0]->kx, shears[0]->ky, shears[0]->kz};
+        for (int v = 0; v < 3; ++v)
+            for (int k = 0; k < 3; ++k) rows[v][k] = columns.column(v, axes[k]);
+        for (int lane = 0; lane < kTriangleLanes; ++lane) {
+            const RayShear& shear = *shears[lane < count ? lane : 0];
+            origin_x[lane] = shear.origin.x, origin_y[lane] = shear.origin.y, origin_z[lane] = shear.origin.z;
+            sx[lane] = shear.sx, sy[lane] = shear.sy, sz[lane] = shear.sz;
+            error_scale[lane] = shear.shear_error_scale;
+        }
+    }
+
+    // Steps 1-3 of intersect_triangle for triangle `triangle` against each lane's ray, inside
+    // that lane's range [range_min, range_max): bit i of the result is set where ray i passes
+    // them, `sheared[i]` then holding what finish_triangle_hit needs (TriangleLaneTester::finish).
+    unsigned candidates(uint32_t triangle, RealLanes range_min, RealLanes range_max,
+                        ShearedTriangle (&sheared)[kTriangleLanes]) const {
+        // Step 1: translate, permute, shear.
+        RealLanes x[3], y[3], z[3];
+        for (int v = 0; v < 3; ++v) {
+            z[v] = splat(rows[v][2][triangle]) - origin_z;
+            x[v] = fma_lanes(-sx, z[v], splat(rows[v][0][triangle]) - origin_x);
+            y[v] = fma_lanes(-sy, z[v], splat(rows[v][1][triangle]) - origin_y);
+        }
+        // Step 2: the edge functions.
+        const RealLanes e0 = difference_of_products_lanes(x[2], y[1], y[2], x[1]);
+        const RealLanes e1 = difference_of_products_lanes(x[0], y[2], y[0], x[2]);
+        const RealLanes e2 = difference_of_products_lanes(x[1], y[0], y[1], x[0]);
+        const auto some_negative = (e0 < 0) | (e1 < 0) | (e2 < 0);
+        const auto some_positive = (e0 > 0) | (e1 > 0) | (e2 > 0);
+        const RealLanes det = e0 + e1 + e2;
+        // Step 3: t times det against the range times det (in_scaled_range, lane by lane).
+        for (int v = 0; v < 3; ++v) z[v] = z[v] * sz;
+        const RealLanes t_scaled = fma_lanes(e0, z[0], fma_lanes(e1, z[1], e2 * z[2]));
+        constexpr Real loose = kScaledRangeLoose;
+        const RealLanes abs_det = det < 0 ? -det : det, t_signed = det < 0 ? -t_scaled : t_scaled;
+        const auto in_range =
+            (t_signed > range_min * abs_det * (1 - loose)) & (t_signed < range_max * abs_det * (1 + loose));
+        const auto pass = ~(some_negative & some_positive) & (det != 0) & in_range;
+        const unsigned mask = lanes_true(pass);
+        for (unsigned m = mask; m != 0; m &= m - 1) {
+            const int i = __builtin_ctz(m);
+            sheared[i] = {x[0][i], y[0][i], z[0][i], x[1][i], y[1][i], z[1][i],     x[2][i],       y[2][i],
+                          z[2][i], e0[i],   e1[i],   e2[i],   det[i],  t_scaled[i], error_scale[i]};
+        }
+        return mask;
+    }
+
+    RealLanes origin_x, origin_y, origin_z, sx, sy, sz;
+    Real error_scale[kTriangleLanes];
+    const Real* rows[3][3];  // [vertex][x, y, z in the rays' frame]
+};
+
 // Moller-Trumbore (triangle.h) on four triangles at once, for the naive rules (TRACER_ROBUST=OFF):
 // each lane does the very operations of intersect_triangle_moller_trumbore (one source,
 // moller_trumbore_terms), so each gives the same answer bit for bit.
