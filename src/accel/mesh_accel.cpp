@@ -272,6 +272,15 @@ static Real next_up(Real x) {
 // Ties: once a hit is found at t, a triangle at exactly t wins if it comes first in its file
 // (lower part, then lower triangle number), whatever order the search meets them in
 // (docs/robustness.md, hard case D2). So the test admits t up to one Real past r.max.
+// A lane tester's ray shear, for testing one triangle against several rays (RayLaneTester):
+// the watertight rules only.
+[[maybe_unused]] static const RayShear* shear_of(const TriangleLaneTester& tester) {
+    return &tester.shear;
+}
+[[maybe_unused]] static const RayShear* shear_of(const MollerTrumboreLaneTester&) {
+    return nullptr;
+}
+
 struct MeshAccel::NearestSearch {
     const MeshAccel& mesh;
     LaneTester tester;
@@ -368,7 +377,7 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
             const RayShear* shears[kPacket];
             sideways = true;
             for (int i = 0; i < count; ++i) {
-                shears[i] = &search(i).tester.shear;
+                shears[i] = shear_of(search(i).tester);
                 sideways = sideways && shears[i]->kx == shears[0]->kx && shears[i]->ky == shears[0]->ky;
             }
             for (int g = 0; sideways && g * kTriangleLanes < count; ++g)
@@ -395,7 +404,7 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
                         for (; m != 0; m &= m - 1) {
                             const int lane = __builtin_ctz(m), i = g * kTriangleLanes + lane;
                             TriangleHit hit;
-                            if (!LaneTester::finish(sheared, lane, {ranges[i].min, search(i).admit_max}, hit) ||
+                            if (!TriangleLaneTester::finish(sheared, lane, {ranges[i].min, search(i).admit_max}, hit) ||
                                 !search(i).take(triangle, hit, ranges[i]))
                                 continue;
                             range_max[lane] = search(i).admit_max;
