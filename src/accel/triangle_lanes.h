@@ -69,6 +69,38 @@ struct TriangleColumns {
     }
 };
 
+// Steps 2 and 3 of intersect_triangle, lane by lane, on vertices translated, permuted and
+// sheared (x, y; z not yet scaled by sz): bit i of the result is set where lane i passes them
+// inside [range_min, range_max) (of the lanes in `lanes`), `sheared[i]` then holding what
+// finish_triangle_hit needs. Each lane does the scalar test's very operations.
+[[gnu::always_inline]] inline unsigned edge_and_range_steps(const RealLanes (&x)[3], const RealLanes (&y)[3],
+                                                            RealLanes (&z)[3], RealLanes sz, RealLanes range_min,
+                                                            RealLanes range_max, RealLanes error_scale, unsigned lanes,
+                                                            ShearedTriangle (&sheared)[kTriangleLanes]) {
+    // Step 2: the edge functions.
+    const RealLanes e0 = difference_of_products_lanes(x[2], y[1], y[2], x[1]);
+    const RealLanes e1 = difference_of_products_lanes(x[0], y[2], y[0], x[2]);
+    const RealLanes e2 = difference_of_products_lanes(x[1], y[0], y[1], x[0]);
+    const auto some_negative = (e0 < 0) | (e1 < 0) | (e2 < 0);
+    const auto some_positive = (e0 > 0) | (e1 > 0) | (e2 > 0);
+    const RealLanes det = e0 + e1 + e2;
+    // Step 3: t times det against the range times det (in_scaled_range, lane by lane).
+    for (int v = 0; v < 3; ++v) z[v] = z[v] * sz;
+    const RealLanes t_scaled = fma_lanes(e0, z[0], fma_lanes(e1, z[1], e2 * z[2]));
+    constexpr Real loose = kScaledRangeLoose;
+    const RealLanes abs_det = det < 0 ? -det : det, t_signed = det < 0 ? -t_scaled : t_scaled;
+    const auto in_range =
+        (t_signed > range_min * abs_det * (1 - loose)) & (t_signed < range_max * abs_det * (1 + loose));
+    const auto pass = ~(some_negative & some_positive) & (det != 0) & in_range;
+    const unsigned mask = lanes_true(pass) & lanes;
+    for (unsigned m = mask; m != 0; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        sheared[i] = {x[0][i], y[0][i], z[0][i], x[1][i], y[1][i], z[1][i],     x[2][i],       y[2][i],
+                      z[2][i], e0[i],   e1[i],   e2[i],   det[i],  t_scaled[i], error_scale[i]};
+    }
+    return mask;
+}
+
 // What the four-lane test needs of a ray and a mesh, worked out once per ray: the shear, and the
 // columns in the ray's frame (x, y, z = the shear's kx, ky, kz) for each vertex.
 struct TriangleLaneTester {
@@ -109,29 +141,8 @@ inline unsigned TriangleLaneTester::candidates(uint32_t first, int lanes, Interv
         x[v] = fma_lanes(splat(-shear.sx), z[v], load(v, 0) - shear.origin.x);
         y[v] = fma_lanes(splat(-shear.sy), z[v], load(v, 1) - shear.origin.y);
     }
-    // Step 2: the edge functions.
-    const RealLanes e0 = difference_of_products_lanes(x[2], y[1], y[2], x[1]);
-    const RealLanes e1 = difference_of_products_lanes(x[0], y[2], y[0], x[2]);
-    const RealLanes e2 = difference_of_products_lanes(x[1], y[0], y[1], x[0]);
-    const auto some_negative = (e0 < 0) | (e1 < 0) | (e2 < 0);
-    const auto some_positive = (e0 > 0) | (e1 > 0) | (e2 > 0);
-    const RealLanes det = e0 + e1 + e2;
-    // Step 3: t times det against the range times det (in_scaled_range, lane by lane).
-    for (int v = 0; v < 3; ++v) z[v] = z[v] * shear.sz;
-    const RealLanes t_scaled = fma_lanes(e0, z[0], fma_lanes(e1, z[1], e2 * z[2]));
-    constexpr Real loose = kScaledRangeLoose;
-    const RealLanes abs_det = det < 0 ? -det : det, t_signed = det < 0 ? -t_scaled : t_scaled;
-    const auto in_range =
-        (t_signed > range.min * abs_det * (1 - loose)) & (t_signed < range.max * abs_det * (1 + loose));
-    const auto pass = ~(some_negative & some_positive) & (det != 0) & in_range;
-    const unsigned mask = lanes_true(pass) & ((1u << lanes) - 1);
-    for (unsigned m = mask; m != 0; m &= m - 1) {
-        const int i = __builtin_ctz(m);
-        sheared[i] = {x[0][i], y[0][i], z[0][i], x[1][i],     y[1][i],
-                      z[1][i], x[2][i], y[2][i], z[2][i],     e0[i],
-                      e1[i],   e2[i],   det[i],  t_scaled[i], shear.shear_error_scale};
-    }
-    return mask;
+    return edge_and_range_steps(x, y, z, splat(shear.sz), splat(range.min), splat(range.max),
+                                splat(shear.shear_error_scale), (1u << lanes) - 1, sheared);
 }
 
 // TriangleLaneTester turned sideways: one triangle against up to four rays, one per lane, for
@@ -166,32 +177,11 @@ struct RayLaneTester {
             x[v] = fma_lanes(-sx, z[v], splat(rows[v][0][triangle]) - origin_x);
             y[v] = fma_lanes(-sy, z[v], splat(rows[v][1][triangle]) - origin_y);
         }
-        // Step 2: the edge functions.
-        const RealLanes e0 = difference_of_products_lanes(x[2], y[1], y[2], x[1]);
-        const RealLanes e1 = difference_of_products_lanes(x[0], y[2], y[0], x[2]);
-        const RealLanes e2 = difference_of_products_lanes(x[1], y[0], y[1], x[0]);
-        const auto some_negative = (e0 < 0) | (e1 < 0) | (e2 < 0);
-        const auto some_positive = (e0 > 0) | (e1 > 0) | (e2 > 0);
-        const RealLanes det = e0 + e1 + e2;
-        // Step 3: t times det against the range times det (in_scaled_range, lane by lane).
-        for (int v = 0; v < 3; ++v) z[v] = z[v] * sz;
-        const RealLanes t_scaled = fma_lanes(e0, z[0], fma_lanes(e1, z[1], e2 * z[2]));
-        constexpr Real loose = kScaledRangeLoose;
-        const RealLanes abs_det = det < 0 ? -det : det, t_signed = det < 0 ? -t_scaled : t_scaled;
-        const auto in_range =
-            (t_signed > range_min * abs_det * (1 - loose)) & (t_signed < range_max * abs_det * (1 + loose));
-        const auto pass = ~(some_negative & some_positive) & (det != 0) & in_range;
-        const unsigned mask = lanes_true(pass);
-        for (unsigned m = mask; m != 0; m &= m - 1) {
-            const int i = __builtin_ctz(m);
-            sheared[i] = {x[0][i], y[0][i], z[0][i], x[1][i], y[1][i], z[1][i],     x[2][i],       y[2][i],
-                          z[2][i], e0[i],   e1[i],   e2[i],   det[i],  t_scaled[i], error_scale[i]};
-        }
-        return mask;
+        return edge_and_range_steps(x, y, z, sz, range_min, range_max, error_scale, (1u << kTriangleLanes) - 1,
+                                    sheared);
     }
 
-    RealLanes origin_x, origin_y, origin_z, sx, sy, sz;
-    Real error_scale[kTriangleLanes];
+    RealLanes origin_x, origin_y, origin_z, sx, sy, sz, error_scale;
     const Real* rows[3][3];  // [vertex][x, y, z in the rays' frame]
 };
 
