@@ -268,10 +268,6 @@ static Real next_up(Real x) {
     return glm::dot(v0 - glm::dvec3(ray.origin), normal) / along;
 }
 
-// One ray's search for its nearest triangle, leaf by leaf (intersect, intersect_packet).
-// Ties: once a hit is found at t, a triangle at exactly t wins if it comes first in its file
-// (lower part, then lower triangle number), whatever order the search meets them in
-// (docs/robustness.md, hard case D2). So the test admits t up to one Real past r.max.
 // A lane tester's ray shear, for testing one triangle against several rays (RayLaneTester):
 // the watertight rules only.
 [[maybe_unused]] static const RayShear* shear_of(const TriangleLaneTester& tester) {
@@ -281,6 +277,10 @@ static Real next_up(Real x) {
     return nullptr;
 }
 
+// One ray's search for its nearest triangle, leaf by leaf (intersect, intersect_packet).
+// Ties: once a hit is found at t, a triangle at exactly t wins if it comes first in its file
+// (lower part, then lower triangle number), whatever order the search meets them in
+// (docs/robustness.md, hard case D2). So the test admits t up to one Real past r.max.
 struct MeshAccel::NearestSearch {
     const MeshAccel& mesh;
     LaneTester tester;
@@ -385,6 +385,8 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
                                                      std::min(kTriangleLanes, count - g * kTriangleLanes), columns());
         }
     };
+    // Ray i's box tests end at its nearest hit so far (TraversalRay::clip, lane i).
+    auto clip = [&](int i) { packet.t_max[i] = std::min(packet.t_max[i], round_up(ranges[i].max)); };
     auto leaf = [&](unsigned in_leaf, uint32_t first, uint32_t n) {
         counts.primitive_tests += n * uint32_t(std::popcount(in_leaf));
         if (!started) start();
@@ -408,7 +410,7 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
                                 !search(i).take(triangle, hit, ranges[i]))
                                 continue;
                             range_max[lane] = search(i).admit_max;
-                            packet.t_max[i] = std::min(packet.t_max[i], round_up(ranges[i].max));
+                            clip(i);
                         }
                     }
                 }
@@ -417,8 +419,7 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
         }
         for (; in_leaf != 0; in_leaf &= in_leaf - 1) {
             const int i = __builtin_ctz(in_leaf);
-            if (search(i).test_leaf(first, n, ranges[i]))
-                packet.t_max[i] = std::min(packet.t_max[i], round_up(ranges[i].max));
+            if (search(i).test_leaf(first, n, ranges[i])) clip(i);
         }
     };
     if (packet.fused)

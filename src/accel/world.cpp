@@ -318,16 +318,7 @@ void World::nearest_hits(const Ray* const* rays, int count, Interval range, std:
     for (int i = 0; i < count; ++i) {
         Interval r = range;  // kept in registers while the ray's spheres are tested
         Hit hit;
-        bool met = false;
-        for (uint32_t s = 0; s < sphere_count_; ++s) {
-            const Bounded& b = bounded_[s];
-            if (auto t = intersect_sphere(*rays[i], b.centre, b.radius, r)) {
-                r.max = *t;
-                hit = {b.object, 0, *t, 0, 0};
-                met = true;
-            }
-        }
-        found[i] = nearest_plane(*rays[i], r, hit) || met;
+        found[i] = nearest_sphere_or_plane(*rays[i], r, hit, kNoObject);
         ranges[i] = r;
         hits[i] = hit;
     }

@@ -219,6 +219,9 @@ private:
                          uint32_t left_behind) const;
     bool nearest_plane(const Ray& ray, Interval& range, Hit& hit) const;
     SurfaceHit surface_at(const Ray& ray, const Hit& hit) const;
+    // The first steps of nearest_one_by_one: the spheres (bounded_'s first entries while the
+    // top level is linear), then the planes.
+    bool nearest_sphere_or_plane(const Ray& ray, Interval& range, Hit& hit, uint32_t left_behind) const;
     bool nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts,
                             uint32_t left_behind) const;
 

@@ -108,10 +108,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     return found;
 }
 
-[[gnu::always_inline]] inline bool World::nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit,
-                                                             SearchCounts& counts, uint32_t left_behind) const {
-    // Spheres, planes, then meshes (objects are numbered in this order; bounded_ lists the
-    // spheres, then the meshes).
+[[gnu::always_inline]] inline bool World::nearest_sphere_or_plane(const Ray& ray, Interval& range, Hit& hit,
+                                                                  uint32_t left_behind) const {
     bool found = false;
     for (uint32_t i = 0; i < sphere_count_; ++i) {
         const Bounded& s = bounded_[i];
@@ -122,7 +120,14 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
             found = true;
         }
     }
-    found = nearest_plane(ray, range, hit) || found;
+    return nearest_plane(ray, range, hit) || found;
+}
+
+[[gnu::always_inline]] inline bool World::nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit,
+                                                             SearchCounts& counts, uint32_t left_behind) const {
+    // Spheres, planes, then meshes (objects are numbered in this order; bounded_ lists the
+    // spheres, then the meshes).
+    bool found = nearest_sphere_or_plane(ray, range, hit, left_behind);
     for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
         const Bounded& b = bounded_[i];
         if (b.object != left_behind && line_may_meet_sphere(ray, b.centre, b.radius * b.radius))

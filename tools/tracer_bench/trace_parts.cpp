@@ -3,8 +3,8 @@
 // (fastest of 15 passes): the box test's set-up (TraversalRay), the nearest-hit query of the
 // mesh and of the whole world, ray by ray and in packets of 2 x 4 (accel/ray_packet.h), the
 // shadow rays' any-hit query, trace() and render(); for the mesh queries also the box and
-// triangle tests per ray. Used to compare two
-// builds of the renderer run by run (tools/bench compare-builds).
+// triangle tests per ray. Used to compare two builds of the renderer run by run (tools/bench
+// compare-builds).
 //
 //   build/release/trace_parts [scene] [--full] [--repeat K] [--leaf-size N] [--obj FILE]
 //
