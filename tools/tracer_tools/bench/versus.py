@@ -4,13 +4,17 @@ tracer_bench and embree_scene, A B A B, medians of the per-pair ratios) and POV-
 reported Trace Time against tracer's render time, alternated the same way), 2 threads.
 Embree's anchor has no refraction and no cones: gears and mount are compared with it without kt
 and ior, rings and tree with their cones tessellated (tools/nff2scn --cones mesh from the SPD's
-NFF under --shared), and say so; POV-Ray renders the scenes whole, cones analytic. Output as
-committed in docs/bench-versus.md.
+NFF under --shared), and say so; POV-Ray renders the scenes whole, cones analytic. The table
+goes to standard output (as committed in docs/bench-versus.md); its figures to
+docs/bench-versus-data.json and a chart of them, each ratio against its target, to
+docs/bench-versus.png.
 
-    tools/bench versus [--shared ../shared] [--pairs 3] [--runs 3] [--scenes task2,balls,...]
+    tools/bench versus [--shared ../shared] [--pairs 3] [--runs 5] [--scenes task2,balls,...]
+    tools/bench versus --report-only      # redraw the chart from the saved figures
 """
 
 import argparse
+import json
 import pathlib
 import re
 import statistics
@@ -18,7 +22,7 @@ import subprocess
 import tempfile
 
 from tracer_tools import ROOT
-from tracer_tools.bench.common import TRACER, TRACER_BENCH, git, machine, run_json
+from tracer_tools.bench.common import DOCS, TRACER, TRACER_BENCH, git, machine, run_json
 from tracer_tools.nff import nff2scn
 from tracer_tools.spd import steps
 
@@ -35,6 +39,14 @@ SCENES = {
     },
 }
 THREADS = 2
+DATA = DOCS / "bench-versus-data.json"
+CHART = DOCS / "bench-versus.png"
+# column: (its title on the chart, issue 35's target: tracer's time at most this times the peer's)
+TARGETS = {
+    "render": ("render / Embree 3 single rays", 0.7),
+    "build": ("build / Embree 3", 1.0),
+    "trace": ("trace / POV-Ray 3.7", 0.2),
+}
 
 
 def tracer_render_seconds(scene: pathlib.Path, folder: pathlib.Path) -> float:
@@ -89,9 +101,13 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--shared", type=pathlib.Path, default=ROOT.parent / "shared")
     parser.add_argument("--pairs", type=int, default=3)
-    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--scenes", default=",".join(SCENES))
+    parser.add_argument("--report-only", action="store_true", help="redraw the chart from the saved figures")
     args = parser.parse_args()
+    if args.report_only:
+        draw_chart(json.loads(DATA.read_text()), CHART)
+        return 0
     bench_folder = args.shared / "bench" / "embree-whitted"
     if not bench_folder.is_dir():
         parser.error(f"no Embree anchor at {bench_folder} (give --shared)")
@@ -101,6 +117,7 @@ def main() -> int:
         f"# machine: {machine()}; threads used: {THREADS}; release preset (-O3 -march=native); "
         f"{args.pairs} pairs, {args.runs} runs each\n"
     )
+    figures = {"commit": git("rev-parse", "--short", "HEAD"), "machine": machine(), "rows": []}
     print("| scene | render vs Embree single-ray | build vs Embree | trace vs POV-Ray 3.7 | tracer / POV-Ray s |")
     print("|---|--:|--:|--:|--:|")
     with tempfile.TemporaryDirectory() as temporary:
@@ -130,6 +147,14 @@ def main() -> int:
                 peer = versus_povray(ROOT / scene, args.pairs, folder)
                 trace, times = f"{peer['ratio']:.2f}", f"{peer['tracer_s']:.3f} / {peer['povray_s']:.2f}"
             print(f"| {name}{note} | {render} | {build} | {trace} | {times} |", flush=True)
+            figures["rows"].append(
+                {
+                    "scene": name + note,
+                    "render": found.get("render_ratio"),
+                    "build": found.get("build_ratio"),
+                    "trace": peer["ratio"] if with_povray else None,
+                }
+            )
             (folder / "compare.json").unlink(missing_ok=True)
             if name == "bunny":
                 crop = bunny_crop(embree.parent / "embree_bench", args.pairs, args.runs)
@@ -138,8 +163,51 @@ def main() -> int:
                     f"packets) | {crop['build']:.2f} | – | – |",
                     flush=True,
                 )
+                figures["rows"].append(
+                    {
+                        "scene": "bunny, hit-dominated crop",
+                        "render": crop["single"],
+                        "build": crop["build"],
+                        "trace": None,
+                        "render_vs_packets": crop["packets"],
+                    }
+                )
     print(
         "\nRatios are tracer's time over the peer's (below 1: tracer is faster); issue 35's targets: render "
         "≤ 0.7 (the crop ≤ 1.0 against packets), build ≤ 1.0, trace ≤ 0.2."
     )
+    if set(args.scenes.split(",")) == set(SCENES):  # a partial run leaves the committed figures alone
+        DATA.write_text(json.dumps(figures, indent=1) + "\n")
+        draw_chart(figures, CHART)
     return 0
+
+
+def draw_chart(figures: dict, path: pathlib.Path) -> None:
+    """One panel per column: each scene's ratio as a bar, the target as a line (bars past it in red)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows = figures["rows"]
+    fig, axes = plt.subplots(1, 3, figsize=(13, 5.2), sharey=True)
+    names = [row["scene"].split(" (")[0] for row in rows]
+    for ax, (column, (title, target)) in zip(axes, TARGETS.items(), strict=True):
+        values = [row[column] for row in rows]
+        for y, value in enumerate(values):
+            if value is not None:
+                ax.barh(y, value, color="tab:green" if value <= target else "tab:red")
+                ax.text(value, y, f" {value:.2f}", va="center", fontsize=8)
+        ax.axvline(target, color="black", linestyle="--", linewidth=1)
+        ax.axvline(1.0, color="grey", linewidth=0.6)
+        ax.set(title=f"{title}\n(target ≤ {target})", xlabel="ratio (below 1: tracer faster)")
+        ax.set_xlim(0, max([v for v in values if v is not None] + [target]) * 1.25)
+        ax.grid(True, axis="x", alpha=0.3)
+    axes[0].set_yticks(range(len(names)), names)
+    axes[0].invert_yaxis()
+    fig.suptitle(
+        f"tracer against Embree 3 and POV-Ray 3.7, 2 threads ({figures['commit']}; {figures['machine'][:40]})",
+        fontsize=10,
+    )
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
