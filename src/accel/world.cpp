@@ -258,6 +258,8 @@ void World::build_top_level(const SearchSettings& settings) {
     linear_ = settings.brute_force || bounded_.size() - extra_entries_ <= kLinearObjects;
     packets_pay_ = linear_ && std::any_of(bounded_.begin(), bounded_.end(),
                                           [](const Bounded& b) { return b.kind == ObjectKind::MeshInstance; });
+    for (const MeshInstance& instance : instances_)
+        largest_mesh_triangles_ = std::max(largest_mesh_triangles_, meshes_[instance.mesh].triangle_count());
     if (!linear_) {
         LeafGathering gathering;
         if (bounded_.size() >= kGatherFrom)

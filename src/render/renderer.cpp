@@ -92,7 +92,7 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     // the image's allocation.
     const bool adaptive = settings.antialias == Antialias::Adaptive;
     // One sample a pixel: tiles of kTileRows x kTileColumns primary rays traced as one packet.
-    const bool tiles = !adaptive && grid == 1 && world.packets_pay();
+    const bool tiles = !adaptive && grid == 1 && world.packets_pay(size_t(settings.width) * size_t(settings.height));
     const int band = adaptive ? kMostAdaptiveCell : tiles ? kTileRows : 1;
     const int band_offset = adaptive ? area.y0 % band : 0;  // bands start at the frame's multiples of a cell row
     const auto start = std::chrono::steady_clock::now();

@@ -113,7 +113,13 @@ TEST(RayPackets, WorldPacketsAnswerAsEachRayAlone) {
     }
     const World world(scene, meshes);
     ASSERT_TRUE(world.top_level_linear());
-    ASSERT_TRUE(world.packets_pay());
+    // Tiles only where the frame has kPixelsPerTriangle pixels for each triangle of the largest
+    // mesh (the bunny's).
+    size_t largest = 0;
+    for (const MeshAccel& mesh : world.meshes()) largest = std::max(largest, mesh.triangle_count());
+    ASSERT_GT(largest, 1000u);
+    EXPECT_TRUE(world.packets_pay(World::kPixelsPerTriangle * largest));
+    EXPECT_FALSE(world.packets_pay(World::kPixelsPerTriangle * largest - 1));
     int hits = 0, instance_hits = 0;
     for (const std::vector<Ray>& rays : packets(6000, 4)) {
         const int n = int(rays.size());

@@ -2,9 +2,9 @@
 // hit-dominated crop (or the full frame) are made once, then each query is timed on its own
 // (fastest of 15 passes): the box test's set-up (TraversalRay), the nearest-hit query of the
 // mesh and of the whole world, ray by ray and in packets of 2 x 4 (accel/ray_packet.h), the
-// shadow rays' any-hit query, trace() and render(); for the mesh queries also the box and
-// triangle tests per ray. Used to compare two builds of the renderer run by run (tools/bench
-// compare-builds).
+// shadow rays' any-hit query, the mesh's nearest hit for mirror rays from the primary hits
+// (secondary rays), trace() and render(); for the mesh queries also the box and triangle tests
+// per ray. Used to compare two builds of the renderer run by run (tools/bench compare-builds).
 //
 //   build/release/trace_parts [scene] [--full] [--repeat K] [--leaf-size N] [--obj FILE]
 //
@@ -93,11 +93,16 @@ int main(int argc, char** argv) {
     for (int y = crop.y0; y < crop.y0 + crop.height; ++y)
         for (int x = crop.x0; x < crop.x0 + crop.width; ++x)
             for (int k = 0; k < repeat; ++k) primary.push_back(camera.ray_through(x + 0.5, y + 0.5));
-    std::vector<std::pair<Ray, Interval>> shadow;  // from every hit to every light
+    std::vector<std::pair<Ray, Interval>> shadow;     // from every hit to every light
+    std::vector<std::pair<Ray, Interval>> reflected;  // from every hit, its mirror direction
     SearchCounts counts;
     for (const Ray& ray : primary) {
         const auto hit = world.intersect(ray, kPrimaryRange, counts);
         if (!hit) continue;
+        const Vec3 facing =
+            glm::dot(hit->geometric_normal, ray.direction) < 0 ? hit->geometric_normal : -hit->geometric_normal;
+        const SpawnedRay mirror = spawn_ray(*hit, glm::reflect(ray.direction, facing));
+        reflected.push_back({mirror.ray, mirror.range});
         for (const Light& light : world.lights()) {
             const SpawnedRay ray_to_light = spawn_ray_to(*hit, Vec3(light.position));
             shadow.push_back({ray_to_light.ray, ray_to_light.range});
@@ -219,6 +224,19 @@ int main(int argc, char** argv) {
            shadow.size());
     report_work(shadow_counts, shadow.size());
     std::cout << "; " << blocked << " blocked\n";
+    TraversalCounts reflected_counts;
+    report("mesh.reflected ", fastest_ms([&] {
+               double sum = 0;
+               reflected_counts = {};
+               for (auto [ray, range] : reflected) {
+                   MeshHit hit;
+                   if (world.may_hit(ray) && mesh.intersect(ray, range, hit, reflected_counts)) sum += range.max;
+               }
+               sink = sum;
+           }),
+           reflected.size());
+    report_work(reflected_counts, reflected.size());
+    std::cout << '\n';
     report("trace          ", fastest_ms([&] {
                RayCounts ray_counts;
                double sum = 0;
