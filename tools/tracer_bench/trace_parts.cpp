@@ -124,20 +124,27 @@ int main(int argc, char** argv) {
                sink = sum;
            }),
            primary.size());
+    // The mesh's nearest-hit query of rays 0 .. n (ray_at(i), range_at(i)), timed, its work counted.
+    auto time_mesh_nearest = [&](const char* name, size_t n, auto ray_at, auto range_at, TraversalCounts& work) {
+        report(name, fastest_ms([&] {
+                   double sum = 0;
+                   work = {};
+                   for (size_t i = 0; i < n; ++i) {
+                       const Ray& ray = ray_at(i);
+                       Interval range = range_at(i);
+                       MeshHit hit;
+                       if (world.may_hit(ray) && mesh.intersect(ray, range, hit, work)) sum += range.max;
+                   }
+                   sink = sum;
+               }),
+               n);
+        report_work(work, n);
+        std::cout << '\n';
+    };
     TraversalCounts mesh_counts;
-    report("mesh.intersect ", fastest_ms([&] {
-               double sum = 0;
-               mesh_counts = {};
-               for (const Ray& ray : primary) {
-                   Interval range = kPrimaryRange;
-                   MeshHit hit;
-                   if (world.may_hit(ray) && mesh.intersect(ray, range, hit, mesh_counts)) sum += range.max;
-               }
-               sink = sum;
-           }),
-           primary.size());
-    report_work(mesh_counts, primary.size());
-    std::cout << '\n';
+    time_mesh_nearest(
+        "mesh.intersect ", primary.size(), [&](size_t i) -> const Ray& { return primary[i]; },
+        [](size_t) { return kPrimaryRange; }, mesh_counts);
     if (repeat > 1) return 0;
     // The same rays in packets of 2 x 4 (as the renderer's tiles: MeshAccel::intersect_packet),
     // checked against the one-by-one answers; rows past the last pair are left out.
@@ -225,18 +232,9 @@ int main(int argc, char** argv) {
     report_work(shadow_counts, shadow.size());
     std::cout << "; " << blocked << " blocked\n";
     TraversalCounts reflected_counts;
-    report("mesh.reflected ", fastest_ms([&] {
-               double sum = 0;
-               reflected_counts = {};
-               for (auto [ray, range] : reflected) {
-                   MeshHit hit;
-                   if (world.may_hit(ray) && mesh.intersect(ray, range, hit, reflected_counts)) sum += range.max;
-               }
-               sink = sum;
-           }),
-           reflected.size());
-    report_work(reflected_counts, reflected.size());
-    std::cout << '\n';
+    time_mesh_nearest(
+        "mesh.reflected ", reflected.size(), [&](size_t i) -> const Ray& { return reflected[i].first; },
+        [&](size_t i) { return reflected[i].second; }, reflected_counts);
     report("trace          ", fastest_ms([&] {
                RayCounts ray_counts;
                double sum = 0;
