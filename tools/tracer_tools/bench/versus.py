@@ -1,6 +1,7 @@
 """tracer against its two peers in one run, on the scenes of issue 35's table: Embree 3's
 single-ray kernels (render and build; compare_scene.py of the Embree anchor alternates
-tracer_bench and embree_scene, A B A B, medians of the per-pair ratios) and POV-Ray 3.7 (its
+tracer_bench and embree_scene, A B A B, medians of the per-pair ratios; the builds of scenes given
+as files again alone, 21 a run, with a one-pixel render) and POV-Ray 3.7 (its
 reported Trace Time against tracer's render time, alternated the same way), 2 threads.
 Embree's anchor has no refraction and no cones: gears and mount are compared with it without kt
 and ior, rings and tree with their cones tessellated (tools/nff2scn --cones mesh from the SPD's
@@ -78,6 +79,26 @@ def versus_povray(scene: pathlib.Path, pairs: int, folder: pathlib.Path) -> dict
     }
 
 
+BUILD_RUNS = 21  # builds per run of the build-only comparison (sub-millisecond builds spread widely)
+
+
+def builds_alone(scene: pathlib.Path, embree_scene: pathlib.Path, pairs: int, folder: pathlib.Path) -> float:
+    """Median of the per-pair ratios tracer build / Embree build, alternating, each a median of
+    BUILD_RUNS builds with a one-pixel render (the builds alone: compare_scene.py's runs are
+    few, being renders too)."""
+    from tracer_tools.xcheck import tracer_cli
+
+    description = folder / "builds.json"
+    description.write_text(json.dumps(tracer_cli.dump_json(scene)))
+    alone = ["--crop", "0 0 1 1", "--threads", str(THREADS), "--runs", str(BUILD_RUNS), "--json"]
+    ratios = []
+    for _ in range(pairs):
+        ours = run_json([TRACER_BENCH, scene, *alone])
+        theirs = run_json([embree_scene, description, *alone])
+        ratios.append(ours["build_ms"] / theirs["build_ms"])
+    return statistics.median(ratios)
+
+
 def bunny_crop(embree_bench: pathlib.Path, pairs: int, runs: int) -> dict:
     """The bunny's hit-dominated crop: tracer_bench against embree_bench single rays and 16-wide
     packets, alternating (medians of the per-round ratios)."""
@@ -137,11 +158,14 @@ def main() -> int:
                 found = steps.compare_with_embree(
                     bench_folder, embree, embree_scene, args.pairs, args.runs, folder / "compare.json"
                 )
+                build_ratio = found.get("build_ratio")
+                if embree_scene.endswith(".scn"):  # (compare_scene.py makes the named ones itself)
+                    build_ratio = builds_alone(ROOT / embree_scene, embree, args.pairs, folder)
             finally:
                 if note:
                     pathlib.Path(embree_scene).unlink(missing_ok=True)  # (the tessellated meshes go with folder)
             render = f"{found['render_ratio']:.2f}" if "render_ratio" in found else "refused"
-            build = f"{found['build_ratio']:.2f}" if found.get("build_ratio") is not None else "–"
+            build = f"{build_ratio:.2f}" if build_ratio is not None else "–"
             trace = times = "–"
             if with_povray:
                 peer = versus_povray(ROOT / scene, args.pairs, folder)
@@ -151,7 +175,7 @@ def main() -> int:
                 {
                     "scene": name + note,
                     "render": found.get("render_ratio"),
-                    "build": found.get("build_ratio"),
+                    "build": build_ratio,
                     "trace": peer["ratio"] if with_povray else None,
                 }
             )
