@@ -99,9 +99,7 @@ int main(int argc, char** argv) {
     for (const Ray& ray : primary) {
         const auto hit = world.intersect(ray, kPrimaryRange, counts);
         if (!hit) continue;
-        const Vec3 facing =
-            glm::dot(hit->geometric_normal, ray.direction) < 0 ? hit->geometric_normal : -hit->geometric_normal;
-        const SpawnedRay mirror = spawn_ray(*hit, glm::reflect(ray.direction, facing));
+        const SpawnedRay mirror = spawn_ray(*hit, glm::reflect(ray.direction, hit->geometric_normal));
         reflected.push_back({mirror.ray, mirror.range});
         for (const Light& light : world.lights()) {
             const SpawnedRay ray_to_light = spawn_ray_to(*hit, Vec3(light.position));
