@@ -101,6 +101,99 @@ BvhBuildRef* partition(BvhBuildRef* begin, BvhBuildRef* end, GoesLeft goes_left,
     }
 }
 
+// The SAH's bins of a range: how many per axis, and the map from a centre to its bins.
+struct SahBinning {
+    int bin_count;
+    glm::vec3 extent;           // of the range's centres
+    v4f factor = {0, 0, 0, 0};  // bins per unit of length, per axis
+    v4f origin;                 // the centres' lower corner
+
+    SahBinning(const Range& range, int bins)
+        : bin_count(bins),
+          extent(range.centres.upper - range.centres.lower),
+          origin{range.centres.lower.x, range.centres.lower.y, range.centres.lower.z, 0} {
+        for (int axis = 0; axis < 3; ++axis) {
+            const float scale = float(bin_count) / extent[axis];
+            factor[axis] = extent[axis] > 0 && std::isfinite(scale) ? scale : 0.0f;  // also a NaN or infinite extent
+        }
+    }
+
+    // Bins (boxes and counts) of refs[begin, end) for every axis, four lanes at a time; each
+    // reference notes its bins (BvhBuildRef::bins). Only the bins in use are cleared: small
+    // nodes are most of the nodes.
+    void bin_refs(BvhBuildRef* refs, uint32_t begin, uint32_t end, VectorBin (&bins)[3][kSahBins]) const {
+        for (int axis = 0; axis < 3; ++axis)
+            for (int b = 0; b < bin_count; ++b) bins[axis][b] = VectorBin::empty();
+        // Copies: the stores below could alias the members, which would be read again each time.
+        const v4f lowest = origin, scale = factor, last_bin = v4f{} + float(bin_count - 1);
+        for (uint32_t i = begin; i < end; ++i) {
+            BvhBuildRef& ref = refs[i];
+            // The bin on each axis (lane 3 unused), clamped as floats first: converting a NaN or
+            // out-of-range float is undefined.
+            const v4i bin =
+                __builtin_convertvector(lane_min(lane_max((centre_lanes(ref) - lowest) * scale, v4f{}), last_bin), v4i);
+            const v4f lower = load_v4f(ref.lower), upper = load_v4f(ref.upper);
+            for (int axis = 0; axis < 3; ++axis) {
+                VectorBin& into = bins[axis][bin[axis]];
+                into.box.extend(lower, upper);
+                ++into.count;
+            }
+            ref.bins = uint32_t(bin[0]) | uint32_t(bin[1]) << 8 | uint32_t(bin[2]) << 16;
+        }
+    }
+};
+using AxisBins = VectorBin[3][kSahBins];
+
+// A boundary between bins: left of it, the bins up to `bin` on `axis` (-1: none found), and
+// its children's area-weighted tests.
+struct SahBoundary {
+    int axis = -1, bin = 0;
+    double weighted = std::numeric_limits<double>::infinity();
+};
+
+// The boundary of least area-weighted tests (tests(n): a leaf of n primitives' cost), sweeping
+// right-hand sides from the end. The node's area divides the best only.
+template <typename Tests>
+SahBoundary cheapest_boundary(const AxisBins& bins, const SahBinning& binning, const Tests& tests) {
+    SahBoundary best;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!(binning.extent[axis] > 0)) continue;
+        float right_area[kSahBins];
+        VectorBin accumulated = VectorBin::empty();
+        for (int b = binning.bin_count - 1; b > 0; --b) {
+            accumulated.add(bins[axis][b]);
+            right_area[b] = accumulated.half_area();
+        }
+        const uint32_t total = accumulated.count + bins[axis][0].count;
+        accumulated = VectorBin::empty();
+        for (int b = 0; b < binning.bin_count - 1; ++b) {
+            accumulated.add(bins[axis][b]);
+            const uint32_t right_count = total - accumulated.count;
+            if (accumulated.count == 0 || right_count == 0) continue;
+            const double weighted = double(accumulated.half_area()) * tests(accumulated.count) +
+                                    double(right_area[b + 1]) * tests(right_count);
+            if (weighted < best.weighted) best = {axis, b, weighted};
+        }
+    }
+    return best;
+}
+
+// partition over [begin, end) in its two halves at once ([begin, half) and [half, end)); then
+// the first half's right part and the second half's left part trade places (as many references
+// as the smaller of the two holds).
+template <typename GoesLeft>
+BvhBuildRef* partition_in_halves(BvhBuildRef* begin, BvhBuildRef* half, BvhBuildRef* end, GoesLeft goes_left,
+                                 VectorBounds& left, VectorBounds& right) {
+    BvhBuildRef *first_middle, *second_middle;
+    VectorBounds first_left = VectorBounds::empty(), first_right = VectorBounds::empty();
+    run_both([&] { first_middle = partition(begin, half, goes_left, first_left, first_right); },
+             [&] { second_middle = partition(half, end, goes_left, left, right); });
+    const size_t trade = std::min(half - first_middle, second_middle - half);
+    std::swap_ranges(first_middle, first_middle + trade, second_middle - trade);
+    left.extend(first_left), right.extend(first_right);
+    return first_middle + (second_middle - half);
+}
+
 }  // namespace
 
 void BvhBuilder::build(const Range& range, int depth, uint32_t first, Chunk& chunk) {
@@ -169,108 +262,44 @@ void BvhBuilder::split_at(const Range& range, uint32_t middle, Range& left, Rang
 // axes binned in one pass; the cheapest boundary between bins wins.
 bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
     const uint32_t count = range.count();
-    const int bin_count = int(std::min<uint32_t>({count, kSahBins, 4 + count / 20}));
-    const glm::vec3 extent = range.centres.upper - range.centres.lower;
-    v4f factor = {0, 0, 0, 0};
-    for (int axis = 0; axis < 3; ++axis) {
-        const float scale = float(bin_count) / extent[axis];
-        factor[axis] = extent[axis] > 0 && std::isfinite(scale) ? scale : 0.0f;  // also a NaN or infinite extent
-    }
-    const v4f origin = {range.centres.lower.x, range.centres.lower.y, range.centres.lower.z, 0};
+    const SahBinning binning(range, int(std::min<uint32_t>({count, kSahBins, 4 + count / 20})));
 
-    // Step 1: bins (boxes and counts) for every axis, four lanes at a time. Only the bins in
-    // use are cleared: small nodes are most of the nodes. Ranges of kParallelFrom or more are
-    // binned in two halves at once.
-    using AxisBins = VectorBin[3][kSahBins];
-    const v4f last_bin = v4f{} + float(bin_count - 1);
-    auto bin_of = [&](const BvhBuildRef& ref) {
-        // Clamped as floats first: converting a NaN or out-of-range float is undefined.
-        const v4f at = centre_lanes(ref) - origin;
-        return __builtin_convertvector(lane_min(lane_max(at * factor, v4f{}), last_bin), v4i);
-    };
-    auto bin_refs = [&](uint32_t begin, uint32_t end, AxisBins& bins) {
-        for (int axis = 0; axis < 3; ++axis)
-            for (int b = 0; b < bin_count; ++b) bins[axis][b] = VectorBin::empty();
-        for (uint32_t i = begin; i < end; ++i) {
-            BvhBuildRef& ref = refs_[i];
-            const v4i bin = bin_of(ref);
-            const v4f lower = load_v4f(ref.lower), upper = load_v4f(ref.upper);
-            for (int axis = 0; axis < 3; ++axis) {
-                VectorBin& into = bins[axis][bin[axis]];
-                into.box.extend(lower, upper);
-                ++into.count;
-            }
-            ref.bins = uint32_t(bin[0]) | uint32_t(bin[1]) << 8 | uint32_t(bin[2]) << 16;
-        }
-    };
+    // Step 1: bins (boxes and counts) for every axis; ranges of kParallelFrom or more are binned
+    // in two halves at once.
     const bool in_parallel = parallel_ && count >= kParallelFrom;
     const uint32_t half = range.begin + count / 2;
     AxisBins bins;
     if (in_parallel) {
         AxisBins first_half;
-        run_both([&] { bin_refs(range.begin, half, first_half); }, [&] { bin_refs(half, range.end, bins); });
+        run_both([&] { binning.bin_refs(refs_, range.begin, half, first_half); },
+                 [&] { binning.bin_refs(refs_, half, range.end, bins); });
         for (int axis = 0; axis < 3; ++axis)
-            for (int b = 0; b < bin_count; ++b) bins[axis][b].add(first_half[axis][b]);
+            for (int b = 0; b < binning.bin_count; ++b) bins[axis][b].add(first_half[axis][b]);
     } else {
-        bin_refs(range.begin, range.end, bins);
+        binning.bin_refs(refs_, range.begin, range.end, bins);
     }
 
-    // Step 2: the cheapest boundary, sweeping right-hand sides from the end. Boundaries are
-    // compared by their children's area-weighted tests; the node's area divides the best only.
-    double best_weighted = std::numeric_limits<double>::infinity();
-    int best_axis = -1, best_bin = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (!(extent[axis] > 0)) continue;
-        float right_area[kSahBins];
-        VectorBin accumulated = VectorBin::empty();
-        for (int b = bin_count - 1; b > 0; --b) {
-            accumulated.add(bins[axis][b]);
-            right_area[b] = accumulated.half_area();
-        }
-        const uint32_t total = accumulated.count + bins[axis][0].count;
-        accumulated = VectorBin::empty();
-        for (int b = 0; b < bin_count - 1; ++b) {
-            accumulated.add(bins[axis][b]);
-            const uint32_t right_count = total - accumulated.count;
-            if (accumulated.count == 0 || right_count == 0) continue;
-            const double weighted = double(accumulated.half_area()) * tests(accumulated.count) +
-                                    double(right_area[b + 1]) * tests(right_count);
-            if (weighted < best_weighted) best_weighted = weighted, best_axis = axis, best_bin = b;
-        }
-    }
+    // Step 2: the cheapest boundary, or a leaf where that costs less.
+    const SahBoundary best = cheapest_boundary(bins, binning, [this](uint32_t n) { return tests(n); });
     const double node_area = range.bounds.half_area() > 0 ? range.bounds.half_area() : 1.0;
-    const double best_cost = kTraversalCost + kIntersectionCost * best_weighted / node_area;
+    const double best_cost = kTraversalCost + kIntersectionCost * best.weighted / node_area;
     const double leaf_cost = kIntersectionCost * tests(count);
-    if (count <= uint32_t(leaf_size_) && (best_axis < 0 || leaf_cost <= best_cost)) return false;
-    if (best_axis < 0) {  // all centres coincide: any halves will do
+    if (count <= uint32_t(leaf_size_) && (best.axis < 0 || leaf_cost <= best_cost)) return false;
+    if (best.axis < 0) {  // all centres coincide: any halves will do
         split_at(range, range.begin + count / 2, left, right);
         return true;
     }
 
     // Step 3: partition, measuring the centres on each side; the children's boxes from the bins.
-    const uint32_t shift = 8 * uint32_t(best_axis);
-    auto goes_left = [&](const BvhBuildRef& ref) { return int((ref.bins >> shift) & 0xFF) <= best_bin; };
+    const uint32_t shift = 8 * uint32_t(best.axis);
+    auto goes_left = [&](const BvhBuildRef& ref) { return int((ref.bins >> shift) & 0xFF) <= best.bin; };
     VectorBounds left_centres = VectorBounds::empty(), right_centres = VectorBounds::empty();
-    BvhBuildRef* middle;
-    if (in_parallel) {
-        // Both halves at once, then the first half's right part and the second half's left
-        // part trade places (as many references as the smaller of the two holds).
-        BvhBuildRef *first_middle, *second_middle;
-        VectorBounds first_left = VectorBounds::empty(), first_right = VectorBounds::empty();
-        run_both(
-            [&] { first_middle = partition(refs_ + range.begin, refs_ + half, goes_left, first_left, first_right); },
-            [&] {
-                second_middle = partition(refs_ + half, refs_ + range.end, goes_left, left_centres, right_centres);
-            });
-        const size_t trade = std::min(refs_ + half - first_middle, second_middle - (refs_ + half));
-        std::swap_ranges(first_middle, first_middle + trade, second_middle - trade);
-        middle = first_middle + (second_middle - (refs_ + half));
-        left_centres.extend(first_left), right_centres.extend(first_right);
-    } else {
-        middle = partition(refs_ + range.begin, refs_ + range.end, goes_left, left_centres, right_centres);
-    }
+    BvhBuildRef* const middle =
+        in_parallel ? partition_in_halves(refs_ + range.begin, refs_ + half, refs_ + range.end, goes_left, left_centres,
+                                          right_centres)
+                    : partition(refs_ + range.begin, refs_ + range.end, goes_left, left_centres, right_centres);
     VectorBin left_bins = VectorBin::empty(), right_bins = VectorBin::empty();
-    for (int b = 0; b < bin_count; ++b) (b <= best_bin ? left_bins : right_bins).add(bins[best_axis][b]);
+    for (int b = 0; b < binning.bin_count; ++b) (b <= best.bin ? left_bins : right_bins).add(bins[best.axis][b]);
     left = {range.begin, uint32_t(middle - refs_), left_bins.box.floats(), left_centres.floats()};
     right = {left.end, range.end, right_bins.box.floats(), right_centres.floats()};
     return true;

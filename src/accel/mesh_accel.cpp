@@ -141,7 +141,6 @@ MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& s
     : MeshAccel(place(parts, settings.threads), settings) {}
 
 MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : brute_force_(settings.brute_force) {
-    const int threads = settings.threads;
     const size_t n = mesh.triangles.size();
     const auto start = std::chrono::steady_clock::now();
 
@@ -150,10 +149,28 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     const std::vector<uint32_t> first_of_shape =
         brute_force_ || settings.build != BvhBuild::Sah || mesh.tags.size() != n ? std::vector<uint32_t>{}
                                                                                  : small_shapes(mesh.tags);
-    const size_t primitives = first_of_shape.empty() ? n : first_of_shape.size() - 1;
 
-    // Step 2: the accelerator over the primitives' bounds (handed over a block at a time, the
-    // mesh's box grown by each block's), and the leaf order.
+    // Step 2: the accelerator over the primitives' bounds, and the leaf order.
+    build_tree(mesh, first_of_shape, settings);
+
+    // Step 3: the triangles in that order; then their hit records (each input freed once read,
+    // the BVH's leaf order too: the hit records keep each slot's triangle number).
+    triangle_count_ = n;
+    const std::vector<uint32_t> order = brute_force_ ? std::vector<uint32_t>{} : bvh_.take_order();
+    store_triangles(mesh, order, settings.threads);
+    store_hit_records(mesh, order, settings.threads);
+    mesh = PlacedTriangles();
+    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Step 2 of the build: the BVH over the primitives' bounds (each a triangle, or a small shape
+// where first_of_shape is given), handed over a block at a time, the mesh's box grown by each
+// block's; without a BVH (brute force) the box alone.
+void MeshAccel::build_tree(const PlacedTriangles& mesh, const std::vector<uint32_t>& first_of_shape,
+                           const SearchSettings& settings) {
+    const int threads = settings.threads;
+    const size_t n = mesh.triangles.size();
+    const size_t primitives = first_of_shape.empty() ? n : first_of_shape.size() - 1;
     std::mutex growing;
     auto primitive_bounds = [&](size_t first, size_t count, Bounds* out) {
         Bounds block;
@@ -184,11 +201,12 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
         bvh_ = Bvh(primitives, primitive_bounds, settings.build, leaf_size, threads, lanes);
         bvh_.expand(first_of_shape);
     }
+}
 
-    // Step 3: the triangles in that order; then their hit records (each input freed once read,
-    // the BVH's leaf order too: the hit records keep each slot's triangle number).
-    triangle_count_ = n;
-    const std::vector<uint32_t> order = brute_force_ ? std::vector<uint32_t>{} : bvh_.take_order();
+// Step 3 of the build: the triangles' coordinates in leaf order (slot i holds triangle
+// order[i], or i without a BVH), coordinate by coordinate; the positions are then freed.
+void MeshAccel::store_triangles(PlacedTriangles& mesh, const std::vector<uint32_t>& order, int threads) {
+    const size_t n = triangle_count_;
     auto triangle_in_slot = [&](size_t i) { return brute_force_ ? uint32_t(i) : order[i]; };
     const size_t stride = n + kTriangleLanes - 1;
     columns_.resize(9 * stride);  // uninitialised (LargeArray): each entry is written once
@@ -206,6 +224,13 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
         std::fill(columns + column * stride + n, columns + (column + 1) * stride, Real(0));
     release(mesh.positions);
     release(mesh.triangles);
+}
+
+// Step 3 of the build, continued: each slot's hit record and the vertex normals of the smooth
+// triangles, in leaf order.
+void MeshAccel::store_hit_records(const PlacedTriangles& mesh, const std::vector<uint32_t>& order, int threads) {
+    const size_t n = triangle_count_;
+    auto triangle_in_slot = [&](size_t i) { return brute_force_ ? uint32_t(i) : order[i]; };
     hit_records_.resize(n);
     size_t smooth = 0;
     if (mesh.normal_ids.empty()) {  // every triangle flat: no numbering of the smooth ones
@@ -246,8 +271,6 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
                                                         mesh.normals[ids[2]]};
         },
         threads);
-    mesh = PlacedTriangles();
-    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // The next Real above a finite positive x (std::nextafter without the library call).
@@ -341,6 +364,32 @@ bool MeshAccel::intersect(const Ray& ray, Interval& range, MeshHit& out, Travers
     return nearest.finish(ray, asked, range, out);
 }
 
+// A leaf's triangles one at a time against a group of up to kTriangleLanes rays at once
+// (`tester`; `lanes`: those of its rays the leaf holds, ray i of the packet in lane i - base),
+// each hit taken by its ray's own search(i), whose range then ends there and clip(i) follows.
+template <typename Search, typename Clip>
+[[gnu::always_inline]] static inline void leaf_sideways(RayLaneTester& tester, unsigned lanes, int base, uint32_t first,
+                                                        uint32_t n, Interval* ranges, Search& search, Clip& clip) {
+    RealLanes range_min, range_max;
+    for (int lane = 0; lane < kTriangleLanes; ++lane) {
+        const int i = base + (lanes >> lane & 1 ? lane : __builtin_ctz(lanes));
+        range_min[lane] = ranges[i].min, range_max[lane] = search(i).admit_max;
+    }
+    for (uint32_t triangle = first; triangle < first + n; ++triangle) {
+        ShearedTriangle sheared[kTriangleLanes];
+        unsigned m = tester.candidates(triangle, range_min, range_max, sheared) & lanes;
+        for (; m != 0; m &= m - 1) {
+            const int lane = __builtin_ctz(m), i = base + lane;
+            TriangleHit hit;
+            if (!TriangleLaneTester::finish(sheared, lane, {ranges[i].min, search(i).admit_max}, hit) ||
+                !search(i).take(triangle, hit, ranges[i]))
+                continue;
+            range_max[lane] = search(i).admit_max;
+            clip(i);
+        }
+    }
+}
+
 unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval* ranges, MeshHit* out,
                                      TraversalCounts& counts) const {
     // Step 1: the rays' box tests side by side, if they agree in form (else one by one).
@@ -394,25 +443,7 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
             if (sideways) {
                 for (int g = 0; g < kGroups; ++g) {
                     const unsigned lanes = in_leaf >> (g * kTriangleLanes) & ((1u << kTriangleLanes) - 1);
-                    if (lanes == 0) continue;
-                    RealLanes range_min, range_max;
-                    for (int lane = 0; lane < kTriangleLanes; ++lane) {
-                        const int i = g * kTriangleLanes + (lanes >> lane & 1 ? lane : __builtin_ctz(lanes));
-                        range_min[lane] = ranges[i].min, range_max[lane] = search(i).admit_max;
-                    }
-                    for (uint32_t triangle = first; triangle < first + n; ++triangle) {
-                        ShearedTriangle sheared[kTriangleLanes];
-                        unsigned m = group(g).candidates(triangle, range_min, range_max, sheared) & lanes;
-                        for (; m != 0; m &= m - 1) {
-                            const int lane = __builtin_ctz(m), i = g * kTriangleLanes + lane;
-                            TriangleHit hit;
-                            if (!TriangleLaneTester::finish(sheared, lane, {ranges[i].min, search(i).admit_max}, hit) ||
-                                !search(i).take(triangle, hit, ranges[i]))
-                                continue;
-                            range_max[lane] = search(i).admit_max;
-                            clip(i);
-                        }
-                    }
+                    if (lanes != 0) leaf_sideways(group(g), lanes, g * kTriangleLanes, first, n, ranges, search, clip);
                 }
                 return;
             }

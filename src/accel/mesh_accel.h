@@ -144,6 +144,12 @@ private:
     // True if a triangle of `run` (at most kTriangleLanes) lies along the tester's ray inside
     // `range`.
     static bool run_blocks(const LaneTester& tester, TriangleRun run, Interval range);
+    // The build's steps (the constructor): the BVH and the mesh's box; the triangles and their
+    // hit records in the BVH's leaf order.
+    void build_tree(const PlacedTriangles& mesh, const std::vector<uint32_t>& first_of_shape,
+                    const SearchSettings& settings);
+    void store_triangles(PlacedTriangles& mesh, const std::vector<uint32_t>& order, int threads);
+    void store_hit_records(const PlacedTriangles& mesh, const std::vector<uint32_t>& order, int threads);
 
     bool brute_force_;
     Bvh bvh_;

@@ -101,7 +101,7 @@ struct MeshInstance {
 };
 
 // Up to this many bounded objects are tested one after the other instead of through the top
-// level's BVH (measured: docs/many-objects.md).
+// level's BVH (measured: docs/bench/many-objects.md).
 constexpr size_t kLinearObjects = 8;
 
 class World {
@@ -225,6 +225,9 @@ private:
                          uint32_t left_behind) const;
     bool nearest_plane(const Ray& ray, Interval& range, Hit& hit) const;
     SurfaceHit surface_at(const Ray& ray, const Hit& hit) const;
+    // surface_at's steps for a sphere and a mesh instance (out.t and out.material already set).
+    void sphere_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
+    void mesh_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
     // The first steps of nearest_one_by_one: the spheres (bounded_'s first entries while the
     // top level is linear), then the planes.
     bool nearest_sphere_or_plane(const Ray& ray, Interval& range, Hit& hit, uint32_t left_behind) const;

@@ -162,6 +162,63 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     return hit;
 }
 
+// surface_at's step for a sphere: the point, its error bound and the normal; a sphere is convex.
+[[gnu::always_inline]] inline void World::sphere_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
+    const Object& object = objects_[hit.object];
+    const Bounded& s = bounded_[object.index];
+    if constexpr (kRobust) {
+        // The point put back on the sphere (pbrt-v4): its error is then gamma(5) of the
+        // offset from the centre, plus the rounding of adding the centre.
+        const Vec3 from_centre = ray.at(hit.t) - s.centre;
+        const Real length = glm::length(from_centre);
+        out.normal = length > 0 ? from_centre * (1 / length) : Vec3(0, 0, 1);
+        const Vec3 on_sphere = out.normal * s.radius;
+        out.point = s.centre + on_sphere;
+        out.error = gamma(6) * (abs_each(s.centre) + abs_each(on_sphere));
+    } else {
+        out.normal = (out.point - s.centre) / s.radius;
+    }
+    out.geometric_normal = out.normal;
+    out.convex_object = hit.object;
+}
+
+// surface_at's step for a mesh instance: the point (placed, with its error bound), the face's
+// and the shading normal.
+[[gnu::always_inline]] inline void World::mesh_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
+    const Object& object = objects_[hit.object];
+    const MeshInstance& instance = instances_[object.index];
+    const MeshAccel& mesh = meshes_[instance.mesh];
+    if constexpr (kRobust) out.point = mesh.surface_point(hit.primitive, hit.u, hit.v, out.error);
+    // A mesh on an axis plane, as built: rays leaving it skip it (if it is one object).
+    if (instance.placed && mesh.on_axis_plane()) out.convex_object = hit.object, out.flat = true;
+    out.geometric_normal = mesh.geometric_normal(hit.primitive);
+    if (instance.placed) {
+        out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v);
+    } else {
+        // Normals map by the inverse transpose of the placement: transpose(to_object).
+        const Mat3 normal_map = glm::transpose(instance.to_object);
+        out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v, normal_map);
+        out.geometric_normal = normalize_or_zero(normal_map * out.geometric_normal);
+        if constexpr (kRobust) {
+            // The point placed, its error grown by the placing's roundings (pbrt-v4's
+            // transform of a point with an error bound).
+            Mat3 abs_to_world;
+            for (int c = 0; c < 3; ++c) abs_to_world[c] = abs_each(instance.to_world[c]);
+            out.error = (1 + gamma(3)) * (abs_to_world * out.error) +
+                        gamma(3) * (abs_to_world * abs_each(out.point) + abs_each(instance.translate));
+            out.point = instance.to_world * out.point + instance.translate;
+        }
+    }
+    // A zero-area sliver: its vertex normals stand for the face's; if they cancel too,
+    // it faces the ray.
+    if (out.geometric_normal == Vec3(0)) [[unlikely]]
+        out.geometric_normal = out.normal;
+    if (out.normal == Vec3(0)) [[unlikely]] {
+        out.normal = -normalize_or_zero(ray.direction);
+        out.geometric_normal = out.normal;
+    }
+}
+
 [[gnu::always_inline]] inline SurfaceHit World::surface_at(const Ray& ray, const Hit& hit) const {
     const Object& object = objects_[hit.object];
     SurfaceHit out;
@@ -170,24 +227,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     // The naive rule (TRACER_ROBUST=OFF) takes the point along the ray and needs no error bound.
     if constexpr (!kRobust) out.point = ray.at(hit.t);
     switch (object.kind) {
-        case ObjectKind::Sphere: {
-            const Bounded& s = bounded_[object.index];
-            if constexpr (kRobust) {
-                // The point put back on the sphere (pbrt-v4): its error is then gamma(5) of the
-                // offset from the centre, plus the rounding of adding the centre.
-                const Vec3 from_centre = ray.at(hit.t) - s.centre;
-                const Real length = glm::length(from_centre);
-                out.normal = length > 0 ? from_centre * (1 / length) : Vec3(0, 0, 1);
-                const Vec3 on_sphere = out.normal * s.radius;
-                out.point = s.centre + on_sphere;
-                out.error = gamma(6) * (abs_each(s.centre) + abs_each(on_sphere));
-            } else {
-                out.normal = (out.point - s.centre) / s.radius;
-            }
-            out.geometric_normal = out.normal;
-            out.convex_object = hit.object;
-            break;
-        }
+        case ObjectKind::Sphere: sphere_surface(ray, hit, out); break;
         case ObjectKind::Plane: {
             const PlaneShape& p = planes_[object.index];
             if constexpr (kRobust) {
@@ -221,40 +261,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
             }
             break;
         }
-        case ObjectKind::MeshInstance: {
-            const MeshInstance& instance = instances_[object.index];
-            const MeshAccel& mesh = meshes_[instance.mesh];
-            if constexpr (kRobust) out.point = mesh.surface_point(hit.primitive, hit.u, hit.v, out.error);
-            // A mesh on an axis plane, as built: rays leaving it skip it (if it is one object).
-            if (instance.placed && mesh.on_axis_plane()) out.convex_object = hit.object, out.flat = true;
-            out.geometric_normal = mesh.geometric_normal(hit.primitive);
-            if (instance.placed) {
-                out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v);
-            } else {
-                // Normals map by the inverse transpose of the placement: transpose(to_object).
-                const Mat3 normal_map = glm::transpose(instance.to_object);
-                out.normal = mesh.shading_normal(hit.primitive, hit.u, hit.v, normal_map);
-                out.geometric_normal = normalize_or_zero(normal_map * out.geometric_normal);
-                if constexpr (kRobust) {
-                    // The point placed, its error grown by the placing's roundings (pbrt-v4's
-                    // transform of a point with an error bound).
-                    Mat3 abs_to_world;
-                    for (int c = 0; c < 3; ++c) abs_to_world[c] = abs_each(instance.to_world[c]);
-                    out.error = (1 + gamma(3)) * (abs_to_world * out.error) +
-                                gamma(3) * (abs_to_world * abs_each(out.point) + abs_each(instance.translate));
-                    out.point = instance.to_world * out.point + instance.translate;
-                }
-            }
-            // A zero-area sliver: its vertex normals stand for the face's; if they cancel too,
-            // it faces the ray.
-            if (out.geometric_normal == Vec3(0)) [[unlikely]]
-                out.geometric_normal = out.normal;
-            if (out.normal == Vec3(0)) [[unlikely]] {
-                out.normal = -normalize_or_zero(ray.direction);
-                out.geometric_normal = out.normal;
-            }
-            break;
-        }
+        case ObjectKind::MeshInstance: mesh_surface(ray, hit, out); break;
     }
     return out;
 }

@@ -363,9 +363,8 @@ CLI::Validator render_key(const char* key) {
     return CLI::Validator([key](std::string& text) { return tracer::setting_problem("render", key, text); }, "", key);
 }
 
-int run(int argc, char** argv) {
-    Options options;
-    CLI::App app{"tracer: renders scene files with Whitted ray tracing and Phong shading.", "tracer"};
+// Every option and flag of the command line, bound to `options`.
+void add_options(CLI::App& app, Options& options) {
     app.set_version_flag("--version", std::string("tracer ") + TRACER_VERSION);
     app.add_option("scene", options.scene, "The scene file (.scn), or - for standard input");
     app.add_option("-o,--output", options.output,
@@ -442,6 +441,41 @@ int run(int argc, char** argv) {
         "Exit codes: 0 success, 1 scene errors, 2 bad command line, 3 cannot read the scene or write "
         "the image, 130 interrupted.\nExamples:\n  tracer scenes/task2.scn -o out.png\n"
         "  tracer --check scenes/task2.scn");
+}
+
+// The first way the options given cannot go together (empty: none).
+std::string combination_problem(const Options& options) {
+    if (options.scene.empty()) return "no scene file given";
+    if (options.check && options.dump_json) return "--check and --dump-json cannot be combined";
+    if (options.dump_json && options.diagnostics == "json")
+        return "--dump-json writes the scene on stdout; it cannot be combined with --diagnostics json";
+    if (!options.stdin_name.empty() && options.scene != "-")
+        return "--stdin-name names a scene read from standard input; give the scene as '-'";
+    if (options.watch && (options.check || options.dump_json || options.scene == "-" || !options.region.empty() ||
+                          options.region_list || !options.stats_json.empty()))
+        return "--watch renders a scene file to -o again after each change; it cannot be combined with --check, "
+               "--dump-json, --region, --region-list, --stats-json or a scene from standard input";
+    if ((options.check || options.dump_json) && !options.output.empty())
+        return "-o is for rendering; it cannot be combined with --check or --dump-json";
+    if ((options.check || options.dump_json) && (!options.region.empty() || options.region_list))
+        return "--region and --region-list are for rendering; they cannot be combined with --check or "
+               "--dump-json";
+    if (options.check || options.dump_json) return "";
+    if (options.region_list &&
+        (!options.output.empty() || !options.region.empty() || options.stats || !options.stats_json.empty()))
+        return "--region-list takes each output from its input lines; it cannot be combined with -o, "
+               "--region, --stats or --stats-json";
+    if (options.region_list && options.scene == "-")
+        return "--region-list reads its regions from standard input, so the scene cannot come from there too ('-'); "
+               "give the scene's file";
+    if (options.output.empty() && !options.region_list) return "no output image given (-o out.png)";
+    return "";
+}
+
+int run(int argc, char** argv) {
+    Options options;
+    CLI::App app{"tracer: renders scene files with Whitted ray tracing and Phong shading.", "tracer"};
+    add_options(app, options);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -463,35 +497,9 @@ int run(int argc, char** argv) {
         std::cout << json_text(tracer::language_json()) << '\n';
         return kOk;
     }
-    if (options.scene.empty()) return usage_error("no scene file given");
-    if (options.check && options.dump_json) return usage_error("--check and --dump-json cannot be combined");
-    if (options.dump_json && options.diagnostics == "json")
-        return usage_error("--dump-json writes the scene on stdout; it cannot be combined with --diagnostics json");
-    if (!options.stdin_name.empty() && options.scene != "-")
-        return usage_error("--stdin-name names a scene read from standard input; give the scene as '-'");
-    if (options.watch && (options.check || options.dump_json || options.scene == "-" || !options.region.empty() ||
-                          options.region_list || !options.stats_json.empty()))
-        return usage_error(
-            "--watch renders a scene file to -o again after each change; it cannot be combined with --check, "
-            "--dump-json, --region, --region-list, --stats-json or a scene from standard input");
-    if ((options.check || options.dump_json) && !options.output.empty())
-        return usage_error("-o is for rendering; it cannot be combined with --check or --dump-json");
-    if ((options.check || options.dump_json) && (!options.region.empty() || options.region_list))
-        return usage_error(
-            "--region and --region-list are for rendering; they cannot be combined with --check or "
-            "--dump-json");
+    if (const std::string problem = combination_problem(options); !problem.empty()) return usage_error(problem);
     if (options.check) return check_only(options);
     if (options.dump_json) return dump_json(options);
-    if (options.region_list &&
-        (!options.output.empty() || !options.region.empty() || options.stats || !options.stats_json.empty()))
-        return usage_error(
-            "--region-list takes each output from its input lines; it cannot be combined with -o, "
-            "--region, --stats or --stats-json");
-    if (options.region_list && options.scene == "-")
-        return usage_error(
-            "--region-list reads its regions from standard input, so the scene cannot come from there too ('-'); "
-            "give the scene's file");
-    if (options.output.empty() && !options.region_list) return usage_error("no output image given (-o out.png)");
     if (options.watch) return watch(options);
     return render_to_file(options);
 }

@@ -18,6 +18,69 @@ nlohmann::ordered_json bvh_json(const Bvh& bvh) {
             {"leaf_size_max", s.max_leaf}};
 }
 
+// The top level: every object, and the BVH over the bounded ones.
+nlohmann::ordered_json objects_json(const World& world) {
+    nlohmann::ordered_json top;
+    size_t counts[5] = {0, 0, 0, 0, 0};
+    for (const Object& object : world.objects()) ++counts[size_t(object.kind)];
+    top["spheres"] = counts[size_t(ObjectKind::Sphere)];
+    top["planes"] = counts[size_t(ObjectKind::Plane)];
+    top["mesh_instances"] = counts[size_t(ObjectKind::MeshInstance)];
+    if (const size_t cones = counts[size_t(ObjectKind::Cone)]) top["cones"] = cones;
+    if (const size_t discs = counts[size_t(ObjectKind::Disc)]) top["discs"] = discs;
+    top["bounded_objects"] = world.bounded_objects();
+    top["search"] = world.top_level_linear() ? "linear" : "sah";
+    top["build_seconds"] = world.top_level_build_seconds();
+    if (!world.top_level_linear()) top["bvh"] = bvh_json(world.top_level());
+    top["memory_bytes"] = world.top_level_memory_bytes();
+    return top;
+}
+
+// The meshes: each mesh file once, however many instances place it; and the shapes each one
+// holds (the instances of a shared file, or the blocks and flat shapes merged into a placed mesh).
+nlohmann::ordered_json meshes_json(const World& world, const SceneDescription& scene) {
+    constexpr size_t kListedShapes = 16;  // "shapes" names the first few; "blocks" counts them all
+    // Shape `block` of the mesh blocks, then the triangles, quads and boxes.
+    const size_t shapes = scene.meshes.size() + scene.triangles.size() + scene.quads.size() + scene.boxes.size();
+    auto label = [&](size_t block) {
+        if (block < scene.meshes.size()) return shape_label(scene.meshes[block].path, scene.meshes[block].line);
+        block -= scene.meshes.size();
+        if (block < scene.triangles.size()) return shape_label("triangle", scene.triangles[block].line);
+        block -= scene.triangles.size();
+        if (block < scene.quads.size()) return shape_label("quad", scene.quads[block].line);
+        return shape_label("box", scene.boxes[block - scene.quads.size()].line);
+    };
+    std::vector<size_t> blocks_of(world.meshes().size(), 0);
+    std::vector<bool> placed(world.meshes().size(), false);
+    std::vector<std::string> file_of(world.meshes().size());
+    std::vector<nlohmann::ordered_json> shapes_of(world.meshes().size(), nlohmann::ordered_json::array());
+    for (size_t block = 0; block < shapes; ++block) {
+        // Mesh blocks have an instance each; the flat shapes are all in the merged mesh.
+        const MeshInstance* instance =
+            block < scene.meshes.size() && block < world.instances().size() ? &world.instances()[block] : nullptr;
+        const std::optional<uint32_t> mesh = instance ? std::optional(instance->mesh) : world.merged_mesh();
+        if (!mesh) continue;
+        placed[*mesh] = instance ? instance->placed : true;
+        if (blocks_of[*mesh]++ == 0 && instance) file_of[*mesh] = scene.meshes[block].path;
+        if (shapes_of[*mesh].size() < kListedShapes) shapes_of[*mesh].push_back(label(block));
+    }
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (size_t i = 0; i < world.meshes().size(); ++i) {
+        const MeshAccel& mesh = world.meshes()[i];
+        nlohmann::ordered_json entry = {{"file", file_of[i]},  // the first block's
+                                        {"triangles", mesh.triangle_count()},
+                                        {"placed", bool(placed[i])},  // in world coordinates, merged
+                                        {"blocks", blocks_of[i]},
+                                        {"shapes", shapes_of[i]},
+                                        {"instances", placed[i] ? 0 : blocks_of[i]},
+                                        {"build_seconds", mesh.build_seconds()},
+                                        {"memory_bytes", mesh.memory_bytes()}};
+        if (!mesh.brute_force()) entry.update(bvh_json(mesh.bvh()));
+        out.push_back(entry);
+    }
+    return out;
+}
+
 }  // namespace
 
 nlohmann::ordered_json render_stats_json(const World& world, const SceneDescription& scene, const RenderStats& stats) {
@@ -49,63 +112,8 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
     out["triangle_tests_per_ray"] = double(work.triangles.primitive_tests) / total;
     out["mrays_per_second"] = double(rays.total()) / stats.seconds / 1e6;
 
-    // The top level: every object, and the BVH over the bounded ones.
-    nlohmann::ordered_json top;
-    size_t counts[5] = {0, 0, 0, 0, 0};
-    for (const Object& object : world.objects()) ++counts[size_t(object.kind)];
-    top["spheres"] = counts[size_t(ObjectKind::Sphere)];
-    top["planes"] = counts[size_t(ObjectKind::Plane)];
-    top["mesh_instances"] = counts[size_t(ObjectKind::MeshInstance)];
-    if (const size_t cones = counts[size_t(ObjectKind::Cone)]) top["cones"] = cones;
-    if (const size_t discs = counts[size_t(ObjectKind::Disc)]) top["discs"] = discs;
-    top["bounded_objects"] = world.bounded_objects();
-    top["search"] = world.top_level_linear() ? "linear" : "sah";
-    top["build_seconds"] = world.top_level_build_seconds();
-    if (!world.top_level_linear()) top["bvh"] = bvh_json(world.top_level());
-    top["memory_bytes"] = world.top_level_memory_bytes();
-    out["objects"] = top;
-
-    // The meshes: each mesh file once, however many instances place it; and the shapes each one
-    // holds (the instances of a shared file, or the blocks and flat shapes merged into a placed mesh).
-    constexpr size_t kListedShapes = 16;  // "shapes" names the first few; "blocks" counts them all
-    // Shape `block` of the mesh blocks, then the triangles, quads and boxes.
-    const size_t shapes = scene.meshes.size() + scene.triangles.size() + scene.quads.size() + scene.boxes.size();
-    auto label = [&](size_t block) {
-        if (block < scene.meshes.size()) return shape_label(scene.meshes[block].path, scene.meshes[block].line);
-        block -= scene.meshes.size();
-        if (block < scene.triangles.size()) return shape_label("triangle", scene.triangles[block].line);
-        block -= scene.triangles.size();
-        if (block < scene.quads.size()) return shape_label("quad", scene.quads[block].line);
-        return shape_label("box", scene.boxes[block - scene.quads.size()].line);
-    };
-    std::vector<size_t> blocks_of(world.meshes().size(), 0);
-    std::vector<bool> placed(world.meshes().size(), false);
-    std::vector<std::string> file_of(world.meshes().size());
-    std::vector<nlohmann::ordered_json> shapes_of(world.meshes().size(), nlohmann::ordered_json::array());
-    for (size_t block = 0; block < shapes; ++block) {
-        // Mesh blocks have an instance each; the flat shapes are all in the merged mesh.
-        const MeshInstance* instance =
-            block < scene.meshes.size() && block < world.instances().size() ? &world.instances()[block] : nullptr;
-        const std::optional<uint32_t> mesh = instance ? std::optional(instance->mesh) : world.merged_mesh();
-        if (!mesh) continue;
-        placed[*mesh] = instance ? instance->placed : true;
-        if (blocks_of[*mesh]++ == 0 && instance) file_of[*mesh] = scene.meshes[block].path;
-        if (shapes_of[*mesh].size() < kListedShapes) shapes_of[*mesh].push_back(label(block));
-    }
-    out["meshes"] = nlohmann::ordered_json::array();
-    for (size_t i = 0; i < world.meshes().size(); ++i) {
-        const MeshAccel& mesh = world.meshes()[i];
-        nlohmann::ordered_json entry = {{"file", file_of[i]},  // the first block's
-                                        {"triangles", mesh.triangle_count()},
-                                        {"placed", bool(placed[i])},  // in world coordinates, merged
-                                        {"blocks", blocks_of[i]},
-                                        {"shapes", shapes_of[i]},
-                                        {"instances", placed[i] ? 0 : blocks_of[i]},
-                                        {"build_seconds", mesh.build_seconds()},
-                                        {"memory_bytes", mesh.memory_bytes()}};
-        if (!mesh.brute_force()) entry.update(bvh_json(mesh.bvh()));
-        out["meshes"].push_back(entry);
-    }
+    out["objects"] = objects_json(world);
+    out["meshes"] = meshes_json(world, scene);
     return out;
 }
 

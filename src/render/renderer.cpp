@@ -67,14 +67,10 @@ static void trace_tiles(const World& world, const PinholeCamera& camera, const R
     }
 }
 
-bool render(const World& world, const SceneDescription& scene, const RenderOptions& options, Image& image,
-            RenderStats& stats) {
-    const RenderSettings& settings = scene.render;
-    const PinholeCamera camera(scene.camera, settings.width, settings.height);
-    const int grid = int(std::lround(std::sqrt(double(settings.samples))));
-
-    // Step 1: the pixels to render (the crop, kept inside the frame), and an image of just them.
-    PixelRect area = options.crop.width > 0 ? options.crop : PixelRect{0, 0, settings.width, settings.height};
+// The pixels to render (the crop, kept inside the frame; no crop: the frame), with `image`
+// sized and placed for just them.
+static PixelRect image_of_crop(const RenderSettings& settings, const PixelRect& crop, Image& image) {
+    PixelRect area = crop.width > 0 ? crop : PixelRect{0, 0, settings.width, settings.height};
     area.x0 = std::clamp(area.x0, 0, settings.width);
     area.y0 = std::clamp(area.y0, 0, settings.height);
     area.width = std::clamp(area.width, 0, settings.width - area.x0);
@@ -86,6 +82,41 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     image.frame_width = settings.width;
     image.frame_height = settings.height;
     image.rgb.resize(size_t(area.width) * size_t(area.height) * 3);
+    return area;
+}
+
+// Row y of `area` traced ray by ray, grid x grid samples a pixel, into `out` (RGB triples);
+// `directions` and `rays` are the thread's buffers, a row wide. Stops early when cancelled.
+static void trace_row(const World& world, const PinholeCamera& camera, const RenderSettings& settings,
+                      const PixelRect& area, int y, int grid, std::vector<Vec3>& directions, std::vector<Ray>& rays,
+                      double* out, RayCounts& counts, const std::atomic<bool>* cancel) {
+    if (grid == 1) {
+        // The row's rays are made before any is traced: a Ray built just before the call that
+        // takes it by value is copied out of half-written memory, and the processor stalls on
+        // every pixel (store-to-load forwarding fails: 40% of the samples in the render loop's
+        // own code, full frame).
+        camera.row_directions(area.x0 + Real(0.5), y + Real(0.5), area.width, directions.data());
+        for (size_t i = 0; i < rays.size(); ++i) rays[i] = {camera.eye(), directions[i]};
+    }
+    for (int x = area.x0; x < area.x0 + area.width; ++x) {
+        // Checked at every pixel and inside the ray tree: a pixel may cost up to
+        // kMostRaysPerTree rays per sample.
+        if (cancel && cancel->load(std::memory_order_relaxed)) break;
+        const Color c = grid == 1 ? trace(world, settings, rays[size_t(x - area.x0)], counts, cancel)
+                                  : shade_pixel(world, camera, settings, x, y, grid, counts, cancel);
+        double* pixel = out + size_t(x - area.x0) * 3;
+        pixel[0] = c.r, pixel[1] = c.g, pixel[2] = c.b;
+    }
+}
+
+bool render(const World& world, const SceneDescription& scene, const RenderOptions& options, Image& image,
+            RenderStats& stats) {
+    const RenderSettings& settings = scene.render;
+    const PinholeCamera camera(scene.camera, settings.width, settings.height);
+    const int grid = int(std::lround(std::sqrt(double(settings.samples))));
+
+    // Step 1: the pixels to render, and an image of just them.
+    const PixelRect area = image_of_crop(settings, options.crop, image);
 
     // Step 2: rows handed to the threads one at a time (adaptive: in bands, whose rows share
     // their edges' samples). The time is the render loop's (as embree_bench's): it leaves out
@@ -108,11 +139,7 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     auto worker = [&](int index) {
         RayCounts counts;
         std::vector<Vec3> directions(size_t(area.width));
-        // The row's rays are made before any is traced: a Ray built just before the call that
-        // takes it by value is copied out of half-written memory, and the processor stalls on
-        // every pixel (store-to-load forwarding fails: 40% of the samples in the render loop's
-        // own code, full frame).
-        std::vector<Ray> rays(size_t(area.width));
+        std::vector<Ray> rays(size_t(area.width));  // made before any is traced (trace_row)
         std::optional<AdaptivePixels> corners;
         if (adaptive) corners.emplace(world, camera, settings, cancel, area.x0, area.y0, area.width, area.height);
         for (int first; (first = next_row.fetch_add(band) - band_offset) < area.height;) {
@@ -125,22 +152,12 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
             }
             for (int row = std::max(first, 0); row < std::min(first + band, area.height); ++row) {
                 if (cancel && cancel->load()) break;
-                const int y = area.y0 + row;
-                if (adaptive) {
-                    corners->row(y, &image.rgb[size_t(row) * size_t(area.width) * 3], counts);
-                } else if (grid == 1) {
-                    camera.row_directions(area.x0 + Real(0.5), y + Real(0.5), area.width, directions.data());
-                    for (size_t i = 0; i < rays.size(); ++i) rays[i] = {camera.eye(), directions[i]};
-                }
-                for (int x = area.x0; x < area.x0 + area.width && !adaptive; ++x) {
-                    // Checked at every pixel and inside the ray tree: a pixel may cost up to
-                    // kMostRaysPerTree rays per sample.
-                    if (cancel && cancel->load(std::memory_order_relaxed)) break;
-                    const Color c = grid == 1 ? trace(world, settings, rays[size_t(x - area.x0)], counts, cancel)
-                                              : shade_pixel(world, camera, settings, x, y, grid, counts, cancel);
-                    double* out = &image.rgb[(size_t(row) * size_t(area.width) + size_t(x - area.x0)) * 3];
-                    out[0] = c.r, out[1] = c.g, out[2] = c.b;
-                }
+                double* out = image.rgb.data() + size_t(row) * size_t(area.width) * 3;
+                if (adaptive)
+                    corners->row(area.y0 + row, out, counts);
+                else
+                    trace_row(world, camera, settings, area, area.y0 + row, grid, directions, rays, out, counts,
+                              cancel);
                 const int done = rows_done.fetch_add(1) + 1;
                 if (index == 0 && options.progress) options.progress(double(done) / area.height);
             }

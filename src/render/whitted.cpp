@@ -134,6 +134,54 @@ static std::vector<Branch>& branch_stack() {
     return stack;
 }
 
+// One ray tree's secondary rays against its bounds (kMostRaysPerTree, kMostBranches) and the
+// render's cancel flag, with the refracted branches waiting to be traced.
+struct TreeBudget {
+    const std::atomic<bool>* cancel;
+    std::vector<Branch>* pending = nullptr;  // this thread's stack, once a branch is made
+    int spawned = 0;                         // refracted branches
+    int tree_rays = 0;                       // reflected and refracted rays
+    bool cut = false;                        // a ray refused for the bound
+
+    // One more secondary ray; false when the tree is at its bound or the render is cancelled.
+    [[gnu::always_inline]] bool may_spawn() {
+        if (tree_rays == kMostRaysPerTree) {
+            cut = true;
+            return false;
+        }
+        ++tree_rays;
+        return (tree_rays & 255) != 0 || !cancel || !cancel->load(std::memory_order_relaxed);
+    }
+};
+
+// Step 3 of trace_surfaces at a surface that transmits: the refracted ray, entering if the ray
+// meets the front of the surface (its geometric normal faces the ray), pushed as a branch when
+// it is visible and the budget allows. Returns what the mirror ray carries: km, and kt too on
+// total internal reflection.
+[[gnu::always_inline]] static inline Color refract(const Material& material, const SurfaceHit& hit,
+                                                   const SpawnPoint& spawn, const Vec3& direction, const Vec3& normal,
+                                                   const Color& weight, int depth, bool spd_rules, TreeBudget& budget,
+                                                   RayCounts& counts) {
+    const bool entering = glm::dot(hit.geometric_normal, direction) < 0;
+    const Real eta = Real(entering ? 1 / material.ior : material.ior);
+    const Color branch_weight = weight * material.kt;
+    const auto refracted_direction = refracted(direction, normal, eta);
+    if (!refracted_direction) {
+        ++counts.total_internal_reflections;
+        return material.km + material.kt;
+    }
+    const bool visible =
+        spd_rules || std::max({branch_weight.r, branch_weight.g, branch_weight.b}) >= kSmallestBranchWeight;
+    if (visible && budget.spawned < kMostBranches && budget.may_spawn()) {
+        ++counts.refraction, ++budget.spawned;
+        const SpawnedRay next = spawn.ray(*refracted_direction);
+        if (!budget.pending) budget.pending = &branch_stack();
+        budget.pending->push_back(
+            {next.ray, next.range, branch_weight, depth + 1, object_left_behind(hit, next.ray.direction)});
+    }
+    return material.km;
+}
+
 // trace() for a ray that may meet a surface. Along a path, colour = local + km *
 // trace(reflected) has a single child, so it runs as a loop: `weight` is the product of the
 // km of the mirrors passed so far. This keeps any max_depth off the call stack and stops as
@@ -146,21 +194,9 @@ template <bool kRefracts>
                                               RayCounts& counts, const std::atomic<bool>* cancel,
                                               const std::optional<Hit>* first_hit = nullptr) {
     Color color(0.0);
-    std::vector<Branch>* pending = nullptr;  // this thread's stack, once a branch is made
     const bool spd_rules = settings.spawn_rules == SpawnRules::Spd;
     const std::span<Occluder> last_blockers = shadow_cache(world);
-    int spawned = 0;    // refracted branches
-    int tree_rays = 0;  // reflected and refracted rays
-    bool cut = false;   // a ray refused for the bound
-    // One more secondary ray; false when the tree is at its bound or the render is cancelled.
-    auto may_spawn = [&] {
-        if (tree_rays == kMostRaysPerTree) {
-            cut = true;
-            return false;
-        }
-        ++tree_rays;
-        return (tree_rays & 255) != 0 || !cancel || !cancel->load(std::memory_order_relaxed);
-    };
+    TreeBudget budget{cancel};
     Branch path{ray, kPrimaryRange, Color(1.0), 0, kNoObject};
     for (;;) {
         Color weight = path.weight;
@@ -189,35 +225,18 @@ template <bool kRefracts>
                                                           last_blockers, counts));
             if (depth == settings.max_depth) break;
 
-            // Step 3: the refracted ray, entering if the ray meets the front of the surface (its
-            // geometric normal faces the ray); on total internal reflection, kt joins km.
-            Color reflect = material.km;
-            if (kRefracts && material.kt != Color(0.0)) {
-                const bool entering = glm::dot(hit.geometric_normal, ray.direction) < 0;
-                const Real eta = Real(entering ? 1 / material.ior : material.ior);
-                const Color branch_weight = weight * material.kt;
-                if (const auto direction = refracted(ray.direction, normal, eta)) {
-                    const bool visible = spd_rules || std::max({branch_weight.r, branch_weight.g, branch_weight.b}) >=
-                                                          kSmallestBranchWeight;
-                    if (visible && spawned < kMostBranches && may_spawn()) {
-                        ++counts.refraction, ++spawned;
-                        const SpawnedRay next = spawn.ray(*direction);
-                        if (!pending) pending = &branch_stack();
-                        pending->push_back({next.ray, next.range, branch_weight, depth + 1,
-                                            object_left_behind(hit, next.ray.direction)});
-                    }
-                } else {
-                    reflect += material.kt;
-                    ++counts.total_internal_reflections;
-                }
-            }
+            // Step 3: the refracted ray, a branch of its own; on total internal reflection, kt joins km.
+            const Color reflect =
+                kRefracts && material.kt != Color(0.0)
+                    ? refract(material, hit, spawn, ray.direction, normal, weight, depth, spd_rules, budget, counts)
+                    : material.km;
 
             // Step 4: continue along the mirror direction D - 2(D.N)N (the SPD's rules: from every
             // surface with km or kt, whatever the path's weight).
             weight *= reflect;
             if (spd_rules ? material.km == Color(0.0) && material.kt == Color(0.0) : weight == Color(0.0)) break;
-            if (!may_spawn()) {
-                counts.trees_cut += cut;
+            if (!budget.may_spawn()) {
+                counts.trees_cut += budget.cut;
                 return color;  // the rest of the tree, pending branches included, returns black
             }
             ++counts.reflection;
@@ -226,12 +245,12 @@ template <bool kRefracts>
             range = reflected.range;
             left_behind = object_left_behind(hit, ray.direction);
         }
-        if (!kRefracts || !pending || pending->empty()) {
-            counts.trees_cut += cut;
+        if (!kRefracts || !budget.pending || budget.pending->empty()) {
+            counts.trees_cut += budget.cut;
             return color;
         }
-        path = pending->back();
-        pending->pop_back();
+        path = budget.pending->back();
+        budget.pending->pop_back();
     }
 }
 

@@ -82,40 +82,30 @@ std::string text_of(const Json& value) {
     return nlohmann::json(value).dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
-Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::vector<LaterArray>* later) {
-    Json out;
-    out["format"] = "tracer-scene";
-    out["version"] = 1;
-    out["source"] = scene.source_path;
-    if (!scene.parameters.empty()) {  // only then: older readers know no such key
-        out["parameters"] = Json::object();
-        for (const Parameter& p : scene.parameters)
-            out["parameters"][p.name] = p.vector ? Json(p.value) : Json(p.value.at(0));
-    }
-    const RenderSettings& r = scene.render;
-    out["render"] = {{"width", r.width},
-                     {"height", r.height},
-                     {"max_depth", r.max_depth},
-                     {"samples", r.samples},
-                     {"background", vec(r.background)},
-                     {"shadows", r.shadows},
-                     {"accel", accelerator_name(r.accel)},
-                     {"leaf_size", r.leaf_size}};
+// The render block's settings.
+Json render_json(const RenderSettings& r) {
+    Json out = {{"width", r.width},
+                {"height", r.height},
+                {"max_depth", r.max_depth},
+                {"samples", r.samples},
+                {"background", vec(r.background)},
+                {"shadows", r.shadows},
+                {"accel", accelerator_name(r.accel)},
+                {"leaf_size", r.leaf_size}};
     // Only when set: older readers know no such keys.
-    if (r.transparent_shadows) out["render"]["transparent_shadows"] = true;
-    if (r.spawn_rules == SpawnRules::Spd) out["render"]["spawn_rules"] = "spd";
+    if (r.transparent_shadows) out["transparent_shadows"] = true;
+    if (r.spawn_rules == SpawnRules::Spd) out["spawn_rules"] = "spd";
     if (r.antialias == Antialias::Adaptive) {
-        out["render"]["antialias"] = "adaptive";
-        out["render"]["adaptive_threshold"] = r.adaptive_threshold;
-        out["render"]["adaptive_depth"] = r.adaptive_depth;
-        out["render"]["adaptive_cell"] = r.adaptive_cell;
+        out["antialias"] = "adaptive";
+        out["adaptive_threshold"] = r.adaptive_threshold;
+        out["adaptive_depth"] = r.adaptive_depth;
+        out["adaptive_cell"] = r.adaptive_cell;
     }
-    const Camera& c = scene.camera;
-    out["camera"] = {{"eye", vec(c.eye)},
-                     {"lookat", vec(c.lookat)},
-                     {"up", vec(c.up)},
-                     {"fovy", c.fovy_degrees},
-                     {"focal", c.focal}};
+    return out;
+}
+
+// Every shape and light of the scene as arrays of `out` (later: see add_array).
+void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* meshes, std::vector<LaterArray>* later) {
     add_array(
         out, "spheres", scene.spheres,
         [&scene](const Sphere& s) -> Json {
@@ -189,6 +179,26 @@ Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::v
             return {{"position", vec(l.position)}, {"color", vec(l.color)}};
         },
         later);
+}
+
+Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::vector<LaterArray>* later) {
+    Json out;
+    out["format"] = "tracer-scene";
+    out["version"] = 1;
+    out["source"] = scene.source_path;
+    if (!scene.parameters.empty()) {  // only then: older readers know no such key
+        out["parameters"] = Json::object();
+        for (const Parameter& p : scene.parameters)
+            out["parameters"][p.name] = p.vector ? Json(p.value) : Json(p.value.at(0));
+    }
+    out["render"] = render_json(scene.render);
+    const Camera& c = scene.camera;
+    out["camera"] = {{"eye", vec(c.eye)},
+                     {"lookat", vec(c.lookat)},
+                     {"up", vec(c.up)},
+                     {"fovy", c.fovy_degrees},
+                     {"focal", c.focal}};
+    add_shapes(out, scene, meshes, later);
     return out;
 }
 

@@ -1,0 +1,1 @@
+"""Checks of tools/lint beyond formatting: the length of functions."""
