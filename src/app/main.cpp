@@ -47,10 +47,19 @@ std::atomic<bool> g_rendering{false};
 std::atomic<bool> g_waiting_for_regions{false};
 
 // Before the render (or between the regions of a list) nothing is being written: stop at once.
-// During it: ask the render to stop (it then writes nothing). Async-signal-safe: an atomic store
-// or _exit only.
+// During it: ask the render to stop (it then writes nothing). Async-signal-safe: an atomic store,
+// write(2) and _exit only.
 extern "C" void on_interrupt(int) {
-    if (!g_rendering || g_waiting_for_regions) ::_exit(kInterrupted);
+    if (!g_rendering || g_waiting_for_regions) {
+        // The same words as an interrupted render's (a region list's finished regions stay written).
+        static constexpr char kLoading[] = "tracer: interrupted; nothing written\n";
+        static constexpr char kBetweenRegions[] = "tracer: interrupted\n";
+        const bool between = g_waiting_for_regions;
+        const ssize_t ignored = between ? ::write(STDERR_FILENO, kBetweenRegions, sizeof kBetweenRegions - 1)
+                                        : ::write(STDERR_FILENO, kLoading, sizeof kLoading - 1);
+        (void)ignored;
+        ::_exit(kInterrupted);
+    }
     g_interrupted = true;
 }
 

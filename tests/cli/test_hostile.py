@@ -300,7 +300,7 @@ class Memory(Hostile):
         # 2^18 shapes of each kind, the peak memory above the same scene with one shape, per
         # triangle. Each quad once took its own mesh, instance and copy of its source line: 915
         # bytes per triangle; now its description, its placed corners and its share of the
-        # world (docs/many-objects.md, "Many flat shapes"); the descriptions are freed once
+        # world (docs/bench/many-objects.md, "Many flat shapes"); the descriptions are freed once
         # placed, before the BVH is built. Under the sanitizers only the run is checked.
         shapes = {
             "quad": ("corner (i, j, 0) edge1 (0.5, 0, 0) edge2 (0, 0.5, 0)", 2, 240),
@@ -555,6 +555,8 @@ class Messages(Hostile):
         process.send_signal(signal.SIGTERM)
         _, stderr = process.communicate(timeout=HANG)
         self.assertEqual(process.returncode, 130, stderr)
+        # The same words as a render stopped half way (a signal while loading once said nothing).
+        self.assertIn(b"tracer: interrupted; nothing written", stderr)
         self.assertEqual(self.files(), ["grid.obj", "s.scn"])
 
     def test_editor_input_binary_text_and_huge_names_give_json_not_a_crash(self):
