@@ -4,23 +4,6 @@
 
 namespace tracer {
 
-Value number_value(double number, Span span) {
-    Value value;
-    value.kind = Value::Kind::Number;
-    value.number = number;
-    value.span = span;
-    return value;
-}
-
-Value vector_value(std::vector<double> components, Span span) {
-    Value value;
-    value.kind = Value::Kind::Vector;
-    value.components = std::move(components);
-    value.component_spans.assign(value.components.size(), span);
-    value.span = span;
-    return value;
-}
-
 std::string kind_of(const Value& value) {
     switch (value.kind) {
         case Value::Kind::Number: return "a number";

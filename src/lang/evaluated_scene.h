@@ -43,9 +43,6 @@ inline bool is_number(const Value& value) {
 inline bool is_vector(const Value& value) {
     return value.kind == Value::Kind::Vector;
 }
-// A number or a vector made by an expression at `span` (each component spanning it too).
-Value number_value(double number, Span span);
-Value vector_value(std::vector<double> components, Span span);
 // What a value is, for messages: "a number", "a vector of 3 numbers", "the word 'sah'".
 std::string kind_of(const Value& value);
 

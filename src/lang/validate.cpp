@@ -45,12 +45,6 @@ void Validator::set_parameters(const std::vector<std::pair<std::string, Value>>&
              value.kind == Value::Kind::Vector});
 }
 
-std::optional<SceneDescription> Validator::run(const EvaluatedScene& evaluated) {
-    set_parameters(evaluated.parameters);
-    for (const Block& block : evaluated.blocks) accept(block);
-    return finish();
-}
-
 // One block, checked and built as soon as it is made (the interpreter hands them over one by
 // one, so that a big scene is never held whole). A material used before its block is
 // resolved at the end.
@@ -429,11 +423,6 @@ bool SceneBuilder::add(const Block& block) {
 std::optional<SceneDescription> SceneBuilder::finish(const std::vector<std::pair<std::string, Value>>& parameters) {
     state_->validator.set_parameters(parameters);
     return state_->validator.finish();
-}
-
-std::optional<SceneDescription> validate_scene(const EvaluatedScene& evaluated, const Sources& sources,
-                                               Diagnostics& diagnostics, const ValidateOptions& options) {
-    return Validator(sources, diagnostics, options).run(evaluated);
 }
 
 }  // namespace tracer

@@ -20,13 +20,10 @@ struct ValidateOptions {
     bool fragment = false;
 };
 
-// The scene description, or nothing if any error was reported (the errors are in
-// `diagnostics`). Relative paths resolve against the folder of the file they are written in.
-std::optional<SceneDescription> validate_scene(const EvaluatedScene& evaluated, const Sources& sources,
-                                               Diagnostics& diagnostics, const ValidateOptions& options = {});
-
-// The same, a block at a time: blocks are checked and built as they come (the interpreter's
-// on_block), and finish() gives the scene description.
+// The scene description, made a block at a time: blocks are checked and built as they come
+// (the interpreter's on_block), and finish() gives it, or nothing if any error was reported
+// (the errors are in `diagnostics`). Relative paths resolve against the folder of the file
+// they are written in.
 class SceneBuilder {
 public:
     SceneBuilder(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& options = {});

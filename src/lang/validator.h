@@ -36,7 +36,6 @@ public:
         scene_.source_path = std::filesystem::absolute(scene_file, ignored).lexically_normal().string();
     }
 
-    std::optional<SceneDescription> run(const EvaluatedScene& evaluated);
     void set_parameters(const std::vector<std::pair<std::string, Value>>& parameters);
     // Checks and builds one block; true if it kept any of the block's spans for later.
     bool accept(const Block& block);
