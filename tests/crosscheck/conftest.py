@@ -1,4 +1,4 @@
-"""Shared set-up of the cross-check tests: the tools on sys.path, the tracer executable."""
+"""Shared set-up of the cross-check tests: the tracer executable."""
 
 import json
 import os
@@ -10,7 +10,6 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 HERE = pathlib.Path(__file__).resolve().parent
-sys.path.insert(0, str(ROOT / "tools"))
 
 
 @pytest.fixture(scope="session")

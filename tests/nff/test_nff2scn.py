@@ -10,10 +10,10 @@ import tempfile
 import numpy as np
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
+from tracer_tools.nff import convert, geometry, nff2scn, reader
 
-from tracer_tools.nff import convert, geometry, nff2scn, reader  # noqa: E402
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
 
 VIEW = """v
 from 0 0 0

@@ -9,14 +9,13 @@ import json
 import os
 import pathlib
 import subprocess
-import sys
 
 import pytest
 
+from tracer_tools.spd import steps
+from tracer_tools.spd.report import UPSTREAM_COUNTS
+
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-from tracer_tools.spd import steps  # noqa: E402
-from tracer_tools.spd.report import UPSTREAM_COUNTS  # noqa: E402
 
 NFF = ROOT.parent / "shared" / "spd" / "nff"
 TRACER = pathlib.Path(os.environ.get("TRACER_BIN", ROOT / "build" / "release" / "tracer"))
