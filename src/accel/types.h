@@ -1,5 +1,5 @@
 // Basic types of the renderer. `Real` is the precision of all ray arithmetic: double, or float
-// in a build made to measure what double buys (docs/speed-vs-error.md).
+// in a build made to measure what double buys (docs/bench/speed-vs-error.md).
 #pragma once
 
 #include <cmath>

@@ -15,7 +15,7 @@
 namespace tracer {
 namespace {
 
-// The top level's leaves hold at most this many objects (measured: docs/many-objects.md).
+// The top level's leaves hold at most this many objects (measured: docs/bench/many-objects.md).
 constexpr int kTopLeafSize = 1;
 // From this many bounded objects on, the top level gathers subtrees of up to kGatheredSpheres
 // spheres into one leaf (LeafGathering): a node per few spheres leaves most of its eight lanes

@@ -3,7 +3,7 @@
 // would. Not asked onto transparent huge pages (madvise): measured on this machine, faulting
 // 2 MiB pages cleared in full and compacted for them made whole runs slower (10^6 boxes from a
 // loop: load + build 2.5-3.1 s with them, 1.8 s without; the 940k-triangle bunny 0.24-0.36 s
-// against 0.26-0.27 s) for 2-4% of render time on the biggest meshes (docs/performance.md).
+// against 0.26-0.27 s) for 2-4% of render time on the biggest meshes (docs/bench/performance.md).
 #pragma once
 
 #include <cstddef>

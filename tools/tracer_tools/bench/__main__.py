@@ -6,27 +6,27 @@ from tracer_tools import subcommands
 
 # name: (module of tracer_tools.bench, what it measures and where its report goes)
 BENCHMARKS = {
-    "language": ("language", "the scene language against POV-Ray's parser (docs/bench-language.md)"),
-    "cones": ("cones", "SPD rings and tree, analytic cones against tessellated ones (docs/bench-cones.md)"),
-    "task2": ("task2", "task2 rendered 9 times: median time and Mrays/s (docs/bench-task2.txt)"),
-    "bvh": ("bvh", "the four accelerators on the bunny at five sizes, against Embree (docs/performance*)"),
-    "many": ("many", "many spheres and bunny instances, against Embree (docs/many-objects*)"),
-    "single-mesh": ("single_mesh", "single-mesh scenes against an older commit's build (docs/single-mesh.md)"),
-    "robustness": ("robustness", "what the robust rules and float cost and buy (docs/speed-vs-error.md)"),
-    "large-obj": ("large_obj", "a 2.5M-triangle OBJ read and rendered, and refusals (docs/large-obj.md)"),
-    "farm": ("farm", "the render farm's overhead and scaling (docs/farm-bench.md)"),
-    "farm-engines": ("farm_engines", "Dask against Ray for the farm's tasks (docs/farm-engines.txt)"),
+    "language": ("language", "the scene language against POV-Ray's parser (docs/bench/bench-language.md)"),
+    "cones": ("cones", "SPD rings and tree, analytic cones against tessellated ones (docs/bench/bench-cones.md)"),
+    "task2": ("task2", "task2 rendered 9 times: median time and Mrays/s (docs/bench/bench-task2.txt)"),
+    "bvh": ("bvh", "the four accelerators on the bunny at five sizes, against Embree (docs/bench/performance*)"),
+    "many": ("many", "many spheres and bunny instances, against Embree (docs/bench/many-objects*)"),
+    "single-mesh": ("single_mesh", "single-mesh scenes against an older commit's build (docs/bench/single-mesh.md)"),
+    "robustness": ("robustness", "what the robust rules and float cost and buy (docs/bench/speed-vs-error.md)"),
+    "large-obj": ("large_obj", "a 2.5M-triangle OBJ read and rendered, and refusals (docs/bench/large-obj.md)"),
+    "farm": ("farm", "the render farm's overhead and scaling (docs/bench/farm-bench.md)"),
+    "farm-engines": ("farm_engines", "Dask against Ray for the farm's tasks (docs/bench/farm-engines.txt)"),
     "builds": ("builds", "this tree against an earlier commit on the single-mesh and many-objects scenes"),
     "compare-builds": ("compare_builds", "two builds of trace_parts alternated: time per query"),
     "versus": ("versus", "issue 35's table: tracer against Embree (render, build) and POV-Ray (trace)"),
-    "watch": ("watch", "tracer --watch: from a save to the preview and the full image (docs/bench-watch.txt)"),
+    "watch": ("watch", "tracer --watch: from a save to the preview and the full image (docs/bench/bench-watch.txt)"),
     "flat-shapes": (
         "flat_shapes",
-        "issue 34's figure: 10^6 quads, triangles, boxes from a loop (docs/bench-flat-shapes.md)",
+        "issue 34's figure: 10^6 quads, triangles, boxes from a loop (docs/bench/bench-flat-shapes.md)",
     ),
     "adaptive": (
         "adaptive",
-        "adaptive antialiasing against uniform and POV-Ray at matched error (docs/speed-vs-error.md)",
+        "adaptive antialiasing against uniform and POV-Ray at matched error (docs/bench/speed-vs-error.md)",
     ),
 }
 

@@ -9,8 +9,8 @@ POV-Ray 3.7 with +AM2 (its adaptive method 2, jitter on) over thresholds at dept
 Error: per pixel the largest channel difference from the reference in 8-bit levels (mean and
 99th percentile over the image) and the FLIP mean. Time: the render loop (tracer's
 render_seconds, POV-Ray's own Trace Time), the median of --runs (one run where the first takes
-over SLOW_RUN seconds). Writes docs/adaptive-data.json, docs/speed-vs-error-adaptive.png and
-the section of docs/speed-vs-error.md between its markers.
+over SLOW_RUN seconds). Writes docs/bench/adaptive-data.json, docs/bench/speed-vs-error-adaptive.png and
+the section of docs/bench/speed-vs-error.md between its markers.
 """
 
 from __future__ import annotations
@@ -343,9 +343,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--scenes", nargs="+", default=list(SCENES), choices=list(SCENES))
     parser.add_argument("--no-povray", dest="povray", action="store_false")
-    parser.add_argument("--report-only", action="store_true", help="redraw from docs/adaptive-data.json")
+    parser.add_argument("--report-only", action="store_true", help="redraw from docs/bench/adaptive-data.json")
     parser.add_argument(
-        "--merge", action="store_true", help="keep the other scenes of docs/adaptive-data.json, replace these"
+        "--merge", action="store_true", help="keep the other scenes of docs/bench/adaptive-data.json, replace these"
     )
     args = parser.parse_args(argv)
     data = DOCS / "adaptive-data.json"

@@ -4,7 +4,7 @@ per run), the two builds in turn and the order reversed every other round (the m
 drifts); ratios are medians of per-round ratios, this tree / BASE. For a change that must not
 move any figure (a refactoring): the report says how far each moved.
 
-    tools/bench builds --base 7b0e3aa --report docs/house-bench.md     # about 10 minutes
+    tools/bench builds --base 7b0e3aa --report docs/bench/house-bench.md     # about 10 minutes
 """
 
 import argparse

@@ -1,8 +1,8 @@
 """The BVH benchmark: build and render times of every accelerator on the bunny and its
 subdivisions (3,674 to 940,544 triangles), full frame and hit-dominated crop, and the ratios
 to Embree (../shared/bench/embree-whitted) measured side by side. Writes
-docs/performance-data-Nt.json, docs/performance-tables-Nt.md and docs/performance-Nt.png
-(N = threads). docs/performance.md discusses them.
+docs/bench/performance-data-Nt.json, docs/bench/performance-tables-Nt.md and docs/bench/performance-Nt.png
+(N = threads). docs/bench/performance.md discusses them.
 
     tools/bench bvh                      # everything at 2 threads (about 20 minutes)
     tools/bench bvh --threads 1          # the same on one core (steadier)
@@ -220,7 +220,7 @@ def main() -> int:
     args.runs = 5 if args.quick else 11
     args.pairs = 3 if args.quick else 5
     suffix = f"{args.threads}t"
-    data_path = ROOT / "docs" / f"performance-data-{suffix}.json"
+    data_path = ROOT / "docs" / "bench" / f"performance-data-{suffix}.json"
     if args.report_only:
         results = json.loads(data_path.read_text())
     else:
@@ -247,10 +247,13 @@ def main() -> int:
             print("no embree_bench: the comparison with Embree is skipped")
         data_path.write_text(json.dumps(results, indent=1) + "\n")
     write_report(
-        results, ROOT / "docs" / f"performance-tables-{suffix}.md", ROOT / "docs" / f"performance-{suffix}.png"
+        results,
+        ROOT / "docs" / "bench" / f"performance-tables-{suffix}.md",
+        ROOT / "docs" / "bench" / f"performance-{suffix}.png",
     )
     print(
-        f"wrote docs/performance-data-{suffix}.json, docs/performance-tables-{suffix}.md, docs/performance-{suffix}.png"
+        f"wrote docs/bench/performance-data-{suffix}.json, docs/bench/performance-tables-{suffix}.md, "
+        f"docs/bench/performance-{suffix}.png"
     )
     return 0
 

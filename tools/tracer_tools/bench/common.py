@@ -14,7 +14,7 @@ from tracer_tools import ROOT
 BUILD = ROOT / "build" / "release"
 TRACER = BUILD / "tracer"
 TRACER_BENCH = BUILD / "tracer_bench"
-DOCS = ROOT / "docs"
+DOCS = ROOT / "docs" / "bench"
 OUT = ROOT / "out" / "bench"
 
 

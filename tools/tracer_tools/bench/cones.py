@@ -6,7 +6,7 @@ Converts rings and tree with tools/nff2scn twice (tracer's `cone`, and `--cones 
 frustums within 0.1 pixel of the true cone, placed as instances), and makes a third copy with
 every cone removed (what no cone, however fast, can beat), then times tracer_bench's render of
 each in turn, the order reversed every other round (`--pairs` rounds, 5 renders each, the
-median), and writes docs/bench-cones.md with the machine. Ray counts come from the same runs.
+median), and writes docs/bench/bench-cones.md with the machine. Ray counts come from the same runs.
 """
 
 import argparse

@@ -1,5 +1,5 @@
-"""The render farm's overhead and scaling, measured on this machine. Writes docs/farm-bench.json and
-docs/farm-bench.md; docs/farm.md discusses them.
+"""The render farm's overhead and scaling, measured on this machine. Writes docs/bench/farm-bench.json and
+docs/bench/farm-bench.md; docs/farm.md discusses them.
 
     tools/bench farm            # about 4 minutes on 2 cores
     tools/bench farm --quick    # one pair and a short sweep, for a try
@@ -202,12 +202,12 @@ def main() -> int:
         (line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")), "?"
     )
     machine = f"{model}, {os.cpu_count()} cores"
-    data_path = os.path.join(ROOT, "docs", "farm-bench.json")
+    data_path = os.path.join(ROOT, "docs", "bench", "farm-bench.json")
     if arguments.report_only:
         with open(data_path) as file:
             data = json.load(file)
         data["prediction"] = predict(data["overhead"], data["per_tile"], data["per_task_s"])
-        with open(os.path.join(ROOT, "docs", "farm-bench.md"), "w") as file:
+        with open(os.path.join(ROOT, "docs", "bench", "farm-bench.md"), "w") as file:
             file.write(report(data))
         return 0
     with tempfile.TemporaryDirectory() as folder:
@@ -223,7 +223,7 @@ def main() -> int:
     with open(data_path, "w") as file:
         json.dump(data, file, indent=1)
     text = report(data)
-    with open(os.path.join(ROOT, "docs", "farm-bench.md"), "w") as file:
+    with open(os.path.join(ROOT, "docs", "bench", "farm-bench.md"), "w") as file:
         file.write(text)
     print(text)
     return 0

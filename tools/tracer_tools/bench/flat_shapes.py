@@ -6,7 +6,7 @@ Each kind is written as a side x side loop of shapes and rendered at 64 x 48, --
 with the kinds in turn and a pause between runs; a one-shape scene gives the memory the
 process takes anyway. Reported: load + build (--stats-json's load_seconds + world_seconds),
 median and range; the whole process's time and peak memory (GNU time); the peak per triangle
-above the one-shape scene's. Writes docs/bench-flat-shapes.md.
+above the one-shape scene's. Writes docs/bench/bench-flat-shapes.md.
 """
 
 from __future__ import annotations

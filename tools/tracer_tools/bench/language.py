@@ -1,7 +1,7 @@
 """The scene language against POV-Ray 3.7's parser, on the same loops written in each: each case
 run alternately in both (A B A B ...), medians reported with peak memory. tracer's time is the
 whole `tracer --check` process (start, parse, run, check); POV-Ray's is its reported Parse Time
-(its start and 1x1-pixel render are not counted). Output as committed in docs/bench-language.md.
+(its start and 1x1-pixel render are not counted). Output as committed in docs/bench/bench-language.md.
 
     tools/bench language [--runs 3] [--povray povray]
 """

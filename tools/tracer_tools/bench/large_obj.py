@@ -1,7 +1,7 @@
 """The large-OBJ benchmark of the hostile-input issue: a valid OBJ of about 100 MB (2.5 million
 triangles) loads, builds and renders task2's frame; wall time and peak memory of the whole
 `tracer` process, and the time to refuse garbage, special files and oversized requests.
-Writes docs/large-obj.md.
+Writes docs/bench/large-obj.md.
 
     tools/bench large-obj [--runs 3]
 
@@ -118,7 +118,7 @@ def main() -> None:
         *[f"| {name} | {rc} | {s:.2f} | {m} |" for name, rc, s, m in refused],
         "",
     ]
-    (ROOT / "docs" / "large-obj.md").write_text("\n".join(lines))
+    (ROOT / "docs" / "bench" / "large-obj.md").write_text("\n".join(lines))
     print("\n".join(lines))
 
 

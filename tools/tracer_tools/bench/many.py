@@ -1,7 +1,7 @@
 """The many-object benchmark: build time, render time, memory and the ratio to Embree on
-scenes of many objects, measured side by side. Writes docs/many-objects-data-Nt.json,
-docs/many-objects-tables-Nt.md and docs/many-objects-Nt.png (N = threads);
-docs/many-objects.md discusses them.
+scenes of many objects, measured side by side. Writes docs/bench/many-objects-data-Nt.json,
+docs/bench/many-objects-tables-Nt.md and docs/bench/many-objects-Nt.png (N = threads);
+docs/bench/many-objects.md discusses them.
 
     tools/bench many                    # everything at 2 threads (about 10 minutes)
     tools/bench many --quick            # fewer pairs and runs, for a try
@@ -232,7 +232,7 @@ def main() -> int:
     args.runs = 5 if args.quick else 11
     args.pairs = 3 if args.quick else 5
     suffix = f"{args.threads}t"
-    data_path = ROOT / "docs" / f"many-objects-data-{suffix}.json"
+    data_path = ROOT / "docs" / "bench" / f"many-objects-data-{suffix}.json"
     if args.report_only:
         results = json.loads(data_path.read_text())
     else:
@@ -254,11 +254,13 @@ def main() -> int:
             results["scenes"].append(measure(args, "bunnies", count, embree))
         data_path.write_text(json.dumps(results, indent=1) + "\n")
     write_report(
-        results, ROOT / "docs" / f"many-objects-tables-{suffix}.md", ROOT / "docs" / f"many-objects-{suffix}.png"
+        results,
+        ROOT / "docs" / "bench" / f"many-objects-tables-{suffix}.md",
+        ROOT / "docs" / "bench" / f"many-objects-{suffix}.png",
     )
     print(
-        f"wrote docs/many-objects-data-{suffix}.json, docs/many-objects-tables-{suffix}.md, "
-        f"docs/many-objects-{suffix}.png"
+        f"wrote docs/bench/many-objects-data-{suffix}.json, docs/bench/many-objects-tables-{suffix}.md, "
+        f"docs/bench/many-objects-{suffix}.png"
     )
     return 0
 

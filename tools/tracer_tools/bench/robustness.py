@@ -4,8 +4,8 @@ Builds four variants of tracer (CMake TRACER_REAL = double or float, TRACER_ROBU
 into build/g1-<variant>, runs each one's hard-case tests (tests/hard_cases, --gtest_output=json)
 for the error figures, and times task2, the bunny (its crop) and bunny_room with tracer_bench,
 the four variants alternating round by round (the machine's speed drifts; ratios are medians of
-per-round ratios to the robust double build). Writes docs/robustness-g1-data.json,
-docs/robustness-g1-table.md (copied into docs/speed-vs-error.md) and docs/robustness-g1.png.
+per-round ratios to the robust double build). Writes docs/bench/robustness-g1-data.json,
+docs/bench/robustness-g1-table.md (copied into docs/bench/speed-vs-error.md) and docs/bench/robustness-g1.png.
 
     tools/bench robustness              # about 10 minutes on 2 cores
     tools/bench robustness --rounds 3   # quicker, noisier
@@ -25,7 +25,7 @@ import sys
 from tracer_tools import ROOT
 from tracer_tools.bench.common import machine, run_json
 
-DOCS = ROOT / "docs"
+DOCS = ROOT / "docs" / "bench"
 VARIANTS = {  # name: (TRACER_REAL, TRACER_ROBUST)
     "double robust": ("double", "ON"),
     "double naive": ("double", "OFF"),

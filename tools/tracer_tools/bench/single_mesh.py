@@ -1,5 +1,5 @@
 """Single-mesh scenes against an earlier build: the many-objects issue's target "no slower than
-before the two-level world" (docs/many-objects.md).
+before the two-level world" (docs/bench/many-objects.md).
 
 Builds tracer_bench three ways: BASE (a commit, default 1f57b86, the first wave's last build) in
 a git worktree under build/, the current tree with BASE's rules (TRACER_ROBUST=OFF:
@@ -7,7 +7,7 @@ Moller-Trumbore, t-min 1e-4) in build/single-mesh-naive, and the current tree's 
 (build/release). Then times task2, bunny_room, the bunny's full frame and its crop with each
 (2 threads, median of 5 renders per run), the three in turn, the order reversed every other
 round (the machine's speed drifts); ratios are medians of per-round ratios to BASE. Writes
-docs/single-mesh-data.json and docs/single-mesh.md.
+docs/bench/single-mesh-data.json and docs/bench/single-mesh.md.
 
     tools/bench single-mesh                # about 8 minutes on 2 cores
     tools/bench single-mesh --rounds 5 --base 1f57b86
@@ -22,7 +22,7 @@ import sys
 from tracer_tools import ROOT
 from tracer_tools.bench.common import base_build, build, git, provenance, run_json
 
-DOCS = ROOT / "docs"
+DOCS = ROOT / "docs" / "bench"
 SCENES = {  # name: tracer_bench arguments
     "task2": ["scenes/task2.scn"],
     "bunny_room": ["scenes/bunny_room.scn"],
@@ -66,7 +66,7 @@ def write_report(results: dict) -> None:
     (DOCS / "single-mesh.md").write_text(
         "# Single-mesh scenes against the first wave's last build\n\n"
         "Written by `tools/bench single-mesh` (the many-objects issue's target: single-mesh scenes no "
-        "slower than before the two-level world; docs/many-objects.md).\n\n" + "\n".join(lines) + "\n"
+        "slower than before the two-level world; docs/bench/many-objects.md).\n\n" + "\n".join(lines) + "\n"
     )
 
 

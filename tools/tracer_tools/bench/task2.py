@@ -1,6 +1,6 @@
 """Renders scenes/task2.scn (1200x800, 1 sample per pixel) several times and reports the median
 render time and throughput, as tracer's summary line prints them (render only: parsing, start-up
-and the PNG write are not included). Output as committed in docs/bench-task2.txt.
+and the PNG write are not included). Output as committed in docs/bench/bench-task2.txt.
 
     tools/bench task2 [--runs 9] [--threads N]      defaults: 9 runs, every core
 """

@@ -6,9 +6,9 @@ reported Trace Time against tracer's render time, alternated the same way), 2 th
 Embree's anchor has no refraction and no cones: gears and mount are compared with it without kt
 and ior, rings and tree with their cones tessellated (tools/nff2scn --cones mesh from the SPD's
 NFF under --shared), and say so; POV-Ray renders the scenes whole, cones analytic. The table
-goes to standard output (as committed in docs/bench-versus.md); its figures to
-docs/bench-versus-data.json and a chart of them, each ratio against its target, to
-docs/bench-versus.png.
+goes to standard output (as committed in docs/bench/bench-versus.md); its figures to
+docs/bench/bench-versus-data.json and a chart of them, each ratio against its target, to
+docs/bench/bench-versus.png.
 
     tools/bench versus [--shared ../shared] [--pairs 3] [--runs 5] [--scenes task2,balls,...]
     tools/bench versus --report-only      # redraw the chart from the saved figures

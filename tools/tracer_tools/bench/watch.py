@@ -1,7 +1,7 @@
 """How soon a saved change shows: tracer --watch on a copy of a scene (default scenes/task2.scn),
 saved again and again as an editor saves (a new file renamed over the old, a sphere's radius
 changed each time); for each save, the time until the preview and until the full image are on
-disk (tracer reports each image after writing it). Output as committed in docs/bench-watch.txt.
+disk (tracer reports each image after writing it). Output as committed in docs/bench/bench-watch.txt.
 
     tools/bench watch [--scene scenes/task2.scn] [--saves 21] [--threads N]
 """

@@ -103,7 +103,7 @@ Where they differ:
   POV-Ray 3.7 traces the internally reflected ray at full weight, not filtered by the surface's
   transmittance, and skips the surface's own mirror term there (its source says so in
   `Trace::ComputeLightedTexture`: "If total internal reflection occured the transmitted light
-  is not filtered"); tracer turns the transmitted share back, km + kt (README.md, "Rendering rules").
+  is not filtered"); tracer turns the transmitted share back, km + kt (guide/rendering.md, "Rendering rules").
   Measured on 2026-11-27 (tracer switched to POV-Ray's choices in an experiment build, not
   kept; against POV-Ray with every mesh given an `inside_vector`, as the converter now writes):
   POV-Ray's total-internal-reflection rule takes tracer from 1.2577% of pixels over 2 levels to

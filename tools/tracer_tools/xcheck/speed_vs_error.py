@@ -6,8 +6,8 @@ pixel, accelerator, and whatever tracer options later issues add) several times;
 gives the median time and the error (RMSE, FLIP mean) against the reference, marks the
 Pareto front (no other variant is both faster and more accurate), and draws time against error.
 
-Writes docs/speed-vs-error.json, docs/speed-vs-error.png and the generated part of
-docs/speed-vs-error.md (between its markers; the text around them is kept).
+Writes docs/bench/speed-vs-error.json, docs/bench/speed-vs-error.png and the generated part of
+docs/bench/speed-vs-error.md (between its markers; the text around them is kept).
 """
 
 from __future__ import annotations
@@ -124,7 +124,7 @@ def measure_scene(name: str, repeats: int, work: pathlib.Path) -> dict:
 
 
 def markdown(data: dict) -> str:
-    """The generated part of docs/speed-vs-error.md."""
+    """The generated part of docs/bench/speed-vs-error.md."""
     lines = [
         BEGIN,
         "",
@@ -230,7 +230,9 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/speed-vs-error", description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", nargs="+", default=SCENES, help=f"scenes/<name>.scn to measure (default: {SCENES})")
     parser.add_argument("--repeats", type=int, default=5, help="tracer runs per variant (median; default 5)")
-    parser.add_argument("--docs", type=pathlib.Path, default=tracer_cli.ROOT / "docs", help="where the report goes")
+    parser.add_argument(
+        "--docs", type=pathlib.Path, default=tracer_cli.ROOT / "docs" / "bench", help="where the report goes"
+    )
     parser.add_argument("--report-only", action="store_true", help="redraw from the committed JSON")
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
     return run_reporting_errors("speed-vs-error", lambda: report(args))
