@@ -3,6 +3,7 @@
 import json
 import os
 import signal
+import socket
 import subprocess
 import sys
 import time
@@ -44,6 +45,25 @@ def test_jobs_file_renders_a_parameter_sweep(tracer_bin, tmp_path):
         )
         assert np.array_equal(read_pixels(tmp_path / f"ball{size}.png")[0], alone)
     assert not np.array_equal(read_pixels(tmp_path / "ball0.1.png")[0], read_pixels(tmp_path / "ball0.3.png")[0])
+
+
+def test_nothing_of_dasks_own_reaches_stderr_when_its_port_is_taken(tracer_bin, tmp_path):
+    # Dask's default HTTP port held (by this test, or by whatever holds it already, such as a
+    # second farm): the farm must still say nothing of Dask's, no "Port 8787 is already in use".
+    holder = socket.socket()
+    holder.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        holder.bind(("0.0.0.0", 8787))
+        holder.listen()
+    except OSError:
+        pass  # in use already: the case itself
+    try:
+        result = farm(SCENES / "task2.scn", "-o", tmp_path / "t.png", "--width", 120, "--workers", 2, "-q",
+                      tracer=tracer_bin)
+    finally:
+        holder.close()
+    assert result.returncode == 0, result.stderr
+    assert result.stderr == ""
 
 
 def flaky_farm(tracer_bin, tmp_path, failures, *arguments):

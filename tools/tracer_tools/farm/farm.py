@@ -134,11 +134,15 @@ def start_cluster(arguments: argparse.Namespace) -> tuple[Client, LocalCluster |
             return Client(arguments.address, timeout=f"{arguments.connect_timeout}s"), None
         except (OSError, ValueError, TimeoutError) as error:
             raise JobError(f"cannot reach the Dask scheduler at '{arguments.address}': {error}", 3) from error
+    # No dashboard; the scheduler's HTTP server (which Dask starts even so, for its health and
+    # metrics routes) on a free port: on its default, 8787, a second farm on the machine printed
+    # Dask's "Port 8787 is already in use" warning before anything of tracer's.
     cluster = LocalCluster(
         n_workers=arguments.workers,
         threads_per_worker=1,
         processes=False,
         dashboard_address=None,
+        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
         silence_logs=logging.CRITICAL,
     )
     return Client(cluster), cluster
