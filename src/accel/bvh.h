@@ -57,7 +57,7 @@ struct Bounds {
         lower = glm::min(lower, b.lower);
         upper = glm::max(upper, b.upper);
     }
-    Vec3 centre() const { return (lower + upper) * Real(0.5); }
+    Vec3 center() const { return (lower + upper) * Real(0.5); }
 };
 
 // Writes the bounds of primitives [first, first + count) to out[0 .. count). Called for

@@ -11,7 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "accel/bvh_builder.h"
-#include "accel/parallel_for.h"
+#include "base/parallel.h"
 
 namespace tracer {
 
@@ -32,8 +32,8 @@ v4f load_v4f(const glm::vec3& first) {  // the three floats and the next four by
     return lanes;
 }
 
-// A reference's centre, lane by lane (lane 3 unused): the same floats as BvhBuildRef::centre.
-v4f centre_lanes(const BvhBuildRef& ref) {
+// A reference's center, lane by lane (lane 3 unused): the same floats as BvhBuildRef::center.
+v4f center_lanes(const BvhBuildRef& ref) {
     return (load_v4f(ref.lower) + load_v4f(ref.upper)) * 0.5f;
 }
 
@@ -77,23 +77,23 @@ Range measure(const BvhBuildRef* refs, uint32_t begin, uint32_t end) {
     Range range{begin, end, {}, {}};
     for (uint32_t i = begin; i < end; ++i) {
         range.bounds.extend(refs[i].lower, refs[i].upper);
-        range.centres.extend(refs[i].centre());
+        range.centers.extend(refs[i].center());
     }
     return range;
 }
 
 // Moves the references for which goes_left holds before the others (as std::partition does),
-// extending `left` and `right` by the centres of each side; returns the first of the others.
+// extending `left` and `right` by the centers of each side; returns the first of the others.
 template <typename GoesLeft>
 BvhBuildRef* partition(BvhBuildRef* begin, BvhBuildRef* end, GoesLeft goes_left, VectorBounds& left,
                        VectorBounds& right) {
     for (;;) {
         for (; begin < end && goes_left(*begin); ++begin) {
-            const v4f c = centre_lanes(*begin);
+            const v4f c = center_lanes(*begin);
             left.extend(c, c);
         }
         for (; begin < end && !goes_left(end[-1]); --end) {
-            const v4f c = centre_lanes(end[-1]);
+            const v4f c = center_lanes(end[-1]);
             right.extend(c, c);
         }
         if (begin == end) return begin;
@@ -101,17 +101,17 @@ BvhBuildRef* partition(BvhBuildRef* begin, BvhBuildRef* end, GoesLeft goes_left,
     }
 }
 
-// The SAH's bins of a range: how many per axis, and the map from a centre to its bins.
+// The SAH's bins of a range: how many per axis, and the map from a center to its bins.
 struct SahBinning {
     int bin_count;
-    glm::vec3 extent;           // of the range's centres
+    glm::vec3 extent;           // of the range's centers
     v4f factor = {0, 0, 0, 0};  // bins per unit of length, per axis
-    v4f origin;                 // the centres' lower corner
+    v4f origin;                 // the centers' lower corner
 
     SahBinning(const Range& range, int bins)
         : bin_count(bins),
-          extent(range.centres.upper - range.centres.lower),
-          origin{range.centres.lower.x, range.centres.lower.y, range.centres.lower.z, 0} {
+          extent(range.centers.upper - range.centers.lower),
+          origin{range.centers.lower.x, range.centers.lower.y, range.centers.lower.z, 0} {
         for (int axis = 0; axis < 3; ++axis) {
             const float scale = float(bin_count) / extent[axis];
             factor[axis] = extent[axis] > 0 && std::isfinite(scale) ? scale : 0.0f;  // also a NaN or infinite extent
@@ -131,7 +131,7 @@ struct SahBinning {
             // The bin on each axis (lane 3 unused), clamped as floats first: converting a NaN or
             // out-of-range float is undefined.
             const v4i bin =
-                __builtin_convertvector(lane_min(lane_max((centre_lanes(ref) - lowest) * scale, v4f{}), last_bin), v4i);
+                __builtin_convertvector(lane_min(lane_max((center_lanes(ref) - lowest) * scale, v4f{}), last_bin), v4i);
             const v4f lower = load_v4f(ref.lower), upper = load_v4f(ref.upper);
             for (int axis = 0; axis < 3; ++axis) {
                 VectorBin& into = bins[axis][bin[axis]];
@@ -246,7 +246,7 @@ bool BvhBuilder::split(const Range& range, int depth, Range& left, Range& right)
 // The assignment's split: sort by centroid along the axis, first half left.
 bool BvhBuilder::split_median(const Range& range, int axis, Range& left, Range& right) {
     std::sort(refs_ + range.begin, refs_ + range.end,
-              [axis](const BvhBuildRef& a, const BvhBuildRef& b) { return a.centre()[axis] < b.centre()[axis]; });
+              [axis](const BvhBuildRef& a, const BvhBuildRef& b) { return a.center()[axis] < b.center()[axis]; });
     split_at(range, range.begin + range.count() / 2, left, right);
     return true;
 }
@@ -285,23 +285,23 @@ bool BvhBuilder::split_sah(const Range& range, Range& left, Range& right) {
     const double best_cost = kTraversalCost + kIntersectionCost * best.weighted / node_area;
     const double leaf_cost = kIntersectionCost * tests(count);
     if (count <= uint32_t(leaf_size_) && (best.axis < 0 || leaf_cost <= best_cost)) return false;
-    if (best.axis < 0) {  // all centres coincide: any halves will do
+    if (best.axis < 0) {  // all centers coincide: any halves will do
         split_at(range, range.begin + count / 2, left, right);
         return true;
     }
 
-    // Step 3: partition, measuring the centres on each side; the children's boxes from the bins.
+    // Step 3: partition, measuring the centers on each side; the children's boxes from the bins.
     const uint32_t shift = 8 * uint32_t(best.axis);
     auto goes_left = [&](const BvhBuildRef& ref) { return int((ref.bins >> shift) & 0xFF) <= best.bin; };
-    VectorBounds left_centres = VectorBounds::empty(), right_centres = VectorBounds::empty();
+    VectorBounds left_centers = VectorBounds::empty(), right_centers = VectorBounds::empty();
     BvhBuildRef* const middle =
-        in_parallel ? partition_in_halves(refs_ + range.begin, refs_ + half, refs_ + range.end, goes_left, left_centres,
-                                          right_centres)
-                    : partition(refs_ + range.begin, refs_ + range.end, goes_left, left_centres, right_centres);
+        in_parallel ? partition_in_halves(refs_ + range.begin, refs_ + half, refs_ + range.end, goes_left, left_centers,
+                                          right_centers)
+                    : partition(refs_ + range.begin, refs_ + range.end, goes_left, left_centers, right_centers);
     VectorBin left_bins = VectorBin::empty(), right_bins = VectorBin::empty();
     for (int b = 0; b < binning.bin_count; ++b) (b <= best.bin ? left_bins : right_bins).add(bins[best.axis][b]);
-    left = {range.begin, uint32_t(middle - refs_), left_bins.box.floats(), left_centres.floats()};
-    right = {left.end, range.end, right_bins.box.floats(), right_centres.floats()};
+    left = {range.begin, uint32_t(middle - refs_), left_bins.box.floats(), left_centers.floats()};
+    right = {left.end, range.end, right_bins.box.floats(), right_centers.floats()};
     return true;
 }
 
@@ -373,7 +373,7 @@ void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, i
     const bool parallel = thread_count(threads) > 1 && n >= 2 * BvhBuilder::kTaskFrom;
     auto run = [&](const auto& build_tree) {
         if (!parallel) return build_tree();
-        build_arena(thread_count(threads)).execute(build_tree);
+        thread_arena(thread_count(threads)).execute(build_tree);
     };
     const int lanes = std::max(leaf_lanes, 1);
     NodeArray slots;  // the binary tree, unless Sah's wide one is built directly

@@ -23,7 +23,7 @@ struct BvhBuildRef {
     uint32_t id;
     glm::vec3 upper;
     uint32_t bins;  // scratch: the SAH bin per axis, 8 bits each, from binning to partitioning
-    glm::vec3 centre() const { return (lower + upper) * 0.5f; }
+    glm::vec3 center() const { return (lower + upper) * 0.5f; }
 };
 static_assert(sizeof(BvhBuildRef) == 32);
 
@@ -48,10 +48,10 @@ struct FloatBounds {
     }
 };
 
-// A node's range of references with the bounds of their boxes and of their centres.
+// A node's range of references with the bounds of their boxes and of their centers.
 struct Range {
     uint32_t begin, end;
-    FloatBounds bounds, centres;
+    FloatBounds bounds, centers;
     uint32_t count() const { return end - begin; }
 };
 

@@ -18,18 +18,18 @@
 namespace tracer {
 
 // The margin of line_may_meet_sphere for the rounding of its difference, relative to the
-// centre's squared distance: 10^-12 in double, 16 ulps in float (where 10^-12 is below the
+// center's squared distance: 10^-12 in double, 16 ulps in float (where 10^-12 is below the
 // rounding: a thin cylinder 10^4 away was culled).
 constexpr Real kLineMargin = std::max<Real>(Real(1e-12), 16 * std::numeric_limits<Real>::epsilon());
 
 // False only if the ray's line passes outside the sphere of squared radius `radius2`: the
-// squared distance of the centre from the line, times |d|^2 (no division), against r^2 with a
-// margin (10^-6 r^2, and kLineMargin of the centre's squared distance, for its rounding); a NaN
+// squared distance of the center from the line, times |d|^2 (no division), against r^2 with a
+// margin (10^-6 r^2, and kLineMargin of the center's squared distance, for its rounding); a NaN
 // counts as "may meet".
-[[gnu::always_inline]] inline bool line_may_meet_sphere(const Ray& ray, const Vec3& centre, Real radius2) {
-    const Vec3 to_centre = centre - ray.origin;
-    const Real along = glm::dot(to_centre, ray.direction);
-    const Real dd = glm::dot(ray.direction, ray.direction), cc = glm::dot(to_centre, to_centre);
+[[gnu::always_inline]] inline bool line_may_meet_sphere(const Ray& ray, const Vec3& center, Real radius2) {
+    const Vec3 to_center = center - ray.origin;
+    const Real along = glm::dot(to_center, ray.direction);
+    const Real dd = glm::dot(ray.direction, ray.direction), cc = glm::dot(to_center, to_center);
     return !(cc * dd - along * along > (radius2 * (1 + 1e-6) + cc * kLineMargin) * dd);
 }
 

@@ -12,8 +12,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "accel/parallel_for.h"
 #include "accel/ray_packet.h"
+#include "base/parallel.h"
 
 namespace tracer {
 
@@ -243,9 +243,9 @@ void MeshAccel::store_hit_records(const PlacedTriangles& mesh, const std::vector
             threads);
     } else if (n >= kSerialBelow && std::none_of(mesh.normal_ids.begin(), mesh.normal_ids.end(),
                                                  [](const auto& ids) { return ids[0] == PlacedTriangles::kFlat; })) {
-        // Every triangle of a large mesh smooth: each numbered by its slot, in parallel (the
-        // 940k-triangle bunny's serial numbering took 10% of its build; below kSerialBelow the
-        // loop would not go parallel, and the bunny's build took 1.06x with this path).
+        // Every triangle of a large mesh smooth: each numbered by its slot, in parallel: serial
+        // numbering was a tenth of the largest builds; below kSerialBelow the loop would not go
+        // parallel and this path only costs time (docs/bench/code-figures.md).
         smooth = n;
         parallel_for(
             n,

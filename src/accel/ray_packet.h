@@ -157,8 +157,8 @@ inline WideEntry enter_frustum(const WideNode& node, const TraversalPacket& pack
 // count) for the rays in the bit mask `rays`, each shrinking its own search's range and
 // packet.t_max's lane on a hit. Nodes are visited nearest first, and skipped once every ray
 // has a hit before them. (The frustum suits rays from one point: for shadow rays from a row's
-// hits, whose origins spread over several surfaces, an any-hit search built the same way took
-// 0.92x the time of single rays on the bunny but 1.87x on SPD gears; see docs/bench/performance.md.)
+// hits, whose origins spread over several surfaces, an any-hit search built the same way was
+// slower than single rays where the hits spread; docs/bench/performance.md.)
 template <bool kFused, typename Leaf>
 void closest_in_packet(const LargeArray<WideNode>& nodes, TraversalPacket& packet, TraversalCounts& counts, Leaf leaf) {
     struct Waiting {

@@ -119,10 +119,10 @@ constexpr Real kEdgeSlack = gamma(6);
                                                                  Interval range) {
     const Real denominator = glm::dot(disc.normal, ray.direction);
     if (denominator == 0) return std::nullopt;
-    const Vec3 to_centre = disc.center - ray.origin;
-    const Real t = glm::dot(to_centre, disc.normal) / denominator;
+    const Vec3 to_center = disc.center - ray.origin;
+    const Real t = glm::dot(to_center, disc.normal) / denominator;
     if (!range.contains(t)) return std::nullopt;
-    const Vec3 p = t * ray.direction - to_centre;
+    const Vec3 p = t * ray.direction - to_center;
     if (!(glm::dot(p, p) <= disc.radius * disc.radius)) return std::nullopt;
     return t;
 }

@@ -29,14 +29,14 @@ constexpr Real gamma(int n) {
     return n * u / (1 - n * u);
 }
 
-// |v| coordinate by coordinate: glm::abs, always inlined (GCC left glm's out of line in the
-// shading loop, a call per use: 1.5% of task2's instructions).
+// |v| coordinate by coordinate: glm::abs, always inlined : GCC left glm's out of line in the
+// shading loop, a call per use (docs/bench/code-figures.md).
 [[gnu::always_inline]] inline Vec3 abs_each(const Vec3& v) {
     return {std::abs(v.x), std::abs(v.y), std::abs(v.z)};
 }
 
-// glm::dot, always inlined (GCC called glm's from the cone test: 3% of SPD rings' time). The
-// same sum as glm's, in the same order.
+// glm::dot, always inlined: GCC called glm's from the cone test (docs/bench/code-figures.md).
+// The same sum as glm's, in the same order.
 [[gnu::always_inline]] inline Real dot(const Vec3& a, const Vec3& b) {
     const Vec3 products = a * b;
     return products.x + products.y + products.z;

@@ -19,9 +19,8 @@ namespace {
 constexpr int kTopLeafSize = 1;
 // From this many bounded objects on, the top level gathers subtrees of up to kGatheredSpheres
 // spheres into one leaf (LeafGathering): a node per few spheres leaves most of its eight lanes
-// empty. At 10^6 spheres on a grid the top level then takes 74 bytes a sphere instead of 118
-// (4 of them the leaf order, now freed) and renders in 0.98x the time; at 4,096 and 65,536
-// spheres it would render 1.11x and 1.12x slower (more sphere tests): they keep leaves of one.
+// empty. That saves memory from this size on, for the same render time; below it, leaves of
+// one render faster, with fewer sphere tests (docs/bench/code-figures.md).
 constexpr size_t kGatherFrom = size_t(1) << 19;
 constexpr uint32_t kGatheredSpheres = 6;
 // How far below a shared mesh's BVH root its instances' world boxes are taken from: the placed
@@ -55,19 +54,19 @@ Bounds placed_box(const Bounds& box, const Placement& placement) {
     return {out.lower - pad, out.upper + pad};
 }
 
-// Half the diagonal of `box`: a sphere around its centre holding it (infinite where the
+// Half the diagonal of `box`: a sphere around its center holding it (infinite where the
 // diagonal overflows).
 Real half_diagonal(const Bounds& box) {
     const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
     return std::isfinite(radius) ? radius : kInfinity;
 }
 
-// The box around a disc of `radius` at `centre` across the unit `axis`: on each coordinate
+// The box around a disc of `radius` at `center` across the unit `axis`: on each coordinate
 // radius sqrt(1 - axis_i^2), padded for the slack of the tests at the edges.
-Bounds disc_box(const glm::dvec3& centre, const glm::dvec3& axis, double radius) {
+Bounds disc_box(const glm::dvec3& center, const glm::dvec3& axis, double radius) {
     const glm::dvec3 reach = radius * glm::sqrt(glm::max(glm::dvec3(0.0), 1.0 - axis * axis));
-    const glm::dvec3 pad = 1e-6 * radius + double(gamma(64)) * glm::abs(centre);
-    return Bounds{Vec3(centre - reach - pad), Vec3(centre + reach + pad)};
+    const glm::dvec3 pad = 1e-6 * radius + double(gamma(64)) * glm::abs(center);
+    return Bounds{Vec3(center - reach - pad), Vec3(center + reach + pad)};
 }
 
 double surface_area(const Bounds& box) {
@@ -79,8 +78,7 @@ double surface_area(const Bounds& box) {
 // neighbours' and is entered by rays that pass it by. Cut along its axis into pieces, each with
 // the box of its own stretch (early split clipping, Ernst and Greiner 2007, for one shape), the
 // boxes hug it; a ray entering any piece tests the whole cone. One more piece while it cuts the
-// boxes' total area by kConePieceGain (SPD rings: 2.5 pieces a cylinder, 0.9x the render time;
-// gains of 0.8 to 0.98 measured alike).
+// boxes' total area by kConePieceGain; other gains measured alike (docs/bench/code-figures.md).
 constexpr int kMostConePieces = 16;
 constexpr double kConePieceGain = 0.9;
 
@@ -148,7 +146,7 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
 }
 
 void World::add_bounded(const Bounds& box, uint32_t object, uint32_t index, ObjectKind kind) {
-    bounded_.push_back({box.centre(), half_diagonal(box), object, index, kind});
+    bounded_.push_back({box.center(), half_diagonal(box), object, index, kind});
     boxes_.push_back(box);
 }
 
@@ -252,12 +250,13 @@ void World::build_top_level(const SearchSettings& settings) {
     for (const Bounds& box : boxes_) all.extend(box);
     if (!bounded_.empty()) {
         const Real radius = half_diagonal(all);
-        sphere_centre_ = all.centre();
+        sphere_center_ = all.center();
         sphere_radius2_ = radius * radius;
     }
     linear_ = settings.brute_force || bounded_.size() - extra_entries_ <= kLinearObjects;
-    packets_pay_ = linear_ && std::any_of(bounded_.begin(), bounded_.end(),
-                                          [](const Bounded& b) { return b.kind == ObjectKind::MeshInstance; });
+    packet_search_possible_ = linear_ && std::any_of(bounded_.begin(), bounded_.end(), [](const Bounded& b) {
+                                  return b.kind == ObjectKind::MeshInstance;
+                              });
     for (const MeshInstance& instance : instances_)
         largest_mesh_triangles_ = std::max(largest_mesh_triangles_, meshes_[instance.mesh].triangle_count());
     if (!linear_) {
@@ -280,9 +279,9 @@ void World::build_top_level(const SearchSettings& settings) {
 
 bool World::may_hit(const Ray& ray) const {
     if (!planes_.empty()) return true;
-    if (!linear_) return line_may_meet_sphere(ray, sphere_centre_, sphere_radius2_);
+    if (!linear_) return line_may_meet_sphere(ray, sphere_center_, sphere_radius2_);
     for (const Bounded& b : bounded_)
-        if (line_may_meet_sphere(ray, b.centre, b.radius * b.radius)) return true;
+        if (line_may_meet_sphere(ray, b.center, b.radius * b.radius)) return true;
     return false;
 }
 
@@ -295,13 +294,13 @@ size_t World::top_level_memory_bytes() const {
 // Fewer rays than this that may meet a mesh search it one by one (nearest_hits).
 constexpr int kFewestInPacket = 2;
 
-bool World::packet_pays(const Ray* const* rays, int count) const {
-    if (!packets_pay_) return false;
+bool World::packet_shares_a_mesh(const Ray* const* rays, int count) const {
+    if (!packet_search_possible_) return false;
     for (size_t e = sphere_count_; e < bounded_.size(); ++e) {
         const Bounded& b = bounded_[e];
         if (b.kind != ObjectKind::MeshInstance) continue;
         int n = 0;
-        for (int i = 0; i < count; ++i) n += line_may_meet_sphere(*rays[i], b.centre, b.radius * b.radius);
+        for (int i = 0; i < count; ++i) n += line_may_meet_sphere(*rays[i], b.center, b.radius * b.radius);
         if (n >= kFewestInPacket) return true;
     }
     return false;
@@ -330,7 +329,7 @@ void World::nearest_hits(const Ray* const* rays, int count, Interval range, std:
         int members[kPacket];
         int n = 0;
         for (int i = 0; i < count; ++i)
-            if (line_may_meet_sphere(*rays[i], b.centre, b.radius * b.radius)) members[n++] = i;
+            if (line_may_meet_sphere(*rays[i], b.center, b.radius * b.radius)) members[n++] = i;
         if (b.kind != ObjectKind::MeshInstance || n < kFewestInPacket) {
             for (int k = 0; k < n; ++k)
                 found[members[k]] = hit_bounded(b, *rays[members[k]], ranges[members[k]], hits[members[k]], counts) ||

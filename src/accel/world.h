@@ -124,22 +124,20 @@ public:
     // each mesh is searched for all the rays that may meet it together (intersect_packet).
     void nearest_hits(const Ray* const* rays, int count, Interval range, std::optional<Hit>* out,
                       SearchCounts& counts) const;
-    // True if nearest_hits may do better than nearest_hit ray by ray in a frame of `pixels`: the
-    // objects are tested one by one, some are meshes, and no mesh has more than one triangle for
-    // every kPixelsPerTriangle pixels (where a tile's rays meet leaves of a pixel or less, each
-    // meets them in the packet's order, not its own nearest first: the 940,544-triangle bunny's
-    // crop at 1200 x 800 took 1.26x the time in tiles, SPD gears at 7 pixels a triangle 0.76x).
-    bool packets_pay(size_t pixels) const {
-        return packets_pay_ && pixels >= kPixelsPerTriangle * largest_mesh_triangles_;
+    // Where packets pay, decided in two steps. First the frame: true if a render of `pixels`
+    // should trace its primary rays in tiles (trace_packet): the objects are tested one by one,
+    // some are meshes, and no mesh has more than one triangle for every kPixelsPerTriangle
+    // pixels (where a tile's rays meet leaves of a pixel or less, each meets them in the
+    // packet's order, not its own nearest first, and tiles are slower: docs/bench/code-figures.md).
+    bool frame_takes_tiles(size_t pixels) const {
+        return packet_search_possible_ && pixels >= kPixelsPerTriangle * largest_mesh_triangles_;
     }
     static constexpr size_t kPixelsPerTriangle = 4;
-    // True if nearest_hits does better than nearest_hit on *rays[0 .. count): enough of them may
-    // meet a mesh for its search together to pay.
-    bool packet_pays(const Ray* const* rays, int count) const;
+    // Then each packet: true if nearest_hits does better than nearest_hit on *rays[0 .. count),
+    // that is if at least two of them may meet one mesh (else each is searched alone).
+    bool packet_shares_a_mesh(const Ray* const* rays, int count) const;
     // The surface at a hit that nearest_hit returned for `ray`.
     SurfaceHit surface(const Ray& ray, const Hit& hit) const;
-    // nearest_hit, then surface.
-    std::optional<SurfaceHit> intersect(const Ray& ray, Interval range, SearchCounts& counts) const;
     // True if any surface lies along `ray` with t inside `range` (for shadow rays).
     bool occluded(const Ray& ray, Interval range, SearchCounts& counts) const {
         Occluder none;
@@ -188,7 +186,7 @@ private:
     static constexpr uint32_t kObjectOfTriangle = kNoObject - 1;
     // An entry of the top level, in its BVH's leaf order.
     struct Bounded {
-        Vec3 centre;  // sphere: the sphere; others: a sphere around their box
+        Vec3 center;  // sphere: the sphere; others: a sphere around their box
         Real radius;
         uint32_t object;  // index into objects_, or kObjectOfTriangle
         uint32_t index;   // into instances_, cones_ or discs_ (a sphere's is not read: the entry is the sphere)
@@ -224,8 +222,7 @@ private:
     bool occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range, SearchCounts& counts,
                          uint32_t left_behind) const;
     bool nearest_plane(const Ray& ray, Interval& range, Hit& hit) const;
-    SurfaceHit surface_at(const Ray& ray, const Hit& hit) const;
-    // surface_at's steps for a sphere and a mesh instance (out.t and out.material already set).
+    // surface's steps for a sphere and a mesh instance (out.t and out.material already set).
     void sphere_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
     void mesh_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
     // The first steps of nearest_one_by_one: the spheres (bounded_'s first entries while the
@@ -247,10 +244,10 @@ private:
     LargeArray<Bounds> boxes_;   // of bounded_, while the world is built
     Bvh top_;
     bool linear_ = true;
-    bool packets_pay_ = false;
-    size_t largest_mesh_triangles_ = 0;  // of the meshes instanced
+    bool packet_search_possible_ = false;  // linear_, and some object is a mesh
+    size_t largest_mesh_triangles_ = 0;    // of the meshes instanced
     double top_build_seconds_ = 0;
-    Vec3 sphere_centre_{0};  // around every bounded object, for may_hit
+    Vec3 sphere_center_{0};  // around every bounded object, for may_hit
     Real sphere_radius2_ = -1;
     bool refracts_ = false;
     std::vector<Material> materials_;

@@ -1,6 +1,6 @@
 // World's ray queries, defined inline (included by world.h): they are the innermost loop of
-// every ray, and as calls of their own they cost the bunny room's rays 10% (measured with
-// tools/tracer_bench/trace_parts: results passed through memory, spheres tested out of line).
+// every ray, and as calls of their own their results pass through memory and the spheres are
+// tested out of line (docs/bench/code-figures.md).
 #pragma once
 
 #include "accel/geometry.h"
@@ -37,7 +37,7 @@ inline bool World::instance_blocks(uint32_t entry, const Ray& ray, Interval rang
 [[gnu::always_inline]] inline bool World::hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& hit,
                                                       SearchCounts& counts) const {
     if (b.kind == ObjectKind::Sphere) {
-        const auto t = intersect_sphere(ray, b.centre, b.radius, range);
+        const auto t = intersect_sphere(ray, b.center, b.radius, range);
         if (!t) return false;
         range.max = *t;
         hit = {b.object, 0, *t, 0, 0};
@@ -67,7 +67,7 @@ inline bool World::bounded_blocks(uint32_t entry, const Ray& ray, Interval range
     bool blocked = false;
     switch (b.kind) {
         case ObjectKind::MeshInstance: return instance_blocks(entry, ray, range, counts, blocker);
-        case ObjectKind::Sphere: blocked = intersect_sphere(ray, b.centre, b.radius, range).has_value(); break;
+        case ObjectKind::Sphere: blocked = intersect_sphere(ray, b.center, b.radius, range).has_value(); break;
         case ObjectKind::Cone: blocked = intersect_cone(ray, cones_[b.index], range).has_value(); break;
         case ObjectKind::Disc: blocked = intersect_disc(ray, discs_[b.index], range).has_value(); break;
         case ObjectKind::Plane: break;
@@ -82,7 +82,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     if (b.object == left_behind) return false;
     if (b.kind == ObjectKind::Sphere) {
         ++counts.objects.primitive_tests;
-        return intersect_sphere(ray, b.centre, b.radius, range).has_value();
+        return intersect_sphere(ray, b.center, b.radius, range).has_value();
     }
     if (b.kind != ObjectKind::MeshInstance) {
         ++counts.objects.primitive_tests;
@@ -114,7 +114,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     for (uint32_t i = 0; i < sphere_count_; ++i) {
         const Bounded& s = bounded_[i];
         if (s.object == left_behind) continue;
-        if (auto t = intersect_sphere(ray, s.centre, s.radius, range)) {
+        if (auto t = intersect_sphere(ray, s.center, s.radius, range)) {
             range.max = *t;
             hit = {s.object, 0, *t, 0, 0};
             found = true;
@@ -130,7 +130,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     bool found = nearest_sphere_or_plane(ray, range, hit, left_behind);
     for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
         const Bounded& b = bounded_[i];
-        if (b.object != left_behind && line_may_meet_sphere(ray, b.centre, b.radius * b.radius))
+        if (b.object != left_behind && line_may_meet_sphere(ray, b.center, b.radius * b.radius))
             found = hit_bounded(b, ray, range, hit, counts) || found;
     }
     counts.objects.primitive_tests += bounded_.size();
@@ -140,7 +140,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
 [[gnu::always_inline]] inline std::optional<Hit> World::nearest_hit(const Ray& ray, Interval range,
                                                                     SearchCounts& counts, uint32_t left_behind) const {
     // Two records, so that the one-by-one search's can stay in registers: the BVH's test, out
-    // of line, holds the address of its own (task2 0.97x, bunny_room 0.97x).
+    // of line, holds the address of its own (docs/bench/code-figures.md).
     if (linear_) {
         Hit hit;
         if (!nearest_one_by_one(ray, range, hit, counts, left_behind)) return std::nullopt;
@@ -162,27 +162,27 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     return hit;
 }
 
-// surface_at's step for a sphere: the point, its error bound and the normal; a sphere is convex.
+// surface's step for a sphere: the point, its error bound and the normal; a sphere is convex.
 [[gnu::always_inline]] inline void World::sphere_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
     const Object& object = objects_[hit.object];
     const Bounded& s = bounded_[object.index];
     if constexpr (kRobust) {
         // The point put back on the sphere (pbrt-v4): its error is then gamma(5) of the
-        // offset from the centre, plus the rounding of adding the centre.
-        const Vec3 from_centre = ray.at(hit.t) - s.centre;
-        const Real length = glm::length(from_centre);
-        out.normal = length > 0 ? from_centre * (1 / length) : Vec3(0, 0, 1);
+        // offset from the center, plus the rounding of adding the center.
+        const Vec3 from_center = ray.at(hit.t) - s.center;
+        const Real length = glm::length(from_center);
+        out.normal = length > 0 ? from_center * (1 / length) : Vec3(0, 0, 1);
         const Vec3 on_sphere = out.normal * s.radius;
-        out.point = s.centre + on_sphere;
-        out.error = gamma(6) * (abs_each(s.centre) + abs_each(on_sphere));
+        out.point = s.center + on_sphere;
+        out.error = gamma(6) * (abs_each(s.center) + abs_each(on_sphere));
     } else {
-        out.normal = (out.point - s.centre) / s.radius;
+        out.normal = (out.point - s.center) / s.radius;
     }
     out.geometric_normal = out.normal;
     out.convex_object = hit.object;
 }
 
-// surface_at's step for a mesh instance: the point (placed, with its error bound), the face's
+// surface's step for a mesh instance: the point (placed, with its error bound), the face's
 // and the shading normal.
 [[gnu::always_inline]] inline void World::mesh_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
     const Object& object = objects_[hit.object];
@@ -219,7 +219,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     }
 }
 
-[[gnu::always_inline]] inline SurfaceHit World::surface_at(const Ray& ray, const Hit& hit) const {
+[[gnu::always_inline]] inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
     const Object& object = objects_[hit.object];
     SurfaceHit out;
     out.t = hit.t;
@@ -266,17 +266,6 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     return out;
 }
 
-[[gnu::always_inline]] inline SurfaceHit World::surface(const Ray& ray, const Hit& hit) const {
-    return surface_at(ray, hit);
-}
-
-[[gnu::always_inline]] inline std::optional<SurfaceHit> World::intersect(const Ray& ray, Interval range,
-                                                                         SearchCounts& counts) const {
-    const auto hit = nearest_hit(ray, range, counts);
-    if (!hit) return std::nullopt;
-    return surface_at(ray, *hit);
-}
-
 [[gnu::always_inline]] inline bool World::occluded(const Ray& ray, Interval range, SearchCounts& counts, Occluder& last,
                                                    uint32_t left_behind) const {
     if (last.entry != Occluder::kNone) {
@@ -286,7 +275,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     if (linear_) {
         for (uint32_t i = 0; i < sphere_count_; ++i) {
             if (bounded_[i].object != left_behind &&
-                intersect_sphere(ray, bounded_[i].centre, bounded_[i].radius, range)) {
+                intersect_sphere(ray, bounded_[i].center, bounded_[i].radius, range)) {
                 last = {i, {}};
                 return true;
             }
@@ -299,7 +288,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
         for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
             const Bounded& b = bounded_[i];
             ++counts.objects.primitive_tests;
-            if (b.object != left_behind && line_may_meet_sphere(ray, b.centre, b.radius * b.radius) &&
+            if (b.object != left_behind && line_may_meet_sphere(ray, b.center, b.radius * b.radius) &&
                 bounded_blocks(uint32_t(i), ray, range, counts, last))
                 return true;
         }
@@ -313,7 +302,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
         if (b.object == left_behind || !last_cone.untested(b)) return false;
         if (b.kind == ObjectKind::MeshInstance) return instance_blocks(i, ray, r, counts, last);
         if (b.kind != ObjectKind::Sphere) return bounded_blocks(i, ray, r, counts, last);
-        if (!intersect_sphere(ray, b.centre, b.radius, r)) return false;
+        if (!intersect_sphere(ray, b.center, b.radius, r)) return false;
         last = {i, {}};
         return true;
     };

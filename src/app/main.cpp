@@ -96,8 +96,8 @@ struct Options {
     bool region_list = false;          // --region-list: regions read from stdin
     bool stats = false;
     std::string stats_json;
-    std::string diagnostics = "text";  // text on stderr, or json (one line per load) on stdout
-    std::string stdin_name;            // the name of a scene read from standard input
+    bool json_diagnostics = false;  // --diagnostics json: one line of JSON per load on stdout
+    std::string stdin_name;         // the name of a scene read from standard input
     bool language_json = false;
     bool watch = false;
 };
@@ -124,7 +124,7 @@ std::string scene_name(const Options& options) {
 
 // How a load's diagnostics reach the user: as text on stderr, or as one line of JSON on stdout.
 tracer::ReportLoad report_for(const Options& options) {
-    if (options.diagnostics != "json") return tracer::print_diagnostics_to(std::cerr);
+    if (!options.json_diagnostics) return tracer::print_diagnostics_to(std::cerr);
     const std::string name = scene_name(options);
     return [name](const tracer::LoadReport& found) {
         std::cout << tracer::json_line(tracer::load_report_json(name, found)) << std::flush;
@@ -311,7 +311,7 @@ int check_only(const Options& options) {
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
-    if (options.diagnostics == "json") return kOk;  // the JSON line said it
+    if (options.json_diagnostics) return kOk;  // the JSON line said it
     const tracer::SceneDescription& scene = loaded->scene;
     std::cout << scene_name(options) << ": ok (" << scene.spheres.size() << " spheres, " << scene.planes.size()
               << " planes, " << scene.meshes.size() << " meshes, " << count_of(scene.triangles.size(), "triangles")
@@ -355,8 +355,8 @@ int watch(const Options& options) {
         std::cerr << "tracer: error: " << *problem << '\n';
         return kIoError;
     }
-    tracer::WatchSettings settings{
-        options.scene, options.output, options.threads, options.quiet, options.diagnostics == "json", &g_interrupted};
+    tracer::WatchSettings settings{options.scene, options.output,           options.threads,
+                                   options.quiet, options.json_diagnostics, &g_interrupted};
     g_rendering = true;  // Ctrl-C asks the loop to stop (a render under way writes nothing)
     return tracer::watch_scene(
         settings,
@@ -378,7 +378,9 @@ void add_options(CLI::App& app, Options& options) {
     app.add_option("scene", options.scene, "The scene file (.scn), or - for standard input");
     app.add_option("-o,--output", options.output,
                    "The image to write; the format follows the extension (.png, .exr, ...)");
-    app.add_option("--threads", options.threads, "Render threads (default: every core)")->check(CLI::Range(1, 1024));
+    app.add_option("--threads", options.threads,
+                   "Threads that build the BVHs and render the image (default: every core; oneTBB's)")
+        ->check(CLI::Range(1, 1024));
     app.add_flag("-q,--quiet", options.quiet, "No progress indicator and no summary line");
     app.add_option("--accel", options.accel, "Override the scene's mesh accelerator (none, box, median, sah)")
         ->check(render_key("accel"));
@@ -436,9 +438,10 @@ void add_options(CLI::App& app, Options& options) {
     app.add_flag("--reference", options.reference, "Print the scene language reference (Markdown) on stdout");
     app.add_flag("--language-json", options.language_json,
                  "Print the language's blocks, keys, statements and built-ins as JSON on stdout (for editors)");
-    app.add_option("--diagnostics", options.diagnostics,
-                   "How problems in the scene are reported: text on stderr (default), or json: one line of JSON "
-                   "on stdout per load (with --watch, one per event)")
+    app.add_option_function<std::string>(
+           "--diagnostics", [&options](const std::string& format) { options.json_diagnostics = format == "json"; },
+           "How problems in the scene are reported: text on stderr (default), or json: one line of JSON "
+           "on stdout per load (with --watch, one per event)")
         ->check(CLI::IsMember({"text", "json"}));
     app.add_option("--stdin-name", options.stdin_name,
                    "With the scene '-': the path messages give it; its relative paths start from that folder "
@@ -456,7 +459,7 @@ void add_options(CLI::App& app, Options& options) {
 std::string combination_problem(const Options& options) {
     if (options.scene.empty()) return "no scene file given";
     if (options.check && options.dump_json) return "--check and --dump-json cannot be combined";
-    if (options.dump_json && options.diagnostics == "json")
+    if (options.dump_json && options.json_diagnostics)
         return "--dump-json writes the scene on stdout; it cannot be combined with --diagnostics json";
     if (!options.stdin_name.empty() && options.scene != "-")
         return "--stdin-name names a scene read from standard input; give the scene as '-'";

@@ -17,7 +17,6 @@
 #include "app/diagnostics_json.h"
 #include "app/summary.h"
 #include "base/parallel.h"
-#include "base/worker_pool.h"
 #include "io/image_file.h"
 #include "render/renderer.h"
 
@@ -114,6 +113,14 @@ private:
     std::set<std::string> files_;
 };
 
+// Which image of a change a render makes: the quick preview, or the full image.
+enum class Stage { Preview, Full };
+
+// The stage's name in the JSON events ("preview", "full").
+const char* stage_name(Stage stage) {
+    return stage == Stage::Preview ? "preview" : "full";
+}
+
 // What the user sees: text on stderr, or one JSON object per line on stdout.
 class WatchEvents {
 public:
@@ -134,13 +141,13 @@ public:
     }
     // An image written: its summary line ("preview" or "full"), and the note when camera rays
     // reached the bound of their ray trees.
-    void image(const char* stage, const std::string& summary, const Image& image, const RenderSettings& full,
+    void image(Stage stage, const std::string& summary, const Image& image, const RenderSettings& full,
                const RenderStats& stats) {
         wrote_ = true;
         const std::string note = trees_cut_note(stats);  // the image is not what max_depth says
         if (settings_.json_events) {
             emit({{"event", "image"},
-                  {"stage", stage},
+                  {"stage", stage_name(stage)},
                   {"path", settings_.output},
                   {"width", image.width},
                   {"height", image.height},
@@ -152,8 +159,8 @@ public:
                   {"note", note}});
             return;
         }
-        if (!settings_.quiet) std::cerr << summary << (std::string(stage) == "preview" ? " (preview)" : "") << '\n';
-        if (!note.empty() && std::string(stage) == "full") std::cerr << note << '\n';  // even with --quiet
+        if (!settings_.quiet) std::cerr << summary << (stage == Stage::Preview ? " (preview)" : "") << '\n';
+        if (!note.empty() && stage == Stage::Full) std::cerr << note << '\n';  // even with --quiet
     }
     // A problem outside the scene (an output that clashes with an input, a failed write).
     void problem(const std::string& message) const {
@@ -229,13 +236,12 @@ private:
 };
 
 // Renders `scene` with `settings_used` and writes the image: false if cancelled or failed.
-bool render_and_write(const World& world, SceneDescription& scene, const RenderSettings& settings_used,
-                      const char* stage, WorkerPool& pool, const ChangeListener& listener,
-                      const WatchSettings& settings, WatchEvents& events) {
+bool render_and_write(const World& world, SceneDescription& scene, const RenderSettings& settings_used, Stage stage,
+                      const ChangeListener& listener, const WatchSettings& settings, WatchEvents& events) {
     const RenderSettings full = scene.render;
     scene.render = settings_used;
     RenderOptions options;
-    options.pool = &pool;
+    options.threads = settings.threads;
     options.cancel = listener.cancel();
     Image image;
     RenderStats stats;
@@ -272,7 +278,6 @@ int watch_scene(const WatchSettings& settings, const LoadForWatch& load, const O
     }
     watcher.watch({settings.scene});
     ChangeListener listener(watcher, settings.interrupted);
-    WorkerPool pool(thread_count(settings.threads));
     WatchEvents events(settings);
     auto interrupted = [&] { return settings.interrupted && *settings.interrupted; };
     while (!interrupted()) {
@@ -289,15 +294,15 @@ int watch_scene(const WatchSettings& settings, const LoadForWatch& load, const O
             if (auto clash = output_clash(loaded->scene)) {
                 events.problem(*clash);
             } else {
-                const World world(loaded->scene, loaded->meshes, pool.size(), World::ReleaseFlatShapes{});
+                const World world(loaded->scene, loaded->meshes, settings.threads, World::ReleaseFlatShapes{});
                 SceneDescription& scene = loaded->scene;
                 const RenderSettings& full = scene.render;
                 const long samples = long(full.width) * full.height * full.samples;
                 const bool previewed =
                     samples <= kNoPreviewUpTo ||
-                    render_and_write(world, scene, preview_of(full), "preview", pool, listener, settings, events);
+                    render_and_write(world, scene, preview_of(full), Stage::Preview, listener, settings, events);
                 if (previewed && !listener.stale())
-                    render_and_write(world, scene, full, "full", pool, listener, settings, events);
+                    render_and_write(world, scene, full, Stage::Full, listener, settings, events);
             }
         }
         // Step 3: wait for a change, then for a quiet moment (a burst of saves is one change).

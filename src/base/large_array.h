@@ -1,9 +1,8 @@
 // Arrays for the big per-primitive data of a build (hundreds of MB for a million triangles):
 // 64-byte aligned. Resizing leaves new elements of trivial types uninitialised, as `new T[n]`
-// would. Not asked onto transparent huge pages (madvise): measured on this machine, faulting
-// 2 MiB pages cleared in full and compacted for them made whole runs slower (10^6 boxes from a
-// loop: load + build 2.5-3.1 s with them, 1.8 s without; the 940k-triangle bunny 0.24-0.36 s
-// against 0.26-0.27 s) for 2-4% of render time on the biggest meshes (docs/bench/performance.md).
+// would. Not asked onto transparent huge pages (madvise): faulting 2 MiB pages cleared in full
+// and compacted for them made whole runs slower than the render time they saved
+// (docs/bench/code-figures.md).
 #pragma once
 
 #include <cstddef>

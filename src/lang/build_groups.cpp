@@ -1,7 +1,7 @@
 // Groups: a group's placement checked once and turned into transform steps, appended after each
 // shape's own; planes placed by them (round shapes: build_round.cpp).
+#include "lang/internal/validator.h"
 #include "lang/schema.h"
-#include "lang/validator.h"
 #include "scene/placement.h"
 
 namespace tracer {

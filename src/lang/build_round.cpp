@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lang/internal/validator.h"
 #include "lang/schema.h"
-#include "lang/validator.h"
 #include "scene/placement.h"
 
 namespace tracer {

@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/input_file.h"
-#include "lang/validator.h"
+#include "lang/internal/validator.h"
 #include "scene/flat_shapes.h"
 #include "scene/placement.h"
 
@@ -62,8 +62,8 @@ Material Validator::build_material(const Fields& fields, std::string name) {
 // The index of the shape's material: a named one, or its inline block added to the list (once
 // for a material value that many shapes share: `let m = material { ... }`).
 int Validator::material_index(const Fields& fields) {
-    const Value& value = fields.get("material");
-    if (value.kind == Value::Kind::Block) {
+    const PlainValue& value = fields.get("material");
+    if (value.kind == PlainValue::Kind::Block) {
         if (auto shared = value_materials_.find(value.body.get()); shared != value_materials_.end())
             return shared->second.index;
         scene_.materials.push_back(build_material(fields.child("material"), ""));
@@ -81,7 +81,7 @@ int Validator::material_index(const Fields& fields) {
 
 // A material used by name must be defined somewhere in the scene: marks it used, or records
 // the use to be resolved once every block is in (it may be defined further down).
-bool Validator::check_material_name(const Value& value) {
+bool Validator::check_material_name(const PlainValue& value) {
     auto found = named_.find(value.text);
     if (found != named_.end()) {
         found->second.used = true;
@@ -125,8 +125,8 @@ void Validator::build_render(const Block& block, const Fields& fields) {
     render.background = fields.triple("background");
     render.shadows = fields.boolean("shadows");
     render.transparent_shadows = fields.boolean("transparent_shadows");
-    render.spawn_rules = fields.text("spawn_rules") == "spd" ? SpawnRules::Spd : SpawnRules::Tracer;
-    render.antialias = fields.text("antialias") == "adaptive" ? Antialias::Adaptive : Antialias::Uniform;
+    spawn_rules_from_name(fields.text("spawn_rules"), render.spawn_rules);  // checked by the table
+    antialias_from_name(fields.text("antialias"), render.antialias);
     render.adaptive_threshold = fields.number("adaptive_threshold");
     render.adaptive_depth = fields.integer("adaptive_depth");
     render.adaptive_cell = fields.number("adaptive_cell");

@@ -1,4 +1,4 @@
-#include "lang/builtins.h"
+#include "lang/internal/builtins.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,26 +11,26 @@
 namespace tracer {
 
 double BuiltinArguments::number(size_t i) const {
-    const Val& value = values_[i];
+    const RuntimeValue& value = values_[i];
     if (!value.is_number())
-        throw BuiltinError{spans_[i],
-                           "'" + std::string(function_) + "''s argument must be a number; this is " + kind_of(value)};
+        throw BuiltinError{
+            spans_[i], "'" + std::string(function_) + "''s argument must be a number; this is " + runtime_kind(value)};
     return value.x[0];
 }
 
 std::span<const double> BuiltinArguments::vector(size_t i) const {
-    const Val& value = values_[i];
+    const RuntimeValue& value = values_[i];
     if (!value.is_vector() || value.size != 3)
         throw BuiltinError{spans_[i], "'" + std::string(function_) +
-                                          "''s argument must be a vector of 3 numbers; this is " + kind_of(value)};
+                                          "''s argument must be a vector of 3 numbers; this is " + runtime_kind(value)};
     return value.components();
 }
 
-const std::vector<Val>& BuiltinArguments::list(size_t i) const {
-    const Val& value = values_[i];
-    if (value.kind != Val::Kind::List)
-        throw BuiltinError{spans_[i],
-                           "'" + std::string(function_) + "''s argument must be a list; this is " + kind_of(value)};
+const std::vector<RuntimeValue>& BuiltinArguments::list(size_t i) const {
+    const RuntimeValue& value = values_[i];
+    if (value.kind != RuntimeValue::Kind::List)
+        throw BuiltinError{
+            spans_[i], "'" + std::string(function_) + "''s argument must be a list; this is " + runtime_kind(value)};
     return value.items();
 }
 
@@ -46,69 +46,69 @@ double scaled_length(std::span<const double> v, double& largest) {
     return std::sqrt(x * x + y * y + z * z);
 }
 
-Val sqrt_of(const BuiltinArguments& args) {
+RuntimeValue sqrt_of(const BuiltinArguments& args) {
     const double x = args.number(0);
     if (x < 0) throw BuiltinError{args.span(0), "sqrt of a negative number (" + format_number(x) + ")"};
-    return Val::number(std::sqrt(x));
+    return RuntimeValue::number(std::sqrt(x));
 }
 
-Val mod_of(const BuiltinArguments& args) {
+RuntimeValue mod_of(const BuiltinArguments& args) {
     const double a = args.number(0), b = args.number(1);
     if (b == 0) throw BuiltinError{args.span(1), "mod by zero"};
     const double r = std::fmod(a, b);
-    return Val::number(r != 0 && (r < 0) != (b < 0) ? r + b : r);  // the divisor's sign
+    return RuntimeValue::number(r != 0 && (r < 0) != (b < 0) ? r + b : r);  // the divisor's sign
 }
 
-Val abs_of(const BuiltinArguments& args) {
-    if (!args[0].is_vector()) return Val::number(std::abs(args.number(0)));
+RuntimeValue abs_of(const BuiltinArguments& args) {
+    if (!args[0].is_vector()) return RuntimeValue::number(std::abs(args.number(0)));
     std::vector<double> out;
     for (double c : args[0].components()) out.push_back(std::abs(c));
-    return Val::vector(out);
+    return RuntimeValue::vector(out);
 }
 
-Val length_of(const BuiltinArguments& args) {
+RuntimeValue length_of(const BuiltinArguments& args) {
     double largest;
     const double length = scaled_length(args.vector(0), largest);
-    return Val::number(largest * length);
+    return RuntimeValue::number(largest * length);
 }
 
-Val normalize_of(const BuiltinArguments& args) {
+RuntimeValue normalize_of(const BuiltinArguments& args) {
     std::span<const double> v = args.vector(0);
     double largest;
     const double length = scaled_length(v, largest);
     if (largest == 0) throw BuiltinError{args.span(0), "normalize of the zero vector"};
-    return Val::vector3(v[0] / largest / length, v[1] / largest / length, v[2] / largest / length);
+    return RuntimeValue::vector3(v[0] / largest / length, v[1] / largest / length, v[2] / largest / length);
 }
 
-Val pow_of(const BuiltinArguments& args) {
+RuntimeValue pow_of(const BuiltinArguments& args) {
     const double base = args.number(0), exponent = args.number(1);
     if (base < 0 && std::floor(exponent) != exponent)
         throw BuiltinError{args.span(1), "pow of a negative number (" + format_number(base) +
                                              ") to a power that is not whole (" + format_number(exponent) + ")"};
     if (base == 0 && exponent < 0)
         throw BuiltinError{args.span(1), "pow of 0 to a negative power (" + format_number(exponent) + ")"};
-    return Val::number(std::pow(base, exponent));
+    return RuntimeValue::number(std::pow(base, exponent));
 }
 
-Val log_of(const BuiltinArguments& args) {
+RuntimeValue log_of(const BuiltinArguments& args) {
     const double x = args.number(0);
     if (x <= 0) throw BuiltinError{args.span(0), "log of a number not above 0 (" + format_number(x) + ")"};
-    return Val::number(std::log(x));
+    return RuntimeValue::number(std::log(x));
 }
 
 // asin and acos, in degrees, of a number in [-1, 1].
-Val inverse_sine_or_cosine(const BuiltinArguments& args, bool sine) {
+RuntimeValue inverse_sine_or_cosine(const BuiltinArguments& args, bool sine) {
     const double x = args.number(0);
     if (x < -1 || x > 1)
         throw BuiltinError{args.span(0), std::string(sine ? "asin" : "acos") + " of a number outside -1..1 (" +
                                              format_number(x) + ")"};
-    return Val::number((sine ? std::asin(x) : std::acos(x)) / kRadians);
+    return RuntimeValue::number((sine ? std::asin(x) : std::acos(x)) / kRadians);
 }
 
-Val atan2_of(const BuiltinArguments& args) {
+RuntimeValue atan2_of(const BuiltinArguments& args) {
     const double y = args.number(0), x = args.number(1);
     if (x == 0 && y == 0) throw BuiltinError{args.call(), "atan2 of (0, 0): the angle of the zero vector"};
-    return Val::number(std::atan2(y, x) / kRadians);
+    return RuntimeValue::number(std::atan2(y, x) / kRadians);
 }
 
 // SplitMix64's finaliser (Steele, Lea and Flood 2014): a bijection of 64-bit words whose
@@ -127,22 +127,22 @@ uint64_t bits_of(double x) {
     return bits;
 }
 
-Val random_of(const BuiltinArguments& args) {
+RuntimeValue random_of(const BuiltinArguments& args) {
     const uint64_t word = mix64(bits_of(args.number(0)) ^ mix64(bits_of(args.number(1)) + 0x9e3779b97f4a7c15ULL));
-    return Val::number(double(word >> 11) * 0x1.0p-53);  // the top 53 bits: [0, 1)
+    return RuntimeValue::number(double(word >> 11) * 0x1.0p-53);  // the top 53 bits: [0, 1)
 }
 
-Val cross_of(const BuiltinArguments& args) {
+RuntimeValue cross_of(const BuiltinArguments& args) {
     const std::span<const double> a = args.vector(0), b = args.vector(1);
-    return Val::vector3(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
+    return RuntimeValue::vector3(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
 }
 
-Val lerp_of(const BuiltinArguments& args) {
+RuntimeValue lerp_of(const BuiltinArguments& args) {
     const double t = args.number(2);
     if (args[0].is_number() && args[1].is_number())
-        return Val::number(args[0].x[0] + (args[1].x[0] - args[0].x[0]) * t);
+        return RuntimeValue::number(args[0].x[0] + (args[1].x[0] - args[0].x[0]) * t);
     const std::span<const double> a = args.vector(0), b = args.vector(1);
-    return Val::vector3(a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t);
+    return RuntimeValue::vector3(a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t);
 }
 
 }  // namespace
@@ -153,38 +153,38 @@ const std::vector<Builtin>& all_builtins() {
     static const std::vector<Builtin> builtins = {
         {"sqrt", 1, "Square root (of a number not below 0).", sqrt_of},
         {"sin", 1, "Sine of an angle in degrees.",
-         [](Args args) { return Val::number(std::sin(args.number(0) * kRadians)); }},
+         [](Args args) { return RuntimeValue::number(std::sin(args.number(0) * kRadians)); }},
         {"cos", 1, "Cosine of an angle in degrees.",
-         [](Args args) { return Val::number(std::cos(args.number(0) * kRadians)); }},
+         [](Args args) { return RuntimeValue::number(std::cos(args.number(0) * kRadians)); }},
         {"tan", 1, "Tangent of an angle in degrees.",
-         [](Args args) { return Val::number(std::tan(args.number(0) * kRadians)); }},
+         [](Args args) { return RuntimeValue::number(std::tan(args.number(0) * kRadians)); }},
         {"abs", 1, "Absolute value, of a number or of each component of a vector.", abs_of},
         {"floor", 1, "The largest whole number not above.",
-         [](Args args) { return Val::number(std::floor(args.number(0))); }},
+         [](Args args) { return RuntimeValue::number(std::floor(args.number(0))); }},
         {"min", 2, "The smaller of two numbers.",
-         [](Args args) { return Val::number(std::min(args.number(0), args.number(1))); }},
+         [](Args args) { return RuntimeValue::number(std::min(args.number(0), args.number(1))); }},
         {"max", 2, "The larger of two numbers.",
-         [](Args args) { return Val::number(std::max(args.number(0), args.number(1))); }},
+         [](Args args) { return RuntimeValue::number(std::max(args.number(0), args.number(1))); }},
         {"mod", 2, "Remainder of a / b, with b's sign: mod(-1, 3) is 2.", mod_of},
         {"length", 1, "Length of a vector.", length_of},
         {"normalize", 1, "The vector scaled to length 1 (not the zero vector).", normalize_of},
         {"dot", 2, "Dot product of two vectors.",
          [](Args args) {
              const std::span<const double> a = args.vector(0), b = args.vector(1);
-             return Val::number(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+             return RuntimeValue::number(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
          }},
         {"cross", 2, "Cross product of two vectors (right-handed).", cross_of},
         {"lerp", 3, "lerp(a, b, t) = a + (b - a) t, of numbers or of vectors.", lerp_of},
         {"pow", 2, "pow(a, b) = a to the power b (a negative a takes a whole b; 0 takes b >= 0).", pow_of},
         {"exp", 1, "e to the power of a number.",
-         [](Args args) { return Val::number(std::exp(args.number(0))); }},
+         [](Args args) { return RuntimeValue::number(std::exp(args.number(0))); }},
         {"log", 1, "Natural logarithm of a number above 0.", log_of},
         {"asin", 1, "Inverse sine, in degrees (-90 to 90), of a number in -1..1.",
          [](Args args) { return inverse_sine_or_cosine(args, true); }},
         {"acos", 1, "Inverse cosine, in degrees (0 to 180), of a number in -1..1.",
          [](Args args) { return inverse_sine_or_cosine(args, false); }},
         {"atan", 1, "Inverse tangent, in degrees (-90 to 90).",
-         [](Args args) { return Val::number(std::atan(args.number(0)) / kRadians); }},
+         [](Args args) { return RuntimeValue::number(std::atan(args.number(0)) / kRadians); }},
         {"atan2", 2, "atan2(y, x): the angle of the point (x, y) from the x axis, in degrees (-180 to 180].",
          atan2_of},
         {"random", 2,
@@ -192,7 +192,7 @@ const std::vector<Builtin>& all_builtins() {
          "unrelated for different ones (SplitMix64 of their bits; see grammar/README.md).",
          random_of},
         {"len", 1, "The number of values in a list.",
-         [](Args args) { return Val::number(double(args.list(0).size())); }},
+         [](Args args) { return RuntimeValue::number(double(args.list(0).size())); }},
     };
     // clang-format on
     return builtins;

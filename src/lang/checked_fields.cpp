@@ -1,4 +1,4 @@
-#include "lang/checked_fields.h"
+#include "lang/internal/checked_fields.h"
 
 #include <map>
 #include <stdexcept>
@@ -9,15 +9,15 @@ namespace tracer {
 
 // Every table's defaults, parsed once (on first use, by whichever thread comes first) and read
 // without a lock after that.
-const Value& default_of(const KeySpec& key) {
-    static const std::map<const KeySpec*, Value> defaults = [] {
-        std::map<const KeySpec*, Value> parsed;
+const PlainValue& default_of(const KeySpec& key) {
+    static const std::map<const KeySpec*, PlainValue> defaults = [] {
+        std::map<const KeySpec*, PlainValue> parsed;
         for (const BlockSpec* spec : all_block_specs()) {
             for (const KeySpec& row : spec->keys) {
                 if (row.required()) continue;
                 SourceFile file("<default>", std::string(row.default_value));
                 Diagnostics ignored;
-                Value value;
+                PlainValue value;
                 if (!evaluate_single_value(file, ignored, value)) std::abort();  // a broken table: a bug
                 parsed.emplace(&row, std::move(value));
             }

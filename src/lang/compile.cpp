@@ -1,35 +1,35 @@
-#include "lang/compile.h"
+#include "lang/internal/compile.h"
 
 #include <algorithm>
 #include <filesystem>
 
 #include "base/input_file.h"
-#include "lang/builtins.h"
-#include "lang/parser.h"
+#include "lang/internal/builtins.h"
+#include "lang/internal/parser.h"
+#include "lang/internal/suggest.h"
+#include "lang/internal/take_apart.h"
 #include "lang/schema.h"
-#include "lang/suggest.h"
-#include "lang/take_apart.h"
 
 namespace tracer {
 
 namespace fs = std::filesystem;
 
-Node::~Node() {
+ExprCode::~ExprCode() {
     take_apart(operands);
 }
 
 namespace {
 
-Node leaf(Node::Op op, Span span, uint32_t index = 0) {
-    Node node;
+ExprCode leaf(ExprCode::Op op, Span span, uint32_t index = 0) {
+    ExprCode node;
     node.op = op;
     node.span = span;
     node.index = index;
     return node;
 }
 
-Node constant(Val value, Span span) {
-    Node node = leaf(Node::Op::Constant, span);
+ExprCode constant(RuntimeValue value, Span span) {
+    ExprCode node = leaf(ExprCode::Op::Constant, span);
     node.constant = std::move(value);
     return node;
 }
@@ -70,11 +70,11 @@ static bool may_be_word(const KeySpec* key, const Expr& value) {
     }
 }
 
-void Compiler::compile_top_level(const Statement& statement, std::vector<Step>& out) {
+void Compiler::compile_top_level(const Statement& statement, std::vector<StatementCode>& out) {
     compile_statement(statement, out);
 }
 
-bool Compiler::compile_lone_value(const Expr& expr, bool top, Node& out) {
+bool Compiler::compile_lone_value(const Expr& expr, bool top, ExprCode& out) {
     try {
         out = compile_expression(expr, top);
     } catch (const CompileError&) {
@@ -83,7 +83,7 @@ bool Compiler::compile_lone_value(const Expr& expr, bool top, Node& out) {
     return true;
 }
 
-void Compiler::compile_statements(const std::vector<Statement>& statements, std::vector<Step>& out) {
+void Compiler::compile_statements(const std::vector<Statement>& statements, std::vector<StatementCode>& out) {
     for (const Statement& statement : statements) {
         if (diagnostics_.saturated()) return;
         compile_statement(statement, out);
@@ -100,7 +100,7 @@ void Compiler::close_scope() {
     level.scopes.pop_back();
 }
 
-void Compiler::compile_scoped(const std::vector<Statement>& statements, std::vector<Step>& out) {
+void Compiler::compile_scoped(const std::vector<Statement>& statements, std::vector<StatementCode>& out) {
     open_scope();
     compile_statements(statements, out);
     close_scope();
@@ -130,33 +130,33 @@ uint32_t Compiler::bind(const std::string& name, Span defined_at, std::string_vi
 
 // The node that reads `name` from the code at `level`: a slot of its frame, a global, the
 // function itself, or a value captured from the levels around it (captured on first use).
-bool Compiler::resolve(const std::string& name, size_t level, Span span, Node& out) {
+bool Compiler::resolve(const std::string& name, size_t level, Span span, ExprCode& out) {
     FunctionLevel& here = functions_[level];
     for (size_t s = here.scopes.size(); s-- > 0;) {
         auto found = here.scopes[s].find(name);
         if (found == here.scopes[s].end()) continue;
-        out = leaf(level == 0 && s == 0 ? Node::Op::Global : Node::Op::Local, span, found->second.slot);
+        out = leaf(level == 0 && s == 0 ? ExprCode::Op::Global : ExprCode::Op::Local, span, found->second.slot);
         return true;
     }
     if (level == 0) return false;
     if (here.code->name == name) {
-        out = leaf(Node::Op::Self, span);
+        out = leaf(ExprCode::Op::Self, span);
         return true;
     }
     if (auto known = here.capture_index.find(name); known != here.capture_index.end()) {
-        out = leaf(Node::Op::Capture, span, known->second);
+        out = leaf(ExprCode::Op::Capture, span, known->second);
         return true;
     }
-    Node outer;
+    ExprCode outer;
     if (!resolve(name, level - 1, span, outer)) return false;
-    if (outer.op == Node::Op::Global) {
+    if (outer.op == ExprCode::Op::Global) {
         out = std::move(outer);
         return true;
     }
     const uint32_t index = uint32_t(here.code->captures.size());
     here.code->captures.push_back(std::move(outer));
     here.capture_index.emplace(name, index);
-    out = leaf(Node::Op::Capture, span, index);
+    out = leaf(ExprCode::Op::Capture, span, index);
     return true;
 }
 
@@ -168,15 +168,15 @@ std::vector<std::string_view> Compiler::names_in_scope() const {
     return names;
 }
 
-void Compiler::compile_statement(const Statement& statement, std::vector<Step>& out) {
-    Step step;
+void Compiler::compile_statement(const Statement& statement, std::vector<StatementCode>& out) {
+    StatementCode step;
     step.keyword = statement.keyword;
     step.name = statement.name;
     step.name_span = statement.name_span;
     step.word = statement.word;
     switch (statement.kind) {
         case Statement::Kind::Block: {
-            step.op = Step::Op::Block;
+            step.op = StatementCode::Op::Block;
             step.broken = statement.broken;
             if (statement.word == "material" && !statement.name.empty())
                 record(statement.name, statement.name_span, "material");
@@ -187,23 +187,23 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Step>& 
         }
         case Statement::Kind::Let:
         case Statement::Kind::Param: {
-            step.op = statement.kind == Statement::Kind::Let ? Step::Op::Let : Step::Op::Param;
+            step.op = statement.kind == Statement::Kind::Let ? StatementCode::Op::Let : StatementCode::Op::Param;
             try {
                 step.value = compile_expression(statement.value);
             } catch (const CompileError&) {
-                step.value = constant(Val::broken(), statement.value.span);  // uses are not errors too
+                step.value = constant(RuntimeValue::broken(), statement.value.span);  // uses are not errors too
             }
-            step.slot = bind(statement.name, statement.name_span, step.op == Step::Op::Let ? "let" : "param");
-            if (step.op == Step::Op::Param) parameters_.emplace_back(statement.name, step.slot);
+            step.slot = bind(statement.name, statement.name_span, step.op == StatementCode::Op::Let ? "let" : "param");
+            if (step.op == StatementCode::Op::Param) parameters_.emplace_back(statement.name, step.slot);
             break;
         }
         case Statement::Kind::For: return compile_loop(statement, out);
         case Statement::Kind::If: {
-            step.op = Step::Op::If;
+            step.op = StatementCode::Op::If;
             try {
                 step.value = compile_expression(statement.value);
             } catch (const CompileError&) {
-                step.value = constant(Val::broken(), statement.value.span);
+                step.value = constant(RuntimeValue::broken(), statement.value.span);
             }
             compile_scoped(statement.statements, step.steps);
             compile_scoped(statement.otherwise, step.otherwise);
@@ -211,21 +211,21 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Step>& 
         }
         case Statement::Kind::Function: return compile_function(statement, out);
         case Statement::Kind::Return:
-            step.op = Step::Op::Return;
+            step.op = StatementCode::Op::Return;
             step.has_value = statement.has_value;
             if (step.has_value) {
                 try {
                     step.value = compile_expression(statement.value);
                 } catch (const CompileError&) {
-                    step.value = constant(Val::broken(), statement.value.span);
+                    step.value = constant(RuntimeValue::broken(), statement.value.span);
                 }
             }
             break;
         case Statement::Kind::Call:
-            step.op = Step::Op::Call;
+            step.op = StatementCode::Op::Call;
             try {
                 step.value = compile_expression(statement.value);
-                if (step.value.op == Node::Op::Builtin)
+                if (step.value.op == ExprCode::Op::Builtin)
                     fail(statement.value.span, "'" + statement.value.text +
                                                    "' is a built-in function: it gives a value and makes no "
                                                    "blocks; use its value, as in 'let x = " +
@@ -235,7 +235,7 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Step>& 
             }
             break;
         case Statement::Kind::Group: {
-            step.op = Step::Op::Group;
+            step.op = StatementCode::Op::Group;
             bool failed = false;
             step.body = compile_body(statement.body, "group", &group_spec(), failed);
             step.broken = failed;
@@ -247,9 +247,9 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Step>& 
     out.push_back(std::move(step));
 }
 
-void Compiler::compile_loop(const Statement& statement, std::vector<Step>& out) {
-    Step loop;
-    loop.op = statement.over_list ? Step::Op::Each : Step::Op::Range;
+void Compiler::compile_loop(const Statement& statement, std::vector<StatementCode>& out) {
+    StatementCode loop;
+    loop.op = statement.over_list ? StatementCode::Op::Each : StatementCode::Op::Range;
     loop.keyword = statement.keyword;
     loop.name = statement.name;
     loop.name_span = statement.name_span;
@@ -269,9 +269,9 @@ void Compiler::compile_loop(const Statement& statement, std::vector<Step>& out) 
     out.push_back(std::move(loop));
 }
 
-void Compiler::compile_function(const Statement& statement, std::vector<Step>& out) {
-    Step step;
-    step.op = Step::Op::Function;
+void Compiler::compile_function(const Statement& statement, std::vector<StatementCode>& out) {
+    StatementCode step;
+    step.op = StatementCode::Op::Function;
     step.keyword = statement.keyword;
     step.name = statement.name;
     step.name_span = statement.name_span;
@@ -297,7 +297,7 @@ void Compiler::compile_function(const Statement& statement, std::vector<Step>& o
 
 // The included file read (once: again from the text held), parsed and compiled in place, its
 // names joining the scope of the include.
-void Compiler::compile_include(const Statement& statement, std::vector<Step>& out) {
+void Compiler::compile_include(const Statement& statement, std::vector<StatementCode>& out) {
     const Span path_span = statement.name_span;
     const SourceFile& including = sources_.file(path_span);
     fs::path path = statement.word;
@@ -333,8 +333,8 @@ void Compiler::compile_include(const Statement& statement, std::vector<Step>& ou
                            "the scene includes more than 256 MiB of text in all (each include counted; the limit)");
         return;
     }
-    Step step;
-    step.op = Step::Op::Include;
+    StatementCode step;
+    step.op = StatementCode::Op::Include;
     step.keyword = statement.keyword;
     step.name_span = path_span;
     step.word = statement.word;
@@ -370,7 +370,7 @@ std::shared_ptr<CompiledBody> Compiler::compile_body(const BodyCode& code, const
             out.body = compile_body(*entry.value.body, entry.key, nested, failed);
         } else {
             try {
-                Node named;
+                ExprCode named;
                 if (key && key->type == ValueType::Path && entry.value.kind != Expr::Kind::String &&
                     !(entry.value.kind == Expr::Kind::Name &&
                       resolve(entry.value.text, functions_.size() - 1, entry.value.span, named)))

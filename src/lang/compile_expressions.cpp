@@ -1,17 +1,17 @@
 // The compiler's expressions: names resolved, built-ins found, chains of + - * / made flat.
 #include <algorithm>
 
-#include "lang/builtins.h"
-#include "lang/compile.h"
+#include "lang/internal/builtins.h"
+#include "lang/internal/compile.h"
+#include "lang/internal/suggest.h"
 #include "lang/schema.h"
-#include "lang/suggest.h"
 
 namespace tracer {
 
 namespace {
 
-Node node_of(Node::Op op, Span span) {
-    Node node;
+ExprCode node_of(ExprCode::Op op, Span span) {
+    ExprCode node;
     node.op = op;
     node.span = span;
     return node;
@@ -19,26 +19,26 @@ Node node_of(Node::Op op, Span span) {
 
 }  // namespace
 
-Node Compiler::compile_expression(const Expr& expr, bool top, bool word_key) {
-    Node node = node_of(Node::Op::Constant, expr.span);
-    auto operands = [&](Node::Op op) {
+ExprCode Compiler::compile_expression(const Expr& expr, bool top, bool word_key) {
+    ExprCode node = node_of(ExprCode::Op::Constant, expr.span);
+    auto operands = [&](ExprCode::Op op) {
         node.op = op;
         for (const Expr& operand : expr.operands) node.operands.push_back(compile_expression(operand));
         return std::move(node);
     };
     switch (expr.kind) {
-        case Expr::Kind::Number: node.constant = Val::number(expr.number); return node;
-        case Expr::Kind::String: node.constant = Val::string(expr.text); return node;
-        case Expr::Kind::Bool: node.constant = Val::boolean(expr.number != 0); return node;
+        case Expr::Kind::Number: node.constant = RuntimeValue::number(expr.number); return node;
+        case Expr::Kind::String: node.constant = RuntimeValue::string(expr.text); return node;
+        case Expr::Kind::Bool: node.constant = RuntimeValue::boolean(expr.number != 0); return node;
         case Expr::Kind::Name: return compile_name(expr, top, word_key);
-        case Expr::Kind::Vector: return operands(Node::Op::Vector);
-        case Expr::Kind::List: return operands(Node::Op::List);
-        case Expr::Kind::Unary: return operands(expr.op == '-' ? Node::Op::Negate : Node::Op::Plus);
-        case Expr::Kind::Not: return operands(Node::Op::Not);
+        case Expr::Kind::Vector: return operands(ExprCode::Op::Vector);
+        case Expr::Kind::List: return operands(ExprCode::Op::List);
+        case Expr::Kind::Unary: return operands(expr.op == '-' ? ExprCode::Op::Negate : ExprCode::Op::Plus);
+        case Expr::Kind::Not: return operands(ExprCode::Op::Not);
         case Expr::Kind::Binary: return compile_arithmetic(expr);
-        case Expr::Kind::Compare: node.text = expr.text; return operands(Node::Op::Compare);
-        case Expr::Kind::Logical: return operands(expr.text == "and" ? Node::Op::And : Node::Op::Or);
-        case Expr::Kind::Conditional: return operands(Node::Op::Conditional);
+        case Expr::Kind::Compare: node.text = expr.text; return operands(ExprCode::Op::Compare);
+        case Expr::Kind::Logical: return operands(expr.text == "and" ? ExprCode::Op::And : ExprCode::Op::Or);
+        case Expr::Kind::Conditional: return operands(ExprCode::Op::Conditional);
         case Expr::Kind::Call: return compile_call(expr);
         case Expr::Kind::Component: {
             static const std::string_view kNames[] = {"x", "y", "z"};
@@ -47,13 +47,13 @@ Node Compiler::compile_expression(const Expr& expr, bool top, bool word_key) {
                 fail(expr.span, "a vector's components are x, y and z; found " + in_quotes(expr.text) +
                                     did_you_mean(expr.text, {"x", "y", "z"}));
             node.index = uint32_t(found - std::begin(kNames));
-            return operands(Node::Op::Component);
+            return operands(ExprCode::Op::Component);
         }
-        case Expr::Kind::Index: return operands(Node::Op::Index);
+        case Expr::Kind::Index: return operands(ExprCode::Op::Index);
         case Expr::Kind::Block: {
             if (expr.text.empty()) fail(expr.span, "a block { ... } is not a value here");
             bool failed = false;
-            node.op = Node::Op::Block;
+            node.op = ExprCode::Op::Block;
             node.text = expr.text;
             node.block = compile_body(*expr.body, expr.text, find_block_spec(expr.text), failed);
             if (failed) throw CompileError{};
@@ -66,11 +66,11 @@ Node Compiler::compile_expression(const Expr& expr, bool top, bool word_key) {
 // a + b - c ... (or a * b / c ...) is a tree as deep as it is long, on its left side: walked
 // down that side iteratively and made one node of operands and operators, so that no length of
 // chain can exhaust the native stack (right operands are bounded by the parentheses' limit).
-Node Compiler::compile_arithmetic(const Expr& expr) {
+ExprCode Compiler::compile_arithmetic(const Expr& expr) {
     std::vector<const Expr*> chain;  // the operations down the left side, outermost first
     const Expr* leftmost = &expr;
     for (; leftmost->kind == Expr::Kind::Binary; leftmost = &leftmost->operands[0]) chain.push_back(leftmost);
-    Node node = node_of(Node::Op::Arithmetic, expr.span);
+    ExprCode node = node_of(ExprCode::Op::Arithmetic, expr.span);
     node.operands.reserve(chain.size() + 1);
     node.operands.push_back(compile_expression(*leftmost));
     for (size_t k = chain.size(); k-- > 0;) {
@@ -84,19 +84,19 @@ Node Compiler::compile_arithmetic(const Expr& expr) {
 // validator (a material, `sah`), unless it is close to a name in scope, which makes it a
 // misspelled name; a built-in constant (pi) comes after the scene's names and before a word,
 // except for a key that takes a word.
-Node Compiler::compile_name(const Expr& expr, bool top, bool word_key) {
-    Node node;
+ExprCode Compiler::compile_name(const Expr& expr, bool top, bool word_key) {
+    ExprCode node;
     if (resolve(expr.text, functions_.size() - 1, expr.span, node)) return node;
     const BuiltinConstant* builtin = word_key ? nullptr : find_constant(expr.text);
     if (builtin) {
-        node = node_of(Node::Op::Constant, expr.span);
-        node.constant = Val::number(builtin->value);
+        node = node_of(ExprCode::Op::Constant, expr.span);
+        node.constant = RuntimeValue::number(builtin->value);
         return node;
     }
     const std::vector<std::string_view> names = names_in_scope();
     const std::string suggestion = names.empty() ? "" : did_you_mean(expr.text, names);
     if (top && (names_nan_or_infinity(expr.text) || suggestion.empty())) {
-        node = node_of(Node::Op::Word, expr.span);
+        node = node_of(ExprCode::Op::Word, expr.span);
         node.text = expr.text;
         return node;
     }
@@ -106,11 +106,11 @@ Node Compiler::compile_name(const Expr& expr, bool top, bool word_key) {
 }
 
 // A call: of the function a name in scope holds, else of the built-in of that name.
-Node Compiler::compile_call(const Expr& expr) {
+ExprCode Compiler::compile_call(const Expr& expr) {
     const Span name_span{expr.span.begin, expr.span.begin + uint32_t(expr.text.size()), expr.span.origin};
-    Node node = node_of(Node::Op::Call, expr.span);
+    ExprCode node = node_of(ExprCode::Op::Call, expr.span);
     node.text = expr.text;
-    Node callee;
+    ExprCode callee;
     if (resolve(expr.text, functions_.size() - 1, name_span, callee)) {
         node.operands.push_back(std::move(callee));
         for (const Expr& operand : expr.operands) node.operands.push_back(compile_expression(operand));
@@ -122,7 +122,7 @@ Node Compiler::compile_call(const Expr& expr) {
         for (const Builtin& builtin : all_builtins()) names.push_back(builtin.name);
         fail(name_span, "unknown function " + in_quotes(expr.text) + did_you_mean(expr.text, names));
     }
-    node.op = Node::Op::Builtin;
+    node.op = ExprCode::Op::Builtin;
     node.builtin = function;
     for (const Expr& operand : expr.operands) node.operands.push_back(compile_expression(operand));
     if (node.operands.size() != function->arity)

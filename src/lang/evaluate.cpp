@@ -3,14 +3,14 @@
 #include <cmath>
 
 #include "base/big_stack.h"
-#include "lang/builtins.h"
-#include "lang/interpreter_class.h"
+#include "lang/internal/builtins.h"
+#include "lang/internal/interpreter_class.h"
 #include "lang/schema.h"
 
 namespace tracer {
 
 // Non-finite results (1e300 * 1e300, 0 * huge / tiny) are errors where they happen.
-Val Interpreter::finite(Val value, Span span) {
+RuntimeValue Interpreter::finite(RuntimeValue value, Span span) {
     bool ok = true;
     if (value.is_number()) ok = std::isfinite(value.x[0]);
     if (value.is_vector())
@@ -19,70 +19,72 @@ Val Interpreter::finite(Val value, Span span) {
     return value;
 }
 
-double Interpreter::number_operand(const Val& value, Span span, const std::string& what) {
-    if (value.kind == Val::Kind::Broken) throw EvaluationError{};
-    if (!value.is_number()) fail(span, what + " must be a number; this is " + kind_of(value));
+double Interpreter::number_operand(const RuntimeValue& value, Span span, const std::string& what) {
+    if (value.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
+    if (!value.is_number()) fail(span, what + " must be a number; this is " + runtime_kind(value));
     return value.x[0];
 }
 
-bool Interpreter::condition(const Node& node) {
-    const Val value = evaluate(node);
-    if (value.kind != Val::Kind::Bool)
-        fail(node.span, "a condition must be true or false; this is " + kind_of(value) +
+bool Interpreter::condition(const ExprCode& node) {
+    const RuntimeValue value = evaluate(node);
+    if (value.kind != RuntimeValue::Kind::Bool)
+        fail(node.span, "a condition must be true or false; this is " + runtime_kind(value) +
                             (value.is_number() ? " (compare it, as in 'x != 0')" : ""));
     return value.x[0] != 0;
 }
 
 // The value of `node`. Its frame is kept small (each call of a scene's function nests it
 // again on the native stack): the cases with arrays or messages are functions of their own.
-Val Interpreter::evaluate(const Node& node) {
+RuntimeValue Interpreter::evaluate(const ExprCode& node) {
     switch (node.op) {
-        case Node::Op::Constant:
-            if (node.constant.kind == Val::Kind::Broken) throw EvaluationError{};  // reported when compiled
+        case ExprCode::Op::Constant:
+            if (node.constant.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};  // reported when compiled
             return node.constant;
-        case Node::Op::Local:
-        case Node::Op::Global: {
-            const Val& value = node.op == Node::Op::Local ? slot(node.index) : stack_[node.index];
-            if (value.kind == Val::Kind::Broken) throw EvaluationError{};  // its definition's error is reported
+        case ExprCode::Op::Local:
+        case ExprCode::Op::Global: {
+            const RuntimeValue& value = node.op == ExprCode::Op::Local ? slot(node.index) : stack_[node.index];
+            if (value.kind == RuntimeValue::Kind::Broken)
+                throw EvaluationError{};  // its definition's error is reported
             return value;
         }
-        case Node::Op::Capture: {
-            const Val& value = running_.function().captures[node.index];
-            if (value.kind == Val::Kind::Broken) throw EvaluationError{};
+        case ExprCode::Op::Capture: {
+            const RuntimeValue& value = running_.function().captures[node.index];
+            if (value.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
             return value;
         }
-        case Node::Op::Self: return running_;
-        case Node::Op::Vector: return evaluate_vector(node);
-        case Node::Op::List: return evaluate_list(node);
-        case Node::Op::Negate:
-        case Node::Op::Plus: return evaluate_sign(node);
-        case Node::Op::Not: return Val::boolean(!condition(node.operands[0]));
-        case Node::Op::Arithmetic: return evaluate_arithmetic(node);
-        case Node::Op::Compare: return evaluate_compare(node);
-        case Node::Op::And:
-            for (const Node& operand : node.operands)
-                if (!condition(operand)) return Val::boolean(false);
-            return Val::boolean(true);
-        case Node::Op::Or:
-            for (const Node& operand : node.operands)
-                if (condition(operand)) return Val::boolean(true);
-            return Val::boolean(false);
-        case Node::Op::Builtin: return evaluate_builtin(node);
-        case Node::Op::Call: return call(node, true);
-        case Node::Op::Component: return evaluate_component(node);
-        case Node::Op::Index: return evaluate_index(node);
-        case Node::Op::Conditional: return evaluate(condition(node.operands[0]) ? node.operands[1] : node.operands[2]);
-        case Node::Op::Block: return evaluate_block(node);
-        case Node::Op::Word: break;
+        case ExprCode::Op::Self: return running_;
+        case ExprCode::Op::Vector: return evaluate_vector(node);
+        case ExprCode::Op::List: return evaluate_list(node);
+        case ExprCode::Op::Negate:
+        case ExprCode::Op::Plus: return evaluate_sign(node);
+        case ExprCode::Op::Not: return RuntimeValue::boolean(!condition(node.operands[0]));
+        case ExprCode::Op::Arithmetic: return evaluate_arithmetic(node);
+        case ExprCode::Op::Compare: return evaluate_compare(node);
+        case ExprCode::Op::And:
+            for (const ExprCode& operand : node.operands)
+                if (!condition(operand)) return RuntimeValue::boolean(false);
+            return RuntimeValue::boolean(true);
+        case ExprCode::Op::Or:
+            for (const ExprCode& operand : node.operands)
+                if (condition(operand)) return RuntimeValue::boolean(true);
+            return RuntimeValue::boolean(false);
+        case ExprCode::Op::Builtin: return evaluate_builtin(node);
+        case ExprCode::Op::Call: return call(node, true);
+        case ExprCode::Op::Component: return evaluate_component(node);
+        case ExprCode::Op::Index: return evaluate_index(node);
+        case ExprCode::Op::Conditional:
+            return evaluate(condition(node.operands[0]) ? node.operands[1] : node.operands[2]);
+        case ExprCode::Op::Block: return evaluate_block(node);
+        case ExprCode::Op::Word: break;
     }
     fail_undefined(node);
 }
 
-void Interpreter::fail_undefined(const Node& node) {
-    fail(node.span, node.op == Node::Op::Word ? "undefined name " + in_quotes(node.text) : "not a value");
+void Interpreter::fail_undefined(const ExprCode& node) {
+    fail(node.span, node.op == ExprCode::Op::Word ? "undefined name " + in_quotes(node.text) : "not a value");
 }
 
-Val Interpreter::evaluate_vector(const Node& node) {
+RuntimeValue Interpreter::evaluate_vector(const ExprCode& node) {
     double components[16];
     std::vector<double> many;
     for (size_t i = 0; i < node.operands.size(); ++i) {
@@ -91,87 +93,87 @@ Val Interpreter::evaluate_vector(const Node& node) {
         if (i == 16) many.assign(components, components + 16);
         if (i >= 16) many.push_back(c);
     }
-    if (node.operands.size() > 16) return Val::vector(many);
-    return Val::vector({components, node.operands.size()});
+    if (node.operands.size() > 16) return RuntimeValue::vector(many);
+    return RuntimeValue::vector({components, node.operands.size()});
 }
 
-Val Interpreter::evaluate_sign(const Node& node) {
-    Val value = evaluate(node.operands[0]);
-    if (value.kind == Val::Kind::Broken) throw EvaluationError{};
+RuntimeValue Interpreter::evaluate_sign(const ExprCode& node) {
+    RuntimeValue value = evaluate(node.operands[0]);
+    if (value.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
     if (!value.is_number() && !value.is_vector())
-        fail(node.operands[0].span, std::string("'") + (node.op == Node::Op::Negate ? '-' : '+') +
-                                        "' applies to numbers and vectors; this is " + kind_of(value));
-    if (node.op == Node::Op::Plus) return value;
+        fail(node.operands[0].span, std::string("'") + (node.op == ExprCode::Op::Negate ? '-' : '+') +
+                                        "' applies to numbers and vectors; this is " + runtime_kind(value));
+    if (node.op == ExprCode::Op::Plus) return value;
     if (value.object) {
         std::vector<double> negated;
         for (double c : value.components()) negated.push_back(-c);
-        return Val::vector(negated);
+        return RuntimeValue::vector(negated);
     }
     for (double& c : value.x) c = -c;
     return value;
 }
 
-Val Interpreter::evaluate_component(const Node& node) {
-    const Val value = evaluate(node.operands[0]);
+RuntimeValue Interpreter::evaluate_component(const ExprCode& node) {
+    const RuntimeValue value = evaluate(node.operands[0]);
     static const char* kNames[] = {"x", "y", "z"};
     if (!value.is_vector() || value.components().size() <= node.index)
         fail(node.operands[0].span,
-             std::string("'.") + kNames[node.index] + "' needs a vector; this is " + kind_of(value));
-    return Val::number(value.components()[node.index]);
+             std::string("'.") + kNames[node.index] + "' needs a vector; this is " + runtime_kind(value));
+    return RuntimeValue::number(value.components()[node.index]);
 }
 
-Val Interpreter::evaluate_block(const Node& node) {
+RuntimeValue Interpreter::evaluate_block(const ExprCode& node) {
     bool failed = false;
     auto block = std::make_shared<BlockObject>();
     block->kind = node.text;
     block->body = make_body(*node.block, failed);
     if (failed) throw EvaluationError{};
-    Val value;
-    value.kind = Val::Kind::Block;
+    RuntimeValue value;
+    value.kind = RuntimeValue::Kind::Block;
     value.object = std::move(block);
     return value;
 }
 
-Val Interpreter::evaluate_list(const Node& node) {
+RuntimeValue Interpreter::evaluate_list(const ExprCode& node) {
     list_items_ += node.operands.size();
     if (list_items_ > limits_.max_list_items)
         stop(node.span,
              "the scene makes more than " + std::to_string(limits_.max_list_items) + " list items (the limit)");
-    std::vector<Val> items;
+    std::vector<RuntimeValue> items;
     items.reserve(node.operands.size());
-    for (const Node& operand : node.operands) {
+    for (const ExprCode& operand : node.operands) {
         items.push_back(evaluate(operand));
-        if (items.back().kind == Val::Kind::Broken) throw EvaluationError{};
+        if (items.back().kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
     }
-    return Val::list(std::move(items));
+    return RuntimeValue::list(std::move(items));
 }
 
-Val Interpreter::evaluate_index(const Node& node) {
-    const Val container = evaluate(node.operands[0]);
-    const Node& index_node = node.operands[1];
+RuntimeValue Interpreter::evaluate_index(const ExprCode& node) {
+    const RuntimeValue container = evaluate(node.operands[0]);
+    const ExprCode& index_node = node.operands[1];
     const double index = number_operand(evaluate(index_node), index_node.span, "an index");
     size_t size = 0;
-    if (container.kind == Val::Kind::List)
+    if (container.kind == RuntimeValue::Kind::List)
         size = container.items().size();
     else if (container.is_vector())
         size = container.components().size();
     else
-        fail(node.operands[0].span, "'[...]' picks from a list or a vector; this is " + kind_of(container));
+        fail(node.operands[0].span, "'[...]' picks from a list or a vector; this is " + runtime_kind(container));
     if (std::floor(index) != index || index < 0)
         fail(index_node.span, "an index is a whole number from 0; this is " + format_number(index));
     if (index >= double(size))
-        fail(index_node.span, "index " + format_number(index) + " is past the end: " + kind_of(container) +
+        fail(index_node.span, "index " + format_number(index) + " is past the end: " + runtime_kind(container) +
                                   (size == 0 ? " has none" : " has indexes 0 to " + std::to_string(size - 1)));
-    if (container.kind == Val::Kind::List) return container.items()[size_t(index)];
-    return Val::number(container.components()[size_t(index)]);
+    if (container.kind == RuntimeValue::Kind::List) return container.items()[size_t(index)];
+    return RuntimeValue::number(container.components()[size_t(index)]);
 }
 
 // A chain a + b - c ... (or a * b / c ...), folded left to right.
-Val Interpreter::evaluate_arithmetic(const Node& node) {
-    Val result = evaluate(node.operands[0]);
+RuntimeValue Interpreter::evaluate_arithmetic(const ExprCode& node) {
+    RuntimeValue result = evaluate(node.operands[0]);
     Span left = node.operands[0].span;
     for (size_t k = 1; k < node.operands.size(); ++k) {
-        const Node& operand = node.operands[k];
+        const ExprCode& operand = node.operands[k];
         const Span span{node.operands[0].span.begin, operand.span.end, node.span.origin};
         result = arithmetic(node.text[k - 1], result, evaluate(operand), left, operand.span, span);
         left = span;
@@ -180,19 +182,20 @@ Val Interpreter::evaluate_arithmetic(const Node& node) {
 }
 
 // a `operation` b, the operands written at `a_span` and `b_span`, the whole at `span`.
-Val Interpreter::arithmetic(char operation, const Val& a, const Val& b, Span a_span, Span b_span, Span span) {
+RuntimeValue Interpreter::arithmetic(char operation, const RuntimeValue& a, const RuntimeValue& b, Span a_span,
+                                     Span b_span, Span span) {
     if (a.is_number() && b.is_number()) {  // the common case first, with nothing to allocate
         if (operation == '/' && b.x[0] == 0) fail(b_span, "division by zero");
         const double x = a.x[0], y = b.x[0];
         const double result = operation == '+' ? x + y : operation == '-' ? x - y : operation == '*' ? x * y : x / y;
         if (!std::isfinite(result)) fail(span, "this expression's value is not finite (too large for a double)");
-        return Val::number(result);
+        return RuntimeValue::number(result);
     }
     const std::string op = std::string("'") + operation + "'";
     for (const auto& [operand, where] : {std::pair{&a, a_span}, std::pair{&b, b_span}}) {
-        if (operand->kind == Val::Kind::Broken) throw EvaluationError{};
+        if (operand->kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
         if (!operand->is_number() && !operand->is_vector())
-            fail(where, op + " applies to numbers and vectors; this is " + kind_of(*operand));
+            fail(where, op + " applies to numbers and vectors; this is " + runtime_kind(*operand));
     }
     std::vector<double> out;
     if (a.is_vector() && b.is_vector()) {
@@ -203,52 +206,52 @@ Val Interpreter::arithmetic(char operation, const Val& a, const Val& b, Span a_s
             fail(span,
                  "the vectors have " + std::to_string(u.size()) + " and " + std::to_string(v.size()) + " components");
         for (size_t i = 0; i < u.size(); ++i) out.push_back(operation == '+' ? u[i] + v[i] : u[i] - v[i]);
-        return finite(Val::vector(out), span);
+        return finite(RuntimeValue::vector(out), span);
     }
     // A vector and a number: scaled (v * s, s * v, v / s); adding them is an error.
     if (operation == '+' || operation == '-')
         fail(span, op + " needs two numbers or two vectors; this is a number and a vector");
-    const Val& vector = a.is_vector() ? a : b;
+    const RuntimeValue& vector = a.is_vector() ? a : b;
     const double scalar = a.is_vector() ? b.x[0] : a.x[0];
     if (operation == '/' && a.is_number()) fail(span, "a number cannot be divided by a vector");
     if (operation == '/' && scalar == 0) fail(b_span, "division by zero");
     for (double c : vector.components()) out.push_back(operation == '*' ? c * scalar : c / scalar);
-    return finite(Val::vector(out), span);
+    return finite(RuntimeValue::vector(out), span);
 }
 
-Val Interpreter::evaluate_compare(const Node& node) {
-    const Val a = evaluate(node.operands[0]), b = evaluate(node.operands[1]);
+RuntimeValue Interpreter::evaluate_compare(const ExprCode& node) {
+    const RuntimeValue a = evaluate(node.operands[0]), b = evaluate(node.operands[1]);
     const std::string& op = node.text;
-    for (const Val* operand : {&a, &b}) {
-        if (operand->kind == Val::Kind::Broken) throw EvaluationError{};
-        const Node& written = node.operands[operand == &a ? 0 : 1];
+    for (const RuntimeValue* operand : {&a, &b}) {
+        if (operand->kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
+        const ExprCode& written = node.operands[operand == &a ? 0 : 1];
         const bool comparable =
             operand->is_number() ||
-            ((op == "==" || op == "!=") &&
-             (operand->is_vector() || operand->kind == Val::Kind::Bool || operand->kind == Val::Kind::String));
+            ((op == "==" || op == "!=") && (operand->is_vector() || operand->kind == RuntimeValue::Kind::Bool ||
+                                            operand->kind == RuntimeValue::Kind::String));
         if (!comparable)
             fail(written.span,
                  "'" + op + "' compares " +
                      (op == "==" || op == "!=" ? "numbers, vectors, booleans or strings" : std::string("numbers")) +
-                     "; this is " + kind_of(*operand));
+                     "; this is " + runtime_kind(*operand));
     }
     if (op == "==" || op == "!=") {
         if (a.kind != b.kind || (a.is_vector() && a.components().size() != b.components().size()))
-            fail(node.span,
-                 "'" + op + "' compares two values of the same kind; this is " + kind_of(a) + " and " + kind_of(b));
-        return Val::boolean(equal_values(a, b) == (op == "=="));
+            fail(node.span, "'" + op + "' compares two values of the same kind; this is " + runtime_kind(a) + " and " +
+                                runtime_kind(b));
+        return RuntimeValue::boolean(equal_values(a, b) == (op == "=="));
     }
     const double x = a.x[0], y = b.x[0];
-    return Val::boolean(op == "<" ? x < y : op == "<=" ? x <= y : op == ">" ? x > y : x >= y);
+    return RuntimeValue::boolean(op == "<" ? x < y : op == "<=" ? x <= y : op == ">" ? x > y : x >= y);
 }
 
-Val Interpreter::evaluate_builtin(const Node& node) {
-    Val args[4];
+RuntimeValue Interpreter::evaluate_builtin(const ExprCode& node) {
+    RuntimeValue args[4];
     Span spans[4];
     const size_t n = node.operands.size();  // the arity, checked when compiled (at most 3)
     for (size_t i = 0; i < n; ++i) {
         args[i] = evaluate(node.operands[i]);
-        if (args[i].kind == Val::Kind::Broken) throw EvaluationError{};
+        if (args[i].kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
         spans[i] = node.operands[i].span;
     }
     try {
@@ -259,11 +262,11 @@ Val Interpreter::evaluate_builtin(const Node& node) {
     }
 }
 
-Val Interpreter::call(const Node& node, bool for_value) {
+RuntimeValue Interpreter::call(const ExprCode& node, bool for_value) {
     // Step 1: the function and its arguments, in the caller's frame.
-    const Val callee = evaluate(node.operands[0]);
-    if (callee.kind != Val::Kind::Function)
-        fail(node.operands[0].span, in_quotes(node.text) + " is " + kind_of(callee) + ", not a function");
+    const RuntimeValue callee = evaluate(node.operands[0]);
+    if (callee.kind != RuntimeValue::Kind::Function)
+        fail(node.operands[0].span, in_quotes(node.text) + " is " + runtime_kind(callee) + ", not a function");
     const FunctionCode& code = *callee.function().code;
     const size_t given = node.operands.size() - 1;
     if (given != code.parameters) {
@@ -277,8 +280,8 @@ Val Interpreter::call(const Node& node, bool for_value) {
     const size_t base = stack_.size();
     stack_.resize(base + code.slots);
     for (size_t i = 0; i < given; ++i) {
-        Val argument = evaluate(node.operands[i + 1]);
-        if (argument.kind == Val::Kind::Broken) {
+        RuntimeValue argument = evaluate(node.operands[i + 1]);
+        if (argument.kind == RuntimeValue::Kind::Broken) {
             stack_.resize(base);
             throw EvaluationError{};
         }
@@ -287,12 +290,12 @@ Val Interpreter::call(const Node& node, bool for_value) {
     // Step 2: its body, in a frame of its own.
     const std::string_view name = sources_.file(code.name_span).slice(code.name_span);
     bool gave_value = false, failed_inside = false;
-    Val result;
+    RuntimeValue result;
     {
         struct Restore {
             Interpreter& machine;
             size_t frame_base;
-            Val running;
+            RuntimeValue running;
             bool making_blocks, step_failed;
             size_t stack_size;
             ~Restore() {
@@ -317,10 +320,10 @@ Val Interpreter::call(const Node& node, bool for_value) {
         failed_inside = step_failed_;
         returned_value_ = false;
         result = std::move(returned_);
-        returned_ = Val{};
+        returned_ = RuntimeValue{};
     }
     // Step 3: what the caller expected.
-    if (result.kind == Val::Kind::Broken) throw EvaluationError{};  // reported inside
+    if (result.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};  // reported inside
     if (for_value && !gave_value) {
         if (failed_inside || stopped_ || diagnostics_.saturated()) throw EvaluationError{};  // reported inside
         fail(node.span, in_quotes(code.name) + " gives no value here: its body ends without 'return VALUE'");
@@ -334,30 +337,30 @@ Val Interpreter::call(const Node& node, bool for_value) {
 
 // An entry's value as validation reads it, with the spans of what wrote it: a word, or the
 // value computed; false if it had an error (reported).
-bool Interpreter::entry_value(const CompiledEntry& entry, Value& out) {
-    const Node& node = entry.value;
+bool Interpreter::entry_value(const CompiledEntry& entry, PlainValue& out) {
+    const ExprCode& node = entry.value;
     const KeySpec* key = entry.spec;
     out.span = at(node.span);
     // A param the command line set, used as it is: messages about it say where it came from.
-    if (node.op == Node::Op::Global && !command_line_.empty())
+    if (node.op == ExprCode::Op::Global && !command_line_.empty())
         if (auto set = command_line_.find(node.index); set != command_line_.end())
             out.span.origin = sources_.add_command_line(out.span, set->second);
-    if (node.op == Node::Op::Word) {
-        out.kind = Value::Kind::Identifier;
+    if (node.op == ExprCode::Op::Word) {
+        out.kind = PlainValue::Kind::Identifier;
         out.text = node.text;
         return true;
     }
-    const Val value = evaluate(node);
-    if (key && key->type == ValueType::Path && value.kind != Val::Kind::String)
+    const RuntimeValue value = evaluate(node);
+    if (key && key->type == ValueType::Path && value.kind != RuntimeValue::Kind::String)
         fail(node.span, path_expected(entry.key, sources_.file(node.span).slice(node.span)));
     if (plain_value(value, out.span, out)) {
         // Written as (a, b, c): each component points at its own expression.
-        if (node.op == Node::Op::Vector && node.operands.size() == out.components.size())
+        if (node.op == ExprCode::Op::Vector && node.operands.size() == out.components.size())
             for (size_t i = 0; i < out.components.size(); ++i) out.component_spans[i] = at(node.operands[i].span);
         return true;
     }
     switch (value.kind) {
-        case Val::Kind::Block: {
+        case RuntimeValue::Kind::Block: {
             const std::string& kind = value.block().kind;
             const std::string_view wanted = !key                                  ? std::string_view(kind)
                                             : key->type == ValueType::MaterialRef ? "material"
@@ -369,35 +372,35 @@ bool Interpreter::entry_value(const CompiledEntry& entry, Value& out) {
                                      : wanted == "material" ? std::string("a material")
                                                             : "a " + std::string(wanted) + " { ... } block") +
                                     "; this is a " + kind);
-            out.kind = Value::Kind::Block;
+            out.kind = PlainValue::Kind::Block;
             out.body = value.block().body;
             return true;
         }
-        case Val::Kind::List:
+        case RuntimeValue::Kind::List:
             fail(node.span, "'" + entry.key + "' takes one value, not a list; pick one with [i], as in 'list[0]'");
-        case Val::Kind::Function:
+        case RuntimeValue::Kind::Function:
             fail(node.span, "'" + entry.key + "' takes a value, not a function; call it, as in 'f(...)'");
-        case Val::Kind::Broken: throw EvaluationError{};
+        case RuntimeValue::Kind::Broken: throw EvaluationError{};
         default: break;  // the plain kinds, done above
     }
     return false;
 }
 
-bool plain_value(const Val& value, Span span, Value& out) {
+bool plain_value(const RuntimeValue& value, Span span, PlainValue& out) {
     out.span = span;
     switch (value.kind) {
-        case Val::Kind::Number: out.kind = Value::Kind::Number, out.number = value.x[0]; return true;
-        case Val::Kind::Vector: {
-            out.kind = Value::Kind::Vector;
+        case RuntimeValue::Kind::Number: out.kind = PlainValue::Kind::Number, out.number = value.x[0]; return true;
+        case RuntimeValue::Kind::Vector: {
+            out.kind = PlainValue::Kind::Vector;
             const auto components = value.components();
             out.components.assign(components.begin(), components.end());
             out.component_spans.assign(components.size(), span);
             return true;
         }
-        case Val::Kind::Bool:  // as the validator reads a boolean: the word
-            out.kind = Value::Kind::Identifier, out.text = value.x[0] != 0 ? "true" : "false";
+        case RuntimeValue::Kind::Bool:  // as the validator reads a boolean: the word
+            out.kind = PlainValue::Kind::Identifier, out.text = value.x[0] != 0 ? "true" : "false";
             return true;
-        case Val::Kind::String: out.kind = Value::Kind::String, out.text = value.text(); return true;
+        case RuntimeValue::Kind::String: out.kind = PlainValue::Kind::String, out.text = value.text(); return true;
         default: return false;
     }
 }

@@ -1,16 +1,16 @@
-#include "lang/evaluated_scene.h"
+#include "lang/internal/evaluated_scene.h"
 
 #include "base/diagnostics.h"
 
 namespace tracer {
 
-std::string kind_of(const Value& value) {
+std::string plain_kind(const PlainValue& value) {
     switch (value.kind) {
-        case Value::Kind::Number: return "a number";
-        case Value::Kind::Vector: return "a vector of " + std::to_string(value.components.size()) + " numbers";
-        case Value::Kind::String: return "a string";
-        case Value::Kind::Identifier: return "the word " + in_quotes(value.text);
-        case Value::Kind::Block: return "a block";
+        case PlainValue::Kind::Number: return "a number";
+        case PlainValue::Kind::Vector: return "a vector of " + std::to_string(value.components.size()) + " numbers";
+        case PlainValue::Kind::String: return "a string";
+        case PlainValue::Kind::Identifier: return "the word " + in_quotes(value.text);
+        case PlainValue::Kind::Block: return "a block";
     }
     return "a value";
 }

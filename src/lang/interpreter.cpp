@@ -4,10 +4,10 @@
 #include <filesystem>
 
 #include "base/big_stack.h"
-#include "lang/interpreter_class.h"
-#include "lang/parser.h"
+#include "lang/internal/interpreter_class.h"
+#include "lang/internal/parser.h"
+#include "lang/internal/suggest.h"
 #include "lang/schema.h"
-#include "lang/suggest.h"
 
 namespace tracer {
 
@@ -62,10 +62,10 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
         SourceFile file("-D " + name, text);
         Diagnostics problems;
         Expr expr;
-        Node node;
+        ExprCode node;
         Sources alone(std::make_unique<SourceFile>(file.path(), text));
         Interpreter machine(alone, problems, limits_, {});
-        Val value;
+        RuntimeValue value;
         bool ok =
             parse_single_expression(file, problems, expr) && machine.compiler_.compile_lone_value(expr, false, node);
         if (ok) {
@@ -92,7 +92,7 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
     compiler_.set_scene_path(fs::weakly_canonical(fs::path(sources_.scene().path()), unresolved).string());
     StatementReader reader(sources_.scene(), diagnostics_, 0);
     std::vector<Statement> statements;
-    std::vector<Step> steps;
+    std::vector<StatementCode> steps;
     while (!stopped_ && reader.next(statements)) {
         for (const Statement& statement : statements) compiler_.compile_top_level(statement, steps);
         statements.clear();
@@ -119,8 +119,8 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
     return std::move(scene_);
 }
 
-Interpreter::Flow Interpreter::run_steps(const std::vector<Step>& steps) {
-    for (const Step& step : steps) {
+Interpreter::Flow Interpreter::run_steps(const std::vector<StatementCode>& steps) {
+    for (const StatementCode& step : steps) {
         if (stopped_ || diagnostics_.saturated()) return Flow::Next;
         if (++statements_run_ > limits_.max_statements)
             stop(step.keyword,
@@ -134,32 +134,32 @@ Interpreter::Flow Interpreter::run_steps(const std::vector<Step>& steps) {
     return Flow::Next;
 }
 
-Interpreter::Flow Interpreter::run_step(const Step& step) {
+Interpreter::Flow Interpreter::run_step(const StatementCode& step) {
     switch (step.op) {
-        case Step::Op::Block: run_block(step); break;
-        case Step::Op::Let:
-        case Step::Op::Param: run_binding(step); break;
-        case Step::Op::Range: return run_range(step);
-        case Step::Op::Each: return run_each(step);
-        case Step::Op::If: return run_steps(condition(step.value) ? step.steps : step.otherwise);
-        case Step::Op::Function: {
+        case StatementCode::Op::Block: run_block(step); break;
+        case StatementCode::Op::Let:
+        case StatementCode::Op::Param: run_binding(step); break;
+        case StatementCode::Op::Range: return run_range(step);
+        case StatementCode::Op::Each: return run_each(step);
+        case StatementCode::Op::If: return run_steps(condition(step.value) ? step.steps : step.otherwise);
+        case StatementCode::Op::Function: {
             auto function = std::make_shared<FunctionObject>();
             function->code = step.function;
-            for (const Node& capture : step.function->captures) function->captures.push_back(evaluate(capture));
-            Val value;
-            value.kind = Val::Kind::Function;
+            for (const ExprCode& capture : step.function->captures) function->captures.push_back(evaluate(capture));
+            RuntimeValue value;
+            value.kind = RuntimeValue::Kind::Function;
             value.object = std::move(function);
             slot(step.slot) = std::move(value);
             break;
         }
-        case Step::Op::Return: try { returned_ = step.has_value ? evaluate(step.value) : Val{};
+        case StatementCode::Op::Return: try { returned_ = step.has_value ? evaluate(step.value) : RuntimeValue{};
             } catch (const EvaluationError&) {
-                returned_ = Val::broken();  // reported: the caller's use of it is not an error too
+                returned_ = RuntimeValue::broken();  // reported: the caller's use of it is not an error too
             }
             returned_value_ = step.has_value;  // after the value: computing it may call and return
             return Flow::Return;
-        case Step::Op::Call: call(step.value, false); break;
-        case Step::Op::Group: {
+        case StatementCode::Op::Call: call(step.value, false); break;
+        case StatementCode::Op::Group: {
             bool failed = false;
             auto group = std::make_shared<Group>();
             group->keyword = at(step.keyword);
@@ -172,12 +172,12 @@ Interpreter::Flow Interpreter::run_step(const Step& step) {
             current_group_ = std::move(outer);
             return flow;
         }
-        case Step::Op::Include: return run_include(step);
+        case StatementCode::Op::Include: return run_include(step);
     }
     return Flow::Next;
 }
 
-void Interpreter::run_block(const Step& step) {
+void Interpreter::run_block(const StatementCode& step) {
     if (!making_blocks_)
         fail(step.keyword, "a function called for its value makes no blocks: call '" + running_.function().code->name +
                                "(...)' alone, as a statement, for its blocks");
@@ -228,7 +228,7 @@ void Interpreter::fill_body(const CompiledBody& code, Body& filled, bool& failed
         out.key_span = at(entry.key_span);
         out.spec = entry.spec;
         if (entry.nested) {
-            out.value.kind = Value::Kind::Block;
+            out.value.kind = PlainValue::Kind::Block;
             out.value.span = {entry.body->open_brace.begin, entry.body->close_brace.end, here()};
             out.value.body = make_body(*entry.body, failed);
         } else {
@@ -246,21 +246,21 @@ void Interpreter::fill_body(const CompiledBody& code, Body& filled, bool& failed
     }
 }
 
-void Interpreter::run_binding(const Step& step) {
-    Val value = evaluate(step.value);
-    if (step.op == Step::Op::Param) {
+void Interpreter::run_binding(const StatementCode& step) {
+    RuntimeValue value = evaluate(step.value);
+    if (step.op == StatementCode::Op::Param) {
         if (auto given = overrides_.find(step.name); given != overrides_.end()) {
             value = given->second;
             command_line_[step.slot] = "-D " + step.name + "=" + override_texts_[step.name];
         }
-        scene_.parameters.emplace_back(step.name, Value{});
+        scene_.parameters.emplace_back(step.name, PlainValue{});
         plain_value(value, at(step.value.span), scene_.parameters.back().second);
     }
     slot(step.slot) = std::move(value);
 }
 
 // Counts one more iteration of `step`'s loop: false (reported, and everything stopped) past the limit.
-bool Interpreter::count_iteration(const Step& step) {
+bool Interpreter::count_iteration(const StatementCode& step) {
     if (stopped_ || diagnostics_.saturated()) return false;
     if (++iterations_run_ <= limits_.max_iterations) return true;
     diagnostics_.error(
@@ -270,10 +270,10 @@ bool Interpreter::count_iteration(const Step& step) {
     return false;
 }
 
-Interpreter::Flow Interpreter::run_range(const Step& step) {
+Interpreter::Flow Interpreter::run_range(const StatementCode& step) {
     const double first = number_operand(evaluate(step.value), step.value.span, "the first number of a range");
     const double end = number_operand(evaluate(step.end), step.end.span, "the end of a range");
-    for (const Node* bound : {&step.value, &step.end}) {
+    for (const ExprCode* bound : {&step.value, &step.end}) {
         const double value = bound == &step.value ? first : end;
         if (std::floor(value) != value)
             fail(bound->span, "a range goes from whole number to whole number; this is " + format_number(value));
@@ -292,7 +292,7 @@ Interpreter::Flow Interpreter::run_range(const Step& step) {
     const std::string_view name = sources_.file(step.name_span).slice(step.name_span);
     for (double i = first; i < end; ++i) {
         if (!count_iteration(step)) return Flow::Next;
-        slot(step.slot) = Val::number(i);
+        slot(step.slot) = RuntimeValue::number(i);
         contexts_.push_back({RunContext::Kind::Iteration, step.keyword, name, i});
         const Flow flow = run_steps(step.steps);
         contexts_.pop_back();
@@ -301,11 +301,11 @@ Interpreter::Flow Interpreter::run_range(const Step& step) {
     return Flow::Next;
 }
 
-Interpreter::Flow Interpreter::run_each(const Step& step) {
-    const Val list = evaluate(step.value);
-    if (list.kind != Val::Kind::List)
-        fail(step.value.span, "'for " + step.name + " in' takes a range A..B or a list; this is " + kind_of(list));
-    const std::vector<Val>& items = list.items();
+Interpreter::Flow Interpreter::run_each(const StatementCode& step) {
+    const RuntimeValue list = evaluate(step.value);
+    if (list.kind != RuntimeValue::Kind::List)
+        fail(step.value.span, "'for " + step.name + " in' takes a range A..B or a list; this is " + runtime_kind(list));
+    const std::vector<RuntimeValue>& items = list.items();
     for (size_t i = 0; i < items.size(); ++i) {
         if (!count_iteration(step)) return Flow::Next;
         slot(step.slot) = items[i];
@@ -319,7 +319,7 @@ Interpreter::Flow Interpreter::run_each(const Step& step) {
 
 // An include run: its file's code, in place; at the top of the scene its spans keep the origin
 // they were compiled with, inside a loop or call each run gets one of its own.
-Interpreter::Flow Interpreter::run_include(const Step& step) {
+Interpreter::Flow Interpreter::run_include(const StatementCode& step) {
     RunContext context{RunContext::Kind::Include, step.name_span, {}, 0, step.origin};
     if (contexts_.empty() || (contexts_.back().kind == RunContext::Kind::Include &&
                               contexts_.back().origin == step.name_span.origin && contexts_.back().has_origin)) {
@@ -332,17 +332,17 @@ Interpreter::Flow Interpreter::run_include(const Step& step) {
     return flow;
 }
 
-bool Interpreter::single_value(const Expr& expr, Value& out) {
+bool Interpreter::single_value(const Expr& expr, PlainValue& out) {
     try {
         if (expr.kind == Expr::Kind::Block && expr.text.empty()) {
-            out.kind = Value::Kind::Block;
+            out.kind = PlainValue::Kind::Block;
             out.span = expr.span;
             bool failed = false;
             const auto code = compiler_.compile_lone_block(*expr.body, failed);
             out.body = make_body(*code, failed);
             return !failed;
         }
-        Node node;
+        ExprCode node;
         if (!compiler_.compile_lone_value(expr, true, node)) return false;
         CompiledEntry entry;
         entry.value = std::move(node);
@@ -365,7 +365,7 @@ EvaluatedScene interpret(Sources& sources, Diagnostics& diagnostics, const Param
     return scene;
 }
 
-bool evaluate_single_value(const SourceFile& file, Diagnostics& diagnostics, Value& out) {
+bool evaluate_single_value(const SourceFile& file, Diagnostics& diagnostics, PlainValue& out) {
     Expr expr;
     if (!parse_single_expression(file, diagnostics, expr)) return false;
     Sources sources(std::make_unique<SourceFile>(file.path(), std::string(file.text())));

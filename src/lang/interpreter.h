@@ -14,7 +14,7 @@
 
 #include "base/diagnostics.h"
 #include "base/source.h"
-#include "lang/evaluated_scene.h"
+#include "lang/internal/evaluated_scene.h"
 
 namespace tracer {
 
@@ -51,6 +51,6 @@ EvaluatedScene interpret(Sources& sources, Diagnostics& diagnostics, const Param
 
 // One value alone, with no names defined (a default in the block tables, a setting or a -D
 // value from the command line). False, with the problem in `diagnostics`, if it has none.
-bool evaluate_single_value(const SourceFile& file, Diagnostics& diagnostics, Value& out);
+bool evaluate_single_value(const SourceFile& file, Diagnostics& diagnostics, PlainValue& out);
 
 }  // namespace tracer

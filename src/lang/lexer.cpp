@@ -1,4 +1,4 @@
-#include "lang/lexer.h"
+#include "lang/internal/lexer.h"
 
 #include <charconv>
 #include <cmath>

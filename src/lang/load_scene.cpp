@@ -1,8 +1,8 @@
 #include "lang/load_scene.h"
 
 #include "base/input_file.h"
+#include "lang/internal/parser.h"
 #include "lang/interpreter.h"
-#include "lang/parser.h"
 #include "lang/validate.h"
 
 namespace tracer {

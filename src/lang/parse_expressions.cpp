@@ -1,6 +1,6 @@
 // The parser's expression rules, lowest precedence first (grammar/scene.ebnf): or, and, not,
 // comparisons, + -, * /, signs, components and indexes, and the primaries.
-#include "lang/parser_class.h"
+#include "lang/internal/parser_class.h"
 
 namespace tracer {
 

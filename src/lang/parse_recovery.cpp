@@ -1,6 +1,6 @@
 // The parser after a syntax error: skipping to where the next statement can start, so that one
 // run reports the errors of several blocks, and telling a missing '}' from a new statement.
-#include "lang/parser_class.h"
+#include "lang/internal/parser_class.h"
 #include "lang/schema.h"
 
 namespace tracer {

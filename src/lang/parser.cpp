@@ -1,6 +1,6 @@
-#include "lang/parser.h"
+#include "lang/internal/parser.h"
 
-#include "lang/parser_class.h"
+#include "lang/internal/parser_class.h"
 #include "lang/schema.h"
 
 namespace tracer {

@@ -6,7 +6,7 @@
 #include <string_view>
 #include <utility>
 
-#include "lang/builtins.h"
+#include "lang/internal/builtins.h"
 #include "lang/schema.h"
 
 namespace tracer {

@@ -1,4 +1,4 @@
-#include "lang/val.h"
+#include "lang/internal/runtime_value.h"
 
 #include <algorithm>
 
@@ -7,8 +7,8 @@ namespace tracer {
 ListObject::~ListObject() = default;
 FunctionObject::~FunctionObject() = default;
 
-Val Val::vector(std::span<const double> components) {
-    Val v;
+RuntimeValue RuntimeValue::vector(std::span<const double> components) {
+    RuntimeValue v;
     v.kind = Kind::Vector;
     if (components.size() <= 3) {
         v.size = uint8_t(components.size());
@@ -22,53 +22,53 @@ Val Val::vector(std::span<const double> components) {
     return v;
 }
 
-Val Val::string(std::string text) {
+RuntimeValue RuntimeValue::string(std::string text) {
     auto object = std::make_shared<StringObject>();
     object->text = std::move(text);
-    Val v;
+    RuntimeValue v;
     v.kind = Kind::String;
     v.object = std::move(object);
     return v;
 }
 
-Val Val::list(std::vector<Val> items) {
+RuntimeValue RuntimeValue::list(std::vector<RuntimeValue> items) {
     auto object = std::make_shared<ListObject>();
     object->items = std::move(items);
-    Val v;
+    RuntimeValue v;
     v.kind = Kind::List;
     v.object = std::move(object);
     return v;
 }
 
-std::span<const double> Val::components() const {
+std::span<const double> RuntimeValue::components() const {
     if (object) return static_cast<const WideVectorObject&>(*object).components;
     return {x, size};
 }
 
-std::string kind_of(const Val& value) {
+std::string runtime_kind(const RuntimeValue& value) {
     switch (value.kind) {
-        case Val::Kind::Number: return "a number";
-        case Val::Kind::Vector: return "a vector of " + std::to_string(value.components().size()) + " numbers";
-        case Val::Kind::Bool: return value.x[0] != 0 ? "the boolean true" : "the boolean false";
-        case Val::Kind::String: return "a string";
-        case Val::Kind::List: {
+        case RuntimeValue::Kind::Number: return "a number";
+        case RuntimeValue::Kind::Vector: return "a vector of " + std::to_string(value.components().size()) + " numbers";
+        case RuntimeValue::Kind::Bool: return value.x[0] != 0 ? "the boolean true" : "the boolean false";
+        case RuntimeValue::Kind::String: return "a string";
+        case RuntimeValue::Kind::List: {
             const size_t n = value.items().size();
             return "a list of " + std::to_string(n) + (n == 1 ? " value" : " values");
         }
-        case Val::Kind::Block: return "a " + value.block().kind;
-        case Val::Kind::Function: return "a function";
-        case Val::Kind::Broken: return "a value with an error";
+        case RuntimeValue::Kind::Block: return "a " + value.block().kind;
+        case RuntimeValue::Kind::Function: return "a function";
+        case RuntimeValue::Kind::Broken: return "a value with an error";
     }
     return "a value";
 }
 
-bool equal_values(const Val& a, const Val& b) {
+bool equal_values(const RuntimeValue& a, const RuntimeValue& b) {
     if (a.kind != b.kind) return false;
     switch (a.kind) {
-        case Val::Kind::Number:
-        case Val::Kind::Bool: return a.x[0] == b.x[0];
-        case Val::Kind::Vector: return std::ranges::equal(a.components(), b.components());
-        case Val::Kind::String: return a.text() == b.text();
+        case RuntimeValue::Kind::Number:
+        case RuntimeValue::Kind::Bool: return a.x[0] == b.x[0];
+        case RuntimeValue::Kind::Vector: return std::ranges::equal(a.components(), b.components());
+        case RuntimeValue::Kind::String: return a.text() == b.text();
         default: return a.object == b.object;
     }
 }

@@ -64,7 +64,7 @@ const BlockSpec kRender{
                    "bounce returns black."), 0, 100000),
         square(ranged(key("samples", ValueType::Integer, "1",
                           "Samples per pixel: a perfect square N*N, stratified over the pixel, box "
-                          "filter. 1 is one ray through the pixel centre."), 1, 4096)),
+                          "filter. 1 is one ray through the pixel center."), 1, 4096)),
         ranged(key("background", ValueType::Triple, "0",
                    "Colour of rays that leave the scene."), 0, kInf),
         key("shadows", ValueType::Boolean, "true", "Trace shadow rays to the lights."),
@@ -79,7 +79,7 @@ const BlockSpec kRender{
                    "procedure, for comparing ray counts: a reflection ray at every hit on a surface "
                    "with km or kt above 0, a shadow ray wherever the normal faces the light, no "
                    "weight cut-off (the image is the same)."),
-               {"tracer", "spd"}),
+               {spawn_rules_name(SpawnRules::Tracer), spawn_rules_name(SpawnRules::Spd)}),
         one_of(key("antialias", ValueType::Choice, "uniform",
                    "How a pixel's samples are placed. `uniform`: `samples` (N*N) in every pixel. "
                    "`adaptive`: one sample at each pixel corner, shared with the neighbours; a cell "
@@ -87,7 +87,7 @@ const BlockSpec kRender{
                    "four, down to `adaptive_depth` levels; a cell's colour is the mean of its corners "
                    "(threshold 0 splits every cell to the full depth). Cells start `adaptive_cell` pixels "
                    "wide. The image is the same for any thread count, tile or region."),
-               {"uniform", "adaptive"}),
+               {antialias_name(Antialias::Uniform), antialias_name(Antialias::Adaptive)}),
         ranged(key("adaptive_threshold", ValueType::Number, "0.05",
                    "With `antialias adaptive`: the difference in one colour channel (clamped to 0..1; "
                    "one level of an 8-bit image is 1/255) at which a cell is split."), 0, 1),
@@ -121,7 +121,7 @@ const BlockSpec kCamera{
     "A pinhole camera.",
     {
         key("eye", ValueType::Vector, "", "Position of the eye."),
-        key("lookat", ValueType::Vector, "", "The point at the centre of the image."),
+        key("lookat", ValueType::Vector, "", "The point at the center of the image."),
         nonzero(key("up", ValueType::Vector, "(0, 1, 0)",
                     "Which way is up; must not be parallel to the viewing direction.")),
         ranged(key("fovy", ValueType::Number, "45", "Vertical field of view in degrees."), 0, 180,
@@ -214,7 +214,7 @@ const BlockSpec kSphere{
     "sphere", false, true, Occurs::Any,
     "A sphere, placed like a mesh (by one scale factor on every axis: a sphere stays a sphere).",
     placed({
-        key("center", ValueType::Vector, "", "Centre."),
+        key("center", ValueType::Vector, "", "Center."),
         ranged(key("radius", ValueType::Number, "", "Radius."), kSmallestSize, kInf),
     }),
     "sphere {\n  center (1, -0.5, 3)\n  radius 0.5\n  material { ka 0.1 kd (0, 0, 1) ks 1 n 10 }\n}\n",
@@ -230,8 +230,8 @@ const BlockSpec kCylinder{
     "A round cylinder between two points, closed by its caps unless `caps false`; placed like a sphere "
     "(by one scale factor on every axis).",
     placed({
-        key("base", ValueType::Vector, "", "Centre of one end."),
-        key("top", ValueType::Vector, "", "Centre of the other end; must differ from `base`."),
+        key("base", ValueType::Vector, "", "Center of one end."),
+        key("top", ValueType::Vector, "", "Center of the other end; must differ from `base`."),
         ranged(key("radius", ValueType::Number, "", "Radius."), kSmallestSize, kInf),
         caps_key(),
     }),
@@ -243,8 +243,8 @@ const BlockSpec kCone{
     "A round cone between two points with a radius at each end (0 makes a point; equal radii a "
     "cylinder), closed by its caps unless `caps false`; placed like a sphere.",
     placed({
-        key("base", ValueType::Vector, "", "Centre of one end."),
-        key("top", ValueType::Vector, "", "Centre of the other end; must differ from `base`."),
+        key("base", ValueType::Vector, "", "Center of one end."),
+        key("top", ValueType::Vector, "", "Center of the other end; must differ from `base`."),
         ranged(key("base_radius", ValueType::Number, "", "Radius at `base` (0: a point)."), 0, kInf),
         ranged(key("top_radius", ValueType::Number, "0", "Radius at `top` (0: a point)."), 0, kInf),
         caps_key(),
@@ -256,7 +256,7 @@ const BlockSpec kDisc{
     "disc", false, true, Occurs::Any,
     "A flat round disc, seen from both sides; placed like a sphere.",
     placed({
-        key("center", ValueType::Vector, "", "Centre."),
+        key("center", ValueType::Vector, "", "Center."),
         nonzero(key("normal", ValueType::Vector, "", "The disc's normal (normalised for you): its front.")),
         ranged(key("radius", ValueType::Number, "", "Radius."), kSmallestSize, kInf),
     }),

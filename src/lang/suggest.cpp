@@ -1,4 +1,4 @@
-#include "lang/suggest.h"
+#include "lang/internal/suggest.h"
 
 #include <algorithm>
 #include <cctype>

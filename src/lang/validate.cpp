@@ -12,25 +12,25 @@
 #include <glm/geometric.hpp>
 
 #include "base/input_file.h"
+#include "lang/internal/suggest.h"
+#include "lang/internal/validator.h"
 #include "lang/interpreter.h"
 #include "lang/schema.h"
-#include "lang/suggest.h"
-#include "lang/validator.h"
 
 namespace tracer {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string describe_found(const Value& value) {
+std::string describe_found(const PlainValue& value) {
     switch (value.kind) {
-        case Value::Kind::Number: return "the number " + format_number(value.number);
-        case Value::Kind::Vector:
+        case PlainValue::Kind::Number: return "the number " + format_number(value.number);
+        case PlainValue::Kind::Vector:
             return "a vector with " + std::to_string(value.components.size()) + " component" +
                    (value.components.size() == 1 ? "" : "s");
-        case Value::Kind::String: return "a string";
-        case Value::Kind::Identifier: return in_quotes(value.text);
-        case Value::Kind::Block: return "a block { ... }";
+        case PlainValue::Kind::String: return "a string";
+        case PlainValue::Kind::Identifier: return in_quotes(value.text);
+        case PlainValue::Kind::Block: return "a block { ... }";
     }
     return "a value";
 }
@@ -38,11 +38,11 @@ std::string describe_found(const Value& value) {
 }  // namespace
 
 // Takes a scene's parameters, as the interpreter found them.
-void Validator::set_parameters(const std::vector<std::pair<std::string, Value>>& parameters) {
+void Validator::set_parameters(const std::vector<std::pair<std::string, PlainValue>>& parameters) {
     for (const auto& [name, value] : parameters)
         scene_.parameters.push_back(
-            {name, value.kind == Value::Kind::Vector ? value.components : std::vector<double>{value.number},
-             value.kind == Value::Kind::Vector});
+            {name, value.kind == PlainValue::Kind::Vector ? value.components : std::vector<double>{value.number},
+             value.kind == PlainValue::Kind::Vector});
 }
 
 // One block, checked and built as soon as it is made (the interpreter hands them over one by
@@ -238,17 +238,17 @@ bool Validator::check_steps(const Body& body, const BlockSpec& spec, Fields& fie
     return ok;
 }
 
-bool Validator::type_error(const Value& value, const KeySpec& key, const std::string& extra) {
+bool Validator::type_error(const PlainValue& value, const KeySpec& key, const std::string& extra) {
     std::string message = "'" + std::string(key.name) + "' expects " + std::string(describe(key.type)) + ", found " +
                           describe_found(value);
-    if (value.kind == Value::Kind::Identifier && names_nan_or_infinity(value.text))
+    if (value.kind == PlainValue::Kind::Identifier && names_nan_or_infinity(value.text))
         message += " (NaN and infinity are not allowed)";
     diagnostics_.error(file_, value.span, message + extra);
     return false;
 }
 
-bool Validator::check_value(const Value& value, const KeySpec& key, Fields& fields) {
-    using Kind = Value::Kind;
+bool Validator::check_value(const PlainValue& value, const KeySpec& key, Fields& fields) {
+    using Kind = PlainValue::Kind;
     auto check_vector = [&] {
         if (value.components.size() != 3) return type_error(value, key);
         bool ok = true;
@@ -399,7 +399,7 @@ std::string setting_problem(std::string_view block, std::string_view key, const 
     if (!key_spec) return "no key '" + std::string(key) + "' in " + std::string(block);  // a caller's bug
     Sources sources(std::make_unique<SourceFile>("<command line>", text));
     Diagnostics diagnostics;
-    Value value;
+    PlainValue value;
     if (evaluate_single_value(sources.scene(), diagnostics, value))
         Validator(sources, diagnostics, {true}).check_setting(value, *key_spec, *spec);
     else if (diagnostics.all().empty())  // more than one value
@@ -420,7 +420,8 @@ bool SceneBuilder::add(const Block& block) {
     return state_->validator.accept(block);
 }
 
-std::optional<SceneDescription> SceneBuilder::finish(const std::vector<std::pair<std::string, Value>>& parameters) {
+std::optional<SceneDescription> SceneBuilder::finish(
+    const std::vector<std::pair<std::string, PlainValue>>& parameters) {
     state_->validator.set_parameters(parameters);
     return state_->validator.finish();
 }

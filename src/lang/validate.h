@@ -9,7 +9,7 @@
 
 #include "base/diagnostics.h"
 #include "base/source.h"
-#include "lang/evaluated_scene.h"
+#include "lang/internal/evaluated_scene.h"
 #include "scene/scene.h"
 
 namespace tracer {
@@ -33,7 +33,7 @@ public:
     // contexts (Sources origins) it made only for this block.
     bool add(const Block& block);
     // The scene description (with the parameters the scene used), or nothing after errors.
-    std::optional<SceneDescription> finish(const std::vector<std::pair<std::string, Value>>& parameters);
+    std::optional<SceneDescription> finish(const std::vector<std::pair<std::string, PlainValue>>& parameters);
 
 private:
     struct State;

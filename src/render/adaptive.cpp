@@ -74,7 +74,7 @@ Color AdaptivePixels::sample(int64_t x, int64_t y, RayCounts& counts) {
 }
 
 void AdaptivePixels::split_samples(int64_t x, int64_t y, int64_t half, RayCounts& counts) {
-    // The five points a split adds (edge midpoints and centre), their rays made before any is
+    // The five points a split adds (edge midpoints and center), their rays made before any is
     // traced (a ray made just before the call that takes it stalls the processor on every sample).
     const int64_t points[5][2] = {
         {x + half, y}, {x, y + half}, {x + half, y + half}, {x + 2 * half, y + half}, {x + half, y + 2 * half}};
@@ -169,7 +169,7 @@ void AdaptivePixels::coarse_cell(int64_t x, int64_t y, int64_t size, RayCounts& 
         coarse_cell(x, y + half, half, counts), coarse_cell(x + half, y + half, half, counts);
         return;
     }
-    // Left whole: each pixel of the region in it takes the corners' bilinear blend at its centre.
+    // Left whole: each pixel of the region in it takes the corners' bilinear blend at its center.
     const int64_t row_end = std::min<int64_t>(py + pixels, y0_ + height_);
     const int64_t column_end = std::min<int64_t>(px + pixels, x0_ + width_);
     for (int64_t row = std::max<int64_t>(py, y0_); row < row_end; ++row)

@@ -3,7 +3,7 @@
 // `adaptive_cell` pixels wide (a power of two; 1: a pixel); a cell whose four corners differ by
 // at least the threshold in some channel (each clamped to [0, 1]) is split into four, down to
 // 1 / 2^adaptive_depth of a pixel. A pixel inside a cell left whole takes the cell's bilinear
-// blend of its corners at the pixel's centre (for a cell of one pixel, the mean of its
+// blend of its corners at the pixel's center (for a cell of one pixel, the mean of its
 // corners); a split pixel is the mean of its four quarters. Cells under `adaptive_cell` are
 // always split.
 //

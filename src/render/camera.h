@@ -12,7 +12,7 @@ public:
     PinholeCamera(const Camera& camera, int width, int height);
 
     // The primary ray through image position (x, y) in pixels: (0, 0) is the top-left corner
-    // of the image, (width, height) the bottom-right; a pixel's centre is (i + 0.5, j + 0.5).
+    // of the image, (width, height) the bottom-right; a pixel's center is (i + 0.5, j + 0.5).
     Ray ray_through(Real x, Real y) const;
     const Vec3& eye() const { return eye_; }
 

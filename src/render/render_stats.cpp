@@ -101,7 +101,7 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
                    {"total", rays.total()},
                    {"total_internal_reflections", rays.total_internal_reflections},
                    {"trees_cut", rays.trees_cut}};
-    out["spawn_rules"] = scene.render.spawn_rules == SpawnRules::Spd ? "spd" : "tracer";
+    out["spawn_rules"] = spawn_rules_name(scene.render.spawn_rules);
     out["transparent_shadows"] = scene.render.transparent_shadows;
     const double total = double(std::max<uint64_t>(rays.total(), 1));
     const SearchCounts& work = rays.traversal;

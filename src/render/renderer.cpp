@@ -18,12 +18,12 @@ namespace tracer {
 constexpr int kTileRows = 2;
 constexpr int kTileColumns = kPacket / kTileRows;
 
-// The mean of N x N rays through the centres of a regular grid of sub-pixel cells (N = 1:
-// the pixel centre).
+// The mean of N x N rays through the centers of a regular grid of sub-pixel cells (N = 1:
+// the pixel center).
 static Color shade_pixel(const World& world, const PinholeCamera& camera, const RenderSettings& settings, int x, int y,
                          int grid, RayCounts& counts, const std::atomic<bool>* cancel) {
     Color sum(0.0);
-    const Real cell = Real(1) / grid;  // exact for grid 1 (offset 0.5: the pixel centre)
+    const Real cell = Real(1) / grid;  // exact for grid 1 (offset 0.5: the pixel center)
     for (int sy = 0; sy < grid; ++sy)
         for (int sx = 0; sx < grid; ++sx) {
             if (cancel && cancel->load(std::memory_order_relaxed)) return sum;
@@ -93,8 +93,7 @@ static void trace_row(const World& world, const PinholeCamera& camera, const Ren
     if (grid == 1) {
         // The row's rays are made before any is traced: a Ray built just before the call that
         // takes it by value is copied out of half-written memory, and the processor stalls on
-        // every pixel (store-to-load forwarding fails: 40% of the samples in the render loop's
-        // own code, full frame).
+        // every pixel: store-to-load forwarding fails (docs/bench/code-figures.md).
         camera.row_directions(area.x0 + Real(0.5), y + Real(0.5), area.width, directions.data());
         for (size_t i = 0; i < rays.size(); ++i) rays[i] = {camera.eye(), directions[i]};
     }
@@ -123,12 +122,12 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     // the image's allocation.
     const bool adaptive = settings.antialias == Antialias::Adaptive;
     // One sample a pixel: tiles of kTileRows x kTileColumns primary rays traced as one packet.
-    const bool tiles = !adaptive && grid == 1 && world.packets_pay(size_t(settings.width) * size_t(settings.height));
+    const bool tiles =
+        !adaptive && grid == 1 && world.frame_takes_tiles(size_t(settings.width) * size_t(settings.height));
     const int band = adaptive ? kMostAdaptiveCell : tiles ? kTileRows : 1;
     const int band_offset = adaptive ? area.y0 % band : 0;  // bands start at the frame's multiples of a cell row
     const auto start = std::chrono::steady_clock::now();
-    const int threads = options.pool ? options.pool->size()
-                                     : std::max(1, std::min(thread_count(options.threads), std::max(area.height, 1)));
+    const int threads = std::max(1, std::min(thread_count(options.threads), std::max(area.height, 1)));
     std::atomic<int> next_row{0};
     std::atomic<int> rows_done{0};
     std::mutex merge;
@@ -165,12 +164,7 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
         std::lock_guard lock(merge);
         stats.rays += counts;
     };
-    if (options.pool) {
-        options.pool->run(worker);
-    } else {
-        WorkerPool pool(threads);
-        pool.run(worker);
-    }
+    run_workers(threads, worker);
 
     // Step 3: how long it took.
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -8,7 +8,6 @@
 
 #include "accel/world.h"
 #include "base/image.h"
-#include "base/worker_pool.h"
 #include "render/whitted.h"
 #include "scene/scene.h"
 
@@ -20,9 +19,7 @@ struct PixelRect {
 };
 
 struct RenderOptions {
-    int threads = 0;  // 0: one per hardware thread
-    // Threads kept between renders (then `threads` is ignored); null: started for this render.
-    WorkerPool* pool = nullptr;
+    int threads = 0;  // 0: one per hardware thread (base/parallel.h's arena, kept between renders)
     // Only these pixels are traced, and the image holds just them (a window of the frame, each
     // pixel as the whole frame's render has it); width 0 means the whole frame.
     PixelRect crop;
@@ -33,7 +30,7 @@ struct RenderOptions {
 };
 
 struct RenderStats {
-    double seconds = 0;  // the render loop: threads started to last row done (no image set-up)
+    double seconds = 0;  // the render loop: first row started to last row done (no image set-up)
     int threads = 0;
     RayCounts rays;
 };

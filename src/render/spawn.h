@@ -35,7 +35,8 @@ struct SpawnedRay {
 
 // Rays leaving one surface hit. The robust rule's offset along the normal is worked out once,
 // however many rays leave (one per light and the reflection); each ray picks its side with a
-// sign, not a branch (a branch on the side mispredicts on curved surfaces: task2 0.945x).
+// sign, not a branch: a branch on the side mispredicts on curved surfaces
+// (docs/bench/code-figures.md).
 class SpawnPoint {
 public:
     explicit SpawnPoint(const SurfaceHit& hit) : point_(hit.point), normal_(hit.geometric_normal) {
@@ -63,7 +64,7 @@ public:
     // stopping short of it. (Robust rule: the origin moves by the offset, some 10^-15 of the
     // point's coordinates, while the end stops kShadowEpsilon of the distance short: it stays
     // short.) The side is read off `to_target` itself, not its unit direction, so that the
-    // origin does not wait for the division (task2: 0.95x).
+    // origin does not wait for the division (docs/bench/code-figures.md).
     SpawnedRay ray_to(const Vec3& to_target, Real distance) const {
         const Vec3 direction = to_target / distance;
         if constexpr (kRobust) return {{origin(to_target), direction}, {0, distance * (1 - kShadowEpsilon)}};

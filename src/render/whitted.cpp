@@ -212,8 +212,8 @@ template <bool kRefracts>
                 break;
             }
             if (depth == 0) ++counts.primary_hits;
-            // Built in place: through std::optional (World::intersect) the record was copied by
-            // wide loads of narrower stores just made, which stall (task2 0.93x, bunny_room 0.94x).
+            // Built in place: through a std::optional the record was copied by wide loads of
+            // narrower stores just made, which stall (docs/bench/code-figures.md).
             const SurfaceHit hit = world.surface(ray, *found);
 
             // Step 2: local Phong shading with the normal facing the incoming ray.
@@ -256,7 +256,7 @@ template <bool kRefracts>
 
 // A ray that can meet nothing (most of a frame around a lone mesh) returns the background
 // here, without the set-up of the nearest-hit search, which trace_surfaces keeps out of line
-// (measured: the full bunny frame renders in 0.68x the time).
+// (docs/bench/code-figures.md).
 Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCounts& counts,
             const std::atomic<bool>* cancel) {
     ++counts.primary;
@@ -267,7 +267,7 @@ Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCoun
 
 void trace_packet(const World& world, const RenderSettings& settings, const Ray* const* rays, int count, Color* out,
                   RayCounts& counts, const std::atomic<bool>* cancel) {
-    if (!world.packet_pays(rays, count)) {
+    if (!world.packet_shares_a_mesh(rays, count)) {
         for (int i = 0; i < count; ++i) out[i] = trace(world, settings, *rays[i], counts, cancel);
         return;
     }

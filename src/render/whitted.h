@@ -41,7 +41,7 @@ Color trace(const World& world, const RenderSettings& settings, Ray ray, RayCoun
 
 // trace() for each of *rays[0 .. count) (at most kPacket: a tile of primary rays), out[i] the
 // colour of *rays[i]: the same colours, their nearest hits searched for together
-// (World::nearest_hits) where that pays (World::packet_pays). The rays are read in place:
+// (World::nearest_hits) where that pays (World::packet_shares_a_mesh). The rays are read in place:
 // copies made just before would stall their reads (store-to-load forwarding).
 void trace_packet(const World& world, const RenderSettings& settings, const Ray* const* rays, int count, Color* out,
                   RayCounts& counts, const std::atomic<bool>* cancel = nullptr);

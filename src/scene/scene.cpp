@@ -1,18 +1,60 @@
 #include "scene/scene.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace tracer {
+namespace {
+
+// A choice's values and their words, in the order of the enum.
+template <typename Enum, size_t N>
+using Words = std::array<std::pair<Enum, const char*>, N>;
+
+constexpr Words<Accelerator, 4> kAcceleratorWords{{{Accelerator::None, "none"},
+                                                   {Accelerator::Box, "box"},
+                                                   {Accelerator::Median, "median"},
+                                                   {Accelerator::Sah, "sah"}}};
+constexpr Words<SpawnRules, 2> kSpawnRulesWords{{{SpawnRules::Tracer, "tracer"}, {SpawnRules::Spd, "spd"}}};
+constexpr Words<Antialias, 2> kAntialiasWords{{{Antialias::Uniform, "uniform"}, {Antialias::Adaptive, "adaptive"}}};
+
+template <typename Enum, size_t N>
+const char* word_of(const Words<Enum, N>& words, Enum value) {
+    for (const auto& [each, word] : words)
+        if (each == value) return word;
+    return words[0].second;
+}
+
+template <typename Enum, size_t N>
+bool value_of(const Words<Enum, N>& words, std::string_view word, Enum& out) {
+    for (const auto& [each, each_word] : words)
+        if (word == each_word) {
+            out = each;
+            return true;
+        }
+    return false;
+}
+
+}  // namespace
 
 const char* accelerator_name(Accelerator accelerator) {
-    switch (accelerator) {
-        case Accelerator::None: return "none";
-        case Accelerator::Box: return "box";
-        case Accelerator::Median: return "median";
-        case Accelerator::Sah: return "sah";
-    }
-    return "sah";
+    return word_of(kAcceleratorWords, accelerator);
+}
+bool accelerator_from_name(std::string_view name, Accelerator& out) {
+    return value_of(kAcceleratorWords, name, out);
+}
+const char* spawn_rules_name(SpawnRules rules) {
+    return word_of(kSpawnRulesWords, rules);
+}
+bool spawn_rules_from_name(std::string_view name, SpawnRules& out) {
+    return value_of(kSpawnRulesWords, name, out);
+}
+const char* antialias_name(Antialias antialias) {
+    return word_of(kAntialiasWords, antialias);
+}
+bool antialias_from_name(std::string_view name, Antialias& out) {
+    return value_of(kAntialiasWords, name, out);
 }
 
 std::string render_settings_problem(const RenderSettings& render) {
@@ -30,15 +72,6 @@ std::string render_settings_problem(const RenderSettings& render) {
     if (pixels <= kMaxPixels) return "";
     return "the image would have " + std::to_string(pixels) + " pixels; the limit is " + std::to_string(kMaxPixels) +
            " (8192 x 8192)";
-}
-
-bool accelerator_from_name(std::string_view name, Accelerator& out) {
-    for (Accelerator a : {Accelerator::None, Accelerator::Box, Accelerator::Median, Accelerator::Sah})
-        if (name == accelerator_name(a)) {
-            out = a;
-            return true;
-        }
-    return false;
 }
 
 }  // namespace tracer

@@ -53,9 +53,14 @@ enum class Antialias { Uniform, Adaptive };
 // or a bounding volume hierarchy built by median splits (median) or the SAH (sah).
 enum class Accelerator { None, Box, Median, Sah };
 
-// The scene-language name of an accelerator ("sah"), and back (false if unknown).
+// The scene-language word of each setting's value ("sah", "spd", "adaptive": the render block's
+// choices, one table each in scene.cpp), and back (false if unknown).
 const char* accelerator_name(Accelerator accelerator);
 bool accelerator_from_name(std::string_view name, Accelerator& out);
+const char* spawn_rules_name(SpawnRules rules);
+bool spawn_rules_from_name(std::string_view name, SpawnRules& out);
+const char* antialias_name(Antialias antialias);
+bool antialias_from_name(std::string_view name, Antialias& out);
 
 struct RenderSettings {
     int width = 1200;

@@ -94,9 +94,9 @@ Json render_json(const RenderSettings& r) {
                 {"leaf_size", r.leaf_size}};
     // Only when set: older readers know no such keys.
     if (r.transparent_shadows) out["transparent_shadows"] = true;
-    if (r.spawn_rules == SpawnRules::Spd) out["spawn_rules"] = "spd";
+    if (r.spawn_rules != SpawnRules::Tracer) out["spawn_rules"] = spawn_rules_name(r.spawn_rules);
     if (r.antialias == Antialias::Adaptive) {
-        out["antialias"] = "adaptive";
+        out["antialias"] = antialias_name(r.antialias);
         out["adaptive_threshold"] = r.adaptive_threshold;
         out["adaptive_depth"] = r.adaptive_depth;
         out["adaptive_cell"] = r.adaptive_cell;

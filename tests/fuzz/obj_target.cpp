@@ -20,12 +20,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // A camera outside the mesh's bounds, when those bounds leave room for one in range.
     glm::dvec3 lower(INFINITY), upper(-INFINITY);
     for (const glm::dvec3& p : mesh->positions) lower = glm::min(lower, p), upper = glm::max(upper, p);
-    const glm::dvec3 centre = (lower + upper) * 0.5;
+    const glm::dvec3 center = (lower + upper) * 0.5;
     const double extent = std::max({upper.x - lower.x, upper.y - lower.y, upper.z - lower.z, 1e-20});
-    if (!(extent < 1e28) || std::abs(centre.z) + 3 * extent > 1e29) return 0;
+    if (!(extent < 1e28) || std::abs(center.z) + 3 * extent > 1e29) return 0;
     SceneDescription scene;
-    scene.camera.eye = centre + glm::dvec3(0, 0, 3 * extent);
-    scene.camera.lookat = centre;
+    scene.camera.eye = center + glm::dvec3(0, 0, 3 * extent);
+    scene.camera.lookat = center;
     scene.materials.push_back({});
     scene.materials.back().kd = glm::dvec3(1.0);
     scene.materials.back().km = glm::dvec3(0.5);

@@ -217,7 +217,7 @@ TriangleMesh cube_with_sliver() {
     return cube;
 }
 
-// A5: from the cube's centre to random points of its 12 edges and of the sliver (seed 3).
+// A5: from the cube's center to random points of its 12 edges and of the sliver (seed 3).
 TEST(HardCases, A5_CubeClosedByASliverDoesNotLeak) {
     const TriangleMesh cube = cube_with_sliver();
     // Closed and consistently wound: every directed edge once, and its reverse once.
@@ -325,7 +325,7 @@ TEST(HardCases, A5_DegenerateNeedleAndTinyTriangles) {
         for (const Vec3& v : {tri.v0, tri.v1, tri.v2}) box.extend(v);
         const Vec3 lo = box.lower, hi = box.upper;
         const Real grow = 0.1 * std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-        const Vec3 centre = Real(0.5) * (lo + hi);
+        const Vec3 center = Real(0.5) * (lo + hi);
         std::mt19937 random(3);
         std::uniform_real_distribution<double> unit(0, 1);
         std::normal_distribution<double> gauss;
@@ -333,7 +333,7 @@ TEST(HardCases, A5_DegenerateNeedleAndTinyTriangles) {
         for (int i = 0; i < 100000; ++i) {
             const Vec3 on_sphere = glm::normalize(Vec3(gauss(random), gauss(random), gauss(random)));
             const Vec3 target = lo - grow + Vec3(unit(random), unit(random), unit(random)) * (hi - lo + 2 * grow);
-            const Vec3 origin = centre + Real(10) * on_sphere;
+            const Vec3 origin = center + Real(10) * on_sphere;
             const Ray ray{origin, glm::normalize(target - origin)};
             TriangleHit hit;
             const bool found = TriangleTester(ray)(tri, {0, kInfinity}, hit);

@@ -4,6 +4,7 @@
 // a thin cylinder far away is hit or missed as the exact geometry says.
 #include <random>
 
+#include "../common/nearest_surface.h"
 #include "accel/world.h"
 #include "hard_cases.h"
 #include "render/spawn.h"
@@ -42,7 +43,7 @@ TEST(HardCases, RoundShapesRaysLeavingThemNeverMeetThemAgain) {
     scenes.emplace_back("far_disc", disc_scene);
     for (const auto& [name, scene] : scenes) {
         const World world(scene);
-        const dvec3 centre =
+        const dvec3 center =
             scene.cones.empty() ? scene.discs[0].center : 0.5 * (scene.cones[0].base + scene.cones[0].top);
         const double size = scene.cones.empty() ? scene.discs[0].radius
                                                 : glm::length(scene.cones[0].top - scene.cones[0].base) +
@@ -52,10 +53,10 @@ TEST(HardCases, RoundShapesRaysLeavingThemNeverMeetThemAgain) {
         int hits = 0, spawned = 0, rehits = 0, non_finite = 0;
         SearchCounts counts;
         while (hits < 5000) {
-            const Vec3 origin = Vec3(centre) + Real(4 * size) * random_direction(random);
-            const Vec3 target = Vec3(centre + size * dvec3(unit(random), unit(random), unit(random)));
+            const Vec3 origin = Vec3(center) + Real(4 * size) * random_direction(random);
+            const Vec3 target = Vec3(center + size * dvec3(unit(random), unit(random), unit(random)));
             const Ray ray{origin, glm::normalize(target - origin)};
-            const auto hit = world.intersect(ray, kPrimaryRange, counts);
+            const auto hit = nearest_surface(world, ray, kPrimaryRange, counts);
             if (!hit) continue;
             ++hits;
             // The side of the surface the ray came from (a disc is left on both sides).

@@ -15,7 +15,7 @@ struct BunnyScene {
     SceneMeshes meshes;
 };
 BunnyScene bunny_scene(const Vec3& offset, double floor_kd, double bunny_kd, double sphere_kd, double sphere_km,
-                       const Vec3& sphere_centre) {
+                       const Vec3& sphere_center) {
     BunnyScene out;
     SceneDescription& s = out.scene;
     s.materials.resize(3);
@@ -29,7 +29,7 @@ BunnyScene bunny_scene(const Vec3& offset, double floor_kd, double bunny_kd, dou
     s.meshes.push_back(bunny);
     out.meshes.file_of_block = {0};
     s.planes.push_back({glm::dvec3(offset) + glm::dvec3(0, -0.01, 0), {0, 1, 0}, 1});
-    s.spheres.push_back({glm::dvec3(offset + sphere_centre), 1.0, 2});
+    s.spheres.push_back({glm::dvec3(offset + sphere_center), 1.0, 2});
     return out;
 }
 

@@ -3,6 +3,7 @@
 // any scale and any distance from the origin.
 #include <random>
 
+#include "../common/nearest_surface.h"
 #include "accel/world.h"
 #include "hard_cases.h"
 #include "render/camera.h"
@@ -18,7 +19,7 @@ namespace {
 TEST(HardCases, B2_RaysLeavingASphereNeverMeetItAgain) {
     struct Case {
         const char* name;
-        Vec3 centre;
+        Vec3 center;
         Real radius;
     };
     const Case cases[] = {{"b2_sa", {0.0, 0.083, 0.4}, 0.015},
@@ -27,18 +28,18 @@ TEST(HardCases, B2_RaysLeavingASphereNeverMeetItAgain) {
                           {"b2_sd", {1e4, -3e3, 2e3}, 1}};
     for (const Case& c : cases) {
         SceneDescription scene = empty_scene();
-        scene.spheres.push_back({c.centre, c.radius, 0});
+        scene.spheres.push_back({c.center, c.radius, 0});
         const World world(scene);
         std::mt19937 random(4);
         std::uniform_real_distribution<double> unit(0, 1);
         int primary_hits = 0, spawned = 0, rehits = 0, non_finite = 0;
         SearchCounts counts;
         while (primary_hits < 10000) {
-            const Vec3 origin = c.centre + Real(10) * c.radius * random_direction(random);
+            const Vec3 origin = c.center + Real(10) * c.radius * random_direction(random);
             const Vec3 target =
-                c.centre + c.radius * (Real(2) * Vec3(unit(random), unit(random), unit(random)) - Real(1));
+                c.center + c.radius * (Real(2) * Vec3(unit(random), unit(random), unit(random)) - Real(1));
             const Ray ray{origin, glm::normalize(target - origin)};
-            const auto hit = world.intersect(ray, kPrimaryRange, counts);
+            const auto hit = nearest_surface(world, ray, kPrimaryRange, counts);
             if (!hit) continue;
             ++primary_hits;
             const Vec3 outward = hit->geometric_normal;
@@ -82,9 +83,9 @@ TEST(HardCases, SoupRaysLeavingATriangleNeverMeetItAgain) {
     std::vector<Real> sizes;
     for (int i = 0; i < 2000; ++i) {
         const Real size = std::pow(10.0, -4 + 8 * unit(random));
-        const Vec3 centre = size * 10 * (Real(2) * Vec3(unit(random), unit(random), unit(random)) - Real(1));
+        const Vec3 center = size * 10 * (Real(2) * Vec3(unit(random), unit(random), unit(random)) - Real(1));
         const uint32_t first = uint32_t(soup.positions.size());
-        for (int k = 0; k < 3; ++k) soup.positions.push_back(centre + size * random_direction(random));
+        for (int k = 0; k < 3; ++k) soup.positions.push_back(center + size * random_direction(random));
         soup.triangles.push_back({first, first + 1, first + 2});
         sizes.push_back(size);
     }
@@ -170,7 +171,7 @@ TEST(HardCases, B1_TiltedPlaneFarFromTheOriginHasNoAcne) {
         for (int y = 0; y < 512; ++y)
             for (int x = 0; x < 512; ++x) {
                 const Ray ray = camera.ray_through(x + 0.5, y + 0.5);
-                const auto hit = world.intersect(ray, kPrimaryRange, search);
+                const auto hit = nearest_surface(world, ray, kPrimaryRange, search);
                 if (!hit) continue;
                 ++hits;
                 const SpawnedRay shadow = spawn_ray_to(*hit, light);

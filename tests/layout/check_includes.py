@@ -4,7 +4,8 @@
     base  <  scene  <  lang, io, accel  <  render  <  app
 
 lang, io and accel are siblings and include none of each other; render sits on accel (the
-renderer and its acceleration structures know nothing of the language or of files).
+renderer and its acceleration structures know nothing of the language or of files). A stage's
+internal/ folder (src/lang/internal/) is its back room: only that stage includes it.
 Fails, naming each offending line, otherwise.
 Usage: check_includes.py SRC_DIR"""
 
@@ -21,7 +22,7 @@ ALLOWED = {
     "render": {"base", "scene", "accel", "render"},
     "app": {"base", "scene", "lang", "io", "accel", "render", "app"},
 }
-INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/')
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/([a-z_]+/)?')
 
 
 def main() -> int:
@@ -39,6 +40,8 @@ def main() -> int:
             match = INCLUDE.match(line)
             if match and match.group(1) not in ALLOWED[stage]:
                 problems.append(f"{path}:{number}: {stage}/ includes {match.group(1)}/: {line.strip()}")
+            elif match and match.group(2) == "internal/" and match.group(1) != stage:
+                problems.append(f"{path}:{number}: {stage}/ includes {match.group(1)}/internal/: {line.strip()}")
     for problem in problems:
         print(problem)
     print(f"{checked} files checked, {len(problems)} problems")

@@ -86,7 +86,7 @@ public:
 
     Color pixel(int x, int y) const {
         // Down the cells of whole pixels that hold (x, y), from the grid's cell, to a cell left
-        // whole (the bilinear blend at the pixel's centre) or the pixel itself.
+        // whole (the bilinear blend at the pixel's center) or the pixel itself.
         int64_t size = std::max(first_, cells_);
         int64_t cx = int64_t(x) * cells_ / size * size, cy = int64_t(y) * cells_ / size * size;
         while (size > cells_) {

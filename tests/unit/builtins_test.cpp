@@ -5,36 +5,36 @@
 #include <cmath>
 #include <set>
 
-#include "lang/builtins.h"
+#include "lang/internal/builtins.h"
 
 namespace tracer {
 namespace {
 
-Val num(double x) {
-    return Val::number(x);
+RuntimeValue num(double x) {
+    return RuntimeValue::number(x);
 }
-Val vec(double x, double y, double z) {
-    return Val::vector3(x, y, z);
+RuntimeValue vec(double x, double y, double z) {
+    return RuntimeValue::vector3(x, y, z);
 }
 
 // Calls the built-in `name` through the table with `args`.
-Val call(std::string_view name, std::vector<Val> args) {
+RuntimeValue call(std::string_view name, std::vector<RuntimeValue> args) {
     const Builtin* builtin = find_builtin(name);
     EXPECT_NE(builtin, nullptr) << name;
     EXPECT_EQ(builtin->arity, args.size()) << name;
     const std::vector<Span> spans(args.size());
     return builtin->body(BuiltinArguments(builtin->name, args, spans, Span{}));
 }
-double number(std::string_view name, std::vector<Val> args) {
+double number(std::string_view name, std::vector<RuntimeValue> args) {
     return call(name, std::move(args)).x[0];
 }
-std::vector<double> vector(std::string_view name, std::vector<Val> args) {
-    const Val result = call(name, std::move(args));  // its components live in it
+std::vector<double> vector(std::string_view name, std::vector<RuntimeValue> args) {
+    const RuntimeValue result = call(name, std::move(args));  // its components live in it
     const auto c = result.components();
     return {c.begin(), c.end()};
 }
 // The message of the BuiltinError that calling `name` with `args` throws, or "" if none.
-std::string error(std::string_view name, std::vector<Val> args) {
+std::string error(std::string_view name, std::vector<RuntimeValue> args) {
     try {
         call(name, std::move(args));
     } catch (const BuiltinError& e) {
@@ -106,8 +106,8 @@ TEST(Builtins, PowersLogarithmsAndInverseTrigonometryInDegrees) {
 // states it; these values come from an independent implementation of that statement (Python's
 // integers), so any machine or compiler that gives others breaks the promise.
 TEST(Builtins, LenCountsAListsValues) {
-    EXPECT_EQ(number("len", {Val::list({})}), 0);
-    EXPECT_EQ(number("len", {Val::list({num(1), vec(1, 2, 3), Val::list({num(1), num(2)})})}), 3);
+    EXPECT_EQ(number("len", {RuntimeValue::list({})}), 0);
+    EXPECT_EQ(number("len", {RuntimeValue::list({num(1), vec(1, 2, 3), RuntimeValue::list({num(1), num(2)})})}), 3);
     EXPECT_EQ(error("len", {num(3)}), "'len''s argument must be a list; this is a number");
 }
 

@@ -46,11 +46,11 @@ TriangleMesh triangle_soup(int count, uint32_t seed) {
     std::uniform_real_distribution<double> unit(0, 1);
     TriangleMesh soup;
     for (int i = 0; i < count; ++i) {
-        const Vec3 centre(unit(random), unit(random), unit(random));
+        const Vec3 center(unit(random), unit(random), unit(random));
         const double size = 0.002 + 0.2 * unit(random) * unit(random);
         const uint32_t first = uint32_t(soup.positions.size());
         for (int k = 0; k < 3; ++k)
-            soup.positions.push_back(glm::dvec3(centre) +
+            soup.positions.push_back(glm::dvec3(center) +
                                      size * glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
         soup.triangles.push_back({first, first + 1, first + 2});
     }
@@ -69,14 +69,14 @@ void compare_with_brute_force(const TriangleMesh& mesh, uint32_t seed, Agreement
     const MeshAccel trees[] = {accel(mesh, builds[0], 3), accel(mesh, builds[1], 3), accel(mesh, builds[2], 3)};
     Bounds box;
     for (const auto& p : mesh.positions) box.extend(Vec3(p));
-    const Vec3 centre = box.centre();
+    const Vec3 center = box.center();
     const double radius = glm::length(box.upper - box.lower);
     std::mt19937 random(seed);
     std::uniform_real_distribution<double> unit(0, 1);
     std::normal_distribution<double> gauss;
     for (int i = 0; i < 100000 && !::testing::Test::HasFailure(); ++i) {
         const Vec3 on_sphere = glm::normalize(Vec3(gauss(random), gauss(random), gauss(random)));
-        const Vec3 origin = centre + Real(radius) * on_sphere;
+        const Vec3 origin = center + Real(radius) * on_sphere;
         const Vec3 target = box.lower + Vec3(unit(random), unit(random), unit(random)) * (box.upper - box.lower);
         const Ray ray{origin, glm::normalize(target - origin)};
         TraversalCounts counts;
@@ -415,7 +415,7 @@ TEST(Bvh, ParallelBuildsMakeTheSingleThreadedTree) {
 
 // Sah's wide tree built directly (from kDirectWideFrom primitives) is the tree collapsed from
 // the binary build, byte for byte, on one thread and on two: for scattered boxes, for boxes
-// whose centres all coincide (split in halves), for one and two boxes, and with small subtrees
+// whose centers all coincide (split in halves), for one and two boxes, and with small subtrees
 // gathered into leaves (whose entries the binary build orders otherwise: compared as sets).
 TEST(Bvh, DirectWideBuildsMakeTheCollapsedTree) {
     std::mt19937 random(5);

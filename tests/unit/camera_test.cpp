@@ -19,7 +19,7 @@ Camera task2_camera() {
     return camera;
 }
 
-TEST(Camera, ImageCentreLooksAtLookat) {
+TEST(Camera, ImageCenterLooksAtLookat) {
     PinholeCamera camera(task2_camera(), 1200, 800);
     Ray ray = camera.ray_through(600, 400);
     EXPECT_EQ(ray.origin, Vec3(0, 0, 7));

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "../common/nearest_surface.h"
 #include "accel/world.h"
 #include "render/spawn.h"
 #include "scene/flat_shapes.h"
@@ -36,7 +37,7 @@ Box random_box(std::mt19937& random, double least, double spread) {
 
 std::optional<SurfaceHit> shoot(const World& world, dvec3 origin, dvec3 direction) {
     SearchCounts counts;
-    return world.intersect({Vec3(origin), Vec3(glm::normalize(direction))}, {0, kInfinity}, counts);
+    return nearest_surface(world, {Vec3(origin), Vec3(glm::normalize(direction))}, {0, kInfinity}, counts);
 }
 
 TEST(Placement, StepsApplyInTheOrderWritten) {
@@ -111,14 +112,14 @@ TEST(FlatShapes, TriangleIsHitInsideItsEdgesOnly) {
 
 // A box, turned and moved (and mirrored): closed, its faces' normals outwards. Rays from inside
 // towards random points, its corners and its edges' midpoints all hit it, leaving by a face
-// whose normal points along the ray; rays from outside at its centre enter against it.
+// whose normal points along the ray; rays from outside at its center enter against it.
 void expect_closed_and_outward(const Box& box) {
     SceneDescription scene = one_material();
     scene.boxes = {box};
     const World world(scene);
     const Placement placement(box);
     const TriangleMesh corners = triangle_mesh(box);
-    const dvec3 centre = placement.point((box.min + box.max) * 0.5);
+    const dvec3 center = placement.point((box.min + box.max) * 0.5);
     std::vector<dvec3> targets;
     for (const dvec3& a : corners.positions) {
         targets.push_back(placement.point(a));
@@ -128,18 +129,18 @@ void expect_closed_and_outward(const Box& box) {
     std::uniform_real_distribution<double> unit(0, 1);
     for (int i = 0; i < 20000; ++i) {
         const dvec3 local(box.min + (box.max - box.min) * dvec3(unit(random), unit(random), unit(random)));
-        targets.push_back(placement.point(local) + (placement.point(local) - centre));  // beyond a face
+        targets.push_back(placement.point(local) + (placement.point(local) - center));  // beyond a face
     }
     for (const dvec3& target : targets) {
-        const dvec3 direction = target - centre;
+        const dvec3 direction = target - center;
         if (glm::length(direction) == 0) continue;
-        const auto leaving = shoot(world, centre, direction);
+        const auto leaving = shoot(world, center, direction);
         ASSERT_TRUE(leaving) << "leaked towards " << target.x << " " << target.y << " " << target.z;
         EXPECT_GT(glm::dot(leaving->geometric_normal, Vec3(direction)), 0);
-        const dvec3 outside = centre + 10.0 * glm::normalize(direction) * glm::length(box.max - box.min);
-        const auto entering = shoot(world, outside, centre - outside);
+        const dvec3 outside = center + 10.0 * glm::normalize(direction) * glm::length(box.max - box.min);
+        const auto entering = shoot(world, outside, center - outside);
         ASSERT_TRUE(entering);
-        EXPECT_LT(glm::dot(entering->geometric_normal, Vec3(centre - outside)), 0);
+        EXPECT_LT(glm::dot(entering->geometric_normal, Vec3(center - outside)), 0);
     }
 }
 

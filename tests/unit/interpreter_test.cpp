@@ -24,8 +24,8 @@ std::vector<std::string> errors(const LoadResult& result) {
     return out;
 }
 
-// The centre of the only sphere of `expression` written as its centre.
-dvec3 centre_of(const std::string& lets, const std::string& expression) {
+// The center of the only sphere of `expression` written as its center.
+dvec3 center_of(const std::string& lets, const std::string& expression) {
     LoadResult r = load(lets + "\nsphere { center " + expression + " radius 1 material { kd 1 } }");
     EXPECT_TRUE(r.scene) << expression << ": " << (errors(r).empty() ? "" : errors(r)[0]);
     return r.scene ? r.scene->spheres.at(0).center : dvec3(-999);
@@ -49,11 +49,11 @@ TEST(Interpreter, ArithmeticFollowsTheUsualPrecedence) {
 }
 
 TEST(Interpreter, VectorsAddScaleAndHaveComponents) {
-    EXPECT_EQ(centre_of("let v = (1, 2, 3)", "v + (1, 1, 1)"), dvec3(2, 3, 4));
-    EXPECT_EQ(centre_of("let v = (1, 2, 3)", "2 * v - v / 2"), dvec3(1.5, 3, 4.5));
-    EXPECT_EQ(centre_of("let v = (1, 2, 3)", "(v.z, v.y * 2, -v.x)"), dvec3(3, 4, -1));
-    EXPECT_EQ(centre_of("let h = 0.5", "(0, h + 1, 0)"), dvec3(0, 1.5, 0));
-    EXPECT_EQ(centre_of("", "-(1, 2, 3)"), dvec3(-1, -2, -3));
+    EXPECT_EQ(center_of("let v = (1, 2, 3)", "v + (1, 1, 1)"), dvec3(2, 3, 4));
+    EXPECT_EQ(center_of("let v = (1, 2, 3)", "2 * v - v / 2"), dvec3(1.5, 3, 4.5));
+    EXPECT_EQ(center_of("let v = (1, 2, 3)", "(v.z, v.y * 2, -v.x)"), dvec3(3, 4, -1));
+    EXPECT_EQ(center_of("let h = 0.5", "(0, h + 1, 0)"), dvec3(0, 1.5, 0));
+    EXPECT_EQ(center_of("", "-(1, 2, 3)"), dvec3(-1, -2, -3));
 }
 
 TEST(Interpreter, FunctionsUseDegreesForAngles) {
@@ -68,10 +68,10 @@ TEST(Interpreter, FunctionsUseDegreesForAngles) {
     EXPECT_EQ(radius_of("", "length((3, 4, 0))"), 5);
     EXPECT_EQ(radius_of("", "dot((1, 2, 3), (4, 5, 6))"), 32);
     EXPECT_EQ(radius_of("", "lerp(1, 3, 0.25)"), 1.5);
-    EXPECT_EQ(centre_of("", "cross((1, 0, 0), (0, 1, 0))"), dvec3(0, 0, 1));
-    EXPECT_EQ(centre_of("", "normalize((0, 3, 4))"), dvec3(0, 0.6, 0.8));
-    EXPECT_EQ(centre_of("", "lerp((0, 0, 0), (2, 4, 6), 0.5)"), dvec3(1, 2, 3));
-    EXPECT_EQ(centre_of("", "abs((-1, 2, -3))"), dvec3(1, 2, 3));
+    EXPECT_EQ(center_of("", "cross((1, 0, 0), (0, 1, 0))"), dvec3(0, 0, 1));
+    EXPECT_EQ(center_of("", "normalize((0, 3, 4))"), dvec3(0, 0.6, 0.8));
+    EXPECT_EQ(center_of("", "lerp((0, 0, 0), (2, 4, 6), 0.5)"), dvec3(1, 2, 3));
+    EXPECT_EQ(center_of("", "abs((-1, 2, -3))"), dvec3(1, 2, 3));
     EXPECT_NEAR(radius_of("", "pow(2, 3) + exp(0) + log(1)"), 9, 1e-15);
     EXPECT_NEAR(radius_of("", "asin(1) + acos(0) + atan(1) + atan2(1, 0)"), 315, 1e-12);
     EXPECT_NEAR(radius_of("", "1 + random(1, 2)"), 1.5, 0.5);

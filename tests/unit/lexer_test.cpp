@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "lang/lexer.h"
+#include "lang/internal/lexer.h"
 
 namespace tracer {
 namespace {

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "lang/internal/parser.h"
 #include "lang/interpreter.h"
-#include "lang/parser.h"
 
 namespace tracer {
 namespace {
@@ -28,15 +28,15 @@ TEST(Parser, BlocksEntriesAndEveryKindOfValue) {
     EXPECT_EQ(material.kind, "material");
     EXPECT_EQ(material.name, "shiny");
     ASSERT_EQ(material.body.entries.size(), 2u);
-    EXPECT_EQ(material.body.entries[0].value.kind, Value::Kind::Vector);
+    EXPECT_EQ(material.body.entries[0].value.kind, PlainValue::Kind::Vector);
     EXPECT_EQ(material.body.entries[0].value.components, (std::vector<double>{0.2, 1, 0.2}));
     EXPECT_EQ(material.body.entries[1].value.number, 100);
     const Block& mesh = p.evaluated.blocks[1];
-    EXPECT_EQ(mesh.body.entries[0].value.kind, Value::Kind::String);
+    EXPECT_EQ(mesh.body.entries[0].value.kind, PlainValue::Kind::String);
     EXPECT_EQ(mesh.body.entries[0].value.text, "a.obj");
-    ASSERT_EQ(mesh.body.entries[1].value.kind, Value::Kind::Block);
+    ASSERT_EQ(mesh.body.entries[1].value.kind, PlainValue::Kind::Block);
     EXPECT_EQ(mesh.body.entries[1].value.body->entries.size(), 2u);
-    EXPECT_EQ(mesh.body.entries[2].value.kind, Value::Kind::Identifier);
+    EXPECT_EQ(mesh.body.entries[2].value.kind, PlainValue::Kind::Identifier);
 }
 
 TEST(Parser, RecoversAtBlockBoundariesWithOneErrorPerBrokenBlock) {

@@ -118,8 +118,8 @@ TEST(RayPackets, WorldPacketsAnswerAsEachRayAlone) {
     size_t largest = 0;
     for (const MeshAccel& mesh : world.meshes()) largest = std::max(largest, mesh.triangle_count());
     ASSERT_GT(largest, 1000u);
-    EXPECT_TRUE(world.packets_pay(World::kPixelsPerTriangle * largest));
-    EXPECT_FALSE(world.packets_pay(World::kPixelsPerTriangle * largest - 1));
+    EXPECT_TRUE(world.frame_takes_tiles(World::kPixelsPerTriangle * largest));
+    EXPECT_FALSE(world.frame_takes_tiles(World::kPixelsPerTriangle * largest - 1));
     int hits = 0, instance_hits = 0;
     for (const std::vector<Ray>& rays : packets(6000, 4)) {
         const int n = int(rays.size());

@@ -27,14 +27,14 @@ SceneDescription glass_sphere(double ior, int max_depth = 4) {
 // Glass filling z < 0 (the plane z = 0, normal up, out of the glass) and a small marker
 // sphere of ambient 1 (seen as 1.0 when a ray reaches it, else 0): where the marker sits
 // tells which way the rays went.
-SceneDescription glass_floor_with_marker(double kt, Vec3 marker_centre, double marker_radius) {
+SceneDescription glass_floor_with_marker(double kt, Vec3 marker_center, double marker_radius) {
     SceneDescription scene;
     Material glass, marker;
     glass.kt = dvec3(kt), glass.ior = 1.5;
     marker.ka = dvec3(1.0);
     scene.materials = {glass, marker};
     scene.planes = {{{0, 0, 0}, {0, 0, 1}, 0}};
-    scene.spheres = {{dvec3(marker_centre), marker_radius, 1}};
+    scene.spheres = {{dvec3(marker_center), marker_radius, 1}};
     scene.render.shadows = false;
     return scene;
 }
@@ -88,7 +88,7 @@ TEST(Refraction, TotalInternalReflectionSendsTheWeightAlongTheMirrorRay) {
 TEST(Refraction, EnteringAndLeavingFollowTheGeometricNormal) {
     // A ball lens (ior 1.5): bent towards the inside on the way in (1 -> 1.5) and again on the
     // way out (1.5 -> 1), a ray parallel to the axis at height 0.3 crosses the axis behind the
-    // sphere (paraxial focus 1.5 from the centre) and meets a marker that lies wholly below
+    // sphere (paraxial focus 1.5 from the center) and meets a marker that lies wholly below
     // the axis. Unbent it would pass above the marker; with entering and leaving swapped the
     // lens would spread the ray upwards, away from it.
     SceneDescription scene = glass_sphere(1.5);
@@ -101,7 +101,7 @@ TEST(Refraction, EnteringAndLeavingFollowTheGeometricNormal) {
     RayCounts counts;
     EXPECT_NEAR(trace(world, scene.render, {{0, 0.3, 5}, {0, 0, -1}}, counts).r, 1.0, 1e-12);
     EXPECT_EQ(counts.refraction, 2u);
-    // Through the centre the ray is not bent: it passes above the marker.
+    // Through the center the ray is not bent: it passes above the marker.
     EXPECT_EQ(trace(world, scene.render, {{0, 0, 5}, {0, 0, -1}}, counts).r, 0.0);
 }
 

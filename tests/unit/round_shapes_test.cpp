@@ -137,11 +137,11 @@ TEST(RoundShapes, RimsLetNoRayThrough) {
         const Vec3 w = cone.axis;
         const Vec3 u = glm::normalize(glm::cross(w, Vec3(1, 0, 0))), v = glm::cross(w, u);
         const Real radius = top ? cone.top_radius : cone.base_radius;
-        const Vec3 centre = cone.base + (top ? cone.height : 0) * w;
-        const Vec3 rim = centre + radius * (Real(std::cos(angle)) * u + Real(std::sin(angle)) * v);
+        const Vec3 center = cone.base + (top ? cone.height : 0) * w;
+        const Vec3 rim = center + radius * (Real(std::cos(angle)) * u + Real(std::sin(angle)) * v);
         // From a point beyond the cap, inside the rim's circle a little: the ray crosses the edge.
         const Vec3 outward = Real(top ? 1 : -1) * w;
-        const Vec3 origin = centre + Real(2) * outward + Real(1.5) * (rim - centre);
+        const Vec3 origin = center + Real(2) * outward + Real(1.5) * (rim - center);
         const auto hit = cast(cone, origin, rim - origin);
         misses += !hit || hit->t > glm::length(rim - origin) * (1 + 1e-9);
     }

@@ -9,7 +9,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "lang/checked_fields.h"
+#include "lang/internal/checked_fields.h"
 #include "lang/load_scene.h"
 #include "lang/schema.h"
 

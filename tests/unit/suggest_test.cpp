@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "lang/suggest.h"
+#include "lang/internal/suggest.h"
 
 namespace tracer {
 namespace {

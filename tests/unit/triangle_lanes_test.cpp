@@ -42,8 +42,8 @@ std::vector<Triangle> test_triangles(std::mt19937_64& random) {
     std::uniform_real_distribution<double> unit(-1, 1), exponent(-6, 6);
     for (int i = 0; i < 64; ++i) {
         const Real scale = Real(std::pow(10.0, exponent(random)));
-        const Vec3 centre = Vec3(unit(random), unit(random), unit(random)) * Real(3);
-        auto corner = [&] { return centre + scale * Vec3(unit(random), unit(random), unit(random)); };
+        const Vec3 center = Vec3(unit(random), unit(random), unit(random)) * Real(3);
+        auto corner = [&] { return center + scale * Vec3(unit(random), unit(random), unit(random)); };
         Triangle t{corner(), corner(), corner()};
         if (i % 8 == 0) t.v2 = t.v0 + (t.v1 - t.v0) * Real(0.5);  // collinear: no area
         if (i % 8 == 1) t.v1 = t.v0;                              // two corners the same

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "../common/nearest_surface.h"
 #include "render/spawn.h"
 #include "render/whitted.h"
 
@@ -118,15 +119,15 @@ TEST(Whitted, MayHitNeverRulesOutARayThatHits) {
         const Vec3 origin = Vec3(scene.spheres[0].center) +
                             Real(distance) * Vec3(std::cos(a) * std::sin(b), std::sin(a) * std::sin(b), std::cos(b));
         // A point on the silhouette seen from the origin, nudged in or out by 1e-12 to 1e-4.
-        const Vec3 to_centre = Vec3(scene.spheres[0].center) - origin;
-        const Vec3 side = glm::normalize(glm::cross(to_centre, Vec3(0.3, 1, 0.2)));
-        const double r = scene.spheres[0].radius, d = glm::length(to_centre);
+        const Vec3 to_center = Vec3(scene.spheres[0].center) - origin;
+        const Vec3 side = glm::normalize(glm::cross(to_center, Vec3(0.3, 1, 0.2)));
+        const double r = scene.spheres[0].radius, d = glm::length(to_center);
         const double nudge = (i % 2 ? 1 : -1) * std::pow(10.0, exponent(random));
         const Vec3 target =
-            origin + to_centre * Real(1 - r * r / (d * d)) + side * Real(r * std::sqrt(d * d - r * r) / d + nudge);
+            origin + to_center * Real(1 - r * r / (d * d)) + side * Real(r * std::sqrt(d * d - r * r) / d + nudge);
         const Ray ray{origin, glm::normalize(target - origin)};
         SearchCounts counts;
-        const bool hit = world.intersect(ray, kPrimaryRange, counts).has_value();
+        const bool hit = nearest_surface(world, ray, kPrimaryRange, counts).has_value();
         const bool may_hit = world.may_hit(ray);
         hits += hit;
         ruled_out += !may_hit;

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "../common/nearest_surface.h"
 #include "accel/geometry.h"
 #include "accel/triangle.h"
 #include "accel/world.h"
@@ -50,10 +51,10 @@ MixedScene mixed_scene(int spheres, uint32_t seed, Accelerator accel = Accelerat
 
     TriangleMesh soup;
     for (int i = 0; i < 200; ++i) {
-        const glm::dvec3 centre(2 * unit(random) - 1, 2 * unit(random) - 1, 2 * unit(random) - 1);
+        const glm::dvec3 center(2 * unit(random) - 1, 2 * unit(random) - 1, 2 * unit(random) - 1);
         const uint32_t first = uint32_t(soup.positions.size());
         for (int k = 0; k < 3; ++k)
-            soup.positions.push_back(centre +
+            soup.positions.push_back(center +
                                      0.3 * glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
         soup.triangles.push_back({first, first + 1, first + 2});
     }
@@ -291,8 +292,8 @@ TEST(World, InstanceNormalsMatchTheMeshBuiltPlaced) {
     int hits = 0, disagreements = 0;
     for (const Ray& ray : random_rays(20000, 6)) {
         SearchCounts counts;
-        const auto a = placed.intersect(ray, {0, kInfinity}, counts),
-                   b = instanced.intersect(ray, {0, kInfinity}, counts);
+        const auto a = nearest_surface(placed, ray, {0, kInfinity}, counts),
+                   b = nearest_surface(instanced, ray, {0, kInfinity}, counts);
         if (a.has_value() != b.has_value()) ++disagreements;  // grazing an edge: rounding decides
         if (!a || !b) continue;
         ++hits;
@@ -321,11 +322,13 @@ TEST(World, FlatShadingGivesEachTriangleItsOwnNormal) {
     scene.meshes = {block};
     const Ray towards_the_top_face{{0.5, 5, 0.3}, {0, -1, 0}};
     SearchCounts counts;
-    const auto smooth = World(scene, SceneMeshes{{cube}, {0}}).intersect(towards_the_top_face, {0, kInfinity}, counts);
+    const auto smooth =
+        nearest_surface(World(scene, SceneMeshes{{cube}, {0}}), towards_the_top_face, {0, kInfinity}, counts);
     ASSERT_TRUE(smooth);
     EXPECT_GT(glm::length(smooth->normal - Vec3(0, 1, 0)), 0.1);  // the corners' averages lean outwards
     scene.meshes[0].flat = true;
-    const auto flat = World(scene, SceneMeshes{{cube}, {0}}).intersect(towards_the_top_face, {0, kInfinity}, counts);
+    const auto flat =
+        nearest_surface(World(scene, SceneMeshes{{cube}, {0}}), towards_the_top_face, {0, kInfinity}, counts);
     ASSERT_TRUE(flat);
     EXPECT_EQ(flat->normal, Vec3(0, 1, 0));
     // Instanced: two flat blocks and one smooth block of the same file.
@@ -334,11 +337,11 @@ TEST(World, FlatShadingGivesEachTriangleItsOwnNormal) {
     scene.meshes[2].translate = {20, 0, 0};
     const World both(scene, SceneMeshes{{cube}, {0, 0, 0}});
     EXPECT_EQ(both.meshes().size(), 2u);
-    const auto flat_instance = both.intersect(towards_the_top_face, {0, kInfinity}, counts);
+    const auto flat_instance = nearest_surface(both, towards_the_top_face, {0, kInfinity}, counts);
     ASSERT_TRUE(flat_instance);
     EXPECT_LT(glm::length(flat_instance->normal - Vec3(0, 1, 0)), 1e-12);
     const Ray towards_the_smooth_one{{20.5, 5, 0.3}, {0, -1, 0}};
-    const auto smooth_instance = both.intersect(towards_the_smooth_one, {0, kInfinity}, counts);
+    const auto smooth_instance = nearest_surface(both, towards_the_smooth_one, {0, kInfinity}, counts);
     ASSERT_TRUE(smooth_instance);
     EXPECT_LT(glm::length(smooth_instance->normal - smooth->normal), 1e-12);
 }
@@ -371,7 +374,7 @@ TEST(World, InstancesShareOneMesh) {
     EXPECT_LE(all, 2 * one_bunny + 200 * 4096);
 }
 
-// A sphere is kept once, in the top level's entry (its centre, radius, object and kind), beside
+// A sphere is kept once, in the top level's entry (its center, radius, object and kind), beside
 // its object record and its share of the wide tree: 40,000 spheres on a grid (whose tree at leaf
 // size 1 takes 0.3 wide nodes of 256 bytes per sphere) cost under 150 bytes each.
 TEST(World, SpheresAreKeptOnce) {

@@ -96,8 +96,14 @@ int main(int argc, char** argv) {
     std::vector<std::pair<Ray, Interval>> shadow;     // from every hit to every light
     std::vector<std::pair<Ray, Interval>> reflected;  // from every hit, its mirror direction
     SearchCounts counts;
+    // The nearest hit's surface, as the Whitted loop finds it.
+    auto nearest_surface = [&](const Ray& ray) -> std::optional<SurfaceHit> {
+        const auto hit = world.nearest_hit(ray, kPrimaryRange, counts);
+        if (!hit) return std::nullopt;
+        return world.surface(ray, *hit);
+    };
     for (const Ray& ray : primary) {
-        const auto hit = world.intersect(ray, kPrimaryRange, counts);
+        const auto hit = nearest_surface(ray);
         if (!hit) continue;
         const SpawnedRay mirror = spawn_ray(*hit, glm::reflect(ray.direction, hit->geometric_normal));
         reflected.push_back({mirror.ray, mirror.range});
@@ -195,7 +201,7 @@ int main(int argc, char** argv) {
     report("world.intersect", fastest_ms([&] {
                double sum = 0;
                for (const Ray& ray : primary)
-                   if (const auto hit = world.intersect(ray, kPrimaryRange, counts)) sum += hit->t;
+                   if (const auto hit = nearest_surface(ray)) sum += hit->t;
                sink = sum;
            }),
            primary.size());

@@ -81,8 +81,7 @@ int main(int argc, char** argv) {
     }
 
     // Step 3: renders, one untimed warm-up first, on threads started once (as embree_bench's).
-    tracer::WorkerPool pool(tracer::thread_count(threads));
-    options.pool = &pool;
+    options.threads = threads;
     tracer::Image image;
     tracer::RenderStats stats;
     tracer::render(*world, scene, options, image, stats);

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "base/source.h"
-#include "lang/val.h"
+#include "lang/internal/runtime_value.h"
 
 namespace tracer {
 
@@ -24,18 +24,19 @@ struct BuiltinError {
 // reads them: number(i) and vector(i) throw BuiltinError when argument i is of another kind.
 class BuiltinArguments {
 public:
-    BuiltinArguments(std::string_view function, std::span<const Val> values, std::span<const Span> spans, Span call)
+    BuiltinArguments(std::string_view function, std::span<const RuntimeValue> values, std::span<const Span> spans,
+                     Span call)
         : function_(function), values_(values), spans_(spans), call_(call) {}
-    const Val& operator[](size_t i) const { return values_[i]; }
+    const RuntimeValue& operator[](size_t i) const { return values_[i]; }
     Span span(size_t i) const { return spans_[i]; }  // where argument i is written
     Span call() const { return call_; }              // the whole call
     double number(size_t i) const;
     std::span<const double> vector(size_t i) const;  // of 3 components
-    const std::vector<Val>& list(size_t i) const;
+    const std::vector<RuntimeValue>& list(size_t i) const;
 
 private:
     std::string_view function_;
-    std::span<const Val> values_;
+    std::span<const RuntimeValue> values_;
     std::span<const Span> spans_;
     Span call_;
 };
@@ -46,7 +47,7 @@ struct Builtin {
     std::string_view name;
     size_t arity;
     std::string_view meaning;  // one sentence for the reference
-    Val (*body)(const BuiltinArguments& args);
+    RuntimeValue (*body)(const BuiltinArguments& args);
 };
 
 // A name with a fixed number (pi): found after the scene's own names, before a word.

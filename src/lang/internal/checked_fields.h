@@ -10,14 +10,14 @@
 #include <string_view>
 #include <vector>
 
-#include "lang/evaluated_scene.h"
+#include "lang/internal/evaluated_scene.h"
 #include "lang/schema.h"
 #include "scene/scene.h"
 
 namespace tracer {
 
 // A key's default, parsed once from the scene syntax written in its table row.
-const Value& default_of(const KeySpec& key);
+const PlainValue& default_of(const KeySpec& key);
 
 class Fields {
 public:
@@ -26,7 +26,7 @@ public:
 
     explicit Fields(const BlockSpec& spec);
 
-    void set(const KeySpec& key, const Value& value, Span key_span) { given_[index(key)] = {&value, key_span}; }
+    void set(const KeySpec& key, const PlainValue& value, Span key_span) { given_[index(key)] = {&value, key_span}; }
     void set_child(const KeySpec& key, std::unique_ptr<Fields> child) { children_[index(key)] = std::move(child); }
     bool has(std::string_view name) const { return has(key(name)); }
     bool has(const KeySpec& row) const { return given_[index(row)].value != nullptr; }
@@ -35,9 +35,9 @@ public:
     Span value_span(std::string_view name) const { return has(name) ? get(name).span : Span{}; }
 
     // The value written for `name`, or the table's default.
-    const Value& get(std::string_view name) const {
+    const PlainValue& get(std::string_view name) const {
         const KeySpec& row = key(name);
-        const Value* given = given_[index(row)].value;
+        const PlainValue* given = given_[index(row)].value;
         return given ? *given : default_of(row);
     }
     double number(std::string_view name) const { return get(name).number; }
@@ -45,8 +45,8 @@ public:
     bool boolean(std::string_view name) const { return get(name).text == "true"; }
     std::string text(std::string_view name) const { return get(name).text; }
     dvec3 triple(std::string_view name) const {
-        const Value& value = get(name);
-        if (value.kind == Value::Kind::Number) return dvec3(value.number);
+        const PlainValue& value = get(name);
+        if (value.kind == PlainValue::Kind::Number) return dvec3(value.number);
         return {value.components[0], value.components[1], value.components[2]};
     }
     // The checked fields of a nested block (written, or else the table's default, shared).
@@ -61,7 +61,7 @@ private:
     size_t index(const KeySpec& key) const { return size_t(&key - spec_->keys.data()); }
 
     struct Given {
-        const Value* value = nullptr;
+        const PlainValue* value = nullptr;
         Span key_span;
     };
     const BlockSpec* spec_;

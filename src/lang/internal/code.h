@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "base/source.h"
-#include "lang/val.h"
+#include "lang/internal/runtime_value.h"
 
 namespace tracer {
 
@@ -20,7 +20,7 @@ struct BlockSpec;
 struct KeySpec;
 struct CompiledBody;
 
-struct Node {
+struct ExprCode {
     enum class Op : uint8_t {
         Constant,     // `constant`
         Local,        // slot `index` of the running frame
@@ -47,18 +47,18 @@ struct Node {
     Op op = Op::Constant;
     uint32_t index = 0;
     Span span;
-    Val constant;
+    RuntimeValue constant;
     const Builtin* builtin = nullptr;
     std::string text;  // Word: the word; Call: the function's name as written; Compare: the operator
-    std::vector<Node> operands;
+    std::vector<ExprCode> operands;
     std::shared_ptr<const CompiledBody> block;
 
-    Node() = default;
-    Node(Node&&) noexcept = default;
-    Node& operator=(Node&&) noexcept = default;
-    Node(const Node&) = delete;
-    Node& operator=(const Node&) = delete;
-    ~Node();  // iterative, as Expr's: a chain may be a million long
+    ExprCode() = default;
+    ExprCode(ExprCode&&) noexcept = default;
+    ExprCode& operator=(ExprCode&&) noexcept = default;
+    ExprCode(const ExprCode&) = delete;
+    ExprCode& operator=(const ExprCode&) = delete;
+    ~ExprCode();  // iterative, as Expr's: a chain may be a million long
 };
 
 struct CompiledEntry {
@@ -66,7 +66,7 @@ struct CompiledEntry {
     Span key_span;
     const KeySpec* spec = nullptr;  // the key's row in its block's table, if there is one
     bool nested = false;            // a { ... } body follows the key: `body`; else `value`
-    Node value;
+    ExprCode value;
     std::shared_ptr<const CompiledBody> body;
 };
 
@@ -77,7 +77,7 @@ struct CompiledBody {
     std::vector<CompiledEntry> entries;
 };
 
-struct Step;
+struct StatementCode;
 
 // A function as compiled: `parameters` slots first, then its locals, `slots` in all.
 struct FunctionCode {
@@ -86,14 +86,14 @@ struct FunctionCode {
     uint32_t parameters = 0;
     uint32_t slots = 0;
     uint32_t file_origin = 0;  // the origin its spans were compiled with (its file)
-    std::vector<Step> steps;
+    std::vector<StatementCode> steps;
     // Where each captured value is found when the function is defined: a Local, Capture, Self
     // or Global node of the defining code.
-    std::vector<Node> captures;
+    std::vector<ExprCode> captures;
     ~FunctionCode();
 };
 
-struct Step {
+struct StatementCode {
     enum class Op : uint8_t {
         Block,     // kind [name] { body }: a block made
         Let,       // slot `slot` = value
@@ -117,10 +117,10 @@ struct Step {
     bool broken = false;  // Block: a syntax error was reported inside
     bool has_value = false;
     bool top_level = false;  // Range: outside every other loop (an empty range is warned about)
-    Node value, end;
+    ExprCode value, end;
     std::shared_ptr<const CompiledBody> body;
     std::shared_ptr<const FunctionCode> function;
-    std::vector<Step> steps, otherwise;
+    std::vector<StatementCode> steps, otherwise;
 };
 
 inline FunctionCode::~FunctionCode() = default;

@@ -12,9 +12,9 @@
 
 #include "base/diagnostics.h"
 #include "base/source.h"
-#include "lang/code.h"
-#include "lang/evaluated_scene.h"
-#include "lang/syntax_tree.h"
+#include "lang/internal/code.h"
+#include "lang/internal/evaluated_scene.h"
+#include "lang/internal/syntax_tree.h"
 
 namespace tracer {
 
@@ -35,10 +35,10 @@ public:
     Compiler(Sources& sources, Diagnostics& diagnostics);
 
     // One top-level statement of the scene file, its steps appended to `out`.
-    void compile_top_level(const Statement& statement, std::vector<Step>& out);
+    void compile_top_level(const Statement& statement, std::vector<StatementCode>& out);
     // A value alone, with no names in scope (a -D value, a default): false if it has an error
     // (reported). `top`: an unbound name is a word.
-    bool compile_lone_value(const Expr& expr, bool top, Node& out);
+    bool compile_lone_value(const Expr& expr, bool top, ExprCode& out);
     // A block written alone (a default in the block tables), with no table: false if it has an
     // error (reported).
     std::shared_ptr<const CompiledBody> compile_lone_block(const BodyCode& code, bool& failed) {
@@ -68,25 +68,25 @@ private:
     };
 
     // Statements.
-    void compile_statements(const std::vector<Statement>& statements, std::vector<Step>& out);
-    void compile_statement(const Statement& statement, std::vector<Step>& out);
-    void compile_loop(const Statement& statement, std::vector<Step>& out);
-    void compile_function(const Statement& statement, std::vector<Step>& out);
-    void compile_include(const Statement& statement, std::vector<Step>& out);
+    void compile_statements(const std::vector<Statement>& statements, std::vector<StatementCode>& out);
+    void compile_statement(const Statement& statement, std::vector<StatementCode>& out);
+    void compile_loop(const Statement& statement, std::vector<StatementCode>& out);
+    void compile_function(const Statement& statement, std::vector<StatementCode>& out);
+    void compile_include(const Statement& statement, std::vector<StatementCode>& out);
     // `statements` in a scope of their own (a loop's, a branch's, a group's body).
-    void compile_scoped(const std::vector<Statement>& statements, std::vector<Step>& out);
+    void compile_scoped(const std::vector<Statement>& statements, std::vector<StatementCode>& out);
     std::shared_ptr<CompiledBody> compile_body(const BodyCode& code, const std::string& kind, const BlockSpec* spec,
                                                bool& failed);
 
     // Expressions.
-    Node compile_expression(const Expr& expr, bool top = false, bool word_key = false);
-    Node compile_arithmetic(const Expr& expr);
-    Node compile_name(const Expr& expr, bool top, bool word_key);
-    Node compile_call(const Expr& expr);
+    ExprCode compile_expression(const Expr& expr, bool top = false, bool word_key = false);
+    ExprCode compile_arithmetic(const Expr& expr);
+    ExprCode compile_name(const Expr& expr, bool top, bool word_key);
+    ExprCode compile_call(const Expr& expr);
     [[noreturn]] void fail(Span span, std::string message);
 
     // Names.
-    bool resolve(const std::string& name, size_t level, Span span, Node& out);
+    bool resolve(const std::string& name, size_t level, Span span, ExprCode& out);
     uint32_t bind(const std::string& name, Span defined_at, std::string_view kind);
     void record(const std::string& name, Span defined_at, std::string_view kind);
     void open_scope();

@@ -26,7 +26,7 @@ struct NameDefinition {
 // Editors need no more of them than this (a generated scene may define millions).
 constexpr size_t kMostNamesRecorded = 100000;
 
-struct Value {
+struct PlainValue {
     enum class Kind { Number, Vector, String, Identifier, Block };
     Kind kind = Kind::Number;
     Span span;
@@ -37,14 +37,14 @@ struct Value {
     std::shared_ptr<Body> body;  // Block (an inline block such as `material { ... }`)
 };
 
-inline bool is_number(const Value& value) {
-    return value.kind == Value::Kind::Number;
+inline bool is_number(const PlainValue& value) {
+    return value.kind == PlainValue::Kind::Number;
 }
-inline bool is_vector(const Value& value) {
-    return value.kind == Value::Kind::Vector;
+inline bool is_vector(const PlainValue& value) {
+    return value.kind == PlainValue::Kind::Vector;
 }
 // What a value is, for messages: "a number", "a vector of 3 numbers", "the word 'sah'".
-std::string kind_of(const Value& value);
+std::string plain_kind(const PlainValue& value);
 
 struct KeySpec;
 struct BlockSpec;
@@ -52,7 +52,7 @@ struct BlockSpec;
 struct Entry {
     std::string key;
     Span key_span;
-    Value value;
+    PlainValue value;
     const KeySpec* spec = nullptr;  // the key's row in its block's table, when already looked up
 };
 
@@ -84,8 +84,8 @@ struct Block {
 
 struct EvaluatedScene {
     std::vector<Block> blocks;
-    std::vector<std::pair<std::string, Value>> parameters;  // each `param` and the value it took
-    std::vector<NameDefinition> names;                      // the names defined, for editors
+    std::vector<std::pair<std::string, PlainValue>> parameters;  // each `param` and the value it took
+    std::vector<NameDefinition> names;                           // the names defined, for editors
 };
 
 }  // namespace tracer

@@ -6,15 +6,15 @@
 #include <string>
 #include <vector>
 
-#include "lang/code.h"
-#include "lang/compile.h"
+#include "lang/internal/code.h"
+#include "lang/internal/compile.h"
 #include "lang/interpreter.h"
 
 namespace tracer {
 
 // `value` as validation reads it, at `span` (each component too), if it is a number, vector,
 // boolean or string; false for the other kinds.
-bool plain_value(const Val& value, Span span, Value& out);
+bool plain_value(const RuntimeValue& value, Span span, PlainValue& out);
 
 // Thrown after an error while running has been reported: the entry or statement is dropped.
 struct EvaluationError {};
@@ -40,50 +40,51 @@ public:
     Interpreter(Sources& sources, Diagnostics& diagnostics, const InterpretLimits& limits, BlockSink on_block);
 
     EvaluatedScene run(const ParameterValues& parameters);
-    bool single_value(const Expr& expr, Value& out);
+    bool single_value(const Expr& expr, PlainValue& out);
 
 private:
     enum class Flow { Next, Return };
 
     // Statements (interpreter.cpp).
-    Flow run_steps(const std::vector<Step>& steps);
-    Flow run_step(const Step& step);
-    void run_block(const Step& step);
-    void run_binding(const Step& step);
-    Flow run_range(const Step& step);
-    Flow run_each(const Step& step);
-    Flow run_include(const Step& step);
-    bool count_iteration(const Step& step);
+    Flow run_steps(const std::vector<StatementCode>& steps);
+    Flow run_step(const StatementCode& step);
+    void run_block(const StatementCode& step);
+    void run_binding(const StatementCode& step);
+    Flow run_range(const StatementCode& step);
+    Flow run_each(const StatementCode& step);
+    Flow run_include(const StatementCode& step);
+    bool count_iteration(const StatementCode& step);
     std::shared_ptr<Body> make_body(const CompiledBody& code, bool& failed);
     // The same, into `body`.
     void fill_body(const CompiledBody& code, Body& body, bool& failed);
     // The value of an entry: `value` computed at `node`, as the validator reads it.
-    bool entry_value(const CompiledEntry& entry, Value& out);
+    bool entry_value(const CompiledEntry& entry, PlainValue& out);
 
     // Expressions (evaluate.cpp).
-    Val evaluate(const Node& node);
-    Val evaluate_arithmetic(const Node& node);
-    Val arithmetic(char operation, const Val& a, const Val& b, Span a_span, Span b_span, Span span);
-    [[gnu::noinline]] Val evaluate_compare(const Node& node);
-    bool condition(const Node& node);
-    [[gnu::noinline]] Val evaluate_builtin(const Node& node);
-    [[gnu::noinline]] Val evaluate_index(const Node& node);
-    Val evaluate_list(const Node& node);
-    [[gnu::noinline]] Val evaluate_vector(const Node& node);
-    [[gnu::noinline]] Val evaluate_sign(const Node& node);
-    [[gnu::noinline]] Val evaluate_component(const Node& node);
-    [[gnu::noinline]] Val evaluate_block(const Node& node);
-    [[noreturn, gnu::noinline]] void fail_undefined(const Node& node);
+    RuntimeValue evaluate(const ExprCode& node);
+    RuntimeValue evaluate_arithmetic(const ExprCode& node);
+    RuntimeValue arithmetic(char operation, const RuntimeValue& a, const RuntimeValue& b, Span a_span, Span b_span,
+                            Span span);
+    [[gnu::noinline]] RuntimeValue evaluate_compare(const ExprCode& node);
+    bool condition(const ExprCode& node);
+    [[gnu::noinline]] RuntimeValue evaluate_builtin(const ExprCode& node);
+    [[gnu::noinline]] RuntimeValue evaluate_index(const ExprCode& node);
+    RuntimeValue evaluate_list(const ExprCode& node);
+    [[gnu::noinline]] RuntimeValue evaluate_vector(const ExprCode& node);
+    [[gnu::noinline]] RuntimeValue evaluate_sign(const ExprCode& node);
+    [[gnu::noinline]] RuntimeValue evaluate_component(const ExprCode& node);
+    [[gnu::noinline]] RuntimeValue evaluate_block(const ExprCode& node);
+    [[noreturn, gnu::noinline]] void fail_undefined(const ExprCode& node);
     // A user function called at `node`: for its value, or (`for_value` false) for its blocks.
-    Val call(const Node& node, bool for_value);
-    Val finite(Val value, Span at);
-    double number_operand(const Val& value, Span span, const std::string& what);
+    RuntimeValue call(const ExprCode& node, bool for_value);
+    RuntimeValue finite(RuntimeValue value, Span at);
+    double number_operand(const RuntimeValue& value, Span span, const std::string& what);
     [[noreturn]] void fail(Span at, std::string message);
     // Reports that a limit was reached at `at`, and stops everything.
     [[noreturn]] void stop(Span at, std::string message);
 
     // Slots.
-    Val& slot(uint32_t index) { return stack_[frame_base_ + index]; }
+    RuntimeValue& slot(uint32_t index) { return stack_[frame_base_ + index]; }
 
     // Origins: the span as compiled, given the origin of the context running it.
     uint32_t here() {
@@ -98,16 +99,16 @@ private:
     Diagnostics& diagnostics_;
     Compiler compiler_;
     EvaluatedScene scene_;
-    std::vector<Val> stack_;  // the top level's slots, then each call's
+    std::vector<RuntimeValue> stack_;  // the top level's slots, then each call's
     size_t frame_base_ = 0;
-    Val running_;               // the function running (none at the top level)
+    RuntimeValue running_;      // the function running (none at the top level)
     bool step_failed_ = false;  // a statement had an error (reported) since the call began
-    Val returned_;              // the value of the last 'return'
+    RuntimeValue returned_;     // the value of the last 'return'
     bool returned_value_ = false;
     bool making_blocks_ = true;  // false while a function runs for its value
     std::vector<RunContext> contexts_;
-    std::shared_ptr<const Group> current_group_;         // the innermost group running
-    std::map<std::string, Val, std::less<>> overrides_;  // -D values, by name
+    std::shared_ptr<const Group> current_group_;                  // the innermost group running
+    std::map<std::string, RuntimeValue, std::less<>> overrides_;  // -D values, by name
     std::map<std::string, std::string, std::less<>> override_texts_;
     std::map<uint32_t, std::string> command_line_;  // global slots of params set by -D: "-D NAME=VALUE"
     size_t blocks_ = 0, iterations_run_ = 0, statements_run_ = 0, list_items_ = 0, call_depth_ = 0;

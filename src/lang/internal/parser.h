@@ -8,7 +8,7 @@
 
 #include "base/diagnostics.h"
 #include "base/source.h"
-#include "lang/syntax_tree.h"
+#include "lang/internal/syntax_tree.h"
 
 namespace tracer {
 

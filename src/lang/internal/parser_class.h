@@ -8,8 +8,8 @@
 
 #include "base/diagnostics.h"
 #include "base/source.h"
-#include "lang/lexer.h"
-#include "lang/syntax_tree.h"
+#include "lang/internal/lexer.h"
+#include "lang/internal/syntax_tree.h"
 
 namespace tracer {
 

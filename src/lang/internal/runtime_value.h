@@ -14,7 +14,7 @@ namespace tracer {
 
 struct Body;
 struct FunctionCode;
-struct Val;
+struct RuntimeValue;
 
 // What the heap-held kinds point to; never changed once made.
 struct ValObject {
@@ -24,8 +24,8 @@ struct StringObject final : ValObject {
     std::string text;
 };
 struct ListObject final : ValObject {
-    std::vector<Val> items;
-    ~ListObject() override;  // in val.cpp, where Val is complete
+    std::vector<RuntimeValue> items;
+    ~ListObject() override;  // in runtime_value.cpp, where RuntimeValue is complete
 };
 struct WideVectorObject final : ValObject {  // a vector of more than 3 components
     std::vector<double> components;
@@ -36,42 +36,42 @@ struct BlockObject final : ValObject {  // material { ... } or transform { ... }
 };
 struct FunctionObject final : ValObject {
     std::shared_ptr<const FunctionCode> code;
-    std::vector<Val> captures;   // the values of the outer names its body uses, taken when defined
-    ~FunctionObject() override;  // in val.cpp, where Val is complete
+    std::vector<RuntimeValue> captures;  // the values of the outer names its body uses, taken when defined
+    ~FunctionObject() override;          // in runtime_value.cpp, where RuntimeValue is complete
 };
 
-struct Val {
+struct RuntimeValue {
     enum class Kind : uint8_t { Number, Vector, Bool, String, List, Block, Function, Broken };
     Kind kind = Kind::Number;
     uint8_t size = 0;         // Vector: its number of components
     double x[3] = {0, 0, 0};  // Number: x[0]; Bool: x[0] is 1 or 0; Vector of up to 3: its components
     std::shared_ptr<const ValObject> object;
 
-    static Val number(double value) {
-        Val v;
+    static RuntimeValue number(double value) {
+        RuntimeValue v;
         v.x[0] = value;
         return v;
     }
-    static Val boolean(bool value) {
-        Val v;
+    static RuntimeValue boolean(bool value) {
+        RuntimeValue v;
         v.kind = Kind::Bool;
         v.x[0] = value ? 1 : 0;
         return v;
     }
-    static Val vector3(double a, double b, double c) {
-        Val v;
+    static RuntimeValue vector3(double a, double b, double c) {
+        RuntimeValue v;
         v.kind = Kind::Vector;
         v.size = 3;
         v.x[0] = a, v.x[1] = b, v.x[2] = c;
         return v;
     }
     // A vector of any number of components.
-    static Val vector(std::span<const double> components);
-    static Val string(std::string text);
-    static Val list(std::vector<Val> items);
+    static RuntimeValue vector(std::span<const double> components);
+    static RuntimeValue string(std::string text);
+    static RuntimeValue list(std::vector<RuntimeValue> items);
     // A name whose definition had an error (reported): using it is an error already reported.
-    static Val broken() {
-        Val v;
+    static RuntimeValue broken() {
+        RuntimeValue v;
         v.kind = Kind::Broken;
         return v;
     }
@@ -80,15 +80,15 @@ struct Val {
     bool is_vector() const { return kind == Kind::Vector; }
     std::span<const double> components() const;
     const std::string& text() const { return static_cast<const StringObject&>(*object).text; }
-    const std::vector<Val>& items() const { return static_cast<const ListObject&>(*object).items; }
+    const std::vector<RuntimeValue>& items() const { return static_cast<const ListObject&>(*object).items; }
     const BlockObject& block() const { return static_cast<const BlockObject&>(*object); }
     const FunctionObject& function() const { return static_cast<const FunctionObject&>(*object); }
 };
 
 // What a value is, for messages: "a number", "a vector of 3 numbers", "a list of 4 values".
-std::string kind_of(const Val& value);
+std::string runtime_kind(const RuntimeValue& value);
 // True if the two values are equal: the same kind and equal numbers, components or texts (lists,
 // blocks and functions: the same one; the language does not compare them).
-bool equal_values(const Val& a, const Val& b);
+bool equal_values(const RuntimeValue& a, const RuntimeValue& b);
 
 }  // namespace tracer

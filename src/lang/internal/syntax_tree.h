@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "base/source.h"
-#include "lang/take_apart.h"
+#include "lang/internal/take_apart.h"
 
 namespace tracer {
 

@@ -14,8 +14,8 @@
 
 #include "base/diagnostics.h"
 #include "base/source.h"
-#include "lang/checked_fields.h"
-#include "lang/evaluated_scene.h"
+#include "lang/internal/checked_fields.h"
+#include "lang/internal/evaluated_scene.h"
 #include "lang/schema.h"
 #include "lang/validate.h"
 #include "scene/placement.h"
@@ -36,12 +36,12 @@ public:
         scene_.source_path = std::filesystem::absolute(scene_file, ignored).lexically_normal().string();
     }
 
-    void set_parameters(const std::vector<std::pair<std::string, Value>>& parameters);
+    void set_parameters(const std::vector<std::pair<std::string, PlainValue>>& parameters);
     // Checks and builds one block; true if it kept any of the block's spans for later.
     bool accept(const Block& block);
     std::optional<SceneDescription> finish();
     // Checks one value of `key` as a scene's block would (its type, range and other rules).
-    bool check_setting(const Value& value, const KeySpec& key, const BlockSpec& spec) {
+    bool check_setting(const PlainValue& value, const KeySpec& key, const BlockSpec& spec) {
         Fields fields(spec);
         fields.set(key, value, value.span);
         return check_value(value, key, fields);
@@ -54,16 +54,16 @@ private:
     bool check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields);
     bool check_steps(const Body& body, const BlockSpec& spec, Fields& fields);
     bool unknown_key(const Entry& entry, const BlockSpec& spec, std::vector<std::string>& suggested);
-    bool check_value(const Value& value, const KeySpec& key, Fields& fields);
+    bool check_value(const PlainValue& value, const KeySpec& key, Fields& fields);
     bool check_number(double number, Span span, const KeySpec& key);
     bool check_perfect_square(double number, Span span, const KeySpec& key);
     bool check_power_of_two(double number, Span span, const KeySpec& key);
-    bool type_error(const Value& value, const KeySpec& key, const std::string& extra = "");
+    bool type_error(const PlainValue& value, const KeySpec& key, const std::string& extra = "");
 
     // Builders: checked fields -> scene description.
     void add_named_material(const Block& block);
     int material_index(const Fields& fields);
-    bool check_material_name(const Value& value);
+    bool check_material_name(const PlainValue& value);
     Material build_material(const Fields& fields, std::string name);
     void build(const Block& block, const Fields& fields);
     void build_render(const Block& block, const Fields& fields);
