@@ -28,6 +28,7 @@
 #include "app/summary.h"
 #include "app/watch.h"
 #include "base/output_file.h"
+#include "base/parallel.h"
 #include "io/image_file.h"
 #include "lang/load_scene.h"
 #include "lang/reference_doc.h"
@@ -239,6 +240,7 @@ int render_to_file(const Options& options) {
         }
     int exit_code = kOk;
     const auto start = std::chrono::steady_clock::now();
+    tracer::start_threads(options.threads);  // made while the scene loads
     auto loaded = load(options, exit_code);
     if (!loaded) return exit_code;
     const auto loaded_at = std::chrono::steady_clock::now();
@@ -358,6 +360,7 @@ int watch(const Options& options) {
     tracer::WatchSettings settings{options.scene, options.output,           options.threads,
                                    options.quiet, options.json_diagnostics, &g_interrupted};
     g_rendering = true;  // Ctrl-C asks the loop to stop (a render under way writes nothing)
+    tracer::start_threads(options.threads);
     return tracer::watch_scene(
         settings,
         [&](const tracer::ReportLoad& report) {
@@ -372,16 +375,8 @@ CLI::Validator render_key(const char* key) {
     return CLI::Validator([key](std::string& text) { return tracer::setting_problem("render", key, text); }, "", key);
 }
 
-// Every option and flag of the command line, bound to `options`.
-void add_options(CLI::App& app, Options& options) {
-    app.set_version_flag("--version", std::string("tracer ") + TRACER_VERSION);
-    app.add_option("scene", options.scene, "The scene file (.scn), or - for standard input");
-    app.add_option("-o,--output", options.output,
-                   "The image to write; the format follows the extension (.png, .exr, ...)");
-    app.add_option("--threads", options.threads,
-                   "Threads that build the BVHs and render the image (default: every core; oneTBB's)")
-        ->check(CLI::Range(1, 1024));
-    app.add_flag("-q,--quiet", options.quiet, "No progress indicator and no summary line");
+// The options that override the scene's render block, each checked by the block's own table.
+void add_render_overrides(CLI::App& app, Options& options) {
     app.add_option("--accel", options.accel, "Override the scene's mesh accelerator (none, box, median, sah)")
         ->check(render_key("accel"));
     app.add_option("--leaf-size", options.leaf_size, "Override the scene's BVH leaf size")
@@ -413,6 +408,19 @@ void add_options(CLI::App& app, Options& options) {
             "", "adaptive"));
     app.add_option("--max-depth", options.max_depth, "Override the scene's reflection and refraction depth")
         ->check(render_key("max_depth"));
+}
+
+// Every option and flag of the command line, bound to `options`.
+void add_options(CLI::App& app, Options& options) {
+    app.set_version_flag("--version", std::string("tracer ") + TRACER_VERSION);
+    app.add_option("scene", options.scene, "The scene file (.scn), or - for standard input");
+    app.add_option("-o,--output", options.output,
+                   "The image to write; the format follows the extension (.png, .exr, ...)");
+    app.add_option("--threads", options.threads,
+                   "Threads that build the BVHs and render the image (default: every core; oneTBB's)")
+        ->check(CLI::Range(1, 1024));
+    app.add_flag("-q,--quiet", options.quiet, "No progress indicator and no summary line");
+    add_render_overrides(app, options);
     app.add_option("-D,--define", options.defines,
                    "Set a parameter of the scene (declared there by 'param NAME = VALUE'): -D radius=0.3, "
                    "-D colour=(1,0,0); repeatable")

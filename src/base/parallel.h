@@ -37,6 +37,14 @@ inline tbb::task_arena& thread_arena(int threads) {
     return *arena;
 }
 
+// Starts the arena of `threads` threads (0: one per core) in the background, so that its
+// threads exist by the time the first build or render asks for them: the first use of an arena
+// otherwise waits for them to be made.
+inline void start_threads(int threads) {
+    const int count = thread_count(threads);
+    if (count > 1) thread_arena(count).enqueue([] {});
+}
+
 // Loops shorter than this run on the calling thread alone: handing out work costs more.
 constexpr size_t kSerialBelow = 20000;
 

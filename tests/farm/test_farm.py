@@ -58,8 +58,9 @@ def test_nothing_of_dasks_own_reaches_stderr_when_its_port_is_taken(tracer_bin, 
     except OSError:
         pass  # in use already: the case itself
     try:
-        result = farm(SCENES / "task2.scn", "-o", tmp_path / "t.png", "--width", 120, "--workers", 2, "-q",
-                      tracer=tracer_bin)
+        result = farm(
+            SCENES / "task2.scn", "-o", tmp_path / "t.png", "--width", 120, "--workers", 2, "-q", tracer=tracer_bin
+        )
     finally:
         holder.close()
     assert result.returncode == 0, result.stderr
