@@ -1,6 +1,6 @@
 // The BVHs' nodes (Box's and Median's binary node, Sah's wide node) and a ray's tests against
 // their boxes, in float with rounding margins that no box the exact ray touches can slip
-// through (see TraversalRay; tests/unit/bvh_node_test.cpp checks them).
+// through (see TraversalRay; tests/unit/accel/bvh_node_test.cpp checks them).
 #pragma once
 
 #include <bit>
@@ -91,7 +91,7 @@ inline Lanes multiply_subtract(Lanes a, float b, float c) {
 // (at least 4 ulps) away from each slab, t_far is scaled by 1 + 2 gamma_3 (Ize 2013; see
 // kFarGrow) and the node boxes are rounded outwards: the margins are meant to keep rounding
 // from making a box test miss a primitive the exact ray meets (hard-cases.md A1 and A3;
-// tests/unit/bvh_node_test.cpp aims rays at box surfaces to check it).
+// tests/unit/accel/bvh_node_test.cpp aims rays at box surfaces to check it).
 //
 // A plane's distance is (plane - origin) * inv_dir, or in the fused form (wide nodes, where
 // the processor has FMA) plane * inv_dir - origin * inv_dir, one operation shorter. Rounding

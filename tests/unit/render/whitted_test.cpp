@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "../common/nearest_surface.h"
+#include "../../common/nearest_surface.h"
 #include "render/spawn.h"
 #include "render/whitted.h"
 
