@@ -20,16 +20,14 @@ count from the largest mesh they ran on, and marked so.
 from __future__ import annotations
 
 import argparse
-import datetime
-import json
 import pathlib
 import statistics
 import subprocess
 import sys
 
-from tracer_tools.bench.common import ROOT, machine, run_json
+from tracer_tools.bench.common import ROOT, TRACER_BENCH, report_main, run_json
 
-BENCH = ROOT / "build" / "release" / "tracer_bench"
+BENCH = TRACER_BENCH
 SHARED_EMBREE = ROOT.parent / "shared" / "bench" / "embree-whitted"
 LEVELS = [0, 1, 2, 3, 4]
 TRIANGLES = {0: 3674, 1: 14696, 2: 58784, 3: 235136, 4: 940544}
@@ -210,52 +208,27 @@ def write_report(results: dict, path_md: pathlib.Path, path_png: pathlib.Path) -
     fig.savefig(path_png, dpi=90)
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--embree", type=pathlib.Path, help="embree_bench (default: build ../shared's)")
-    parser.add_argument("--report-only", action="store_true", help="rewrite the report from the saved data")
-    args = parser.parse_args()
-    args.runs = 5 if args.quick else 11
-    args.pairs = 3 if args.quick else 5
-    suffix = f"{args.threads}t"
-    data_path = ROOT / "docs" / "bench" / f"performance-data-{suffix}.json"
-    if args.report_only:
-        results = json.loads(data_path.read_text())
+def measure(args: argparse.Namespace) -> dict:
+    """Every accelerator's figures, and Embree's where embree_bench is (or can be built)."""
+    results = {"tracer": {}, "embree": {}}
+    embree = args.embree
+    if embree is None and (SHARED_EMBREE / "build.sh").exists():
+        build_dir = ROOT / "out" / "embree-whitted"
+        subprocess.run([SHARED_EMBREE / "build.sh", build_dir], check=True, stdout=subprocess.DEVNULL)
+        embree = build_dir / "embree_bench"
+    measure_accelerators(args, results)
+    if embree:
+        measure_embree(args, results, embree)
     else:
-        if not BENCH.exists():
-            subprocess.run([ROOT / "tools" / "bootstrap"], check=True)
-        results = {
-            "date": datetime.date.today().isoformat(),
-            "machine": machine(),
-            "threads": args.threads,
-            "runs": args.runs,
-            "pairs": args.pairs,
-            "tracer": {},
-            "embree": {},
-        }
-        embree = args.embree
-        if embree is None and (SHARED_EMBREE / "build.sh").exists():
-            build_dir = ROOT / "out" / "embree-whitted"
-            subprocess.run([SHARED_EMBREE / "build.sh", build_dir], check=True, stdout=subprocess.DEVNULL)
-            embree = build_dir / "embree_bench"
-        measure_accelerators(args, results)
-        if embree:
-            measure_embree(args, results, embree)
-        else:
-            print("no embree_bench: the comparison with Embree is skipped")
-        data_path.write_text(json.dumps(results, indent=1) + "\n")
-    write_report(
-        results,
-        ROOT / "docs" / "bench" / f"performance-tables-{suffix}.md",
-        ROOT / "docs" / "bench" / f"performance-{suffix}.png",
-    )
-    print(
-        f"wrote docs/bench/performance-data-{suffix}.json, docs/bench/performance-tables-{suffix}.md, "
-        f"docs/bench/performance-{suffix}.png"
-    )
-    return 0
+        print("no embree_bench: the comparison with Embree is skipped")
+    return results
+
+
+def main() -> int:
+    def add_arguments(parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--embree", type=pathlib.Path, help="embree_bench (default: build ../shared's)")
+
+    return report_main("performance", __doc__, measure, write_report, add_arguments)
 
 
 if __name__ == "__main__":

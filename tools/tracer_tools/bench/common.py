@@ -1,6 +1,7 @@
 """What the benchmarks share: the checkout's root, the machine line every report opens with, and
-tracer_bench's JSON result."""
+tracer_bench's JSON result, the command line of the benchmarks that keep their figures."""
 
+import argparse
 import datetime
 import json
 import os
@@ -8,6 +9,7 @@ import pathlib
 import platform
 import subprocess
 import sys
+from collections.abc import Callable
 
 from tracer_tools import ROOT
 
@@ -63,3 +65,47 @@ def provenance() -> dict:
         "date": datetime.date.today().isoformat(),
         "commit": git("rev-parse", "--short", "HEAD"),
     }
+
+
+def report_main(
+    name: str,
+    description: str,
+    measure: Callable[[argparse.Namespace], dict],
+    write_report: Callable[[dict, pathlib.Path, pathlib.Path], None],
+    add_arguments: Callable[[argparse.ArgumentParser], None] | None = None,
+) -> int:
+    """The command line of a benchmark that keeps its figures in docs/bench/NAME-data-Nt.json
+    and writes NAME-tables-Nt.md and NAME-Nt.png from them (N: threads): --quick (5 renders a
+    run, 3 pairs; else 11 and 5), --threads, --report-only (redraw from the saved figures), and
+    the benchmark's own options. `measure(args)` gives the figures after the common header."""
+    parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="5 renders a run and 3 pairs (else 11 and 5)")
+    parser.add_argument("--threads", type=int, default=2, help="render threads (default 2)")
+    parser.add_argument("--report-only", action="store_true", help="rewrite the report from the saved data")
+    if add_arguments:
+        add_arguments(parser)
+    args = parser.parse_args()
+    if args.threads < 1:
+        parser.error("--threads must be at least 1")
+    args.runs = 5 if args.quick else 11
+    args.pairs = 3 if args.quick else 5
+    suffix = f"{args.threads}t"
+    data_path = DOCS / f"{name}-data-{suffix}.json"
+    if args.report_only:
+        results = json.loads(data_path.read_text())
+    else:
+        if not TRACER_BENCH.exists():
+            subprocess.run([ROOT / "tools" / "bootstrap"], check=True)
+        results = {
+            "date": datetime.date.today().isoformat(),
+            "machine": machine(),
+            "threads": args.threads,
+            "runs": args.runs,
+            "pairs": args.pairs,
+        }
+        results.update(measure(args))
+        data_path.write_text(json.dumps(results, indent=1) + "\n")
+    tables, chart = DOCS / f"{name}-tables-{suffix}.md", DOCS / f"{name}-{suffix}.png"
+    write_report(results, tables, chart)
+    print(f"wrote {', '.join(str(path.relative_to(ROOT)) for path in (data_path, tables, chart))}")
+    return 0

@@ -27,17 +27,15 @@ left empty and said so.
 from __future__ import annotations
 
 import argparse
-import datetime
-import json
 import pathlib
 import statistics
 import subprocess
 import sys
 
 from tracer_tools import ROOT
-from tracer_tools.bench.common import machine, run_json  # the same machine line and tracer_bench runner
+from tracer_tools.bench.common import TRACER_BENCH, report_main, run_json
 
-BENCH = ROOT / "build" / "release" / "tracer_bench"
+BENCH = TRACER_BENCH
 TRACER = ROOT / "build" / "release" / "tracer"
 OUT = ROOT / "out" / "bench" / "many"
 SPHERES = [16, 4096, 65536, 1000000]
@@ -221,48 +219,23 @@ def find_embree(args: argparse.Namespace) -> pathlib.Path | None:
     return build_dir / "embree_scene"
 
 
+def measure_all(args: argparse.Namespace) -> dict:
+    """Every sphere and bunny scene's figures, with Embree's where embree_scene is."""
+    embree = find_embree(args)
+    results = {"embree": bool(embree), "scenes": []}
+    for count in SPHERES:
+        results["scenes"].append(measure(args, "spheres", count, embree))
+    for count in BUNNIES:
+        results["scenes"].append(measure(args, "bunnies", count, embree))
+    return results
+
+
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--quick", action="store_true")
-    parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--shared", type=pathlib.Path, default=ROOT.parent / "shared")
-    parser.add_argument("--embree", type=pathlib.Path, help="embree_scene (default: built from --shared)")
-    parser.add_argument("--report-only", action="store_true", help="rewrite the report from the saved data")
-    args = parser.parse_args()
-    args.runs = 5 if args.quick else 11
-    args.pairs = 3 if args.quick else 5
-    suffix = f"{args.threads}t"
-    data_path = ROOT / "docs" / "bench" / f"many-objects-data-{suffix}.json"
-    if args.report_only:
-        results = json.loads(data_path.read_text())
-    else:
-        if not BENCH.exists():
-            subprocess.run([ROOT / "tools" / "bootstrap"], check=True)
-        embree = find_embree(args)
-        results = {
-            "date": datetime.date.today().isoformat(),
-            "machine": machine(),
-            "threads": args.threads,
-            "runs": args.runs,
-            "pairs": args.pairs,
-            "embree": bool(embree),
-            "scenes": [],
-        }
-        for count in SPHERES:
-            results["scenes"].append(measure(args, "spheres", count, embree))
-        for count in BUNNIES:
-            results["scenes"].append(measure(args, "bunnies", count, embree))
-        data_path.write_text(json.dumps(results, indent=1) + "\n")
-    write_report(
-        results,
-        ROOT / "docs" / "bench" / f"many-objects-tables-{suffix}.md",
-        ROOT / "docs" / "bench" / f"many-objects-{suffix}.png",
-    )
-    print(
-        f"wrote docs/bench/many-objects-data-{suffix}.json, docs/bench/many-objects-tables-{suffix}.md, "
-        f"docs/bench/many-objects-{suffix}.png"
-    )
-    return 0
+    def add_arguments(parser: argparse.ArgumentParser) -> None:
+        parser.add_argument("--shared", type=pathlib.Path, default=ROOT.parent / "shared")
+        parser.add_argument("--embree", type=pathlib.Path, help="embree_scene (default: built from --shared)")
+
+    return report_main("many-objects", __doc__, measure_all, write_report, add_arguments)
 
 
 if __name__ == "__main__":

@@ -15,6 +15,7 @@ import time
 import numpy as np
 
 from tracer_tools import ROOT
+from tracer_tools.scenes.edit import with_render_key
 
 SCENES = ("balls", "gears", "mount", "rings", "teapot", "tetra", "tree")
 # How far the Mitsuba plugins move a ray's origin off a surface, relative to the scene's size:
@@ -99,14 +100,6 @@ def render_corner_rays(
     images.write_png(image_path, pixels)
     exr.unlink()
     return json.loads(stats_path.read_text())
-
-
-def with_render_key(scn_path: pathlib.Path, out_path: pathlib.Path, key: str) -> None:
-    """The scene with `key` (e.g. `transparent_shadows true`) added to its render block."""
-    text = scn_path.read_text()
-    if not re.search(r"^render \{", text, flags=re.MULTILINE):
-        raise ValueError(f"{scn_path}: no render block to add {key} to")
-    out_path.write_text(re.sub(r"^render \{", "render { " + key + " ", text, count=1, flags=re.MULTILINE))
 
 
 def with_spd_rules(scn_path: pathlib.Path, out_path: pathlib.Path) -> None:

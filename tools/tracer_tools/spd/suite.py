@@ -21,6 +21,7 @@ import pathlib
 import sys
 
 from tracer_tools.nff import nff2scn
+from tracer_tools.scenes import edit
 
 from . import report, steps
 
@@ -89,7 +90,7 @@ def run_scene(name: str, args: argparse.Namespace, generators: pathlib.Path, emb
         result["povray"] = steps.crosscheck(scn, folder / "povray", "povray")
         if transmits(scn):
             transparent = folder / f"{name}_transparent_shadows.scn"
-            steps.with_render_key(scn, transparent, "transparent_shadows true")
+            edit.with_render_key(scn, transparent, "transparent_shadows true")
             result["povray_transparent"] = steps.crosscheck(transparent, folder / "povray_transparent", "povray")
     if embree is not None:
         steps.log(f"{name}: timing against Embree")

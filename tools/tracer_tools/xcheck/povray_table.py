@@ -20,7 +20,7 @@ import subprocess
 import sys
 
 from tracer_tools import ROOT
-from tracer_tools.spd import steps
+from tracer_tools.scenes import edit
 
 from . import convert, speed_vs_error, tracer_cli
 
@@ -78,7 +78,7 @@ def main(argv: list[str] | None = None) -> int:
         rows.append(row(name, "opaque", check(scn, args.out / slug)))
         if convert.refracts(tracer_cli.dump_json(scn)):
             transparent = args.out / f"{slug}_transparent.scn"
-            steps.with_render_key(scn, transparent, "transparent_shadows true")
+            edit.with_render_key(scn, transparent, "transparent_shadows true")
             rows.append(row(name, "transparent", check(transparent, args.out / f"{slug}_transparent")))
     today = datetime.date.today()
     args.docs.write_text(f"""# tracer against POV-Ray 3.7
