@@ -9,6 +9,7 @@ Usage: tests/timings.py PRESET JUNIT_XML [--table tests/timings.md] [--update] [
 import argparse
 import pathlib
 import re
+import signal
 import sys
 import xml.etree.ElementTree as ElementTree
 
@@ -87,4 +88,5 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # a reader that stops early (| head) ends it quietly
     sys.exit(main())
