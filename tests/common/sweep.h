@@ -12,21 +12,26 @@
 
 namespace tracer {
 
-// `full` cases, or TRACER_SWEEP_FRACTION of them (a number in (0, 1]) where it is set; at
-// least `least`.
-inline size_t sweep(size_t full, size_t least = 1) {
+// The fraction of each sweep tried: TRACER_SWEEP_FRACTION (a number in (0, 1]) where it is
+// set, else 1.
+inline double sweep_fraction() {
     static const double fraction = [] {
         const char* text = std::getenv("TRACER_SWEEP_FRACTION");
         const double value = text ? std::atof(text) : 1.0;
         return value > 0 && value <= 1 ? value : 1.0;
     }();
-    return std::max(std::min(least, full), size_t(std::ceil(double(full) * fraction)));
+    return fraction;
+}
+
+// `full` cases, or sweep_fraction() of them, rounded up.
+inline size_t sweep(size_t full) {
+    return size_t(std::ceil(double(full) * sweep_fraction()));
 }
 
 // True for case `i` of a sweep whose every case is cheap but some have a costly cross-check
 // (testing every triangle): every case at full size, every (1 / fraction)th one otherwise.
 inline bool in_sweep(size_t i) {
-    static const size_t stride = std::max<size_t>(1, size_t(std::lround(1.0 / (double(sweep(1000000)) / 1e6))));
+    static const size_t stride = std::max<size_t>(1, size_t(std::lround(1 / sweep_fraction())));
     return i % stride == 0;
 }
 
