@@ -377,23 +377,24 @@ void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, i
     };
     const int lanes = std::max(leaf_lanes, 1);
     NodeArray slots;  // the binary tree, unless Sah's wide one is built directly
-    if (method == BvhBuild::Sah && n >= direct_wide_from) {
+    const bool built_wide = method == BvhBuild::Sah && n >= direct_wide_from;
+    if (built_wide) {
         LargeArray<WideNode> wide_slots(std::max<size_t>(n - 1, 1));  // uninitialised: only the tree's are touched
         BvhBuilder builder(refs.data(), nullptr, wide_slots.data(), method, leaf_size, lanes, parallel, gathering);
         run([&] { builder.build_wide_tree(root); });
-        wide_ = in_traversal_order(wide_slots, builder.used_wide_slots());
+        tree_ = WideBvh(in_traversal_order(wide_slots, builder.used_wide_slots()));
     } else {
         slots.resize(BvhBuilder::slots_for(n));  // uninitialised: only the tree's nodes are touched
         BvhBuilder builder(refs.data(), slots.data(), nullptr, method, leaf_size, lanes, parallel, gathering);
         BvhBuilder::Chunk chunk;
         run([&] { builder.build(root, 0, 0, chunk); });
         if (method != BvhBuild::Sah)
-            nodes_ = depth_first(slots, std::min<size_t>(builder.used_slots(), 2 * size_t(n) - 1));  // the tree at most
+            tree_ = BinaryBvh(depth_first(slots, std::min<size_t>(builder.used_slots(), 2 * size_t(n) - 1)));
     }
     parallel_for(
         n, [&](size_t i) { order_[i] = refs[i].id; }, threads);
     refs = LargeArray<BvhBuildRef>();
-    if (method == BvhBuild::Sah && wide_.empty()) wide_ = collapse_to_wide(slots, order_, gathering);
+    if (method == BvhBuild::Sah && !built_wide) tree_ = WideBvh(collapse_to_wide(slots, order_, gathering));
     for (int axis = 0; axis < 3; ++axis) {
         root_box_.lower[axis] = root.bounds.lower[axis];
         root_box_.upper[axis] = root.bounds.upper[axis];

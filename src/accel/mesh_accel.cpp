@@ -400,7 +400,7 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
     TraversalRay* fast = std::launder(reinterpret_cast<TraversalRay*>(fast_storage));
     for (int i = 0; i < count; ++i) new (&fast[i]) TraversalRay(*rays[i], ranges[i]);
     TraversalPacket packet;
-    if (brute_force_ || bvh_.wide_nodes().empty() || !TraversalPacket::make(fast, count, packet)) {
+    if (brute_force_ || bvh_.wide() == nullptr || !TraversalPacket::make(fast, count, packet)) {
         for (int i = 0; i < count; ++i) found |= unsigned(intersect(*rays[i], ranges[i], out[i], counts)) << i;
         return found;
     }
@@ -453,10 +453,7 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
             if (search(i).test_leaf(first, n, ranges[i])) clip(i);
         }
     };
-    if (packet.fused)
-        closest_in_packet<true>(bvh_.wide_nodes(), packet, counts, leaf);
-    else
-        closest_in_packet<false>(bvh_.wide_nodes(), packet, counts, leaf);
+    bvh_.wide()->closest_in_packet(packet, counts, leaf);
     for (int i = 0; started && i < count; ++i)
         found |= unsigned(search(i).finish(*rays[i], asked[i], ranges[i], out[i])) << i;
     return found;

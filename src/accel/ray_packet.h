@@ -1,10 +1,10 @@
-// Packets of coherent rays (a row of primary rays, say) through a wide BVH together: each node
-// is loaded once for all of them, and its children's boxes are tested against every ray of the
-// packet at once, one ray per vector lane. The rays' searches are otherwise their own: each ray
-// tests the leaves it enters with its own exact primitive test, so each finds what it would
-// alone, bit for bit (the box tests are each ray's own arithmetic, lane by lane; testing a
-// leaf a ray alone would have skipped finds nothing nearer, and ties do not depend on the
-// order of the tests).
+// Packets of coherent rays (a row of primary rays, say) through a wide BVH together
+// (WideBvh::closest_in_packet walks the tree with them): each node is loaded once for all of
+// them, and its children's boxes are tested against every ray of the packet at once, one ray
+// per vector lane. The rays' searches are otherwise their own: each ray tests the leaves it
+// enters with its own exact primitive test, so each finds what it would alone, bit for bit (the
+// box tests are each ray's own arithmetic, lane by lane; testing a leaf a ray alone would have
+// skipped finds nothing nearer, and ties do not depend on the order of the tests).
 #pragma once
 
 #include <algorithm>
@@ -13,7 +13,6 @@
 #include <cstring>
 #include <limits>
 
-#include "accel/bvh.h"
 #include "accel/bvh_node.h"
 
 namespace tracer {
@@ -149,53 +148,6 @@ inline WideEntry enter_frustum(const WideNode& node, const TraversalPacket& pack
         far = lane_min(lane_max(to_far * packet.inv_far_low[axis], to_far * packet.inv_far_high[axis]), far);
     }
     return {near, lane_mask(near <= far)};
-}
-
-// The nearest-hit search of a packet through `nodes` (a Bvh's wide tree), every ray starting
-// at the root: inner nodes are tested against the packet's frustum (enter_frustum), each leaf
-// against each ray (enter_child); leaf(rays, first, count) tests leaf entries [first, first +
-// count) for the rays in the bit mask `rays`, each shrinking its own search's range and
-// packet.t_max's lane on a hit. Nodes are visited nearest first, and skipped once every ray
-// has a hit before them. (The frustum suits rays from one point: for shadow rays from a row's
-// hits, whose origins spread over several surfaces, an any-hit search built the same way was
-// slower than single rays where the hits spread; docs/bench/performance.md.)
-template <bool kFused, typename Leaf>
-void closest_in_packet(const LargeArray<WideNode>& nodes, TraversalPacket& packet, TraversalCounts& counts, Leaf leaf) {
-    struct Waiting {
-        float t;        // no ray enters the box before this
-        uint32_t node;  // the parent (a leaf), or the node itself
-        int lane;       // a leaf's lane in its parent, or -1 for a node
-    };
-    Waiting stack[(kWide - 1) * kMaxBvhDepth + 1];
-    int top = 0;
-    const float t_min = lowest_lane(packet.t_min);
-    stack[top++] = {t_min, 0, -1};
-    while (top > 0) {
-        const Waiting waiting = stack[--top];
-        const float t_max = -lowest_lane(-packet.t_max);
-        if (waiting.t > t_max) continue;
-        const WideNode& node = nodes[waiting.node];
-        if (waiting.lane >= 0) {
-            // A leaf: which rays enter it, each by its own arithmetic.
-            const PacketLanes t = enter_child<kFused>(node, waiting.lane, packet);
-            const unsigned rays = lane_mask(t <= packet.t_max);
-            counts.box_tests += 1;
-            if (rays != 0) leaf(rays, node.index[waiting.lane], node.count[waiting.lane]);
-            continue;
-        }
-        counts.box_tests += kWide;
-        const WideEntry entry = enter_frustum(node, packet, t_min, t_max);
-        // The children entered, nearer ones pushed last (they come off first).
-        const int bottom = top;
-        for (unsigned mask = entry.mask; mask != 0; mask &= mask - 1) {
-            const int lane = __builtin_ctz(mask);
-            const bool inner = node.count[lane] == WideNode::kInner;
-            const Waiting child{entry.t[lane], inner ? node.index[lane] : waiting.node, inner ? -1 : lane};
-            int at = top++;
-            for (; at > bottom && stack[at - 1].t < child.t; --at) stack[at] = stack[at - 1];
-            stack[at] = child;
-        }
-    }
 }
 
 }  // namespace tracer
