@@ -1,23 +1,22 @@
 // Groups: a group's placement checked once and turned into transform steps, appended after each
 // shape's own; planes placed by them (round shapes: build_round.cpp).
-#include "lang/internal/validator.h"
+#include "lang/internal/scene_assembly.h"
 #include "lang/schema.h"
 #include "scene/placement.h"
 
 namespace tracer {
 
-bool Validator::add_group_steps(const Block& block, Placed& out) {
+bool add_group_steps(SceneAssembly& a, const Block& block, Placed& out) {
     for (const Group* group = block.group.get(); group; group = group->outer.get()) {
-        auto [entry, first] = group_steps_.try_emplace(group);
-        GroupSteps& known = entry->second;
+        auto [entry, first] = a.group_steps.try_emplace(group);
+        SceneAssembly::GroupSteps& known = entry->second;
         if (first) {
-            kept_ = true;
+            a.kept = true;
             // Its placement, checked against the group's table as any block's body.
             known.group = group == block.group.get() ? block.group : nullptr;
             Fields fields(group_spec());
             Placed placed;
-            known.ok = !group->broken && check_body(group->placement, group_spec(), group->keyword, fields) &&
-                       build_placement(fields, placed);
+            known.ok = !group->broken && a.check_group_placement(*group, fields) && build_placement(a, fields, placed);
             if (placed.scale != dvec3(1.0)) known.steps.push_back({TransformStep::Kind::Scale, placed.scale, 0});
             if (placed.rotate_degrees != 0)
                 known.steps.push_back({TransformStep::Kind::Rotate, placed.rotate_axis, placed.rotate_degrees});
@@ -31,16 +30,16 @@ bool Validator::add_group_steps(const Block& block, Placed& out) {
     return true;
 }
 
-void Validator::build_plane(const Block& block, const Fields& fields) {
-    Plane plane{fields.triple("point"), normalized(fields.triple("normal")), material_index(fields)};
+void build_plane(SceneAssembly& a, const Block& block, const Fields& fields) {
+    Plane plane{fields.triple("point"), normalized(fields.triple("normal")), material_index(a, fields)};
     if (block.group) {
         Placed placed;
-        if (!add_group_steps(block, placed)) return;
+        if (!add_group_steps(a, block, placed)) return;
         const Placement placement(placed);
         plane.point = placement.point(plane.point);
         plane.normal = normalized(placement.normal * plane.normal);
     }
-    scene_.planes.push_back(plane);
+    a.scene.planes.push_back(plane);
 }
 
 }  // namespace tracer

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "lang/internal/validator.h"
+#include "lang/internal/scene_assembly.h"
 #include "lang/schema.h"
 #include "scene/placement.h"
 
@@ -32,52 +32,52 @@ std::string stretched(std::string_view what) {
 
 }  // namespace
 
-bool Validator::place_round(const Block& block, const Fields& fields, std::string_view what, Placement& out,
-                            double& size) {
+bool place_round(SceneAssembly& a, const Block& block, const Fields& fields, std::string_view what, Placement& out,
+                 double& size) {
     out = Placement();
     size = 1;
     const bool placed_here =
         fields.has("scale") || fields.has("rotate") || fields.has("translate") || fields.has("transform");
     if (!placed_here && !block.group) return true;
     Placed placed;
-    if (!build_placement(fields, placed) || !add_group_steps(block, placed)) return false;
+    if (!build_placement(a, fields, placed) || !add_group_steps(a, block, placed)) return false;
     out = Placement(placed);
     size = similarity_size(out.linear);
     if (size > 0) return true;
     const std::string name(what);
-    Diagnostic* d = diagnostics_.error(file_, placed_here ? block.kind_span : block.group->keyword,
-                                       "this scales a " + name +
-                                           " by different factors on different axes, which would "
-                                           "make " +
-                                           stretched(what) + "; tracer draws " + (what == "sphere" ? "" : "round ") +
-                                           name + "s only: scale it by one factor, or use a mesh");
-    if (!placed_here) Diagnostics::note(d, file_, block.kind_span, "the " + name + " is here");
+    Diagnostic* d = a.diagnostics.error(a.file, placed_here ? block.kind_span : block.group->keyword,
+                                        "this scales a " + name +
+                                            " by different factors on different axes, which would "
+                                            "make " +
+                                            stretched(what) + "; tracer draws " + (what == "sphere" ? "" : "round ") +
+                                            name + "s only: scale it by one factor, or use a mesh");
+    if (!placed_here) Diagnostics::note(d, a.file, block.kind_span, "the " + name + " is here");
     return false;
 }
 
 // False (reported) if a round shape around `points` with `radius` reaches beyond +-1e30.
-bool Validator::check_round_reach(const Block& block, std::string_view what, std::initializer_list<dvec3> points,
-                                  double radius) {
+bool check_round_reach(SceneAssembly& a, const Block& block, std::string_view what, std::initializer_list<dvec3> points,
+                       double radius) {
     double reach = 0;
     for (const dvec3& p : points) reach = std::max({reach, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     const std::string problem = placed_reach_problem(what, reach + radius);
     if (problem.empty()) return true;
-    diagnostics_.error(file_, block.kind_span, problem);
+    a.diagnostics.error(a.file, block.kind_span, problem);
     return false;
 }
 
-void Validator::build_sphere(const Block& block, const Fields& fields) {
-    Sphere sphere{fields.triple("center"), fields.number("radius"), material_index(fields)};
+void build_sphere(SceneAssembly& a, const Block& block, const Fields& fields) {
+    Sphere sphere{fields.triple("center"), fields.number("radius"), material_index(a, fields)};
     Placement placement;
     double size = 1;
-    if (!place_round(block, fields, "sphere", placement, size)) return;
+    if (!place_round(a, block, fields, "sphere", placement, size)) return;
     sphere.center = placement.point(sphere.center);
     sphere.radius *= size;
-    if (check_round_reach(block, "sphere", {sphere.center}, sphere.radius)) scene_.spheres.push_back(sphere);
+    if (check_round_reach(a, block, "sphere", {sphere.center}, sphere.radius)) a.scene.spheres.push_back(sphere);
 }
 
 // A cylinder is a cone with one radius.
-void Validator::build_cone(const Block& block, const Fields& fields) {
+void build_cone(SceneAssembly& a, const Block& block, const Fields& fields) {
     const std::string_view what = block.kind;
     const bool cylinder = what == "cylinder";
     Cone cone;
@@ -86,47 +86,47 @@ void Validator::build_cone(const Block& block, const Fields& fields) {
     cone.base_radius = fields.number(cylinder ? "radius" : "base_radius");
     cone.top_radius = fields.number(cylinder ? "radius" : "top_radius");
     cone.caps = fields.boolean("caps");
-    cone.material = material_index(fields);
+    cone.material = material_index(a, fields);
     if (cone.base == cone.top)
-        return (void)diagnostics_.error(
-            file_, fields.value_span("top"),
+        return (void)a.diagnostics.error(
+            a.file, fields.value_span("top"),
             "'top' must differ from 'base': they are the ends of the " + std::string(what) + "'s axis");
     if (!cylinder) {
         if (cone.base_radius == 0 && cone.top_radius == 0)
-            return (void)diagnostics_.error(file_, fields.value_span("base_radius"),
-                                            "a cone needs a radius above 0 at one end at least");
+            return (void)a.diagnostics.error(a.file, fields.value_span("base_radius"),
+                                             "a cone needs a radius above 0 at one end at least");
         for (std::string_view radius : {"base_radius", "top_radius"}) {
             const double value = fields.number(radius);
             if (value == 0 || value >= kSmallestSize) continue;
-            return (void)diagnostics_.error(
-                file_, fields.has(radius) ? fields.value_span(radius) : block.kind_span,
+            return (void)a.diagnostics.error(
+                a.file, fields.has(radius) ? fields.value_span(radius) : block.kind_span,
                 "'" + std::string(radius) + "' must be 0 (a point) or at least 1e-30, found " + format_number(value));
         }
     }
     Placement placement;
     double size = 1;
-    if (!place_round(block, fields, what, placement, size)) return;
+    if (!place_round(a, block, fields, what, placement, size)) return;
     cone.base = placement.point(cone.base);
     cone.top = placement.point(cone.top);
     cone.base_radius *= size;
     cone.top_radius *= size;
     if (cone.base == cone.top)  // placed so small that both ends round to one point
-        return (void)diagnostics_.error(file_, block.kind_span,
-                                        "this " + std::string(what) + " is scaled so small that its ends meet");
-    if (check_round_reach(block, what, {cone.base, cone.top}, std::max(cone.base_radius, cone.top_radius)))
-        scene_.cones.push_back(cone);
+        return (void)a.diagnostics.error(a.file, block.kind_span,
+                                         "this " + std::string(what) + " is scaled so small that its ends meet");
+    if (check_round_reach(a, block, what, {cone.base, cone.top}, std::max(cone.base_radius, cone.top_radius)))
+        a.scene.cones.push_back(cone);
 }
 
-void Validator::build_disc(const Block& block, const Fields& fields) {
+void build_disc(SceneAssembly& a, const Block& block, const Fields& fields) {
     Disc disc{fields.triple("center"), normalized(fields.triple("normal")), fields.number("radius"),
-              material_index(fields)};
+              material_index(a, fields)};
     Placement placement;
     double size = 1;
-    if (!place_round(block, fields, "disc", placement, size)) return;
+    if (!place_round(a, block, fields, "disc", placement, size)) return;
     disc.center = placement.point(disc.center);
     disc.normal = normalized(placement.normal * disc.normal);
     disc.radius *= size;
-    if (check_round_reach(block, "disc", {disc.center}, disc.radius)) scene_.discs.push_back(disc);
+    if (check_round_reach(a, block, "disc", {disc.center}, disc.radius)) a.scene.discs.push_back(disc);
 }
 
 }  // namespace tracer

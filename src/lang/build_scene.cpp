@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/input_file.h"
-#include "lang/internal/validator.h"
+#include "lang/internal/scene_assembly.h"
 #include "scene/flat_shapes.h"
 #include "scene/placement.h"
 
@@ -30,23 +30,14 @@ dvec3 normalized(dvec3 v) {
     return glm::normalize(v / largest);
 }
 
-void Validator::add_named_material(const Block& block) {
-    kept_ = true;  // its name's span, for "unused" and "defined twice"
-    auto [entry, inserted] = named_.try_emplace(block.name);
-    if (!inserted) {
-        Diagnostic* d = diagnostics_.error(file_, block.name_span, "material '" + block.name + "' is defined twice");
-        Diagnostics::note(d, file_, entry->second.name_span, "the first definition is here");
-        return;
-    }
-    entry->second.name_span = block.name_span;
-    if (block.broken) return;  // already reported; keep the name so uses of it are not errors too
-    Fields fields(*find_block_spec("material"));
-    if (!check_body(block.body, *find_block_spec("material"), block.kind_span, fields)) return;
-    entry->second.index = int(scene_.materials.size());
-    scene_.materials.push_back(build_material(fields, block.name));
+SceneAssembly::SceneAssembly(const Sources& sources, Diagnostics& reports, CheckPlacement check_placement)
+    : file(sources), diagnostics(reports), check_group_placement(std::move(check_placement)) {
+    std::error_code ignored;
+    const fs::path scene_file(sources.scene().path());
+    scene.source_path = fs::absolute(scene_file, ignored).lexically_normal().string();
 }
 
-Material Validator::build_material(const Fields& fields, std::string name) {
+Material build_material(const Fields& fields, std::string name) {
     Material material;
     material.name = std::move(name);
     material.ka = fields.triple("ka");
@@ -61,63 +52,64 @@ Material Validator::build_material(const Fields& fields, std::string name) {
 
 // The index of the shape's material: a named one, or its inline block added to the list (once
 // for a material value that many shapes share: `let m = material { ... }`).
-int Validator::material_index(const Fields& fields) {
+int material_index(SceneAssembly& a, const Fields& fields) {
     const PlainValue& value = fields.get("material");
     if (value.kind == PlainValue::Kind::Block) {
-        if (auto shared = value_materials_.find(value.body.get()); shared != value_materials_.end())
+        if (auto shared = a.value_materials.find(value.body.get()); shared != a.value_materials.end())
             return shared->second.index;
-        scene_.materials.push_back(build_material(fields.child("material"), ""));
-        const int index = int(scene_.materials.size()) - 1;
+        a.scene.materials.push_back(build_material(fields.child("material"), ""));
+        const int index = int(a.scene.materials.size()) - 1;
         if (value.body.use_count() > 1) {
-            value_materials_.emplace(value.body.get(), SharedMaterial{value.body, index});
-            kept_ = true;
+            a.value_materials.emplace(value.body.get(), SceneAssembly::SharedMaterial{value.body, index});
+            a.kept = true;
         }
         return index;
     }
-    auto found = named_.find(value.text);
-    if (found != named_.end()) return found->second.index;
-    return kLaterMaterial - int(later_uses_.size() - 1);  // this block's use, just recorded by check_material_name
+    if (auto found = a.material_by_name.find(value.text); found != a.material_by_name.end()) return found->second;
+    a.later_materials.push_back(value.text);
+    return SceneAssembly::kLaterMaterial - int(a.later_materials.size() - 1);
 }
 
-// A material used by name must be defined somewhere in the scene: marks it used, or records
-// the use to be resolved once every block is in (it may be defined further down).
-bool Validator::check_material_name(const PlainValue& value) {
-    auto found = named_.find(value.text);
-    if (found != named_.end()) {
-        found->second.used = true;
-        return true;
-    }
-    later_uses_.push_back({value.text, value.span});
-    kept_ = true;
-    return true;
+void build_light(SceneAssembly& a, const Block& block, const Fields& fields) {
+    Placed group;
+    if (!add_group_steps(a, block, group)) return;
+    a.scene.lights.push_back({Placement(group).point(fields.triple("position")), fields.triple("color")});
 }
 
-void Validator::build(const Block& block, const Fields& fields) {
-    const std::string_view kind = block.kind;  // compared length first
-    if (block.group && (kind == "camera" || kind == "render"))
-        return (void)diagnostics_.error(
-            file_, block.kind_span, "a " + block.kind + " block is not placed by a group: write it outside the group");
-    if (kind == "render") return build_render(block, fields);
-    if (kind == "camera") return build_camera(block, fields);
-    if (kind == "mesh") return build_mesh(block, fields);
-    if (kind == "triangle" || kind == "quad" || kind == "box") return build_flat_shape(block, fields);
-    if (kind == "light") {
-        Placed group;
-        if (!add_group_steps(block, group)) return;
-        scene_.lights.push_back({Placement(group).point(fields.triple("position")), fields.triple("color")});
-    } else if (kind == "sphere") {
-        build_sphere(block, fields);
-    } else if (kind == "plane") {
-        build_plane(block, fields);
-    } else if (kind == "cylinder" || kind == "cone") {
-        build_cone(block, fields);
-    } else if (kind == "disc") {
-        build_disc(block, fields);
-    }
+// A named material: the next of the scene's materials.
+static void build_named_material(SceneAssembly& a, const Block& block, const Fields& fields) {
+    a.material_by_name[block.name] = int(a.scene.materials.size());
+    a.scene.materials.push_back(build_material(fields, block.name));
 }
 
-void Validator::build_render(const Block& block, const Fields& fields) {
-    RenderSettings& render = scene_.render;
+// The builder of each kind of block.
+struct Builder {
+    std::string_view kind;
+    void (*build)(SceneAssembly& a, const Block& block, const Fields& fields);
+};
+constexpr Builder kBuilders[] = {
+    {"material", build_named_material},
+    {"render", build_render},
+    {"camera", build_camera},
+    {"light", build_light},
+    {"sphere", build_sphere},
+    {"plane", build_plane},
+    {"cylinder", build_cone},
+    {"cone", build_cone},
+    {"disc", build_disc},
+    {"mesh", build_mesh},
+    {"triangle", build_flat_shape},
+    {"quad", build_flat_shape},
+    {"box", build_flat_shape},
+};
+
+void build_block(SceneAssembly& a, const Block& block, const Fields& fields) {
+    for (const Builder& builder : kBuilders)
+        if (builder.kind == block.kind) return builder.build(a, block, fields);
+}
+
+void build_render(SceneAssembly& a, const Block& block, const Fields& fields) {
+    RenderSettings& render = a.scene.render;
     render.width = fields.integer("width");
     render.height = fields.integer("height");
     render.max_depth = fields.integer("max_depth");
@@ -134,11 +126,11 @@ void Validator::build_render(const Block& block, const Fields& fields) {
     render.leaf_size = fields.integer("leaf_size");
 
     if (const std::string problem = render_settings_problem(render); !problem.empty())
-        diagnostics_.error(file_, block.kind_span, problem);
+        a.diagnostics.error(a.file, block.kind_span, problem);
 }
 
-void Validator::build_camera(const Block& block, const Fields& fields) {
-    Camera& camera = scene_.camera;
+void build_camera(SceneAssembly& a, const Block& block, const Fields& fields) {
+    Camera& camera = a.scene.camera;
     camera.eye = fields.triple("eye");
     camera.lookat = fields.triple("lookat");
     camera.up = fields.triple("up");
@@ -147,29 +139,29 @@ void Validator::build_camera(const Block& block, const Fields& fields) {
 
     dvec3 forward = normalized(camera.lookat - camera.eye);
     if (forward == dvec3(0.0)) {
-        diagnostics_.error(file_, fields.value_span("lookat"),
-                           "'lookat' must differ from 'eye' (they set the viewing direction)");
+        a.diagnostics.error(a.file, fields.value_span("lookat"),
+                            "'lookat' must differ from 'eye' (they set the viewing direction)");
         return;
     }
     if (glm::length(glm::cross(forward, normalized(camera.up))) < 1e-9) {
         Span at = fields.has("up") ? fields.value_span("up") : block.kind_span;
-        diagnostics_.error(file_, at,
-                           std::string("'up'") + (fields.has("up") ? "" : " (by default (0, 1, 0))") +
-                               " is parallel to the viewing direction; choose an 'up' that is not");
+        a.diagnostics.error(a.file, at,
+                            std::string("'up'") + (fields.has("up") ? "" : " (by default (0, 1, 0))") +
+                                " is parallel to the viewing direction; choose an 'up' that is not");
     }
 }
 
 // The placement and material of a mesh or flat shape: its scale, rotate and translate keys, or
 // the steps of its transform block (not both). False if the placement is refused.
-bool Validator::build_placed(const Block& block, const Fields& fields, Placed& out) {
-    out.line = Diagnostics::locate(file_, block.kind_span).line;
-    out.material = material_index(fields);
-    return build_placement(fields, out) && add_group_steps(block, out);
+bool build_placed(SceneAssembly& a, const Block& block, const Fields& fields, Placed& out) {
+    out.line = Diagnostics::locate(a.file, block.kind_span).line;
+    out.material = material_index(a, fields);
+    return build_placement(a, fields, out) && add_group_steps(a, block, out);
 }
 
 // The placement written by `fields`' scale, rotate and translate keys, or by the steps of its
 // transform block (not both). False if it is refused (reported).
-bool Validator::build_placement(const Fields& fields, Placed& out) {
+bool build_placement(SceneAssembly& a, const Fields& fields, Placed& out) {
     out.scale = fields.triple("scale");
     const Fields& rotate = fields.child("rotate");
     out.rotate_axis = normalized(rotate.triple("axis"));
@@ -179,11 +171,11 @@ bool Validator::build_placement(const Fields& fields, Placed& out) {
 
     for (std::string_view own : {"scale", "rotate", "translate"}) {
         if (!fields.has(own)) continue;
-        Diagnostic* d = diagnostics_.error(
-            file_, fields.key_span("transform"),
+        Diagnostic* d = a.diagnostics.error(
+            a.file, fields.key_span("transform"),
             "'transform' cannot be combined with 'scale', 'rotate' or 'translate' in one block; write those "
             "steps inside the transform, in the order they apply");
-        Diagnostics::note(d, file_, fields.key_span(own), "'" + std::string(own) + "' is set here");
+        Diagnostics::note(d, a.file, fields.key_span(own), "'" + std::string(own) + "' is set here");
         return false;
     }
     // The steps, and how much they scale in all (each factor is in range; their product must be too).
@@ -210,32 +202,32 @@ bool Validator::build_placement(const Fields& fields, Placed& out) {
     if (smallest < kSmallestSize || largest > kLargestMagnitude) {
         char text[64];
         std::snprintf(text, sizeof text, "%.3g", smallest < kSmallestSize ? smallest : largest);
-        diagnostics_.error(file_, fields.key_span("transform"),
-                           std::string("the transform's scale steps multiply to ") + text +
-                               " on some axis; sizes must stay between 1e-30 and 1e30");
+        a.diagnostics.error(a.file, fields.key_span("transform"),
+                            std::string("the transform's scale steps multiply to ") + text +
+                                " on some axis; sizes must stay between 1e-30 and 1e30");
         return false;
     }
     return true;
 }
 
-void Validator::build_mesh(const Block& block, const Fields& fields) {
+void build_mesh(SceneAssembly& a, const Block& block, const Fields& fields) {
     Mesh mesh;
     // Relative to the folder of the file the path is written in (the scene or an included file).
     fs::path path = fields.text("file");
     std::error_code ignored;
     if (path.is_relative())
-        path = fs::absolute(fs::path(file_.file(fields.value_span("file")).path()), ignored).parent_path() / path;
+        path = fs::absolute(fs::path(a.file.file(fields.value_span("file")).path()), ignored).parent_path() / path;
     mesh.path = path.lexically_normal().string();
-    mesh.named_at = Diagnostics::locate(file_, fields.value_span("file"));
+    mesh.named_at = Diagnostics::locate(a.file, fields.value_span("file"));
     const std::string problem = input_file_problem(mesh.path, kMaxMeshFileBytes);  // looks, never opens
     if (!problem.empty())
-        diagnostics_.error(file_, fields.value_span("file"), "cannot read mesh file '" + mesh.path + "': " + problem);
+        a.diagnostics.error(a.file, fields.value_span("file"), "cannot read mesh file '" + mesh.path + "': " + problem);
     mesh.flat = fields.text("shading") == "flat";
-    if (build_placed(block, fields, mesh)) scene_.meshes.push_back(mesh);
+    if (build_placed(a, block, fields, mesh)) a.scene.meshes.push_back(mesh);
 }
 
 // Placed, no corner of a flat shape may leave the renderer's range.
-bool Validator::check_reach(const Block& block, const Placed& placed, const TriangleMesh& mesh) {
+bool check_reach(SceneAssembly& a, const Block& block, const Placed& placed, const TriangleMesh& mesh) {
     const Placement placement(placed);
     double reach = 0;
     for (const dvec3& corner : mesh.positions) {
@@ -244,11 +236,11 @@ bool Validator::check_reach(const Block& block, const Placed& placed, const Tria
     }
     const std::string problem = placed_reach_problem(block.kind, reach);
     if (problem.empty()) return true;
-    diagnostics_.error(file_, block.kind_span, problem);
+    a.diagnostics.error(a.file, block.kind_span, problem);
     return false;
 }
 
-void Validator::build_flat_shape(const Block& block, const Fields& fields) {
+void build_flat_shape(SceneAssembly& a, const Block& block, const Fields& fields) {
     const std::string_view kind = block.kind;
     if (kind == "triangle") {
         FlatTriangle shape;
@@ -257,32 +249,89 @@ void Validator::build_flat_shape(const Block& block, const Fields& fields) {
         shape.c = fields.triple("c");
         const dvec3 side1 = shape.b - shape.a, side2 = shape.c - shape.a;
         if (parallel(side1, side2))
-            return (void)diagnostics_.error(file_, block.kind_span,
-                                            "the triangle's corners lie on one line: it has no area");
-        if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
-            scene_.triangles.push_back(shape);
+            return (void)a.diagnostics.error(a.file, block.kind_span,
+                                             "the triangle's corners lie on one line: it has no area");
+        if (build_placed(a, block, fields, shape) && check_reach(a, block, shape, triangle_mesh(shape)))
+            a.scene.triangles.push_back(shape);
     } else if (kind == "quad") {
         Quad shape;
         shape.corner = fields.triple("corner"), shape.edge1 = fields.triple("edge1");
         shape.edge2 = fields.triple("edge2");
         if (parallel(shape.edge1, shape.edge2))
-            return (void)diagnostics_.error(file_, fields.value_span("edge2"),
-                                            "'edge2' is parallel to 'edge1': the quad has no area");
-        if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
-            scene_.quads.push_back(shape);
+            return (void)a.diagnostics.error(a.file, fields.value_span("edge2"),
+                                             "'edge2' is parallel to 'edge1': the quad has no area");
+        if (build_placed(a, block, fields, shape) && check_reach(a, block, shape, triangle_mesh(shape)))
+            a.scene.quads.push_back(shape);
     } else {
         Box shape;
         shape.min = fields.triple("min"), shape.max = fields.triple("max");
         for (int axis = 0; axis < 3; ++axis) {
             if (shape.max[axis] > shape.min[axis]) continue;
-            return (void)diagnostics_.error(file_, fields.value_span("max"),
-                                            std::string("'max' must be greater than 'min' on every axis; on ") +
-                                                "xyz"[axis] + ", " + format_number(shape.max[axis]) +
-                                                " is not greater than " + format_number(shape.min[axis]));
+            return (void)a.diagnostics.error(a.file, fields.value_span("max"),
+                                             std::string("'max' must be greater than 'min' on every axis; on ") +
+                                                 "xyz"[axis] + ", " + format_number(shape.max[axis]) +
+                                                 " is not greater than " + format_number(shape.min[axis]));
         }
-        if (build_placed(block, fields, shape) && check_reach(block, shape, triangle_mesh(shape)))
-            scene_.boxes.push_back(shape);
+        if (build_placed(a, block, fields, shape) && check_reach(a, block, shape, triangle_mesh(shape)))
+            a.scene.boxes.push_back(shape);
     }
+}
+
+void set_parameters(SceneAssembly& a, const std::vector<std::pair<std::string, PlainValue>>& parameters) {
+    for (const auto& [name, value] : parameters)
+        a.scene.parameters.push_back(
+            {name, value.kind == PlainValue::Kind::Vector ? value.components : std::vector<double>{value.number},
+             value.kind == PlainValue::Kind::Vector});
+}
+
+void resolve_later_materials(SceneAssembly& a) {
+    auto resolve = [&](auto& shapes) {
+        for (auto& shape : shapes)
+            if (shape.material <= SceneAssembly::kLaterMaterial) {
+                const std::string& name = a.later_materials[size_t(SceneAssembly::kLaterMaterial - shape.material)];
+                auto found = a.material_by_name.find(name);
+                shape.material = found != a.material_by_name.end() ? found->second : -1;
+            }
+    };
+    SceneDescription& scene = a.scene;
+    resolve(scene.spheres), resolve(scene.planes), resolve(scene.meshes);
+    resolve(scene.triangles), resolve(scene.quads), resolve(scene.boxes);
+    resolve(scene.cones), resolve(scene.discs);
+}
+
+// Warnings where the image cannot be what the author meant (the scene stays valid): nothing to
+// see, or surfaces that would reflect light with no light to reflect.
+void warn_about_the_picture(const SceneAssembly& a) {
+    const SceneDescription& scene = a.scene;
+    const Location whole = Diagnostics::whole_file(a.file.scene().path());
+    const bool flat_shapes = !scene.triangles.empty() || !scene.quads.empty() || !scene.boxes.empty() ||
+                             !scene.cones.empty() || !scene.discs.empty();
+    if (scene.spheres.empty() && scene.planes.empty() && scene.meshes.empty() && !flat_shapes) {
+        a.diagnostics.report(Severity::Warning, whole,
+                             "the scene has no shapes: the image will be the background colour only");
+        return;
+    }
+    // Spheres alone, each wholly behind the eye: nothing in front of it.
+    const dvec3 forward = glm::normalize(scene.camera.lookat - scene.camera.eye);
+    const bool all_behind = scene.planes.empty() && scene.meshes.empty() && !flat_shapes &&
+                            std::all_of(scene.spheres.begin(), scene.spheres.end(), [&](const Sphere& sphere) {
+                                return glm::dot(sphere.center - scene.camera.eye, forward) < -sphere.radius;
+                            });
+    if (all_behind)
+        a.diagnostics.report(Severity::Warning, whole,
+                             "every shape is behind the camera: the image will be the background colour only");
+    auto needs_light = [&](const auto& shapes) {
+        return std::any_of(shapes.begin(), shapes.end(), [&](const auto& shape) {
+            const Material& material = scene.materials[size_t(shape.material)];
+            return material.kd != dvec3(0.0) || material.ks != dvec3(0.0);
+        });
+    };
+    if (scene.lights.empty() && (needs_light(scene.spheres) || needs_light(scene.planes) || needs_light(scene.meshes) ||
+                                 needs_light(scene.triangles) || needs_light(scene.quads) || needs_light(scene.boxes) ||
+                                 needs_light(scene.cones) || needs_light(scene.discs)))
+        a.diagnostics.report(Severity::Warning, whole,
+                             "the scene has no light: its diffuse and specular colours (kd, ks) will not show, only "
+                             "ka; add one, e.g. light { position (0, 5, 5) }");
 }
 
 }  // namespace tracer

@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/input_file.h"
+#include "lang/internal/scene_assembly.h"
 #include "lang/internal/suggest.h"
 #include "lang/internal/validator.h"
 #include "lang/interpreter.h"
@@ -37,25 +38,11 @@ std::string describe_found(const PlainValue& value) {
 
 }  // namespace
 
-// Takes a scene's parameters, as the interpreter found them.
-void Validator::set_parameters(const std::vector<std::pair<std::string, PlainValue>>& parameters) {
-    for (const auto& [name, value] : parameters)
-        scene_.parameters.push_back(
-            {name, value.kind == PlainValue::Kind::Vector ? value.components : std::vector<double>{value.number},
-             value.kind == PlainValue::Kind::Vector});
-}
-
-// One block, checked and built as soon as it is made (the interpreter hands them over one by
-// one, so that a big scene is never held whole). A material used before its block is
-// resolved at the end.
-bool Validator::accept(const Block& block) {
+// One block, checked as soon as it is made (the interpreter hands them over one by one, so
+// that a big scene is never held whole).
+std::optional<Fields> Validator::check(const Block& block) {
     kept_ = false;
-    check_and_build(block);
-    return kept_;
-}
-
-void Validator::check_and_build(const Block& block) {
-    if (diagnostics_.saturated()) return;
+    if (diagnostics_.saturated()) return std::nullopt;
     const BlockSpec* spec = block.spec ? block.spec : find_block_spec(block.kind);
     if (!spec) {
         std::vector<std::string_view> kinds;
@@ -63,17 +50,51 @@ void Validator::check_and_build(const Block& block) {
             if (s->top_level) kinds.push_back(s->kind);
         diagnostics_.error(file_, block.kind_span,
                            "unknown block " + in_quotes(block.kind) + did_you_mean(block.kind, kinds));
-        return;
+        return std::nullopt;
     }
-    if (!check_block_header(block, *spec)) return;
-    if (spec->kind == "material") return add_named_material(block);
-    if (block.broken) return;
+    if (!check_block_header(block, *spec)) return std::nullopt;
+    if (spec->kind == "material") return check_material_block(block);
+    if (block.broken) return std::nullopt;
     Fields fields(*spec);
-    if (check_body(block.body, *spec, block.kind_span, fields)) build(block, fields);
+    if (!check_body(block.body, *spec, block.kind_span, fields)) return std::nullopt;
+    if (block.group && (spec->kind == "camera" || spec->kind == "render")) {
+        diagnostics_.error(file_, block.kind_span,
+                           "a " + block.kind + " block is not placed by a group: write it outside the group");
+        return std::nullopt;
+    }
+    return fields;
 }
 
-// Materials used before their block: now defined, or undefined.
-void Validator::resolve_later_materials() {
+// `material NAME { ... }`: its name taken (once), then its body.
+std::optional<Fields> Validator::check_material_block(const Block& block) {
+    kept_ = true;  // its name's span, for "unused" and "defined twice"
+    auto [entry, inserted] = named_.try_emplace(block.name);
+    if (!inserted) {
+        Diagnostic* d = diagnostics_.error(file_, block.name_span, "material '" + block.name + "' is defined twice");
+        Diagnostics::note(d, file_, entry->second.name_span, "the first definition is here");
+        return std::nullopt;
+    }
+    entry->second.name_span = block.name_span;
+    if (block.broken) return std::nullopt;  // already reported; keep the name so uses of it are not errors too
+    Fields fields(*find_block_spec("material"));
+    if (!check_body(block.body, *find_block_spec("material"), block.kind_span, fields)) return std::nullopt;
+    entry->second.defined = true;
+    return fields;
+}
+
+bool Validator::check_material_name(const PlainValue& value) {
+    auto found = named_.find(value.text);
+    if (found != named_.end()) {
+        found->second.used = true;
+        return true;
+    }
+    later_uses_.push_back({value.text, value.span});
+    kept_ = true;
+    return true;
+}
+
+void Validator::finish() {
+    // Materials used before their block: now defined, or undefined.
     for (const LaterUse& use : later_uses_) {
         auto found = named_.find(use.name);
         if (found != named_.end()) {
@@ -85,69 +106,14 @@ void Validator::resolve_later_materials() {
         diagnostics_.error(file_, use.span,
                            "undefined material " + in_quotes(use.name) + did_you_mean(use.name, names));
     }
-    auto resolve = [&](auto& shapes) {
-        for (auto& shape : shapes)
-            if (shape.material <= kLaterMaterial) {
-                auto found = named_.find(later_uses_[size_t(kLaterMaterial - shape.material)].name);
-                shape.material = found != named_.end() ? found->second.index : -1;
-            }
-    };
-    resolve(scene_.spheres), resolve(scene_.planes), resolve(scene_.meshes);
-    resolve(scene_.triangles), resolve(scene_.quads), resolve(scene_.boxes);
-    resolve(scene_.cones), resolve(scene_.discs);
-}
-
-std::optional<SceneDescription> Validator::finish() {
-    resolve_later_materials();
-    // Step 3: whole-scene checks.
     if (!options_.fragment && !first_of_kind_.count(find_block_spec("camera")) && !diagnostics_.saturated())
         diagnostics_.report(Severity::Error, Diagnostics::whole_file(file_.scene().path()),
                             "the scene has no camera block; add one, e.g. camera { eye (0, 0, 7) lookat (0, 0, 0) }");
     // With errors around, an unused material is usually a misspelled use: no extra noise.
-    if (!options_.fragment && !diagnostics_.has_errors()) {
+    if (!options_.fragment && !diagnostics_.has_errors())
         for (const auto& [name, material] : named_)
-            if (!material.used && material.index >= 0)
+            if (!material.used && material.defined)
                 diagnostics_.warning(file_, material.name_span, "material '" + name + "' is never used");
-        warn_about_the_picture();
-    }
-
-    if (diagnostics_.has_errors()) return std::nullopt;
-    return std::move(scene_);
-}
-
-// Warnings where the image cannot be what the author meant (the scene stays valid): nothing to
-// see, or surfaces that would reflect light with no light to reflect.
-void Validator::warn_about_the_picture() {
-    const SceneDescription& scene = scene_;
-    const Location whole = Diagnostics::whole_file(file_.scene().path());
-    const bool flat_shapes = !scene.triangles.empty() || !scene.quads.empty() || !scene.boxes.empty() ||
-                             !scene.cones.empty() || !scene.discs.empty();
-    if (scene.spheres.empty() && scene.planes.empty() && scene.meshes.empty() && !flat_shapes) {
-        diagnostics_.report(Severity::Warning, whole,
-                            "the scene has no shapes: the image will be the background colour only");
-        return;
-    }
-    // Spheres alone, each wholly behind the eye: nothing in front of it.
-    const dvec3 forward = glm::normalize(scene.camera.lookat - scene.camera.eye);
-    const bool all_behind = scene.planes.empty() && scene.meshes.empty() && !flat_shapes &&
-                            std::all_of(scene.spheres.begin(), scene.spheres.end(), [&](const Sphere& sphere) {
-                                return glm::dot(sphere.center - scene.camera.eye, forward) < -sphere.radius;
-                            });
-    if (all_behind)
-        diagnostics_.report(Severity::Warning, whole,
-                            "every shape is behind the camera: the image will be the background colour only");
-    auto needs_light = [&](const auto& shapes) {
-        return std::any_of(shapes.begin(), shapes.end(), [&](const auto& shape) {
-            const Material& material = scene.materials[size_t(shape.material)];
-            return material.kd != dvec3(0.0) || material.ks != dvec3(0.0);
-        });
-    };
-    if (scene.lights.empty() && (needs_light(scene.spheres) || needs_light(scene.planes) || needs_light(scene.meshes) ||
-                                 needs_light(scene.triangles) || needs_light(scene.quads) || needs_light(scene.boxes) ||
-                                 needs_light(scene.cones) || needs_light(scene.discs)))
-        diagnostics_.report(Severity::Warning, whole,
-                            "the scene has no light: its diffuse and specular colours (kd, ks) will not show, only "
-                            "ka; add one, e.g. light { position (0, 5, 5) }");
 }
 
 // Names and counts: `material NAME`, no name elsewhere, one camera, at most one render block.
@@ -408,22 +374,40 @@ std::string setting_problem(std::string_view block, std::string_view key, const 
     return diagnostics.all().empty() ? "" : diagnostics.all().front().message;
 }
 
+// The validator checks each block, and the assembly builds what it accepted.
 struct SceneBuilder::State {
+    State(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& chosen)
+        : options(chosen),
+          validator(sources, diagnostics, chosen),
+          assembly(sources, diagnostics, [this](const Group& group, Fields& fields) {
+              return validator.check_body(group.placement, group_spec(), group.keyword, fields);
+          }) {}
+    ValidateOptions options;
     Validator validator;
+    SceneAssembly assembly;
 };
 
 SceneBuilder::SceneBuilder(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& options)
-    : state_(std::make_unique<State>(State{Validator(sources, diagnostics, options)})) {}
+    : state_(std::make_unique<State>(sources, diagnostics, options)) {}
 SceneBuilder::~SceneBuilder() = default;
 
 bool SceneBuilder::add(const Block& block) {
-    return state_->validator.accept(block);
+    State& state = *state_;
+    state.assembly.kept = false;
+    if (std::optional<Fields> fields = state.validator.check(block)) build_block(state.assembly, block, *fields);
+    return state.validator.kept() || state.assembly.kept;
 }
 
 std::optional<SceneDescription> SceneBuilder::finish(
     const std::vector<std::pair<std::string, PlainValue>>& parameters) {
-    state_->validator.set_parameters(parameters);
-    return state_->validator.finish();
+    State& state = *state_;
+    state.validator.finish();
+    resolve_later_materials(state.assembly);
+    const Diagnostics& diagnostics = state.assembly.diagnostics;
+    if (!state.options.fragment && !diagnostics.has_errors()) warn_about_the_picture(state.assembly);
+    if (diagnostics.has_errors()) return std::nullopt;
+    set_parameters(state.assembly, parameters);
+    return std::move(state.assembly.scene);
 }
 
 }  // namespace tracer

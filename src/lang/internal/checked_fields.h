@@ -16,6 +16,9 @@
 
 namespace tracer {
 
+// Scales a vector to unit length without overflow or underflow; zero stays zero.
+dvec3 normalized(dvec3 v);
+
 // A key's default, parsed once from the scene syntax written in its table row.
 const PlainValue& default_of(const KeySpec& key);
 

@@ -1,15 +1,13 @@
-// The validator's state and steps, shared by its two halves: validate.cpp (the table-driven
-// checks, block by block, and the public entry points) and build_scene.cpp (the builders that
-// turn checked fields into the scene description). Internal to lang/.
+// The validator: checks each block against its table (schema.h), value by value, and hands
+// back its checked fields for the builders (scene_assembly.h); at the end, the checks of the
+// whole scene (undefined and unused materials, a missing camera). It builds nothing. Internal to
+// lang/.
 #pragma once
 
-#include <filesystem>
-#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 #include "base/diagnostics.h"
@@ -18,28 +16,25 @@
 #include "lang/internal/evaluated_scene.h"
 #include "lang/schema.h"
 #include "lang/validate.h"
-#include "scene/placement.h"
-#include "scene/scene.h"
-#include "scene/triangle_mesh.h"
 
 namespace tracer {
-
-// Scales a vector to unit length without overflow or underflow; zero stays zero.
-dvec3 normalized(dvec3 v);
 
 class Validator {
 public:
     Validator(const Sources& sources, Diagnostics& diagnostics, const ValidateOptions& options)
-        : file_(sources), diagnostics_(diagnostics), options_(options) {
-        std::error_code ignored;
-        const std::filesystem::path scene_file(sources.scene().path());
-        scene_.source_path = std::filesystem::absolute(scene_file, ignored).lexically_normal().string();
-    }
+        : file_(sources), diagnostics_(diagnostics), options_(options) {}
 
-    void set_parameters(const std::vector<std::pair<std::string, PlainValue>>& parameters);
-    // Checks and builds one block; true if it kept any of the block's spans for later.
-    bool accept(const Block& block);
-    std::optional<SceneDescription> finish();
+    // The checked fields of one block, or nothing if it is refused (reported) or has nothing to
+    // build. A material's name is taken even when its body is refused, so that its uses are
+    // not errors too.
+    std::optional<Fields> check(const Block& block);
+    // True if the last check kept a span of its block for later (in a message yet to come).
+    bool kept() const { return kept_; }
+    // Checks a body against a table, filling `fields`; `owner` is where a missing key is reported.
+    bool check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields);
+    // The whole scene's checks, once every block is in: materials used and never defined (or
+    // defined and never used: warnings, when there are no errors), and the camera.
+    void finish();
     // Checks one value of `key` as a scene's block would (its type, range and other rules).
     bool check_setting(const PlainValue& value, const KeySpec& key, const BlockSpec& spec) {
         Fields fields(spec);
@@ -48,10 +43,9 @@ public:
     }
 
 private:
-    void check_and_build(const Block& block);
-    // Generic checks driven by the tables.
+    // The table-driven checks.
     bool check_block_header(const Block& block, const BlockSpec& spec);
-    bool check_body(const Body& body, const BlockSpec& spec, Span owner, Fields& fields);
+    std::optional<Fields> check_material_block(const Block& block);
     bool check_steps(const Body& body, const BlockSpec& spec, Fields& fields);
     bool unknown_key(const Entry& entry, const BlockSpec& spec, std::vector<std::string>& suggested);
     bool check_value(const PlainValue& value, const KeySpec& key, Fields& fields);
@@ -59,71 +53,27 @@ private:
     bool check_perfect_square(double number, Span span, const KeySpec& key);
     bool check_power_of_two(double number, Span span, const KeySpec& key);
     bool type_error(const PlainValue& value, const KeySpec& key, const std::string& extra = "");
-
-    // Builders: checked fields -> scene description.
-    void add_named_material(const Block& block);
-    int material_index(const Fields& fields);
+    // A material used by name: marks it used, or keeps the use to be checked at the end (it may
+    // be defined further down).
     bool check_material_name(const PlainValue& value);
-    Material build_material(const Fields& fields, std::string name);
-    void build(const Block& block, const Fields& fields);
-    void build_render(const Block& block, const Fields& fields);
-    void build_camera(const Block& block, const Fields& fields);
-    bool build_placed(const Block& block, const Fields& fields, Placed& out);
-    bool build_placement(const Fields& fields, Placed& out);
-    // Appends to `out` the steps of the groups `block` was made in, innermost first; false if a
-    // group's placement is refused (reported once, at the group).
-    bool add_group_steps(const Block& block, Placed& out);
-    // The placement of a round shape (sphere, cylinder, cone, disc): false if refused (reported),
-    // else `out` and its one scale factor `size`; the identity when nothing places the block.
-    bool place_round(const Block& block, const Fields& fields, std::string_view what, Placement& out, double& size);
-    bool check_round_reach(const Block& block, std::string_view what, std::initializer_list<dvec3> points,
-                           double radius);
-    void build_sphere(const Block& block, const Fields& fields);
-    void build_cone(const Block& block, const Fields& fields);
-    void build_disc(const Block& block, const Fields& fields);
-    void build_plane(const Block& block, const Fields& fields);
-    void build_mesh(const Block& block, const Fields& fields);
-    void build_flat_shape(const Block& block, const Fields& fields);
-    bool check_reach(const Block& block, const Placed& placed, const TriangleMesh& mesh);
-    void warn_about_the_picture();
 
     const Sources& file_;  // the scene file and those it includes
     Diagnostics& diagnostics_;
     ValidateOptions options_;
-    SceneDescription scene_;
 
     struct NamedMaterial {
-        int index = -1;  // -1: the material's own block had errors
         Span name_span;
+        bool defined = false;  // its block's body was accepted
         bool used = false;
     };
     std::map<std::string, NamedMaterial, std::less<>> named_;
-    // Material values shared by several shapes, by their body (held, so that no other body can
-    // take its address): each made into one material.
-    struct SharedMaterial {
-        std::shared_ptr<const Body> body;
-        int index;
-    };
-    std::map<const Body*, SharedMaterial> value_materials_;
-    std::map<const BlockSpec*, Span> first_of_kind_;  // each kind's first block, by its table
-    bool kept_ = false;  // the block being accepted had a span of its kept (in the members above or below)
-    // Each group's own steps, by the group (held, so that no other group can take its address);
-    // `ok` false if its placement was refused.
-    struct GroupSteps {
-        std::shared_ptr<const Group> group;
-        bool ok = false;
-        std::vector<TransformStep> steps;
-    };
-    std::map<const Group*, GroupSteps> group_steps_;
-    // Materials used by name before their block, resolved by finish(): a shape's material index
-    // kLaterMaterial - i stands for later_uses_[i].
-    struct LaterUse {
+    struct LaterUse {  // a material used by name before its block
         std::string name;
         Span span;
     };
-    static constexpr int kLaterMaterial = -2;
     std::vector<LaterUse> later_uses_;
-    void resolve_later_materials();
+    std::map<const BlockSpec*, Span> first_of_kind_;  // each kind's first block, by its table
+    bool kept_ = false;  // the block being checked had a span of its kept (in the members above)
 };
 
 }  // namespace tracer
