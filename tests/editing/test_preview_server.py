@@ -4,10 +4,11 @@ on 127.0.0.1 only, and a clear refusal of a port already in use."""
 import json
 import signal
 import socket
+import subprocess
 import time
 import urllib.request
 
-from conftest import start_preview
+from conftest import start_preview, start_tool
 
 SCENE = """camera { eye (0, 0, 7) lookat (0, 0, 0) }
 render { width 50 height 30 }
@@ -65,3 +66,23 @@ def test_a_port_in_use_is_refused_with_a_message(tracer_bin, tmp_path):
     assert process.returncode == 3
     assert "cannot serve on 127.0.0.1:" in error and "try another --port" in error
     assert "Traceback" not in error
+
+
+def test_the_documented_command_line_passes_options_after_dashes_to_tracer(tracer_bin, tmp_path):
+    # docs/guide/editing.md: tools/preview my.scn -o OUT.png --port 0 -- --width 600
+    scene = tmp_path / "my.scn"
+    scene.write_text(SCENE)
+    process = start_tool(
+        "preview", scene, "-o", tmp_path / "OUT.png", "--port", "0", "--tracer", tracer_bin, "--", "--width", "40",
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    try:
+        url = process.stdout.readline().split()[1]
+        deadline = time.monotonic() + 30
+        while (state := json.loads(urllib.request.urlopen(url + "state").read()))["image_version"] == 0:
+            assert time.monotonic() < deadline
+            time.sleep(0.05)
+        assert "40x24" in state["summary"], state["summary"]
+    finally:
+        process.send_signal(signal.SIGINT)
+        assert process.wait(timeout=20) == 0

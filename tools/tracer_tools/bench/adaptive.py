@@ -24,6 +24,8 @@ import sys
 
 import numpy as np
 
+from tracer_tools import option_types
+
 from ..xcheck import povray
 from ..xcheck.images import read_exr
 from ..xcheck.metrics import flip_mean, level_differences
@@ -338,9 +340,11 @@ def report(results: dict) -> None:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/bench adaptive", description=__doc__.split("\n")[0])
-    parser.add_argument("--width", type=int, help="image width (default: each scene's own)")
-    parser.add_argument("--runs", type=int, default=3)
-    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument(
+        "--width", type=option_types.whole_number(1, 16384), help="image width (default: each scene's own)"
+    )
+    parser.add_argument("--runs", type=option_types.whole_number(1, 1_000_000), default=3)
+    parser.add_argument("--threads", type=option_types.whole_number(0, 4096), default=2)
     parser.add_argument("--scenes", nargs="+", default=list(SCENES), choices=list(SCENES))
     parser.add_argument("--no-povray", dest="povray", action="store_false")
     parser.add_argument("--report-only", action="store_true", help="redraw from docs/bench/adaptive-data.json")

@@ -14,7 +14,7 @@ import statistics
 import subprocess
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import OUT, base_build, build, git, provenance, run_json
 
 # name: (tracer_bench arguments, which benchmark the scene comes from)
@@ -83,11 +83,11 @@ def write_report(results: dict, path: pathlib.Path) -> None:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--base", required=True, help="the commit to compare with")
-    parser.add_argument("--report", type=pathlib.Path, required=True, help="the Markdown file to write")
-    parser.add_argument("--rounds", type=int, default=5)
-    parser.add_argument("--runs", type=int, default=5)
-    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--base", type=option_types.free_text, required=True, help="the commit to compare with")
+    parser.add_argument("--report", type=option_types.output_file, required=True, help="the Markdown file to write")
+    parser.add_argument("--rounds", type=option_types.whole_number(1, 1_000_000), default=5)
+    parser.add_argument("--runs", type=option_types.whole_number(1, 1_000_000), default=5)
+    parser.add_argument("--threads", type=option_types.whole_number(0, 4096), default=2)
     args = parser.parse_args()
     make_scenes()
     base = git("rev-parse", "--short", args.base)

@@ -25,6 +25,7 @@ import statistics
 import subprocess
 import sys
 
+from tracer_tools import option_types
 from tracer_tools.bench.common import ROOT, TRACER_BENCH, report_main, run_json
 
 BENCH = TRACER_BENCH
@@ -226,7 +227,9 @@ def measure(args: argparse.Namespace) -> dict:
 
 def main() -> int:
     def add_arguments(parser: argparse.ArgumentParser) -> None:
-        parser.add_argument("--embree", type=pathlib.Path, help="embree_bench (default: build ../shared's)")
+        parser.add_argument(
+            "--embree", type=option_types.existing_path, help="embree_bench (default: build ../shared's)"
+        )
 
     return report_main("performance", __doc__, measure, write_report, add_arguments)
 

@@ -11,7 +11,7 @@ import subprocess
 import sys
 from collections.abc import Callable
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 
 BUILD = ROOT / "build" / "release"
 TRACER = BUILD / "tracer"
@@ -80,7 +80,9 @@ def report_main(
     the benchmark's own options. `measure(args)` gives the figures after the common header."""
     parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--quick", action="store_true", help="5 renders a run and 3 pairs (else 11 and 5)")
-    parser.add_argument("--threads", type=int, default=2, help="render threads (default 2)")
+    parser.add_argument(
+        "--threads", type=option_types.whole_number(0, 4096), default=2, help="render threads (default 2)"
+    )
     parser.add_argument("--report-only", action="store_true", help="rewrite the report from the saved data")
     if add_arguments:
         add_arguments(parser)

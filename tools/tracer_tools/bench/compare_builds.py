@@ -13,13 +13,15 @@ import statistics
 import subprocess
 import sys
 
+from tracer_tools import option_types
+
 LINE = re.compile(r"^(\S+)\s+([\d.]+) ms", re.M)
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("builds", nargs="+")
-    parser.add_argument("--rounds", type=int, default=15)
+    parser.add_argument("builds", type=option_types.free_text, nargs="+")
+    parser.add_argument("--rounds", type=option_types.whole_number(1, 1_000_000), default=15)
     ours, extra = (
         (sys.argv[1:], [])
         if "--" not in sys.argv

@@ -13,7 +13,7 @@ import argparse
 import statistics
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.nff import nff2scn
 
 from .common import DOCS, OUT, TRACER_BENCH, provenance, run_json
@@ -28,9 +28,14 @@ MODES = ("analytic", "mesh", "none")
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/bench cones", description=__doc__.split("\n")[0])
-    parser.add_argument("--spd", default=str(ROOT.parent / "shared" / "spd" / "nff"), help="the SPD's NFF files")
-    parser.add_argument("--pairs", type=int, default=7)
-    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument(
+        "--spd",
+        type=option_types.existing_folder,
+        default=ROOT.parent / "shared" / "spd" / "nff",
+        help="the SPD's NFF files",
+    )
+    parser.add_argument("--pairs", type=option_types.whole_number(1, 1_000_000), default=7)
+    parser.add_argument("--threads", type=option_types.whole_number(0, 4096), default=2)
     args = parser.parse_args(argv)
     OUT.mkdir(parents=True, exist_ok=True)
     rows = []

@@ -27,6 +27,7 @@ import tempfile
 import time
 
 import tracer_tools
+from tracer_tools import option_types
 
 ROOT = str(tracer_tools.ROOT)
 TRACER = os.path.join(ROOT, "build", "release", "tracer")
@@ -196,7 +197,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="one pair, three tile sizes")
     parser.add_argument("--report-only", action="store_true", help="rewrite the report from the saved data")
-    parser.add_argument("--pairs", type=int, default=5)
+    parser.add_argument("--pairs", type=option_types.whole_number(1, 1_000_000), default=5)
     arguments = parser.parse_args()
     model = next(
         (line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")), "?"

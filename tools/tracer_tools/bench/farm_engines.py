@@ -22,6 +22,8 @@ from collections.abc import Callable
 
 import psutil
 
+from tracer_tools import option_types
+
 
 def noop(value: int) -> int:
     return value
@@ -96,8 +98,8 @@ def measure(engine: str, tasks: int, rounds: int) -> dict:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("engine", choices=["ray", "dask", "dask-threads"])
-    parser.add_argument("--tasks", type=int, default=400)
-    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--tasks", type=option_types.whole_number(1, 1_000_000), default=400)
+    parser.add_argument("--rounds", type=option_types.whole_number(1, 1_000_000), default=5)
     arguments = parser.parse_args()
     print(json.dumps(measure(arguments.engine, arguments.tasks, arguments.rounds)))
     return 0

@@ -19,6 +19,8 @@ import subprocess
 import sys
 import time
 
+from tracer_tools import option_types
+
 from .common import DOCS, OUT, TRACER, provenance
 
 KINDS = {  # keys of one shape at (i, j), and its triangles
@@ -54,10 +56,15 @@ def run(scene: pathlib.Path, threads: int) -> dict:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/bench flat-shapes", description=__doc__.split("\n")[0])
-    parser.add_argument("--side", type=int, default=1000, help="shapes per side of the loop (default 10^3)")
-    parser.add_argument("--runs", type=int, default=7)
-    parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--pause", type=float, default=4.0, help="seconds between runs")
+    parser.add_argument(
+        "--side",
+        type=option_types.whole_number(1, 1_000_000),
+        default=1000,
+        help="shapes per side of the loop (default 10^3)",
+    )
+    parser.add_argument("--runs", type=option_types.whole_number(1, 1_000_000), default=7)
+    parser.add_argument("--threads", type=option_types.whole_number(0, 4096), default=2)
+    parser.add_argument("--pause", type=option_types.real_number(0), default=4.0, help="seconds between runs")
     args = parser.parse_args(argv)
     OUT.mkdir(parents=True, exist_ok=True)
     scenes = {}

@@ -16,7 +16,7 @@ import subprocess
 import tempfile
 import time
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import TRACER, machine
 
 POV_HEADER = (
@@ -80,9 +80,11 @@ def povray_parse(povray: str, scene: str) -> tuple[float, int]:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--runs", type=int, default=3)
-    parser.add_argument("--povray", default="povray")
-    parser.add_argument("cases", nargs="*", default=list(CASES), help="of: " + ", ".join(CASES))
+    parser.add_argument("--runs", type=option_types.whole_number(1, 1_000_000), default=3)
+    parser.add_argument("--povray", type=option_types.free_text, default="povray")
+    parser.add_argument(
+        "cases", type=option_types.free_text, nargs="*", default=list(CASES), help="of: " + ", ".join(CASES)
+    )
     args = parser.parse_args()
     povray = shutil.which(args.povray)
     if not TRACER.exists():

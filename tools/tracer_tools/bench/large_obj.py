@@ -19,7 +19,7 @@ import statistics
 import subprocess
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import machine
 
 TRACER = ROOT / "build" / "release" / "tracer"
@@ -60,7 +60,7 @@ def timed(args: list) -> tuple[int, float, int]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--runs", type=option_types.whole_number(1, 1_000_000), default=3)
     args = parser.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
     mesh = OUT / "wave.obj"

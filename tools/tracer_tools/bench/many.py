@@ -32,7 +32,7 @@ import statistics
 import subprocess
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import TRACER_BENCH, report_main, run_json
 
 BENCH = TRACER_BENCH
@@ -232,8 +232,10 @@ def measure_all(args: argparse.Namespace) -> dict:
 
 def main() -> int:
     def add_arguments(parser: argparse.ArgumentParser) -> None:
-        parser.add_argument("--shared", type=pathlib.Path, default=ROOT.parent / "shared")
-        parser.add_argument("--embree", type=pathlib.Path, help="embree_scene (default: built from --shared)")
+        parser.add_argument("--shared", type=option_types.existing_folder, default=ROOT.parent / "shared")
+        parser.add_argument(
+            "--embree", type=option_types.existing_path, help="embree_scene (default: built from --shared)"
+        )
 
     return report_main("many-objects", __doc__, measure_all, write_report, add_arguments)
 

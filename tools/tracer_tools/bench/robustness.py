@@ -22,7 +22,7 @@ import statistics
 import subprocess
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import machine, run_json
 
 DOCS = ROOT / "docs" / "bench"
@@ -248,9 +248,9 @@ def plot(results: dict) -> None:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--rounds", type=int, default=7)
-    parser.add_argument("--runs", type=int, default=5)
-    parser.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--rounds", type=option_types.whole_number(1, 1_000_000), default=7)
+    parser.add_argument("--runs", type=option_types.whole_number(1, 1_000_000), default=5)
+    parser.add_argument("--threads", type=option_types.whole_number(0, 4096), nargs="+", default=[1, 2])
     parser.add_argument("--report-only", action="store_true")
     args = parser.parse_args()
     data = DOCS / "robustness-g1-data.json"

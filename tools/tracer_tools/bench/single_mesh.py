@@ -19,7 +19,7 @@ import json
 import statistics
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import base_build, build, git, provenance, run_json
 
 DOCS = ROOT / "docs" / "bench"
@@ -72,10 +72,10 @@ def write_report(results: dict) -> None:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--base", default="1f57b86")
-    parser.add_argument("--rounds", type=int, default=9)
-    parser.add_argument("--runs", type=int, default=5)
-    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--base", type=option_types.free_text, default="1f57b86")
+    parser.add_argument("--rounds", type=option_types.whole_number(1, 1_000_000), default=9)
+    parser.add_argument("--runs", type=option_types.whole_number(1, 1_000_000), default=5)
+    parser.add_argument("--threads", type=option_types.whole_number(0, 4096), default=2)
     parser.add_argument("--report-only", action="store_true")
     args = parser.parse_args()
     data = DOCS / "single-mesh-data.json"

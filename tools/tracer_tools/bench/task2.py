@@ -13,14 +13,14 @@ import statistics
 import subprocess
 import tempfile
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import TRACER, machine
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--runs", type=int, default=9)
-    parser.add_argument("--threads", type=int, default=os.cpu_count())
+    parser.add_argument("--runs", type=option_types.whole_number(1, 1_000_000), default=9)
+    parser.add_argument("--threads", type=option_types.whole_number(0, 4096), default=os.cpu_count())
     args = parser.parse_args()
     if not TRACER.exists():
         subprocess.run([ROOT / "tools" / "bootstrap"], check=True, stdout=subprocess.DEVNULL)

@@ -22,7 +22,7 @@ import statistics
 import subprocess
 import tempfile
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import DOCS, TRACER, TRACER_BENCH, git, machine, run_json
 from tracer_tools.nff import nff2scn
 from tracer_tools.spd import steps
@@ -120,10 +120,10 @@ def bunny_crop(embree_bench: pathlib.Path, pairs: int, runs: int) -> dict:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--shared", type=pathlib.Path, default=ROOT.parent / "shared")
-    parser.add_argument("--pairs", type=int, default=3)
-    parser.add_argument("--runs", type=int, default=5)
-    parser.add_argument("--scenes", default=",".join(SCENES))
+    parser.add_argument("--shared", type=option_types.existing_folder, default=ROOT.parent / "shared")
+    parser.add_argument("--pairs", type=option_types.whole_number(1, 1_000_000), default=3)
+    parser.add_argument("--runs", type=option_types.whole_number(1, 1_000_000), default=5)
+    parser.add_argument("--scenes", type=option_types.free_text, default=",".join(SCENES))
     parser.add_argument("--report-only", action="store_true", help="redraw the chart from the saved figures")
     args = parser.parse_args()
     if args.report_only:

@@ -19,7 +19,7 @@ import tempfile
 import threading
 import time
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import TRACER, git, machine
 
 
@@ -39,9 +39,9 @@ def wait_for(events: queue.Queue, kind: str, stage: str | None = None) -> tuple[
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--scene", type=pathlib.Path, default=ROOT / "scenes" / "task2.scn")
-    parser.add_argument("--saves", type=int, default=21)
-    parser.add_argument("--threads", type=int, default=os.cpu_count())
+    parser.add_argument("--scene", type=option_types.existing_path, default=ROOT / "scenes" / "task2.scn")
+    parser.add_argument("--saves", type=option_types.whole_number(1, 1_000_000), default=21)
+    parser.add_argument("--threads", type=option_types.whole_number(0, 4096), default=os.cpu_count())
     args = parser.parse_args()
     print(f"# tools/bench watch: {time.strftime('%Y-%m-%d')}, {git('rev-parse', '--short', 'HEAD')}")
     print(f"# machine: {machine()}; threads used: {args.threads}; release preset (-O3 -march=native)")

@@ -11,19 +11,25 @@ import asyncio
 import json
 import os
 import pathlib
+import subprocess
+import sys
 import urllib.parse
 
 from lsprotocol import types
 from pygls.lsp.server import LanguageServer
 
-from tracer_tools import ROOT
-from tracer_tools.editing import scene_text
+from tracer_tools import ROOT, option_types
+from tracer_tools.editing import lsp_io, scene_text
 from tracer_tools.editing.language import Entry, Language
 
 # A check starts this long after the last keystroke (one run per pause, not per key).
 CHECK_DELAY = 0.15
 # A check still running after this long (a scene that loops for minutes) is stopped.
 CHECK_TIMEOUT = 30.0
+# A file the editor has not opened (an included one) is read only if regular and at most this long.
+MAX_UNOPENED_BYTES = 16 << 20
+# Completion offers at most this many items at once (marked incomplete past it).
+MAX_COMPLETIONS = 1000
 SEVERITY = {
     "error": types.DiagnosticSeverity.Error,
     "warning": types.DiagnosticSeverity.Warning,
@@ -51,6 +57,14 @@ def uri_to_path(uri: str) -> str:
 
 def path_to_uri(path: str) -> str:
     return pathlib.Path(os.path.abspath(path)).as_uri()
+
+
+def read_unopened(path: str) -> str:
+    """The text of a file the editor has not opened: "" unless a regular file of bounded size."""
+    try:
+        return option_types.read_regular_file(path, MAX_UNOPENED_BYTES).decode(errors="replace")
+    except option_types.UnreadableFile:
+        return ""
 
 
 def utf16_column(line: str, byte_column: int) -> int:
@@ -82,9 +96,16 @@ class TracerServer(LanguageServer):
         self.names: dict[str, list[dict]] = {}  # by document: the names of its last check
         self.published: dict[str, set[str]] = {}  # by document: the URIs given diagnostics
 
+    def document_source(self, uri: str) -> str:
+        """The text of an open document, else of the regular file behind the URI (bounded; "" if
+        it is not one: a FIFO or a device is never opened for reading)."""
+        if (document := self.workspace.text_documents.get(uri)) is not None:
+            return document.source
+        return read_unopened(uri_to_path(uri))
+
     async def check(self, uri: str) -> None:
         """Runs tracer on the document's text and publishes what it says, by file."""
-        document = self.workspace.get_text_document(uri)
+        source = self.document_source(uri)
         path = uri_to_path(uri)
         process = await asyncio.create_subprocess_exec(
             self.tracer,
@@ -99,7 +120,7 @@ class TracerServer(LanguageServer):
             stderr=asyncio.subprocess.PIPE,
         )
         try:  # a newer change cancels this check: its tracer is stopped, not left running
-            out, _ = await asyncio.wait_for(process.communicate(document.source.encode()), CHECK_TIMEOUT)
+            out, _ = await asyncio.wait_for(process.communicate(source.encode()), CHECK_TIMEOUT)
         except asyncio.CancelledError:
             process.kill()
             await process.wait()
@@ -136,11 +157,8 @@ class TracerServer(LanguageServer):
     def line_text(self, path: str, line: int) -> str:
         """Line `line` (from 0) of `path`: the open document's text if open, else the file's ("" if unreadable)."""
         document = self.workspace.text_documents.get(path_to_uri(path))
-        try:
-            lines = document.lines if document else pathlib.Path(path).read_text(errors="replace").splitlines()
-            return lines[line] if line < len(lines) else ""
-        except OSError:
-            return ""
+        lines = document.lines if document else read_unopened(path).splitlines()
+        return lines[line] if line < len(lines) else ""
 
     def lsp_diagnostic(self, found: dict) -> types.Diagnostic:
         """A diagnostic of tracer's JSON as the LSP's, its notes as related information."""
@@ -183,6 +201,7 @@ class TracerServer(LanguageServer):
         """The names of the last check visible at `offset` (material names everywhere)."""
         path = uri_to_path(uri)
         starts = scene_text.line_offsets(text)
+        braces = scene_text.BraceMap(text)
         visible = []
         for name in self.names.get(uri, []):
             if name["kind"] == "material" or name["path"] != path:
@@ -192,8 +211,12 @@ class TracerServer(LanguageServer):
             if line >= len(starts):
                 continue
             line_end = starts[line + 1] if line + 1 < len(starts) else len(text)
-            prefix = text[starts[line] : line_end].encode()[: name["column"] - 1].decode(errors="ignore")
-            begin, end = scene_text.visible_range(text, starts[line] + len(prefix), name["kind"])
+            line_text = text[starts[line] : line_end]
+            if line_text.isascii():  # a byte column is a character column
+                column = min(name["column"] - 1, len(line_text))
+            else:
+                column = len(line_text.encode()[: name["column"] - 1].decode(errors="ignore"))
+            begin, end = braces.visible_range(starts[line] + column, name["kind"])
             if begin <= offset <= end:
                 visible.append(name)
         return visible
@@ -237,9 +260,12 @@ class TracerServer(LanguageServer):
             uri=path_to_uri(chosen["path"]), range=types.Range(types.Position(line, start), types.Position(line, end))
         )
 
-    def completions(self, uri: str, text: str, offset: int) -> list[types.CompletionItem]:
-        """What may be written at `offset`: keys in a block, else blocks and statements; built-ins; names in scope."""
+    def completions(self, uri: str, text: str, offset: int) -> types.CompletionList:
+        """What may be written at `offset`: keys in a block, else blocks and statements; built-ins;
+        names in scope. Only those that start with the word being typed, and at most
+        MAX_COMPLETIONS (then marked incomplete: the editor asks again as the word grows)."""
         kind = self.context_kind(text, offset)
+        typed = scene_text.word_before(text, offset)
         entries: list[Entry] = []
         if kind:
             entries += self.language.keys(kind)
@@ -255,19 +281,28 @@ class TracerServer(LanguageServer):
                 documentation=types.MarkupContent(types.MarkupKind.Markdown, e.documentation),
             )
             for e in entries
+            if e.label.startswith(typed)
         ]
         seen = {item.label for item in items}
+        file_names: dict[str, str] = {}  # path -> its last part, once per file
         for name in self.scene_names(uri, text, offset):
-            if name["name"] not in seen:
-                seen.add(name["name"])
-                items.append(
-                    types.CompletionItem(
-                        label=name["name"],
-                        kind=COMPLETION_KIND[name["kind"]],
-                        detail=f"{name['kind']} ({pathlib.Path(name['path']).name}:" f"{name['line']})",
-                    )
+            label = name["name"]
+            if label in seen or not label.startswith(typed):
+                continue
+            if len(items) == MAX_COMPLETIONS:
+                return types.CompletionList(is_incomplete=True, items=items)
+            seen.add(label)
+            file_name = file_names.get(name["path"]) or file_names.setdefault(
+                name["path"], pathlib.Path(name["path"]).name
+            )
+            items.append(
+                types.CompletionItem(
+                    label=label,
+                    kind=COMPLETION_KIND[name["kind"]],
+                    detail=f"{name['kind']} ({file_name}:{name['line']})",
                 )
-        return items
+            )
+        return types.CompletionList(is_incomplete=False, items=items)
 
 
 def make_server(tracer: str) -> TracerServer:
@@ -292,26 +327,22 @@ def make_server(tracer: str) -> TracerServer:
 
     @server.feature(types.TEXT_DOCUMENT_HOVER)
     def hover(ls: TracerServer, params: types.HoverParams):
-        document = ls.workspace.get_text_document(params.text_document.uri)
-        offset = offset_of(document.source, params.position)
-        entry = ls.hover_entry(params.text_document.uri, document.source, offset)
+        source = ls.document_source(params.text_document.uri)
+        offset = offset_of(source, params.position)
+        entry = ls.hover_entry(params.text_document.uri, source, offset)
         if entry is None:
             return None
         return types.Hover(contents=types.MarkupContent(types.MarkupKind.Markdown, entry.documentation))
 
     @server.feature(types.TEXT_DOCUMENT_DEFINITION)
     def definition(ls: TracerServer, params: types.DefinitionParams):
-        document = ls.workspace.get_text_document(params.text_document.uri)
-        offset = offset_of(document.source, params.position)
-        return ls.definition(params.text_document.uri, document.source, offset)
+        source = ls.document_source(params.text_document.uri)
+        return ls.definition(params.text_document.uri, source, offset_of(source, params.position))
 
     @server.feature(types.TEXT_DOCUMENT_COMPLETION, types.CompletionOptions(trigger_characters=[" "]))
     def completion(ls: TracerServer, params: types.CompletionParams):
-        document = ls.workspace.get_text_document(params.text_document.uri)
-        offset = offset_of(document.source, params.position)
-        return types.CompletionList(
-            is_incomplete=False, items=ls.completions(params.text_document.uri, document.source, offset)
-        )
+        source = ls.document_source(params.text_document.uri)
+        return ls.completions(params.text_document.uri, source, offset_of(source, params.position))
 
     return server
 
@@ -321,9 +352,14 @@ def main() -> int:
     parser = argparse.ArgumentParser(prog="tools/lsp", description=__doc__.split("\n\n")[0])
     parser.add_argument(
         "--tracer",
+        type=option_types.executable_file,
         default=str(ROOT / "build" / "release" / "tracer"),
         help="the tracer executable (default: %(default)s)",
     )
     args = parser.parse_args()
-    make_server(args.tracer).start_io()
-    return 0
+    try:
+        server = make_server(args.tracer)
+    except (OSError, ValueError, subprocess.SubprocessError) as error:
+        print(f"tools/lsp: error: {args.tracer} --language-json gave no language tables: {error}", file=sys.stderr)
+        return 1
+    return lsp_io.serve_stdio(server)

@@ -17,7 +17,7 @@ import subprocess
 import sys
 import threading
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 
 PAGE = """<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>tracer: {title}</title>
@@ -144,22 +144,34 @@ def stop_on_sigterm(*_: object) -> None:
 
 def main() -> int:
     """tools/preview: serves until Ctrl-C or SIGTERM, then stops tracer."""
-    parser = argparse.ArgumentParser(prog="tools/preview", description=__doc__.split("\n\n")[0])
-    parser.add_argument("scene", type=pathlib.Path)
-    parser.add_argument(
-        "-o", "--output", type=pathlib.Path, help="the image tracer writes (default: out/preview/SCENE.png)"
+    parser = argparse.ArgumentParser(
+        prog="tools/preview",
+        description=__doc__.split("\n\n")[0],
+        usage="tools/preview [-h] [-o OUTPUT] [--port PORT] [--tracer TRACER] scene [-- TRACER_OPTION...]",
     )
-    parser.add_argument("--port", type=int, default=8000, help="the local port (0: any free one; default 8000)")
-    parser.add_argument("--tracer", default=str(ROOT / "build" / "release" / "tracer"))
-    parser.add_argument("tracer_options", nargs="*", help="more options for tracer (after --)")
-    args = parser.parse_args()
-    output = args.output or ROOT / "out" / "preview" / (args.scene.stem + ".png")
+    parser.add_argument("scene", type=option_types.free_text, help="the scene file to watch")
+    parser.add_argument(
+        "-o", "--output", type=option_types.output_file, help="the image tracer writes (default: out/preview/SCENE.png)"
+    )
+    parser.add_argument(
+        "--port", type=option_types.port, default=8000, help="the local port (0: any free one; default 8000)"
+    )
+    parser.add_argument(
+        "--tracer", type=option_types.executable_file, default=str(ROOT / "build" / "release" / "tracer")
+    )
+    own, tracer_options = option_types.split_passthrough(sys.argv[1:])
+    args = parser.parse_args(own)
+    scene = pathlib.Path(args.scene)
+    output = args.output or ROOT / "out" / "preview" / (scene.stem + ".png")
     if output.suffix.lower() != ".png":
         parser.error("the preview page shows PNG images: give -o NAME.png")
-    output.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        output.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        parser.error(f"cannot make the folder of {output}: {error.strerror}")
     state = PreviewState(output)
     try:
-        server = http.server.ThreadingHTTPServer(("127.0.0.1", args.port), make_handler(state, str(args.scene)))
+        server = http.server.ThreadingHTTPServer(("127.0.0.1", args.port), make_handler(state, str(scene)))
     except OSError as error:
         print(
             f"tools/preview: error: cannot serve on 127.0.0.1:{args.port}: {error.strerror}; try another --port "
@@ -168,13 +180,15 @@ def main() -> int:
         )
         return 3
     process = subprocess.Popen(
-        [args.tracer, str(args.scene), "-o", str(output), "--watch", "--diagnostics", "json", *args.tracer_options],
+        [args.tracer, str(scene), "-o", str(output), "--watch", "--diagnostics", "json", *tracer_options],
         stdout=subprocess.PIPE,
         text=True,
     )
     threading.Thread(target=follow, args=(process, state), daemon=True).start()
     signal.signal(signal.SIGTERM, stop_on_sigterm)
-    print(f"tools/preview: http://127.0.0.1:{server.server_address[1]}/ (Ctrl-C stops)", flush=True)
+    print(
+        f"tools/preview: http://127.0.0.1:{server.server_address[1]}/ (Ctrl-C stops); the image: {output}", flush=True
+    )
     try:
         server.serve_forever()
     except KeyboardInterrupt:

@@ -3,11 +3,13 @@ braces open at a place (and the block kind each belongs to), the word under the 
 where a name defined at a place stops being visible. Comments (# to the end of the line) and
 strings are skipped; tracer itself judges the text (tracer --check)."""
 
+import bisect
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 
 WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+NEWLINE = re.compile("\n")
 
 
 @dataclass
@@ -16,24 +18,17 @@ class Brace:
     words: list[str]  # the words just before it, nearest last: ["material", "shiny"], ["sphere"]
 
 
-def code_spans(text: str) -> Iterator[tuple[int, str]]:
-    """(offset, character) for each character outside comments and strings."""
-    in_string = False
-    i = 0
-    while i < len(text):
-        c = text[i]
-        if in_string:
-            if c == '"' or c == "\n":
-                in_string = False
-        elif c == "#":
-            end = text.find("\n", i)
-            i = len(text) if end < 0 else end
-            continue
-        elif c == '"':
-            in_string = True
-        else:
-            yield i, c
-        i += 1
+# A comment (to the end of its line), a string (to its closing quote or the end of its line) or
+# a brace: the scans below take the braces and step over the rest in one match each.
+BRACE_OR_SKIPPED = re.compile(r'#[^\n]*|"[^"\n]*"?|[{}]')
+
+
+def braces(text: str, end: int | None = None) -> Iterator[tuple[int, str]]:
+    """(offset, '{' or '}') for each brace before `end` outside comments and strings."""
+    for match in BRACE_OR_SKIPPED.finditer(text, 0, len(text) if end is None else end):
+        c = match.group()
+        if c == "{" or c == "}":
+            yield match.start(), c
 
 
 def words_before(text: str, offset: int, most: int = 3) -> list[str]:
@@ -45,7 +40,7 @@ def words_before(text: str, offset: int, most: int = 3) -> list[str]:
 def open_braces(text: str, offset: int) -> list[Brace]:
     """The braces still open at `offset`, outermost first."""
     stack: list[Brace] = []
-    for i, c in code_spans(text[:offset]):
+    for i, c in braces(text, offset):
         if c == "{":
             stack.append(Brace(i, words_before(text, i)))
         elif c == "}" and stack:
@@ -53,37 +48,47 @@ def open_braces(text: str, offset: int) -> list[Brace]:
     return stack
 
 
-def matching_close(text: str, open_offset: int) -> int:
-    """The offset of the '}' closing the '{' at `open_offset` (the text's end if none)."""
-    depth = 0
-    for i, c in code_spans(text[open_offset:]):
-        if c == "{":
-            depth += 1
-        elif c == "}":
-            depth -= 1
-            if depth == 0:
-                return open_offset + i
-    return len(text)
+class BraceMap:
+    """Every brace pair of a text, found in one pass, for the questions asked once per name
+    (where a name stays visible): each in O(log n), so that a document's thousands of names cost
+    about one pass over it, not one each."""
 
+    def __init__(self, text: str):
+        self.end = len(text)
+        self.opens: list[int] = []  # every '{' outside comments and strings, in order
+        self.close_of: dict[int, int] = {}  # '{' -> its '}' (the text's end if unclosed)
+        self.events: list[int] = []  # offsets of the braces, in order
+        self.innermost: list[int] = []  # the innermost '{' open just after each event (-1: none)
+        stack: list[int] = []
+        for i, c in braces(text):
+            if c == "{":
+                stack.append(i)
+                self.opens.append(i)
+            elif stack:
+                self.close_of[stack.pop()] = i
+            else:
+                continue
+            self.events.append(i)
+            self.innermost.append(stack[-1] if stack else -1)
+        for left in stack:
+            self.close_of[left] = self.end
 
-def next_open_brace(text: str, offset: int) -> int | None:
-    """The first '{' at or after `offset`, outside comments and strings."""
-    for i, c in code_spans(text[offset:]):
-        if c == "{":
-            return offset + i
-    return None
+    def enclosing(self, offset: int) -> int:
+        """The innermost '{' open at `offset` (after the characters before it), or -1."""
+        k = bisect.bisect_left(self.events, offset) - 1
+        return self.innermost[k] if k >= 0 else -1
 
-
-def visible_range(text: str, offset: int, kind: str) -> tuple[int, int]:
-    """Where a name defined at `offset` can be used: a loop variable or a parameter in the
-    braces that follow it; any other name from its definition to the end of the braces around it."""
-    if kind in ("for", "parameter"):
-        brace = next_open_brace(text, offset)
-        if brace is None:
-            return offset, offset
-        return brace, matching_close(text, brace)
-    around = open_braces(text, offset)
-    return offset, matching_close(text, around[-1].offset) if around else len(text)
+    def visible_range(self, offset: int, kind: str) -> tuple[int, int]:
+        """Where a name defined at `offset` can be used: a loop variable or a parameter in the
+        braces that follow it; any other name from its definition to the end of the braces
+        around it."""
+        if kind in ("for", "parameter"):
+            k = bisect.bisect_left(self.opens, offset)
+            if k == len(self.opens):
+                return offset, offset
+            return self.opens[k], self.close_of[self.opens[k]]
+        around = self.enclosing(offset)
+        return offset, self.close_of[around] if around >= 0 else self.end
 
 
 def word_at(text: str, offset: int) -> tuple[str, int] | None:
@@ -92,6 +97,14 @@ def word_at(text: str, offset: int) -> tuple[str, int] | None:
         if match.start() <= offset <= match.end():
             return match.group(), match.start()
     return None
+
+
+def word_before(text: str, offset: int) -> str:
+    """The part of a word that ends at `offset` (what is being typed), or ""."""
+    start = offset
+    while start > 0 and offset - start < 100 and (text[start - 1].isalnum() or text[start - 1] == "_"):
+        start -= 1
+    return text[start:offset] if WORD.fullmatch(text[start:offset]) else ""
 
 
 def block_kind(brace: Brace, kinds: set[str]) -> str | None:
@@ -107,8 +120,4 @@ def block_kind(brace: Brace, kinds: set[str]) -> str | None:
 
 def line_offsets(text: str) -> list[int]:
     """The offset at which each line starts."""
-    starts = [0]
-    for i, c in enumerate(text):
-        if c == "\n":
-            starts.append(i + 1)
-    return starts
+    return [0, *(match.end() for match in NEWLINE.finditer(text))]

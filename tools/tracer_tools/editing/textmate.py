@@ -15,7 +15,7 @@ import re
 import subprocess
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 
 GRAMMAR = ROOT / "grammar" / "vscode" / "syntaxes" / "tracer.tmLanguage.json"
 
@@ -68,7 +68,9 @@ def text(tables: dict) -> str:
 
 def main() -> int:
     parser = argparse.ArgumentParser(prog="tools/make-grammar", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--tracer", default=str(ROOT / "build" / "release" / "tracer"))
+    parser.add_argument(
+        "--tracer", type=option_types.executable_file, default=str(ROOT / "build" / "release" / "tracer")
+    )
     parser.add_argument("--check", action="store_true", help="only say whether the committed grammar is current")
     args = parser.parse_args()
     tables = json.loads(

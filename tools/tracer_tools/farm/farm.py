@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 import tracer_tools
+from tracer_tools import option_types
 from tracer_tools.farm import resume, worker
 from tracer_tools.farm.images import decode_tile, write_atomically
 from tracer_tools.farm.jobs import OVERRIDES, Job, JobError, check_job, check_output, jobs_from_file
@@ -52,23 +53,63 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         prog="tools/farm", description=__doc__.split("\n\n")[0], formatter_class=argparse.RawTextHelpFormatter
     )
-    parser.add_argument("scene", nargs="?", help="the scene file (.scn)")
-    parser.add_argument("-o", "--output", help="the image to write (.png, .exr, ...)")
-    parser.add_argument("--jobs", help='a JSON list of jobs: {"scene", "output", "define", ' + ", ".join(OVERRIDES))
-    parser.add_argument("-D", "--define", action="append", default=[], help="NAME=VALUE, as tracer's -D")
-    for key in OVERRIDES:
-        parser.add_argument("--" + key.replace("_", "-"), help=f"override the scene's {key}, as tracer's option")
-    parser.add_argument("--tile", type=int, help="tile side in pixels (default: about 16 tiles per worker)")
-    parser.add_argument("--workers", type=int, default=os.cpu_count(), help="local cluster's workers (default: cores)")
-    parser.add_argument("--address", help="join this Dask scheduler (tcp://host:8786) instead of a local cluster")
+    parser.add_argument("scene", type=option_types.existing_file, nargs="?", help="the scene file (.scn)")
+    parser.add_argument("-o", "--output", type=option_types.output_file, help="the image to write (.png, .exr, ...)")
     parser.add_argument(
-        "--connect-timeout", type=float, default=30, help="seconds to wait for --address's scheduler (default 30)"
+        "--jobs",
+        type=option_types.existing_file,
+        help='a JSON list of jobs: {"scene", "output", "define", ' + ", ".join(OVERRIDES),
     )
-    parser.add_argument("--retries", type=int, default=2, help="times a failed tile is tried again (default 2)")
+    parser.add_argument(
+        "-D", "--define", type=option_types.free_text, action="append", default=[], help="NAME=VALUE, as tracer's -D"
+    )
+    for key in OVERRIDES:  # checked by tracer itself, before any tile
+        parser.add_argument(
+            "--" + key.replace("_", "-"),
+            type=option_types.free_text,
+            help=f"override the scene's {key}, as tracer's option",
+        )
+    parser.add_argument(
+        "--tile",
+        type=option_types.whole_number(1, 16384),
+        help="tile side in pixels (default: about 16 tiles per worker)",
+    )
+    parser.add_argument(
+        "--workers",
+        type=option_types.whole_number(1, 1_000_000),
+        default=os.cpu_count(),
+        help="local cluster's workers (default: cores)",
+    )
+    parser.add_argument(
+        "--address",
+        type=option_types.free_text,
+        help="join this Dask scheduler (tcp://host:8786) instead of a local cluster",
+    )
+    parser.add_argument(
+        "--connect-timeout",
+        type=option_types.real_number(0, low_open=True),
+        default=30,
+        help="seconds to wait for --address's scheduler (default 30)",
+    )
+    parser.add_argument(
+        "--retries",
+        type=option_types.whole_number(0, 100),
+        default=2,
+        help="times a failed tile is tried again (default 2)",
+    )
     default_tracer = os.path.join(ROOT, "build", "release", "tracer")
-    parser.add_argument("--tracer", default=default_tracer, help="the tracer executable (default: this build's)")
-    parser.add_argument("--worker-tracer", help="tracer's path on the workers (default: --tracer's)")
-    parser.add_argument("--timings", help="write the time split (start-up, tiles, assembly) as JSON here")
+    parser.add_argument(
+        "--tracer",
+        type=option_types.executable_file,
+        default=default_tracer,
+        help="the tracer executable (default: this build's)",
+    )
+    parser.add_argument(
+        "--worker-tracer", type=option_types.free_text, help="tracer's path on the workers (default: --tracer's)"
+    )
+    parser.add_argument(
+        "--timings", type=option_types.output_file, help="write the time split (start-up, tiles, assembly) as JSON here"
+    )
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress line")
     arguments = parser.parse_args(argv)
     if bool(arguments.jobs) == bool(arguments.scene):

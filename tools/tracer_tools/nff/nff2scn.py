@@ -18,6 +18,8 @@ import sys
 import tempfile
 import time
 
+from tracer_tools import option_types
+
 from . import convert, reader
 
 MAX_INPUT_BYTES = 1 << 30
@@ -98,8 +100,8 @@ def convert_file(
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/nff2scn", description=__doc__.split("\n")[0])
-    parser.add_argument("nff", type=pathlib.Path, help="the NFF file")
-    parser.add_argument("-o", "--output", type=pathlib.Path, required=True, help="the .scn file to write")
+    parser.add_argument("nff", type=option_types.existing_file, help="the NFF file")
+    parser.add_argument("-o", "--output", type=option_types.output_file, required=True, help="the .scn file to write")
     parser.add_argument(
         "--corner-rays",
         action="store_true",
@@ -113,7 +115,10 @@ def main(argv: list[str] | None = None) -> int:
         help="cones and cylinders as tracer's own cones (default), or tessellated into meshes (to compare)",
     )
     parser.add_argument(
-        "--max-error-pixels", type=float, default=0.1, help="largest outline error of a tessellated cone (pixels)"
+        "--max-error-pixels",
+        type=option_types.real_number(0),
+        default=0.1,
+        help="largest outline error of a tessellated cone (pixels)",
     )
     args = parser.parse_args(argv)
     if args.output.suffix != ".scn":

@@ -17,7 +17,7 @@ import sys
 import tarfile
 import tempfile
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 
 PACKAGE = "bunny@1.0.1"
 NUMBER = r"-?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?"
@@ -46,8 +46,10 @@ def convert(index_js: str) -> str:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--tgz", type=pathlib.Path, help="an already downloaded bunny-1.0.1.tgz")
-    parser.add_argument("-o", "--output", type=pathlib.Path, default=ROOT / "scenes" / "meshes" / "bunny.obj")
+    parser.add_argument("--tgz", type=option_types.existing_file, help="an already downloaded bunny-1.0.1.tgz")
+    parser.add_argument(
+        "-o", "--output", type=option_types.output_file, default=ROOT / "scenes" / "meshes" / "bunny.obj"
+    )
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         tgz = args.tgz

@@ -20,7 +20,7 @@ import pathlib
 import random
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 
 PALETTE = """\
 material red    { ka 0.1  kd (0.85, 0.2, 0.15)  ks 0.5  n 30 }
@@ -141,9 +141,19 @@ def bunnies(count: int, obj: str | pathlib.Path) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("kind", choices=["spheres", "bunnies"])
-    parser.add_argument("--count", type=int, default=None, help="objects (default 4096 spheres, 64 bunnies)")
-    parser.add_argument("-o", "--output", type=pathlib.Path, default=None)
-    parser.add_argument("--obj", default="meshes/bunny.obj", help="the bunnies' OBJ file as the scene names it")
+    parser.add_argument(
+        "--count",
+        type=option_types.whole_number(1, 1_000_000),
+        default=None,
+        help="objects (default 4096 spheres, 64 bunnies)",
+    )
+    parser.add_argument("-o", "--output", type=option_types.output_file, default=None)
+    parser.add_argument(
+        "--obj",
+        type=option_types.free_text,
+        default="meshes/bunny.obj",
+        help="the bunnies' OBJ file as the scene names it",
+    )
     args = parser.parse_args()
     if args.kind == "spheres":
         count = args.count or 4096

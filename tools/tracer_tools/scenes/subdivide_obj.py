@@ -15,6 +15,8 @@ import argparse
 import pathlib
 import sys
 
+from tracer_tools import option_types
+
 
 def read_obj(path: pathlib.Path) -> tuple[list, list]:
     vertices, faces = [], []
@@ -53,9 +55,9 @@ def subdivide(vertices: list, faces: list) -> tuple[list, list]:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("input", type=pathlib.Path)
-    parser.add_argument("output", type=pathlib.Path)
-    parser.add_argument("--passes", type=int, default=1)
+    parser.add_argument("input", type=option_types.existing_file)
+    parser.add_argument("output", type=option_types.output_file)
+    parser.add_argument("--passes", type=option_types.whole_number(1, 1_000_000), default=1)
     args = parser.parse_args()
     vertices, faces = read_obj(args.input)
     for _ in range(args.passes):

@@ -20,6 +20,7 @@ import json
 import pathlib
 import sys
 
+from tracer_tools import option_types
 from tracer_tools.nff import nff2scn
 from tracer_tools.scenes import edit
 
@@ -30,16 +31,40 @@ SHARED = steps.ROOT.parent / "shared"
 
 def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(prog="tools/spd", description=__doc__.split("\n")[0])
-    parser.add_argument("--source", type=pathlib.Path, default=SHARED / "spd" / "src", help="the generators' C source")
-    parser.add_argument("--images", type=pathlib.Path, default=SHARED / "spd" / "images", help="upstream's images")
-    parser.add_argument("--bench", type=pathlib.Path, default=SHARED / "bench" / "embree-whitted", help="Embree anchor")
-    parser.add_argument("--size", type=int, default=None, help="size factor (default: each generator's own)")
-    parser.add_argument("--scenes", default=",".join(steps.SCENES), help="comma-separated (default: all seven)")
-    parser.add_argument("--out", type=pathlib.Path, default=steps.ROOT / "build" / "spd", help="working folder")
-    parser.add_argument("--docs", type=pathlib.Path, default=steps.ROOT / "docs" / "spd.md", help="the report to write")
-    parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--runs", type=int, default=5, help="timed renders per measurement (median)")
-    parser.add_argument("--pairs", type=int, default=5, help="tracer/Embree pairs (A B A B ...)")
+    parser.add_argument(
+        "--source", type=option_types.existing_folder, default=SHARED / "spd" / "src", help="the generators' C source"
+    )
+    parser.add_argument(
+        "--images", type=option_types.existing_folder, default=SHARED / "spd" / "images", help="upstream's images"
+    )
+    parser.add_argument(
+        "--bench", type=option_types.existing_path, default=SHARED / "bench" / "embree-whitted", help="Embree anchor"
+    )
+    parser.add_argument(
+        "--size",
+        type=option_types.whole_number(1, 16384),
+        default=None,
+        help="size factor (default: each generator's own)",
+    )
+    parser.add_argument(
+        "--scenes",
+        type=option_types.free_text,
+        default=",".join(steps.SCENES),
+        help="comma-separated (default: all seven)",
+    )
+    parser.add_argument(
+        "--out", type=option_types.output_folder, default=steps.ROOT / "build" / "spd", help="working folder"
+    )
+    parser.add_argument(
+        "--docs", type=option_types.output_path, default=steps.ROOT / "docs" / "spd.md", help="the report to write"
+    )
+    parser.add_argument("--threads", type=option_types.whole_number(0, 4096), default=2)
+    parser.add_argument(
+        "--runs", type=option_types.whole_number(1, 1_000_000), default=5, help="timed renders per measurement (median)"
+    )
+    parser.add_argument(
+        "--pairs", type=option_types.whole_number(1, 1_000_000), default=5, help="tracer/Embree pairs (A B A B ...)"
+    )
     parser.add_argument("--no-crosscheck", action="store_true")
     parser.add_argument("--no-embree", action="store_true")
     parser.add_argument("--no-povray", action="store_true")

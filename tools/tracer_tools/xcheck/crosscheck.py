@@ -11,9 +11,11 @@ from __future__ import annotations
 
 import argparse
 import json
-import pathlib
+import math
 import sys
 from typing import TYPE_CHECKING
+
+from tracer_tools import option_types
 
 from . import progress, run_reporting_errors, tracer_cli
 
@@ -32,20 +34,26 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
         epilog="Exit codes: 0 agree, 1 over a threshold, 2 bad command line, 3 scene errors, "
         "4 Mitsuba missing, 5 other failures.",
     )
-    parser.add_argument("scene", type=pathlib.Path, help="the scene file (.scn)")
+    parser.add_argument("scene", type=option_types.existing_file, help="the scene file (.scn)")
     parser.add_argument(
         "--width",
-        type=int,
+        type=option_types.whole_number(1, 16384),
         help="image width (default: the scene's); alone, " "the height follows the scene's aspect ratio",
     )
-    parser.add_argument("--height", type=int, help="image height (default: the scene's)")
-    parser.add_argument("--samples", type=int, help="samples per pixel, N*N (default: the scene's)")
     parser.add_argument(
-        "--out", type=pathlib.Path, help="folder for the images and report " "(default: out/crosscheck/<scene name>)"
+        "--height", type=option_types.whole_number(1, 16384), help="image height (default: the scene's)"
+    )
+    parser.add_argument(
+        "--samples", type=option_types.whole_number(1, 1 << 20), help="samples per pixel, N*N (default: the scene's)"
+    )
+    parser.add_argument(
+        "--out",
+        type=option_types.output_folder,
+        help="folder for the images and report " "(default: out/crosscheck/<scene name>)",
     )
     parser.add_argument(
         "--max-over-2",
-        type=float,
+        type=option_types.real_number(-math.inf),
         default=DEFAULT_MAX_OVER_2,
         metavar="PERCENT",
         help=f"fail when more than PERCENT %% of the pixels differ by more than 2 "
@@ -53,12 +61,14 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     )
     parser.add_argument(
         "--max-over-8",
-        type=float,
+        type=option_types.real_number(-math.inf),
         metavar="PERCENT",
         help="fail when more than PERCENT %% differ by more than 8 levels",
     )
-    parser.add_argument("--max-rmse", type=float, help="fail when the RMSE is above this")
-    parser.add_argument("--max-flip", type=float, help="fail when the FLIP mean is above this")
+    parser.add_argument("--max-rmse", type=option_types.real_number(-math.inf), help="fail when the RMSE is above this")
+    parser.add_argument(
+        "--max-flip", type=option_types.real_number(-math.inf), help="fail when the FLIP mean is above this"
+    )
     parser.add_argument(
         "--with",
         dest="peer",

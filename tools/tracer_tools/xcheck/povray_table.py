@@ -19,7 +19,7 @@ import pathlib
 import subprocess
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.scenes import edit
 
 from . import convert, speed_vs_error, tracer_cli
@@ -58,9 +58,9 @@ def row(name: str, shadows: str, r: dict) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--spd", type=pathlib.Path, default=ROOT.parent / "shared" / "spd" / "nff")
-    parser.add_argument("--out", type=pathlib.Path, default=ROOT / "build" / "povray-table")
-    parser.add_argument("--docs", type=pathlib.Path, default=ROOT / "docs" / "crosscheck-povray.md")
+    parser.add_argument("--spd", type=option_types.existing_folder, default=ROOT.parent / "shared" / "spd" / "nff")
+    parser.add_argument("--out", type=option_types.output_folder, default=ROOT / "build" / "povray-table")
+    parser.add_argument("--docs", type=option_types.output_path, default=ROOT / "docs" / "crosscheck-povray.md")
     args = parser.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     scenes = [(name, ROOT / "scenes" / f"{name}.scn") for name in SCENES]

@@ -9,6 +9,8 @@ import pathlib
 import sys
 import tempfile
 
+from tracer_tools import option_types
+
 from . import run_reporting_errors, tracer_cli
 
 
@@ -33,11 +35,15 @@ def render(args: argparse.Namespace) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/mitsuba-render", description=__doc__.split("\n\n")[0])
-    parser.add_argument("scene", type=pathlib.Path, help="the scene file (.scn)")
-    parser.add_argument("-o", "--output", type=pathlib.Path, required=True, help="the image (.png, .exr)")
-    parser.add_argument("--width", type=int, help="image width (default: the scene's)")
-    parser.add_argument("--height", type=int, help="image height (default: the scene's)")
-    parser.add_argument("--samples", type=int, help="samples per pixel, N*N (default: the scene's)")
+    parser.add_argument("scene", type=option_types.existing_file, help="the scene file (.scn)")
+    parser.add_argument("-o", "--output", type=option_types.output_file, required=True, help="the image (.png, .exr)")
+    parser.add_argument("--width", type=option_types.whole_number(1, 16384), help="image width (default: the scene's)")
+    parser.add_argument(
+        "--height", type=option_types.whole_number(1, 16384), help="image height (default: the scene's)"
+    )
+    parser.add_argument(
+        "--samples", type=option_types.whole_number(1, 1 << 20), help="samples per pixel, N*N (default: the scene's)"
+    )
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
     return run_reporting_errors("mitsuba-render", lambda: render(args))
 

@@ -22,6 +22,8 @@ import statistics
 import sys
 import tempfile
 
+from tracer_tools import option_types
+
 from . import ToolError, run_reporting_errors, tracer_cli
 
 SCENES = ["task2", "bunny", "bunny_room"]
@@ -228,10 +230,24 @@ def report(args: argparse.Namespace) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="tools/speed-vs-error", description=__doc__.split("\n\n")[0])
-    parser.add_argument("--scenes", nargs="+", default=SCENES, help=f"scenes/<name>.scn to measure (default: {SCENES})")
-    parser.add_argument("--repeats", type=int, default=5, help="tracer runs per variant (median; default 5)")
     parser.add_argument(
-        "--docs", type=pathlib.Path, default=tracer_cli.ROOT / "docs" / "bench", help="where the report goes"
+        "--scenes",
+        type=option_types.free_text,
+        nargs="+",
+        default=SCENES,
+        help=f"scenes/<name>.scn to measure (default: {SCENES})",
+    )
+    parser.add_argument(
+        "--repeats",
+        type=option_types.whole_number(1, 1_000_000),
+        default=5,
+        help="tracer runs per variant (median; default 5)",
+    )
+    parser.add_argument(
+        "--docs",
+        type=option_types.output_path,
+        default=tracer_cli.ROOT / "docs" / "bench",
+        help="where the report goes",
     )
     parser.add_argument("--report-only", action="store_true", help="redraw from the committed JSON")
     args = parser.parse_args(sys.argv[1:] if argv is None else argv)
