@@ -187,3 +187,96 @@ def test_kept_tiles_are_reused_only_by_the_same_job_and_tile_size(tracer_bin, tm
     resume.TileStore(job.output, dict(manifest)).keep(Region(0, 0, 32, 32), tile)
     assert resume.TileStore(job.output, {**manifest, "arguments": ["other"]}).resume(None, 32) == (32, {})
     assert not (tmp_path / ".out.png.farm").exists()
+
+
+def kept_store(tracer_bin, tmp_path):
+    """A job with one good tile kept (region 0 0 32 32) and its manifest."""
+    job = checked_job(tracer_bin, tmp_path)
+    manifest = resume.identity(str(tracer_bin), job)
+    store = resume.TileStore(job.output, dict(manifest))
+    store.resume(None, 32)
+    store.keep(Region(0, 0, 32, 32), np.full((32, 32, 3), 7, np.uint8))
+    return job, manifest, tmp_path / ".out.png.farm"
+
+
+@pytest.mark.parametrize(
+    "change,reason",
+    [
+        ({"tile": 0}, "tile size 0 is not a whole number"),
+        ({"tile": True}, "tile size True is not a whole number"),
+        ({"tile": 1}, "would make over 64 times the tiles"),
+        ({"tile": "32"}, "tile size 32 is not a whole number"),
+        ({"extra": 1}, "does not have the expected fields"),
+    ],
+)
+def test_a_tampered_manifest_is_discarded_with_one_line(tracer_bin, tmp_path, capsys, change, reason):
+    job, manifest, folder = kept_store(tracer_bin, tmp_path)
+    earlier = json.loads((folder / "manifest.json").read_text())
+    (folder / "manifest.json").write_text(json.dumps({**earlier, **change}))
+    assert resume.TileStore(job.output, dict(manifest)).resume(None, 32) == (32, {})
+    assert reason in capsys.readouterr().err
+    assert not folder.exists()
+
+
+def test_a_manifest_with_true_for_one_is_another_job(tracer_bin, tmp_path):
+    job, manifest, folder = kept_store(tracer_bin, tmp_path)
+    earlier = json.loads((folder / "manifest.json").read_text())
+    (folder / "manifest.json").write_text(json.dumps({**earlier, "float": 0 if not earlier["float"] else 1}))
+    assert resume.TileStore(job.output, dict(manifest)).resume(None, 32) == (32, {})
+
+
+@pytest.mark.parametrize("kind", ["fifo", "device", "huge"])
+def test_a_manifest_that_is_no_regular_file_is_never_read(tracer_bin, tmp_path, capsys, kind):
+    job, manifest, folder = kept_store(tracer_bin, tmp_path)
+    (folder / "manifest.json").unlink()
+    if kind == "fifo":
+        os.mkfifo(folder / "manifest.json")
+    elif kind == "device":
+        os.symlink("/dev/zero", folder / "manifest.json")
+    else:
+        with open(folder / "manifest.json", "wb") as file:
+            file.truncate(2 << 20)
+    assert resume.TileStore(job.output, dict(manifest)).resume(None, 32) == (32, {})
+    assert "the kept tiles of" in capsys.readouterr().err
+
+
+def test_tiles_are_trusted_only_with_their_digest_and_size(tracer_bin, tmp_path, capsys):
+    job, manifest, folder = kept_store(tracer_bin, tmp_path)
+    (good,) = [name for name in os.listdir(folder) if name.startswith("tile-")]
+    region, digest = resume.region_of(good)
+    # A planted tile of the right shape under a made-up digest, and one claiming 10^6 x 10^6 pixels.
+    planted = np.zeros((32, 16, 3), np.uint8)
+    np.save(folder / f"tile-32-0-32-16-{'0' * 32}.npy", planted)
+    with open(folder / f"tile-0-32-32-16-{'1' * 32}.npy", "wb") as file:
+        np.lib.format.write_array_header_1_0(file, {"descr": "|u1", "fortran_order": False, "shape": (10**6, 10**6, 3)})
+    os.mkfifo(folder / f"tile-32-32-32-16-{'2' * 32}.npy")
+    tile, kept = resume.TileStore(job.output, dict(manifest)).resume(None, 32)
+    assert tile == 32 and list(kept) == [region]
+    assert "3 kept tiles of" in capsys.readouterr().err
+    # The good tile copied to another job's folder does not pass there.
+    other = resume.TileStore(job.output, {**manifest, "arguments": [*manifest["arguments"], "-D", "x=1"]})
+    other.manifest["tile"] = 32
+    assert other._load(good, region, digest) is None
+
+
+def test_the_folder_of_kept_tiles_is_never_a_link_or_a_file(tracer_bin, tmp_path, capsys):
+    job = checked_job(tracer_bin, tmp_path)
+    manifest = resume.identity(str(tracer_bin), job)
+    target = tmp_path / "elsewhere"
+    target.mkdir()
+    (target / "precious").write_text("x")
+    os.symlink(target, tmp_path / ".out.png.farm")
+    assert resume.TileStore(job.output, dict(manifest)).resume(None, 32) == (32, {})
+    assert (target / "precious").exists() and not os.path.lexists(tmp_path / ".out.png.farm")
+    assert "symbolic link" in capsys.readouterr().err
+    (tmp_path / ".out.png.farm").write_text("a user's file")
+    with pytest.raises(JobError, match="is not the farm's folder of kept tiles"):
+        resume.TileStore(job.output, dict(manifest)).resume(None, 32)
+
+
+def test_tracer_is_hashed_once_for_many_jobs(tracer_bin, tmp_path):
+    job = checked_job(tracer_bin, tmp_path)
+    resume._digest_of.cache_clear()
+    for _ in range(1000):
+        resume.identity(str(tracer_bin), job)
+    assert resume._digest_of.cache_info().misses == 1 + 1 + len(job.inputs)  # tracer, the scene, its inputs
