@@ -149,8 +149,10 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code, 
         [&](tracer::SceneDescription& scene) {
             tracer::RenderSettings& render = scene.render;
             if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
-            auto whole = [](const std::string& text, int scene_value) {
-                return text.empty() ? scene_value : int(std::stod(text));  // checked: a whole number
+            // Each option's text is the number its check read (setting_problem wrote it back).
+            auto number = [](const std::string& text) { return std::strtod(text.c_str(), nullptr); };
+            auto whole = [&](const std::string& text, int scene_value) {
+                return text.empty() ? scene_value : int(number(text));
             };
             render.leaf_size = whole(options.leaf_size, render.leaf_size);
             render.samples = whole(options.samples, render.samples);
@@ -159,9 +161,9 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code, 
                 // gives --samples too (then render_settings_problem names the clash).
                 const std::vector<std::string> parts = adaptive_parts(options.adaptive);  // checked
                 render.antialias = tracer::Antialias::Adaptive;
-                render.adaptive_threshold = std::stod(parts[0]);
-                if (parts.size() > 1) render.adaptive_depth = std::stoi(parts[1]);
-                if (parts.size() > 2) render.adaptive_cell = std::stod(parts[2]);
+                render.adaptive_threshold = number(parts[0]);
+                if (parts.size() > 1) render.adaptive_depth = int(number(parts[1]));
+                if (parts.size() > 2) render.adaptive_cell = number(parts[2]);
                 if (options.samples.empty()) render.samples = 1;
             }
             render.max_depth = whole(options.max_depth, render.max_depth);
@@ -370,7 +372,8 @@ int watch(const Options& options) {
         [&](const tracer::SceneDescription& scene) { return output_clash(options, scene); });
 }
 
-// A CLI11 check of an override by the render block's own table: the scene's rules and messages.
+// A CLI11 check of an override by the render block's own table (the scene's rules and messages),
+// which leaves the option's text as the value it checked (a transform: CLI11's checks cannot).
 CLI::Validator render_key(const char* key) {
     return CLI::Validator([key](std::string& text) { return tracer::setting_problem("render", key, text); }, "", key);
 }
@@ -378,36 +381,38 @@ CLI::Validator render_key(const char* key) {
 // The options that override the scene's render block, each checked by the block's own table.
 void add_render_overrides(CLI::App& app, Options& options) {
     app.add_option("--accel", options.accel, "Override the scene's mesh accelerator (none, box, median, sah)")
-        ->check(render_key("accel"));
+        ->transform(render_key("accel"));
     app.add_option("--leaf-size", options.leaf_size, "Override the scene's BVH leaf size")
-        ->check(render_key("leaf_size"));
+        ->transform(render_key("leaf_size"));
     app.add_option("--width", options.width,
                    "Override the scene's image width (alone: the height follows the aspect ratio)")
-        ->check(render_key("width"));
+        ->transform(render_key("width"));
     app.add_option("--height", options.height,
                    "Override the scene's image height (alone: the width follows the aspect ratio)")
-        ->check(render_key("height"));
+        ->transform(render_key("height"));
     app.add_option("--samples", options.samples, "Override the scene's samples per pixel (N*N: 1, 4, 9, 16, ...)")
-        ->check(render_key("samples"));
+        ->transform(render_key("samples"));
     app.add_option("--adaptive", options.adaptive,
                    "Adaptive antialiasing: split cells where their corners differ by THRESHOLD (0..1 per "
                    "channel), down to DEPTH levels below a pixel, from cells CELL pixels wide (defaults: the "
                    "scene's, else 3 and 1); replaces --samples")
         ->type_name("THRESHOLD[:DEPTH[:CELL]]")
-        ->check(CLI::Validator(
+        ->transform(CLI::Validator(
             [](std::string& text) {
-                const std::vector<std::string> parts = adaptive_parts(text);
+                std::vector<std::string> parts = adaptive_parts(text);
                 if (parts.size() > 3 || std::any_of(parts.begin(), parts.end(), [](auto& p) { return p.empty(); }))
                     return std::string("expected THRESHOLD[:DEPTH[:CELL]], e.g. 0.05:3 or 0.05:3:4");
                 const char* keys[] = {"adaptive_threshold", "adaptive_depth", "adaptive_cell"};
                 for (size_t i = 0; i < parts.size(); ++i)
                     if (std::string problem = tracer::setting_problem("render", keys[i], parts[i]); !problem.empty())
                         return problem;
+                text = parts[0];  // each part as its check read it
+                for (size_t i = 1; i < parts.size(); ++i) text += ":" + parts[i];
                 return std::string();
             },
             "", "adaptive"));
     app.add_option("--max-depth", options.max_depth, "Override the scene's reflection and refraction depth")
-        ->check(render_key("max_depth"));
+        ->transform(render_key("max_depth"));
 }
 
 // Every option and flag of the command line, bound to `options`.

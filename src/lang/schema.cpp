@@ -141,11 +141,15 @@ const BlockSpec kMaterial{
         ranged(key("ka", ValueType::Triple, "0", "Ambient colour, added once and never shadowed."), 0, kInf),
         ranged(key("kd", ValueType::Triple, "0", "Diffuse colour."), 0, kInf),
         ranged(key("ks", ValueType::Triple, "0", "Specular colour."), 0, kInf),
-        ranged(key("km", ValueType::Triple, "0", "Mirror reflectance."), 0, kInf),
+        ranged(key("km", ValueType::Triple, "0",
+                   "Mirror reflectance, 0 to 1: the weight of the reflected ray (a surface passes on at most the "
+                   "light that reaches it, so that no product of weights along a ray grows)."),
+               0, 1),
         ranged(key("n", ValueType::Number, "1", "Phong exponent of the specular highlight."), 0, kInf),
         ranged(key("kt", ValueType::Triple, "0",
-                   "Transmittance: weight of the refracted ray (Snell's law; on total internal "
-                   "reflection it goes to the reflected ray)."), 0, kInf),
+                   "Transmittance, 0 to 1: weight of the refracted ray (Snell's law; on total internal "
+                   "reflection it goes to the reflected ray), and of a shadow ray through the surface."),
+               0, 1),
         ranged(key("ior", ValueType::Number, "1",
                    "Index of refraction inside the surface (outside is 1): 1.5 for glass, 1.33 for water."),
                0, kInf, true),

@@ -331,6 +331,10 @@ bool Validator::check_number(double number, Span span, const KeySpec& key) {
     if (key.min == kSmallestSize)  // a size: not positive, or too small to square
         rule = number <= 0 ? "must be greater than 0"
                            : "must be at least 1e-30 (the smallest size the renderer is tested with)";
+    if (above && (key.name == "km" || key.name == "kt"))  // weights of the rays a surface passes on
+        rule +=
+            " (a surface passes on at most the light that reaches it; weights above 1 multiply along "
+            "a ray without bound)";
     diagnostics_.error(file_, span, name + " " + rule + ", found " + format_number(number));
     return false;
 }
@@ -359,7 +363,7 @@ bool Validator::check_power_of_two(double number, Span span, const KeySpec& key)
     return false;
 }
 
-std::string setting_problem(std::string_view block, std::string_view key, const std::string& text) {
+std::string setting_problem(std::string_view block, std::string_view key, std::string& text) {
     const BlockSpec* spec = find_block_spec(block);
     const KeySpec* key_spec = spec ? spec->find_key(key) : nullptr;
     if (!key_spec) return "no key '" + std::string(key) + "' in " + std::string(block);  // a caller's bug
@@ -371,7 +375,13 @@ std::string setting_problem(std::string_view block, std::string_view key, const 
     else if (diagnostics.all().empty())  // more than one value
         return "'" + std::string(key) + "' expects " + std::string(describe(key_spec->type)) + ", found " +
                in_quotes(text);
-    return diagnostics.all().empty() ? "" : diagnostics.all().front().message;
+    if (!diagnostics.all().empty()) return diagnostics.all().front().message;
+    if (value.kind == PlainValue::Kind::Number) {  // the value checked, exactly: 4*4 is 16
+        char exact[40];
+        std::snprintf(exact, sizeof exact, "%.17g", value.number);
+        text = exact;
+    }
+    return "";
 }
 
 // The validator checks each block, and the assembly builds what it accepted.

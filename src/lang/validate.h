@@ -42,7 +42,9 @@ private:
 
 // Why `text`, as the value of `key` in the top-level block `block`, would be refused in a scene
 // (the same message, e.g. "'width' must be between 1 and 16384, found 0"), or empty: the one
-// check for settings given on the command line.
-std::string setting_problem(std::string_view block, std::string_view key, const std::string& text);
+// check for settings given on the command line. A number accepted is written back into `text`
+// as the value checked, exactly (`4*4` becomes `16`, `1e-400` becomes `0`), so that what is
+// used is what was checked.
+std::string setting_problem(std::string_view block, std::string_view key, std::string& text);
 
 }  // namespace tracer

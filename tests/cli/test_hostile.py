@@ -447,6 +447,30 @@ class Files(Hostile):
         self.assertIn('"rays"', stats.read_text())
 
 
+class NumbersNeverWrongSilently(Hostile):
+    def test_ray_weights_above_one_are_refused(self):
+        # Two discs of kt 1e30, or 130 of kt 2, multiplied a shadow ray's weight to infinity.
+        for key, value in (("kt", "2"), ("km", "1e30"), ("kt", "(0.5, 1.5, 0.5)")):
+            scene = self.write("w.scn", SMALL_SCENE.replace("n 20", f"n 20 {key} {value}"))
+            self.assertError(
+                run("--check", scene), 1, f"'{key}' must be between 0 and 1", "weights above 1 multiply along a ray"
+            )
+
+    def test_options_are_used_as_their_check_read_them(self):
+        # --samples 4*4 was checked as 16 and rendered as 4 (the text read as an integer).
+        dump = run("--dump-json", self.write("s.scn", SMALL_SCENE), "--samples", "4*4")
+        self.assertEqual(dump.returncode, 0, dump.stderr)
+        self.assertEqual(json.loads(dump.stdout)["render"]["samples"], 16)
+        dump = run("--dump-json", self.tmp / "s.scn", "--width", "10*3", "--adaptive", "0.01*5:1+1:2*2")
+        render = json.loads(dump.stdout)["render"]
+        self.assertEqual((render["width"], render["adaptive_depth"], render["adaptive_cell"]), (30, 2, 4))
+        self.assertAlmostEqual(render["adaptive_threshold"], 0.05)
+        # A number that underflows is 0, as in a scene; it was "tracer: error: stod".
+        tiny = run("--dump-json", self.tmp / "s.scn", "--adaptive", "1e-400")
+        self.assertEqual(tiny.returncode, 0, tiny.stderr)
+        self.assertEqual(json.loads(tiny.stdout)["render"]["adaptive_threshold"], 0)
+
+
 class Messages(Hostile):
     def test_byte_order_mark_and_cr_only_scenes_are_read(self):
         bom = self.write("bom.scn", b"\xef\xbb\xbf" + SMALL_SCENE.encode())
@@ -485,13 +509,13 @@ class Messages(Hostile):
         self.assertEqual((self.tmp / "n.png").read_bytes(), reference.read_bytes())
 
     def test_extreme_refraction_terminates_and_bad_ior_is_refused(self):
-        # Weights of 1e30 in every branch, indices of 1e-30 and 1e30, 50 levels: the branch
-        # budget keeps the ray tree finite; an index of 0 has no meaning.
+        # Full weights in every branch, indices of 1e-30 and 1e30, 50 levels: the branch budget
+        # keeps the ray tree finite; an index of 0 has no meaning.
         evil = self.write(
             "glass.scn",
             CAMERA + "render { width 64 height 48 max_depth 50 }\n"
-            "sphere { center (0, 0, 0) radius 1 material { kt 1e30 km 1e30 ior 1e-30 } }\n"
-            "sphere { center (0, 0, -3) radius 1 material { kt 1e30 ior 1e30 } }\n"
+            "sphere { center (0, 0, 0) radius 1 material { kt 1 km 1 ior 1e-30 } }\n"
+            "sphere { center (0, 0, -3) radius 1 material { kt 1 ior 1e30 } }\n"
             "light { position (2, 3, 4) }\n",
         )
         result = run(evil, "-o", self.tmp / "g.png", "-q")
