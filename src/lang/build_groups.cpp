@@ -1,5 +1,10 @@
 // Groups: a group's placement checked once and turned into transform steps, appended after each
 // shape's own; planes placed by them (round shapes: build_round.cpp).
+#include <algorithm>
+#include <cstdio>
+
+#include <glm/common.hpp>
+
 #include "lang/internal/scene_assembly.h"
 #include "lang/schema.h"
 #include "scene/placement.h"
@@ -28,6 +33,28 @@ bool add_group_steps(SceneAssembly& a, const Block& block, Placed& out) {
         out.steps.insert(out.steps.end(), known.steps.begin(), known.steps.end());
     }
     return true;
+}
+
+bool check_placed_scale(SceneAssembly& a, const Block& block, const Placed& placed) {
+    // Bounds of the composed map's scale on any axis: the products of each step's smallest and
+    // largest factors (a rotation between steps changes which axis, never these bounds).
+    const dvec3 own = glm::abs(placed.scale);
+    double smallest = std::min({own.x, own.y, own.z}), largest = std::max({own.x, own.y, own.z});
+    for (const TransformStep& step : placed.steps) {
+        if (step.kind != TransformStep::Kind::Scale) continue;
+        const dvec3 size = glm::abs(step.vector);
+        smallest *= std::min({size.x, size.y, size.z});
+        largest *= std::max({size.x, size.y, size.z});
+    }
+    if (smallest >= kSmallestSize && largest <= kLargestMagnitude) return true;
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", smallest < kSmallestSize ? smallest : largest);
+    Diagnostic* d = a.diagnostics.error(a.file, block.kind_span,
+                                        "this " + block.kind + " is scaled by " + text +
+                                            " on some axis by its own steps and its groups' together; sizes "
+                                            "must stay between 1e-30 and 1e30");
+    if (block.group) Diagnostics::note(d, a.file, block.group->keyword, "the innermost group placing it is here");
+    return false;
 }
 
 void build_plane(SceneAssembly& a, const Block& block, const Fields& fields) {

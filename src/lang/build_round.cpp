@@ -40,7 +40,9 @@ bool place_round(SceneAssembly& a, const Block& block, const Fields& fields, std
         fields.has("scale") || fields.has("rotate") || fields.has("translate") || fields.has("transform");
     if (!placed_here && !block.group) return true;
     Placed placed;
-    if (!build_placement(a, fields, placed) || !add_group_steps(a, block, placed)) return false;
+    if (!build_placement(a, fields, placed) || !add_group_steps(a, block, placed) ||
+        !check_placed_scale(a, block, placed))
+        return false;
     out = Placement(placed);
     size = similarity_size(out.linear);
     if (size > 0) return true;

@@ -156,7 +156,7 @@ void build_camera(SceneAssembly& a, const Block& block, const Fields& fields) {
 bool build_placed(SceneAssembly& a, const Block& block, const Fields& fields, Placed& out) {
     out.line = Diagnostics::locate(a.file, block.kind_span).line;
     out.material = material_index(a, fields);
-    return build_placement(a, fields, out) && add_group_steps(a, block, out);
+    return build_placement(a, fields, out) && add_group_steps(a, block, out) && check_placed_scale(a, block, out);
 }
 
 // The placement written by `fields`' scale, rotate and translate keys, or by the steps of its

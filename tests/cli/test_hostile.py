@@ -456,6 +456,23 @@ class NumbersNeverWrongSilently(Hostile):
                 run("--check", scene), 1, f"'{key}' must be between 0 and 1", "weights above 1 multiply along a ray"
             )
 
+    def test_placement_is_checked_as_composed_from_groups(self):
+        # Two groups of scale 1e-20 made a sphere of radius 1e-40; one transform of the same two
+        # steps was refused. Each shape is told, with its group.
+        for shape in ("sphere { center (0, 0, 0) radius 1 material { kd 1 } }",
+                      "box { min (0, 0, 0) max (1, 1, 1) scale 1e5 material { kd 1 } }"):  # fmt: skip
+            scene = self.write(
+                "g.scn",
+                CAMERA + f"group {{ scale 1e-20 group {{ scale 1e-20 {shape} }} }}\nlight {{ position (0, 3, 3) }}\n",
+            )
+            self.assertError(
+                run("--check", scene), 1, "on some axis by its own steps and its groups' together",
+                "the innermost group placing it is here",
+            )  # fmt: skip
+        fine = self.write("f.scn", CAMERA + "group { scale 1e-10 group { scale 1e10 sphere { center (0, 0, 0) radius 1 "
+                          "material { kd 1 } } } }\nlight { position (0, 3, 3) }\n")  # fmt: skip
+        self.assertEqual(run("--check", fine).returncode, 0)
+
     def test_options_are_used_as_their_check_read_them(self):
         # --samples 4*4 was checked as 16 and rendered as 4 (the text read as an integer).
         dump = run("--dump-json", self.write("s.scn", SMALL_SCENE), "--samples", "4*4")

@@ -83,6 +83,9 @@ bool build_placement(SceneAssembly& a, const Fields& fields, Placed& out);
 // Appends to `out` the steps of the groups `block` was made in, innermost first; false if a
 // group's placement is refused (reported once, at the group).
 bool add_group_steps(SceneAssembly& a, const Block& block, Placed& out);
+// False (reported) if the placement's steps and its groups' together scale some axis below
+// 1e-30 or above 1e30 (each step alone may be in range: two groups of scale 1e-20).
+bool check_placed_scale(SceneAssembly& a, const Block& block, const Placed& placed);
 // The placement of a round shape (sphere, cylinder, cone, disc): false if refused (reported),
 // else `out` and its one scale factor `size`; the identity when nothing places the block.
 bool place_round(SceneAssembly& a, const Block& block, const Fields& fields, std::string_view what, Placement& out,
