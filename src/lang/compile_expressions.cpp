@@ -117,6 +117,11 @@ ExprCode Compiler::compile_call(const Expr& expr) {
         return node;
     }
     const Builtin* function = find_builtin(expr.text);
+    if (!function && (expr.text == "translate" || expr.text == "scale" || expr.text == "rotate"))
+        fail(name_span, in_quotes(expr.text) +
+                            " here is read as a call of a function, and there is none of that name: as a "
+                            "placement it goes at the top of a group, before the group's first statement, or "
+                            "inside a shape's block");
     if (!function) {
         std::vector<std::string_view> names = names_in_scope();
         for (const Builtin& builtin : all_builtins()) names.push_back(builtin.name);

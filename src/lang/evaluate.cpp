@@ -273,10 +273,15 @@ RuntimeValue Interpreter::call(const ExprCode& node, bool for_value) {
         diagnostics_.error(sources_, at(node.span), arguments_expected(code.name, code.parameters, given));
         throw EvaluationError{};
     }
-    if (call_depth_ >= limits_.max_call_depth ||
-        stack_used_since(stack_top_, TRACER_STACK_ADDRESS()) > kBigStackBytes / 2)
-        stop(node.span, "calls nest more than " + std::to_string(call_depth_) +
+    if (call_depth_ >= limits_.max_call_depth)
+        stop(node.span, "calls nest more than " + std::to_string(limits_.max_call_depth) +
                             " deep (the limit): a recursion that does not stop?");
+    if (const size_t used = stack_used_since(stack_top_, TRACER_STACK_ADDRESS()); used > kBigStackBytes / 2)
+        stop(node.span, "calls nest " + std::to_string(call_depth_) + " deep and fill the interpreter's " +
+                            std::to_string(kBigStackBytes / 2 >> 20) + " MiB of stack (about " +
+                            std::to_string(used / std::max<size_t>(call_depth_, 1) >> 10) +
+                            " KiB a call here, before the limit of " + std::to_string(limits_.max_call_depth) +
+                            " calls): a recursion that does not stop?");
     const size_t base = stack_.size();
     stack_.resize(base + code.slots);
     for (size_t i = 0; i < given; ++i) {

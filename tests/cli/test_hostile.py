@@ -473,6 +473,21 @@ class NumbersNeverWrongSilently(Hostile):
                           "material { kd 1 } } } }\nlight { position (0, 3, 3) }\n")  # fmt: skip
         self.assertEqual(run("--check", fine).returncode, 0)
 
+    def test_a_placement_after_a_statement_is_told_where_it_goes(self):
+        scene = self.write(
+            "t.scn",
+            CAMERA + "group {\n  sphere { center (0, 0, 0) radius 1 material { kd 1 } }\n  translate (1, 0, 0)\n}\n",
+        )
+        self.assertError(run("--check", scene), 1, "t.scn:4:3: error: 'translate' here is read as a call",
+                         "goes at the top of a group, before the group's first statement")  # fmt: skip
+
+    def test_a_recursion_stopped_by_the_stack_says_so(self):
+        # It said "calls nest more than 625 deep (the limit)" where the limit is 10,000 calls.
+        deep = "1 + (" * 150 + "f(n + 1)" + ")" * 150
+        scene = self.write("r.scn", "fn f(n) { return " + deep + " }\nlet x = f(0)\n" + CAMERA)
+        stderr = self.assertError(run("--check", scene), 1, "of stack (about", "before the limit of 10000 calls)")
+        self.assertNotIn("(the limit)", stderr)
+
     def test_options_are_used_as_their_check_read_them(self):
         # --samples 4*4 was checked as 16 and rendered as 4 (the text read as an integer).
         dump = run("--dump-json", self.write("s.scn", SMALL_SCENE), "--samples", "4*4")
