@@ -1,6 +1,7 @@
 """tools/crosscheck end to end, at reduced resolution, and the error figures it reports."""
 
 import json
+import os
 import shutil
 import subprocess
 
@@ -122,6 +123,19 @@ def test_povray_agrees(tracer_bin, tmp_path, scene, most_over_2):
     report = json.loads(result.stdout)
     assert report["peer"] == "povray" and report["over_2"] <= most_over_2, report
     assert report["trace_seconds"] >= 0 and (tmp_path / "scene.pov").is_file()
+
+
+@pytest.mark.skipif(shutil.which("povray") is None, reason=POVRAY_MISSING)
+def test_povray_takes_a_relative_folder_and_compares_supersampled_scenes_at_one_sample(tracer_bin, tmp_path):
+    # A relative --out failed (POV-Ray ran inside it); a scene of `samples 4` was refused.
+    scene = tmp_path / "four.scn"
+    scene.write_text((ROOT / "scenes" / "task2.scn").read_text().replace("render {", "render { samples 4 ", 1))
+    relative = os.path.relpath(tmp_path / "out", ROOT)  # run_tool runs in the checkout
+    result = run_tool("crosscheck", scene, "--width", "120", "--with", "povray", "--out", relative, "--json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "comparing at 1 sample per pixel (the scene asks for 4)" in result.stderr
+    assert f"the images and the report go to {relative}" in result.stderr
+    assert json.loads(result.stdout)["samples"] == 1 and (tmp_path / "out" / "povray.png").is_file()
 
 
 @pytest.mark.skipif(shutil.which("povray") is None, reason=POVRAY_MISSING)

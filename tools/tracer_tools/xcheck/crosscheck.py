@@ -107,11 +107,23 @@ def failures(comparison: Comparison, args: argparse.Namespace) -> list[str]:
 
 def crosscheck(args: argparse.Namespace) -> int:
     """Runs the whole check; returns the exit code."""
-    # Step 1: the scene as tracer resolves it, with the requested size and samples.
+    # Step 1: the scene as tracer resolves it, with the requested size and samples. POV-Ray's
+    # antialiasing is its own: a scene's supersampling is compared at one sample, and said so.
     extra = resolution_args(args)
     scene = tracer_cli.dump_json(args.scene, extra)
+    render = scene["render"]
+    uniform = render.get("antialias", "uniform") == "uniform"
+    if args.peer == "povray" and args.samples is None and uniform and render["samples"] != 1:
+        print(
+            "crosscheck: note: POV-Ray's antialiasing is its own, not tracer's: comparing at 1 sample per "
+            f"pixel (the scene asks for {render['samples']})",
+            file=sys.stderr,
+        )
+        extra = [*extra, "--samples", "1"]
+        scene = tracer_cli.dump_json(args.scene, extra)
     out = args.out or tracer_cli.ROOT / "out" / "crosscheck" / args.scene.stem
     out.mkdir(parents=True, exist_ok=True)
+    print(f"crosscheck: the images and the report go to {out}", file=sys.stderr)
 
     # Step 2: both renders, as floats (the peer first: it may refuse the scene).
     from . import (

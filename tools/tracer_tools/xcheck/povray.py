@@ -214,7 +214,7 @@ def render_scene(
         raise ToolError(
             "POV-Ray's antialiasing is its own, not tracer's: compare at 1 sample (--samples 1, no --adaptive)"
         )
-    folder = pathlib.Path(folder)
+    folder = pathlib.Path(folder).resolve()  # POV-Ray runs in it: a relative path would move
     pov = folder / "scene.pov"
     pov.write_text(to_povray_sdl(scene))
     png = folder / "povray.png"
