@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     InterpretLimits limits;
     limits.max_blocks = 20'000;
     limits.max_iterations = 100'000;
-    limits.max_statements = 1'000'000;
+    limits.max_operations = 10'000'000;
     limits.max_list_items = 100'000;
     limits.max_call_depth = 1'000;
     LoadResult loaded =

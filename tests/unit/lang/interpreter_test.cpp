@@ -230,6 +230,23 @@ TEST(Interpreter, LimitsStopRunawayScenes) {
               std::vector<std::string>{"the scene runs more than 1000 loop iterations (the limit)"});
 }
 
+// The work limit counts operations, not statements: 20 iterations of one statement of 1,000
+// terms (over 1,000 operations each) pass 10,000 operations where 100 short statements do not.
+TEST(Interpreter, TheWorkLimitCountsOperationsNotStatements) {
+    InterpretLimits limits;
+    limits.max_operations = 10'000;
+    std::string sum = "i";
+    for (int k = 1; k < 1000; ++k) sum += " + i";
+    const std::vector<std::string> stopped = errors(load("for i in 0..20 { let t = " + sum + " }", {}, limits));
+    ASSERT_EQ(stopped.size(), 1u);
+    EXPECT_EQ(stopped[0].rfind("the scene runs more than 10000 operations (the limit: each statement run and each "
+                               "operation of an expression counts one)",
+                               0),
+              0u)
+        << stopped[0];
+    EXPECT_TRUE(errors(load("for i in 0..100 { let t = i + 1 }", {}, limits)).empty());
+}
+
 class Includes : public ::testing::Test {
 protected:
     void SetUp() override {

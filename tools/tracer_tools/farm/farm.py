@@ -27,7 +27,7 @@ import tracer_tools
 from tracer_tools import option_types
 from tracer_tools.farm import resume, worker
 from tracer_tools.farm.images import decode_tile, write_atomically
-from tracer_tools.farm.jobs import OVERRIDES, Job, JobError, check_job, check_output, jobs_from_file
+from tracer_tools.farm.jobs import OVERRIDES, Job, JobError, OutputChecks, check_job, jobs_from_file
 from tracer_tools.farm.progress import Progress
 from tracer_tools.farm.tiles import Canvas, Region, split, tile_size_for
 
@@ -144,21 +144,27 @@ def check_jobs(tracer: str, jobs: list[Job]) -> None:
     the JobError raised, before any tile is sent); prints tracer's warnings."""
     if not os.access(tracer, os.X_OK):
         raise JobError(f"no tracer executable at '{tracer}' (build it: tools/bootstrap)", 3)
-    checked = {}  # tracer's arguments -> the checked job: each distinct scene checked once
+    # Each distinct scene (tracer's arguments) is checked and its inputs hashed once; each output
+    # folder and format checked once: 10^5 jobs of one scene plan in seconds.
+    checked = {}  # tracer's arguments -> (the checked job, the inputs' digests)
+    outputs = OutputChecks()
+    tracer_digest = resume.file_digest(tracer)
     for job in jobs:
         key = tuple(job.tracer_arguments())
         if key in checked:
-            job.width, job.height, job.inputs = checked[key].width, checked[key].height, checked[key].inputs
+            first, inputs = checked[key]
+            job.width, job.height, job.inputs = first.width, first.height, first.inputs
         else:
             warnings = check_job(tracer, job)
             if warnings:
                 sys.stderr.write(warnings)
-            checked[key] = job
-        check_output(job)
-        try:
-            job.manifest = resume.identity(tracer, job)
-        except OSError as error:  # an input that vanished since the check
-            raise JobError(f"cannot read '{error.filename}': {error.strerror}", 3) from error
+            try:
+                inputs = resume.input_digests(job)
+            except OSError as error:  # an input that vanished since the check
+                raise JobError(f"cannot read '{error.filename}': {error.strerror}", 3) from error
+            checked[key] = job, inputs
+        outputs.check(job)
+        job.manifest = resume.identity(tracer, job, inputs, tracer_digest)
 
 
 def start_cluster(arguments: argparse.Namespace) -> tuple[Client, LocalCluster | None]:

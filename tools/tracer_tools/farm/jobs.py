@@ -6,9 +6,10 @@ import hashlib
 import json
 import os
 import re
-import stat
 import subprocess
 from dataclasses import dataclass, field
+
+from tracer_tools import option_types
 
 FLOAT_FORMATS = (".exr", ".hdr", ".pfm")  # as tracer: these get unclamped float pixels, others 8 bits
 OVERRIDES = ("samples", "width", "height", "max_depth")  # job keys passed on as tracer's options
@@ -57,13 +58,10 @@ def jobs_from_file(path: str) -> list[Job]:
     """The jobs of a JSON file: a list of {"scene", "output", "define": {NAME: VALUE}, "samples", "width",
     "height", "max_depth"}; paths relative to the file's folder."""
     try:
-        # A FIFO or a device would block or never end: only a regular file is opened.
-        if not stat.S_ISREG(os.stat(path).st_mode):
-            raise JobError(f"cannot read '{path}': not a regular file (a FIFO, device or folder)", 3)
-        with open(path, encoding="utf-8") as file:
-            entries = json.load(file)
-    except OSError as error:
-        raise JobError(f"cannot read '{path}': {error.strerror}", 3) from error
+        # A FIFO or a device would block or never end: only a regular file of bounded size is read.
+        entries = json.loads(option_types.read_regular_file(path))
+    except option_types.UnreadableFile as error:
+        raise JobError(f"cannot read '{path}': {error}", 3) from error
     except (json.JSONDecodeError, UnicodeDecodeError) as error:
         raise JobError(f"{path}: not a JSON list of jobs: {error}", 2) from error
     if not isinstance(entries, list) or not entries:
@@ -95,8 +93,11 @@ def jobs_from_file(path: str) -> list[Job]:
             )
         )
     written = set()  # linear in the jobs (a count per output was quadratic: 4x10^4 jobs took 15 s)
+    real_folders: dict[str, str] = {}  # each folder's real path, resolved once
     for job in jobs:
-        output = os.path.realpath(job.output)
+        folder, name = os.path.split(job.output)
+        real = real_folders.get(folder) or real_folders.setdefault(folder, os.path.realpath(folder))
+        output = os.path.join(real, name)
         if output in written:
             raise JobError(f"{path}: two jobs write '{output}'", 2)
         written.add(output)
@@ -124,14 +125,32 @@ def check_job(tracer: str, job: Job) -> str:
 def check_output(job: Job) -> None:
     """Raises JobError if the job's output cannot be written: no such folder, not writable, an unknown
     format (OpenImageIO's), or the scene file itself."""
-    import OpenImageIO as oiio
+    OutputChecks().check(job)
 
-    folder = os.path.dirname(job.output) or "."
-    if not os.path.isdir(folder):
-        raise JobError(f"cannot write '{job.output}': no such folder '{folder}'", 3)
-    if not os.access(folder, os.W_OK):
-        raise JobError(f"cannot write '{job.output}': the folder is not writable", 3)
-    if oiio.ImageOutput.create(job.output) is None:
-        raise JobError(f"cannot write '{job.output}': unknown image format (use .png, .exr, .jpg, .tif, ...)", 3)
-    if os.path.exists(job.output) and os.path.samefile(job.output, job.scene):
-        raise JobError(f"-o '{job.output}' is the scene file; choose another output path", 2)
+
+class OutputChecks:
+    """check_output for many jobs: each folder and each format checked once."""
+
+    def __init__(self) -> None:
+        self.folders: set[str] = set()
+        self.formats: set[str] = set()
+
+    def check(self, job: Job) -> None:
+        folder = os.path.dirname(job.output) or "."
+        if folder not in self.folders:
+            if not os.path.isdir(folder):
+                raise JobError(f"cannot write '{job.output}': no such folder '{folder}'", 3)
+            if not os.access(folder, os.W_OK):
+                raise JobError(f"cannot write '{job.output}': the folder is not writable", 3)
+            self.folders.add(folder)
+        extension = os.path.splitext(job.output)[1].lower()
+        if extension not in self.formats:
+            import OpenImageIO as oiio
+
+            if oiio.ImageOutput.create(job.output) is None:
+                raise JobError(
+                    f"cannot write '{job.output}': unknown image format (use .png, .exr, .jpg, .tif, ...)", 3
+                )
+            self.formats.add(extension)
+        if os.path.exists(job.output) and os.path.samefile(job.output, job.scene):
+            raise JobError(f"-o '{job.output}' is the scene file; choose another output path", 2)

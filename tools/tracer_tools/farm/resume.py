@@ -58,16 +58,22 @@ def _digest_of(path: str, size: int, modified: int) -> str:
     return digest.hexdigest()
 
 
-def identity(tracer: str, job: Job) -> dict:
-    """What the job's image depends on, as the manifest records it (the tile size aside)."""
-    inputs = [job.scene, *job.inputs]
+def input_digests(job: Job) -> dict[str, str]:
+    """Each file the job's scene reads (the scene too), by absolute path, with its SHA-256."""
+    return {os.path.abspath(path): file_digest(path) for path in [job.scene, *job.inputs]}
+
+
+def identity(tracer: str, job: Job, inputs: dict[str, str] | None = None, tracer_digest: str | None = None) -> dict:
+    """What the job's image depends on, as the manifest records it (the tile size aside); `inputs`
+    and `tracer_digest`: input_digests(job) and file_digest(tracer), when already known (jobs of
+    one scene share them)."""
     return {
         "version": VERSION,
-        "tracer": file_digest(tracer),
+        "tracer": file_digest(tracer) if tracer_digest is None else tracer_digest,
         "arguments": job.tracer_arguments(),
         "frame": [job.width, job.height],
         "float": job.is_float(),
-        "inputs": {os.path.abspath(path): file_digest(path) for path in inputs},
+        "inputs": input_digests(job) if inputs is None else inputs,
     }
 
 

@@ -20,7 +20,7 @@ from tracer_tools import option_types
 
 def read_obj(path: pathlib.Path) -> tuple[list, list]:
     vertices, faces = [], []
-    for line in path.read_text().splitlines():
+    for line in option_types.read_text_file(path, 1 << 30).splitlines():
         parts = line.split()
         if not parts:
             continue
