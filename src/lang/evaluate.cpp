@@ -36,6 +36,8 @@ bool Interpreter::condition(const ExprCode& node) {
 // The value of `node`. Its frame is kept small (each call of a scene's function nests it
 // again on the native stack): the cases with arrays or messages are functions of their own.
 RuntimeValue Interpreter::evaluate(const ExprCode& node) {
+    if (++operations_ > limits_.max_operations) [[unlikely]]
+        out_of_operations(node.span);
     switch (node.op) {
         case ExprCode::Op::Constant:
             if (node.constant.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};  // reported when compiled

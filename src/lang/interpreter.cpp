@@ -55,6 +55,12 @@ void Interpreter::stop(Span span, std::string message) {
     throw EvaluationStopped{};
 }
 
+void Interpreter::out_of_operations(Span span) {
+    stop(span, "the scene runs more than " + std::to_string(limits_.max_operations) +
+                   " operations (the limit: each statement run and each operation of an expression counts "
+                   "one): a loop or a recursion doing more work than a scene needs?");
+}
+
 EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
     stack_top_ = TRACER_STACK_ADDRESS();
     // Step 1: the command line's parameters, each a value alone.
@@ -122,9 +128,7 @@ EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
 Interpreter::Flow Interpreter::run_steps(const std::vector<StatementCode>& steps) {
     for (const StatementCode& step : steps) {
         if (stopped_ || diagnostics_.saturated()) return Flow::Next;
-        if (++statements_run_ > limits_.max_statements)
-            stop(step.keyword,
-                 "the scene runs more than " + std::to_string(limits_.max_statements) + " statements (the limit)");
+        if (++operations_ > limits_.max_operations) out_of_operations(step.keyword);
         try {
             if (run_step(step) == Flow::Return) return Flow::Return;
         } catch (const EvaluationError&) {

@@ -18,11 +18,12 @@
 
 namespace tracer {
 
-// Most blocks one scene may generate, most loop iterations and statements it may run, most list
+// Most blocks one scene may generate, most loop iterations and operations it may run (its work:
+// each statement run and each operation of an expression evaluated counts one), most list
 // items it may make, and the deepest its calls may nest (each an error at its place).
 constexpr size_t kMaxGeneratedBlocks = 2'000'000;
 constexpr size_t kMaxLoopIterations = 10'000'000;
-constexpr size_t kMaxStatementsRun = 100'000'000;
+constexpr size_t kMaxOperations = 500'000'000;
 constexpr size_t kMaxListItems = 1'000'000;
 constexpr size_t kMaxCallDepth = 10'000;
 
@@ -33,7 +34,7 @@ using ParameterValues = std::vector<std::pair<std::string, std::string>>;
 struct InterpretLimits {
     size_t max_blocks = kMaxGeneratedBlocks;  // lower for fuzzing, where memory and time are short
     size_t max_iterations = kMaxLoopIterations;
-    size_t max_statements = kMaxStatementsRun;
+    size_t max_operations = kMaxOperations;
     size_t max_list_items = kMaxListItems;
     size_t max_call_depth = kMaxCallDepth;
 };

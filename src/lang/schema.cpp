@@ -77,8 +77,8 @@ const BlockSpec kRender{
                    "is not zero, a shadow ray where a light's Phong term is not zero, no refracted ray "
                    "under 1/4096 of weight. `spd`: the Standard Procedural Databases' testing "
                    "procedure, for comparing ray counts: a reflection ray at every hit on a surface "
-                   "with km or kt above 0, a shadow ray wherever the normal faces the light, no "
-                   "weight cut-off (the image is the same)."),
+                   "with km or kt above 0, a shadow ray only where the normal faces the light (so a "
+                   "light behind the surface lights no highlight there), no weight cut-off."),
                {spawn_rules_name(SpawnRules::Tracer), spawn_rules_name(SpawnRules::Spd)}),
         one_of(key("antialias", ValueType::Choice, "uniform",
                    "How a pixel's samples are placed. `uniform`: `samples` (N*N) in every pixel. "

@@ -21,7 +21,7 @@ std::string scene_text(const std::string& key, const std::string& value) {
            " }\n"
            "sphere { center " +
            v("center", "(0, 0, 0)") + " radius " + v("radius", "1") + " material { kd " + v("kd", "0.8") + " ka " +
-           v("ka", "0.1") + " km " + v("km", "0.2") +
+           v("ka", "0.1") + " ks " + v("ks", "0.2") + " km 0.2" +
            " } }\n"
            "plane { point " +
            v("point", "(0, -1, 0)") +
@@ -65,14 +65,15 @@ std::string number(int exponent) {
     return "1e" + std::to_string(exponent);
 }
 
-// Each key at 10^k for k = -30..30 (step 5) renders without NaN (a mesh scaled or moved to 1e30
+// Each key at 10^k for k = -30..30 (step 5) renders without NaN (km and kt, weights of the rays a
+// surface passes on, lie in [0, 1]: test_hostile.py checks their refusal) (a mesh scaled or moved to 1e30
 // may instead be refused for reaching past the range); at 1e31, 1e39 (beyond float)
 // and 1e200 it is refused with the limit and its reason; sizes at 1e-31 are refused too.
 TEST(HardCases, EveryGeometricKeyRendersOrIsRefusedAtEveryMagnitude) {
     const std::vector<std::pair<std::string, bool>> keys = {
         // key, is a vector
         {"eye", true},       {"lookat", true},   {"center", true}, {"radius", false}, {"point", true}, {"scale", false},
-        {"translate", true}, {"position", true}, {"color", false}, {"kd", false},     {"ka", false},   {"km", false},
+        {"translate", true}, {"position", true}, {"color", false}, {"kd", false},     {"ka", false},   {"ks", false},
     };
     int rendered = 0, refused = 0;
     for (const auto& [key, vector] : keys) {
@@ -94,7 +95,7 @@ TEST(HardCases, EveryGeometricKeyRendersOrIsRefusedAtEveryMagnitude) {
             EXPECT_TRUE(o.refused) << key << " = " << beyond;
             EXPECT_NE(o.message.find("between -1e30 and 1e30"), std::string::npos) << o.message;
             // Each kind of value gives its own reason: lengths the renderer's float boxes.
-            const bool colour = key == "color" || key == "kd" || key == "ka" || key == "km";
+            const bool colour = key == "color" || key == "kd" || key == "ka" || key == "ks";
             EXPECT_NE(o.message.find(colour ? "a colour or weight beyond 1e30" : "bounding boxes in float"),
                       std::string::npos)
                 << o.message;

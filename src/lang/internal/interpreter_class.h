@@ -82,6 +82,8 @@ private:
     [[noreturn]] void fail(Span at, std::string message);
     // Reports that a limit was reached at `at`, and stops everything.
     [[noreturn]] void stop(Span at, std::string message);
+    // stop() for the operations limit (kept out of evaluate's frame).
+    [[noreturn, gnu::noinline, gnu::cold]] void out_of_operations(Span at);
 
     // Slots.
     RuntimeValue& slot(uint32_t index) { return stack_[frame_base_ + index]; }
@@ -111,7 +113,7 @@ private:
     std::map<std::string, RuntimeValue, std::less<>> overrides_;  // -D values, by name
     std::map<std::string, std::string, std::less<>> override_texts_;
     std::map<uint32_t, std::string> command_line_;  // global slots of params set by -D: "-D NAME=VALUE"
-    size_t blocks_ = 0, iterations_run_ = 0, statements_run_ = 0, list_items_ = 0, call_depth_ = 0;
+    size_t blocks_ = 0, iterations_run_ = 0, operations_ = 0, list_items_ = 0, call_depth_ = 0;
     bool stopped_ = false;  // a limit was hit: nothing more is run
     InterpretLimits limits_;
     BlockSink on_block_;

@@ -24,6 +24,7 @@ BENCHMARKS = {
         "flat_shapes",
         "issue 34's figure: 10^6 quads, triangles, boxes from a loop (docs/bench/bench-flat-shapes.md)",
     ),
+    "interrupt": ("interrupt", "Ctrl-C latency at 1024^2 and 8192^2 in each sampling mode (docs/bench/interrupt.md)"),
     "adaptive": (
         "adaptive",
         "adaptive antialiasing against uniform and POV-Ray at matched error (docs/bench/speed-vs-error.md)",
