@@ -241,6 +241,10 @@ class Hangs(Hostile):
         }
         for name, (text, message) in cases.items():
             with self.subTest(case=name):
+                if name in ("heavy", "terms") and sanitized():
+                    # 5 x 10^8 operations take minutes under the sanitizers; the work limit's logic is
+                    # checked there by tests/unit/lang (Interpreter.TheWorkLimitCountsOperations...).
+                    self.skipTest("the whole work budget is too slow under the sanitizers")
                 scene = self.write("limit.scn", CAMERA + "light { position (0, 5, 5) }\n" + text)
                 result = run("--check", scene, limits=limits)
                 self.assertError(result, 1, message)
@@ -488,6 +492,10 @@ class NumbersNeverWrongSilently(Hostile):
 
     def test_a_recursion_stopped_by_the_stack_says_so(self):
         # It said "calls nest more than 625 deep (the limit)" where the limit is 10,000 calls.
+        if sanitized():
+            # AddressSanitizer's own check fails when an exception unwinds this deep a stack this
+            # large (google/sanitizers issue 189); the message is checked in the release build.
+            self.skipTest("AddressSanitizer cannot unwind a 512 MiB stack this deep")
         deep = "1 + (" * 150 + "f(n + 1)" + ")" * 150
         scene = self.write("r.scn", "fn f(n) { return " + deep + " }\nlet x = f(0)\n" + CAMERA)
         stderr = self.assertError(run("--check", scene), 1, "of stack (about", "before the limit of 10000 calls)")
