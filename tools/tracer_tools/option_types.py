@@ -115,56 +115,40 @@ def executable_file(text: str) -> str:
     return text
 
 
-def existing_folder(text: str) -> pathlib.Path:
-    """An argparse type: a path to an existing folder."""
-    if not text:
-        raise argparse.ArgumentTypeError("expects a folder, found an empty path")
-    path = pathlib.Path(text)
-    if not path.is_dir():
-        raise argparse.ArgumentTypeError(f"{text} is not a folder")
-    return path
+def path_type(expects: str, problem: Callable[[pathlib.Path, str], str | None]) -> Callable[[str], pathlib.Path]:
+    """An argparse type for a path: refuses the empty string ("expects EXPECTS") and any path for
+    which problem(path, text) gives a reason."""
+
+    def parse(text: str) -> pathlib.Path:
+        if not text:
+            raise argparse.ArgumentTypeError(f"expects {expects}, found an empty path")
+        path = pathlib.Path(text)
+        if reason := problem(path, text):
+            raise argparse.ArgumentTypeError(reason)
+        return path
+
+    parse.__name__ = expects
+    return parse
 
 
-def output_file(text: str) -> pathlib.Path:
-    """An argparse type: a file to write: a non-empty path that is not a folder or a special file
-    (the tool writes it whole, or not at all; a missing folder is made by the tool)."""
-    if not text:
-        raise argparse.ArgumentTypeError("expects a file to write, found an empty path")
-    path = pathlib.Path(text)
-    if path.exists() and not path.is_file():
-        raise argparse.ArgumentTypeError(f"{text} exists and is not a regular file")
-    return path
-
-
-def existing_path(text: str) -> pathlib.Path:
-    """An argparse type: a path to an existing file or folder."""
-    if not text:
-        raise argparse.ArgumentTypeError("expects a path, found an empty one")
-    path = pathlib.Path(text)
-    if not path.exists():
-        raise argparse.ArgumentTypeError(f"{text} does not exist")
-    return path
-
-
-def output_folder(text: str) -> pathlib.Path:
-    """An argparse type: a folder to write into (made by the tool if missing): a non-empty path that
-    is not an existing file."""
-    if not text:
-        raise argparse.ArgumentTypeError("expects a folder, found an empty path")
-    path = pathlib.Path(text)
-    if path.exists() and not path.is_dir():
-        raise argparse.ArgumentTypeError(f"{text} exists and is not a folder")
-    return path
-
-
-def output_path(text: str) -> pathlib.Path:
-    """An argparse type: a file or folder to write: a non-empty path that is not a special file."""
-    if not text:
-        raise argparse.ArgumentTypeError("expects a path to write, found an empty one")
-    path = pathlib.Path(text)
-    if path.exists() and not (path.is_dir() or path.is_file()):
-        raise argparse.ArgumentTypeError(f"{text} is neither a file nor a folder")
-    return path
+# The path types, each with the reason it refuses a path. Outputs may be missing (the tool makes
+# their folder) but never a special file: the tool writes them whole, or not at all.
+existing_folder = path_type("a folder", lambda path, text: None if path.is_dir() else f"{text} is not a folder")
+existing_path = path_type("a path", lambda path, text: None if path.exists() else f"{text} does not exist")
+output_file = path_type(
+    "a file to write",
+    lambda path, text: f"{text} exists and is not a regular file" if path.exists() and not path.is_file() else None,
+)
+output_folder = path_type(
+    "a folder to write into",
+    lambda path, text: f"{text} exists and is not a folder" if path.exists() and not path.is_dir() else None,
+)
+output_path = path_type(
+    "a path to write",
+    lambda path, text: f"{text} is neither a file nor a folder"
+    if path.exists() and not (path.is_dir() or path.is_file())
+    else None,
+)
 
 
 def split_passthrough(argv: list[str]) -> tuple[list[str], list[str]]:
