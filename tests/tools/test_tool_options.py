@@ -140,7 +140,7 @@ def tool(*arguments: str) -> subprocess.CompletedProcess:
         [sys.executable, "-P", "-m", "tracer_tools", *arguments],
         capture_output=True,
         text=True,
-        timeout=60,
+        timeout=300,  # a hang bound, far above the second it takes on a busy machine
         stdin=subprocess.DEVNULL,
         cwd=ROOT,
     )
