@@ -122,20 +122,16 @@ def check_job(tracer: str, job: Job) -> str:
     return result.stderr
 
 
-def check_output(job: Job) -> None:
-    """Raises JobError if the job's output cannot be written: no such folder, not writable, an unknown
-    format (OpenImageIO's), or the scene file itself."""
-    OutputChecks().check(job)
-
-
 class OutputChecks:
-    """check_output for many jobs: each folder and each format checked once."""
+    """Whether jobs' outputs can be written, each folder and each format checked once."""
 
     def __init__(self) -> None:
         self.folders: set[str] = set()
         self.formats: set[str] = set()
 
     def check(self, job: Job) -> None:
+        """Raises JobError if the job's output cannot be written: no such folder, not writable, an
+        unknown format (OpenImageIO's), or the scene file itself."""
         folder = os.path.dirname(job.output) or "."
         if folder not in self.folders:
             if not os.path.isdir(folder):
