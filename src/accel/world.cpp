@@ -155,13 +155,10 @@ void World::add_round_shapes(const SceneDescription& scene, const SearchSettings
     const bool bvh =
         !settings.brute_force && bounded_.size() + scene.cones.size() + scene.discs.size() > kLinearObjects;
     for (const Cone& c : scene.cones) {
-        const glm::dvec3 along = c.top - c.base;
-        const double height = glm::length(along);
-        const glm::dvec3 axis = along / height;
+        const glm::dvec3 axis = (c.top - c.base) / glm::length(c.top - c.base);
         const uint32_t index = uint32_t(cones_.size()), object = uint32_t(objects_.size());
         objects_.push_back({ObjectKind::Cone, index, c.material});
-        cones_.push_back({Vec3(c.base), Vec3(axis), Real(height), Real(c.base_radius),
-                          Real((c.top_radius - c.base_radius) / height), Real(c.top_radius), c.caps});
+        cones_.push_back(make_cone_shape(c.base, c.top, c.base_radius, c.top_radius, c.caps));
         const std::vector<Bounds> pieces = cone_piece_boxes(c, axis, bvh ? kMostConePieces : 1);
         for (const Bounds& box : pieces) add_bounded(box, object, index, ObjectKind::Cone);
         extra_entries_ += pieces.size() - 1;

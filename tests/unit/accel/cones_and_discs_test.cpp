@@ -13,16 +13,9 @@
 namespace tracer {
 namespace {
 
-// A cone from the scene description's values, as the world keeps it.
+// A cone from the scene description's values, as the world keeps it (capped unless told).
 ConeShape cone_shape(const dvec3& base, const dvec3& top, double base_radius, double top_radius, bool caps = true) {
-    const double height = glm::length(top - base);
-    return {Vec3(base),
-            Vec3((top - base) / height),
-            Real(height),
-            Real(base_radius),
-            Real((top_radius - base_radius) / height),
-            Real(top_radius),
-            caps};
+    return make_cone_shape(base, top, base_radius, top_radius, caps);
 }
 
 std::optional<ConeHit> cast(const ConeShape& cone, const Vec3& origin, const Vec3& direction) {
@@ -57,14 +50,14 @@ TEST(RoundShapes, CapsCloseTheEndsUnlessOpen) {
     // Down the axis from above: the top cap, normal up; the open tube lets it through.
     auto hit = cast(capped, {0.1, 3, 0}, {0, -1, 0});
     ASSERT_TRUE(hit);
-    EXPECT_EQ(hit->part, kConeTopCap);
+    EXPECT_EQ(hit->part, kConeWideCap);
     EXPECT_NEAR(hit->t, 2, 1e-12);
     EXPECT_EQ(cone_surface({{0.1, 3, 0}, {0, -1, 0}}, capped, hit->t, hit->part).normal, Vec3(0, 1, 0));
     EXPECT_FALSE(cast(open, {0.1, 3, 0}, {0, -1, 0}));
-    // Up from below: the base cap, normal down.
+    // Up from below: the base cap (the tip's: a cylinder is measured from its base), normal down.
     hit = cast(capped, {0, -4, 0.2}, {0, 1, 0});
     ASSERT_TRUE(hit);
-    EXPECT_EQ(hit->part, kConeBaseCap);
+    EXPECT_EQ(hit->part, kConeTipCap);
     EXPECT_NEAR(hit->t, 3, 1e-12);
     EXPECT_EQ(cone_surface({{0, -4, 0.2}, {0, 1, 0}}, capped, hit->t, hit->part).normal, Vec3(0, -1, 0));
     // Slanting in through the top of the open tube: its inside wall.
@@ -77,7 +70,7 @@ TEST(RoundShapes, CapsCloseTheEndsUnlessOpen) {
     // From inside the closed one, straight up: the top cap from below.
     hit = cast(capped, {0, 0, 0}, {0, 1, 0});
     ASSERT_TRUE(hit);
-    EXPECT_EQ(hit->part, kConeTopCap);
+    EXPECT_EQ(hit->part, kConeWideCap);
     EXPECT_NEAR(hit->t, 1, 1e-12);
 }
 
@@ -132,15 +125,15 @@ TEST(RoundShapes, RimsLetNoRayThrough) {
     const ConeShape cone = cone_shape({0.3, -0.2, 0.1}, {1.1, 1.7, -0.4}, 0.8, 0.35);
     int misses = 0;
     for (int i = 0; i < 20000; ++i) {
-        const bool top = i % 2;
+        const bool wide_end = i % 2;
         const double angle = 2 * M_PI * unit(random);
         const Vec3 w = cone.axis;
         const Vec3 u = glm::normalize(glm::cross(w, Vec3(1, 0, 0))), v = glm::cross(w, u);
-        const Real radius = top ? cone.top_radius : cone.base_radius;
-        const Vec3 center = cone.base + (top ? cone.height : 0) * w;
+        const Real radius = wide_end ? cone.wide_radius : cone.tip_radius;
+        const Vec3 center = cone.tip + (wide_end ? cone.height : 0) * w;
         const Vec3 rim = center + radius * (Real(std::cos(angle)) * u + Real(std::sin(angle)) * v);
         // From a point beyond the cap, inside the rim's circle a little: the ray crosses the edge.
-        const Vec3 outward = Real(top ? 1 : -1) * w;
+        const Vec3 outward = Real(wide_end ? 1 : -1) * w;
         const Vec3 origin = center + Real(2) * outward + Real(1.5) * (rim - center);
         const auto hit = cast(cone, origin, rim - origin);
         misses += !hit || hit->t > glm::length(rim - origin) * (1 + 1e-9);
