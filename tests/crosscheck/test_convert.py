@@ -210,3 +210,15 @@ def test_flat_shapes_become_mitsubas_own_rectangles_and_cubes(dump):
     box = {"min": [-1.0, 0.0, 2.0], "max": [1.0, 4.0, 3.0]}
     cube = np.array(convert.box_to_cube(box))
     assert np.allclose((cube @ [-1, -1, -1, 1])[:3], box["min"]) and np.allclose((cube @ [1, 1, 1, 1])[:3], box["max"])
+
+
+@pytest.mark.parametrize(("r0", "r1"), [(1.0, 0.0), (0.0, 2.5), (0.3, 0.7), (0.6, 0.6)])
+def test_cone_rings_stay_close_in_radius(r0, r1):
+    radii = round_shapes.ring_radii(r0, r1)
+    assert radii[0] == r0 and radii[-1] == r1 and len(radii) >= 2
+    wide = max(r0, r1)
+    for near, far in zip(radii, radii[1:], strict=False):
+        small, large = sorted((near, far))
+        # Within RING_RATIO of each other, but for the step to a point (below APEX_FRACTION).
+        assert large <= small * round_shapes.RING_RATIO * (1 + 1e-12) or small == 0
+        assert small > 0 or large <= round_shapes.APEX_FRACTION * wide * (1 + 1e-12)

@@ -13,6 +13,8 @@ from collections.abc import Sequence
 
 MAX_ERROR_PIXELS = 0.001
 MIN_SIDES, MAX_SIDES = 16, 4096
+RING_RATIO = 1.5
+APEX_FRACTION = 1e-3
 
 
 def _sub(a: Sequence[float], b: Sequence[float]) -> list[float]:
@@ -70,27 +72,54 @@ def sides_for(cone: dict, eye: Sequence[float], pixel_angle: float) -> int:
     return int(min(max(math.ceil(sides), MIN_SIDES), MAX_SIDES))
 
 
+def ring_radii(r0: float, r1: float) -> list[float]:
+    """The radii of the rings of a cone's OBJ from one end (r0) to the other (r1): consecutive
+    ones within RING_RATIO of each other, so that the vertex normals, interpolated linearly
+    across a triangle, stay within a small part of a side's angle of the true ones (between two
+    rings of one radius the interpolation is exact; a triangle reaching the apex of a pointed
+    cone bends its normals by up to half a side's angle, which a mirror shows). A pointed end's
+    last ring is at APEX_FRACTION of the other radius, then the apex."""
+    wide, narrow = max(r0, r1), min(r0, r1)
+    smallest = max(narrow, APEX_FRACTION * wide)
+    steps = max(1, math.ceil(math.log(wide / smallest) / math.log(RING_RATIO))) if smallest < wide else 1
+    radii = [wide * (smallest / wide) ** (i / steps) for i in range(steps + 1)]
+    if narrow < smallest:
+        radii.append(narrow)
+    return radii if r0 >= r1 else radii[::-1]
+
+
 def cone_obj(cone: dict, sides: int) -> str:
-    """The side of a cone as an OBJ: `sides` quads (two triangles each)
-    between its two rims, each vertex with the true cone's outward normal (caps: disks_of)."""
+    """The side of a cone as an OBJ: rings of `sides` vertices (ring_radii) joined by quads (two
+    triangles each), each vertex with the true cone's outward normal (caps: disks_of)."""
     base, top = cone["base"], cone["top"]
     axis = _sub(top, base)
     height = math.sqrt(sum(a * a for a in axis))
     u, v, w = frame(axis)
     r0, r1 = cone["base_radius"], cone["top_radius"]
     slope = (r1 - r0) / height
-    lines = [f"# cone side, {sides} sides (tools/tracer_tools/xcheck/round_shapes.py)"]
+    radii = ring_radii(r0, r1)
+    # Heights: linear in the radius on a cone, evenly spaced rings on a cylinder.
+    heights = [height * i / (len(radii) - 1) if r0 == r1 else (r - r0) / slope for i, r in enumerate(radii)]
+    heights[0], heights[-1] = 0.0, height
+    lines = [f"# cone side, {sides} sides, {len(radii)} rings (tools/tracer_tools/xcheck/round_shapes.py)"]
     for k in range(sides):
         angle = 2 * math.pi * k / sides
         across = [math.cos(angle) * u[i] + math.sin(angle) * v[i] for i in range(3)]
-        for centre, radius in ((base, r0), (top, r1)):
-            lines.append("v " + " ".join(repr(centre[i] + radius * across[i]) for i in range(3)))
         normal = _normalize([across[i] - slope * w[i] for i in range(3)])
         lines.append("vn " + " ".join(repr(x) for x in normal))
-    for k in range(sides):
-        a, b = 2 * k + 1, 2 * k + 2  # this angle's base and top vertices (1-based)
-        c, d = 2 * ((k + 1) % sides) + 1, 2 * ((k + 1) % sides) + 2
-        na, nc = k + 1, (k + 1) % sides + 1
-        lines.append(f"f {a}//{na} {c}//{nc} {d}//{nc}")
-        lines.append(f"f {a}//{na} {d}//{nc} {b}//{na}")
+    for h, radius in zip(heights, radii, strict=True):
+        for k in range(sides):
+            angle = 2 * math.pi * k / sides
+            across = [math.cos(angle) * u[i] + math.sin(angle) * v[i] for i in range(3)]
+            lines.append("v " + " ".join(repr(base[i] + h * w[i] + radius * across[i]) for i in range(3)))
+    for ring in range(len(radii) - 1):
+        for k in range(sides):
+            following = (k + 1) % sides
+            a, c = ring * sides + k + 1, ring * sides + following + 1  # this ring (1-based)
+            b, d = a + sides, c + sides  # the next ring
+            na, nc = k + 1, following + 1
+            if radii[ring] > 0:
+                lines.append(f"f {a}//{na} {c}//{nc} {d}//{nc}")
+            if radii[ring + 1] > 0:
+                lines.append(f"f {a}//{na} {d}//{nc} {b}//{na}")
     return "\n".join(lines) + "\n"
