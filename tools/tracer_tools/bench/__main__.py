@@ -15,6 +15,7 @@ BENCHMARKS = {
     "robustness": ("robustness", "what the robust rules and float cost and buy (docs/bench/speed-vs-error.md)"),
     "large-obj": ("large_obj", "a 2.5M-triangle OBJ read and rendered, and refusals (docs/bench/large-obj.md)"),
     "farm": ("farm", "the render farm's overhead and scaling (docs/bench/farm-bench.md)"),
+    "farm-plan": ("farm_plan", "10^5 farm jobs read and planned (docs/bench/farm-plan.md)"),
     "farm-engines": ("farm_engines", "Dask against Ray for the farm's tasks (docs/bench/farm-engines.txt)"),
     "builds": ("builds", "this tree against an earlier commit on the single-mesh and many-objects scenes"),
     "compare-builds": ("compare_builds", "two builds of trace_parts alternated: time per query"),
