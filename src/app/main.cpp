@@ -27,6 +27,7 @@
 #include "app/regions.h"
 #include "app/summary.h"
 #include "app/watch.h"
+#include "base/fast_exit.h"
 #include "base/output_file.h"
 #include "base/parallel.h"
 #include "io/image_file.h"
@@ -66,11 +67,12 @@ extern "C" void on_interrupt(int) {
 
 // Ends the process after an interrupted render, once `message` is said: nothing is being written,
 // and freeing what the render held (an 8192 x 8192 image is 1.5 GiB) took most of the time from
-// Ctrl-C to the exit. Standard output is flushed first (a region list's answers).
+// Ctrl-C to the exit, so a helper frees it after. Standard output is flushed first (a region
+// list's answers).
 [[noreturn]] void exit_interrupted(const char* message) {
     std::cout.flush();
     std::cerr << message << std::flush;
-    std::_Exit(kInterrupted);
+    tracer::exit_leaving_memory_to_a_helper(kInterrupted);
 }
 
 // --adaptive's THRESHOLD[:DEPTH[:CELL]] split at its colons (empty parts kept, to be refused).

@@ -366,6 +366,36 @@ class CommandLine(unittest.TestCase):
         self.assertFalse(out.exists())
         self.assertEqual(self.leftovers(), [])
 
+    def test_interrupted_render_leaves_no_process_behind(self):
+        # After Ctrl-C a helper sharing tracer's memory frees it once tracer is gone
+        # (base/fast_exit.h). Run as a subreaper, this script adopts the helper and waits for it:
+        # it must end by itself, with code 0, holding none of tracer's streams.
+        big = self.tmp / "big.scn"
+        big.write_text(SMALL_SCENE.replace("width 64 height 48", "width 4096 height 4096 samples 64"))
+        script = (
+            "import ctypes, os, signal, subprocess, sys, time\n"
+            "ctypes.CDLL(None, use_errno=True).prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER\n"
+            "proc = subprocess.Popen(sys.argv[1:], stderr=subprocess.PIPE, stdout=subprocess.PIPE)\n"
+            "time.sleep(1.0)\n"
+            "proc.send_signal(signal.SIGINT)\n"
+            "out, err = proc.communicate()  # end of file on both: nothing else holds them\n"
+            "print('tracer', proc.returncode)\n"
+            "while True:\n"
+            "    try:\n"
+            "        pid, status = os.waitpid(-1, 0)\n"
+            "    except ChildProcessError:\n"
+            "        break\n"
+            "    print('helper', os.waitstatus_to_exitcode(status))\n"
+        )
+        result = subprocess.run(
+            [sys.executable, "-c", script, TRACER, big, "-o", self.tmp / "out.png", "--threads", "1"],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+        self.assertEqual(result.stdout.split("\n")[:2], ["tracer 130", "helper 0"], result.stderr)
+        self.assertFalse((self.tmp / "out.png").exists())
+
     def test_check_reports_ok_on_stdout(self):
         result = run("--check", TASK2)
         self.assertEqual(result.returncode, 0, result.stderr)
