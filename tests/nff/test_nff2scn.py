@@ -242,6 +242,9 @@ def test_frame_to_axis_turns_z_onto_any_direction():
         (VIEW + "f 1 1 1 1 0 1 0 0\np 2\n0 0 0\n1 0 0\n", "9:3", "from 3 to 100,000"),
         (VIEW + "f 1 1 1 1 0 1 0 0\np 3\n0 0 0\n1 0 0\n", "11:6", "found the end of the file"),
         (VIEW + "f 1 1 1 1 0 1 0.5 0\n", "8:1", "needs an index of refraction > 0"),
+        # tracer refuses km and kt above 1: refused here, not in the scene written.
+        (VIEW + "f 1 1 1 1 1.5 1 0 0\ns 0 0 -5 1\n", "8:1", "Ks (the mirror weight) must be at most 1, found 1.5"),
+        (VIEW + "f 1 1 1 1 0 1 2 1.5\ns 0 0 -5 1\n", "8:1", "T (transmittance) must be at most 1, found 2"),
         ("f 1 1 1 1 0 1 0 0\ns 0 0 -5 1\n", "2:1", "a shape before the view"),
         ("b 0 0 0\n", "1:8", "no view"),
         (VIEW.replace("angle 40", "angle 180"), "1:1", "between 0 and 180 degrees"),

@@ -297,12 +297,17 @@ class _Reader:
         names = ("Kd", "Ks", "the Phong power", "T (transmittance)")
         kd, ks, shine, t = (self.number(name) for name in names)
         ior = self.number("the index of refraction")
+        self.fill = Fill(color, kd, ks, shine, t, ior)  # kept if refused below: no error per shape after it
         for name, value in zip(names, (kd, ks, shine, t), strict=True):
             if value < 0:
                 self.error(word, f"{name} must not be negative, found {value:g}")
+        # Ks is also the mirror weight (tracer's km) and T the transmitted one (kt): at most 1 each,
+        # as tracer requires (docs/decisions.md), or products along a ray grow without bound.
+        for name, value in (("Ks (the mirror weight)", ks), ("T (transmittance)", t)):
+            if value > 1:
+                self.error(word, f"{name} must be at most 1, found {value:g}")
         if t > 0 and ior <= 0:
             self.error(word, f"a transmitting surface (T {t:g}) needs an index of refraction > 0, found {ior:g}")
-        self.fill = Fill(color, kd, ks, shine, t, ior)
 
     def current_fill(self, word: Word) -> Fill:
         if self.scene.view is None:
