@@ -36,8 +36,7 @@ bool place_round(SceneAssembly& a, const Block& block, const Fields& fields, std
                  double& size) {
     out = Placement();
     size = 1;
-    const bool placed_here =
-        fields.has("scale") || fields.has("rotate") || fields.has("translate") || fields.has("transform");
+    const bool placed_here = !fields.steps().empty();
     if (!placed_here && !block.group) return true;
     Placed placed;
     if (!build_placement(a, fields, placed) || !add_group_steps(a, block, placed) ||

@@ -151,36 +151,42 @@ void build_camera(SceneAssembly& a, const Block& block, const Fields& fields) {
     }
 }
 
-// The placement and material of a mesh or flat shape: its scale, rotate and translate keys, or
-// the steps of its transform block (not both). False if the placement is refused.
+// The placement and material of a mesh or flat shape: its steps in the order written, then its
+// groups'. False if the placement is refused.
 bool build_placed(SceneAssembly& a, const Block& block, const Fields& fields, Placed& out) {
     out.line = Diagnostics::locate(a.file, block.kind_span).line;
     out.material = material_index(a, fields);
     return build_placement(a, fields, out) && add_group_steps(a, block, out) && check_placed_scale(a, block, out);
 }
 
-// The placement written by `fields`' scale, rotate and translate keys, or by the steps of its
-// transform block (not both). False if it is refused (reported).
+// The placement written by `fields`' steps (scale, rotate, translate, transform) in the order
+// written, a transform's steps at its place. Scale, rotate, translate, one each in that order
+// (the order they always had), are kept as Placed's three fields: the same arithmetic as steps,
+// and the same scene description as before. False if it is refused (reported).
 bool build_placement(SceneAssembly& a, const Fields& fields, Placed& out) {
-    out.scale = fields.triple("scale");
-    const Fields& rotate = fields.child("rotate");
-    out.rotate_axis = normalized(rotate.triple("axis"));
-    out.rotate_degrees = rotate.number("angle");
-    out.translate = fields.triple("translate");
-    if (!fields.has("transform")) return true;
-
-    for (std::string_view own : {"scale", "rotate", "translate"}) {
-        if (!fields.has(own)) continue;
-        Diagnostic* d = a.diagnostics.error(
-            a.file, fields.key_span("transform"),
-            "'transform' cannot be combined with 'scale', 'rotate' or 'translate' in one block; write those "
-            "steps inside the transform, in the order they apply");
-        Diagnostics::note(d, a.file, fields.key_span(own), "'" + std::string(own) + "' is set here");
-        return false;
+    // Step 1: the chain as written, each step with the span of the key that wrote it.
+    std::vector<std::pair<const Fields*, Span>> chain;
+    bool in_plain_order = true;
+    int last_plain = -1;  // 0 scale, 1 rotate, 2 translate: the last one seen
+    for (const auto& step : fields.steps()) {
+        const Span written = step->key_span(step->has("transform") ? "transform"
+                                            : step->has("scale")   ? "scale"
+                                            : step->has("rotate")  ? "rotate"
+                                                                   : "translate");
+        if (step->has("transform")) {
+            in_plain_order = false;
+            for (const auto& inner : step->child("transform").steps()) chain.emplace_back(inner.get(), written);
+            continue;
+        }
+        const int plain = step->has("scale") ? 0 : step->has("rotate") ? 1 : 2;
+        in_plain_order = in_plain_order && plain > last_plain;
+        last_plain = plain;
+        chain.emplace_back(step.get(), written);
     }
-    // The steps, and how much they scale in all (each factor is in range; their product must be too).
+    // Step 2: the steps, and how much they scale in all (each factor is in range; their product
+    // must be too).
     double smallest = 1, largest = 1;
-    for (const auto& step : fields.child("transform").steps()) {
+    for (const auto& [step, written] : chain) {
         TransformStep out_step;
         if (step->has("scale")) {
             out_step.kind = TransformStep::Kind::Scale;
@@ -188,6 +194,14 @@ bool build_placement(SceneAssembly& a, const Fields& fields, Placed& out) {
             const dvec3 size = glm::abs(out_step.vector);
             smallest *= std::min({size.x, size.y, size.z});
             largest *= std::max({size.x, size.y, size.z});
+            if (smallest < kSmallestSize || largest > kLargestMagnitude) {
+                char text[64];
+                std::snprintf(text, sizeof text, "%.3g", smallest < kSmallestSize ? smallest : largest);
+                a.diagnostics.error(a.file, written,
+                                    std::string("the scale steps up to here multiply to ") + text +
+                                        " on some axis; sizes must stay between 1e-30 and 1e30");
+                return false;
+            }
         } else if (step->has("rotate")) {
             const Fields& turn = step->child("rotate");
             out_step.kind = TransformStep::Kind::Rotate;
@@ -199,13 +213,17 @@ bool build_placement(SceneAssembly& a, const Fields& fields, Placed& out) {
         }
         out.steps.push_back(out_step);
     }
-    if (smallest < kSmallestSize || largest > kLargestMagnitude) {
-        char text[64];
-        std::snprintf(text, sizeof text, "%.3g", smallest < kSmallestSize ? smallest : largest);
-        a.diagnostics.error(a.file, fields.key_span("transform"),
-                            std::string("the transform's scale steps multiply to ") + text +
-                                " on some axis; sizes must stay between 1e-30 and 1e30");
-        return false;
+    // Step 3: the plain order, as the three fields.
+    if (in_plain_order) {
+        for (const TransformStep& step : out.steps) {
+            if (step.kind == TransformStep::Kind::Scale) out.scale = step.vector;
+            if (step.kind == TransformStep::Kind::Rotate) {
+                out.rotate_axis = step.vector;
+                out.rotate_degrees = step.degrees;
+            }
+            if (step.kind == TransformStep::Kind::Translate) out.translate = step.vector;
+        }
+        out.steps.clear();
     }
     return true;
 }

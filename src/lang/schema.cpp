@@ -189,7 +189,8 @@ KeySpec rotate_key(std::string_view meaning) {
 const BlockSpec kTransform{
     "transform", false, false, Occurs::AtMostOnce,
     "Steps that place a shape, applied in the order written; each key may appear any number of "
-    "times (inside a shape, instead of its own `scale`, `rotate` and `translate`).",
+    "times. A shape's or a group's own steps are the same; a `transform` among them (a named one, "
+    "most often) puts its steps at its place in the chain.",
     {
         scale_key("Scale about the origin, uniform or per axis; a negative factor mirrors."),
         rotate_key("Rotate about an axis through the origin: `rotate { axis (x, y, z) angle degrees }`."),
@@ -199,16 +200,29 @@ const BlockSpec kTransform{
     true,
 };
 
+KeySpec as_placement_step(KeySpec key) {
+    key.placement_step = true;
+    return key;
+}
+
+// The placement steps of a shape or a group: any number of each, applied in the order written.
+std::vector<KeySpec> placement_steps() {
+    return {
+        as_placement_step(scale_key("Scale about the origin, uniform or per axis; a negative factor mirrors.")),
+        as_placement_step(
+            rotate_key("Rotate about an axis through the origin: `rotate { axis (x, y, z) angle degrees }`.")),
+        as_placement_step(key("translate", ValueType::Vector, "(0, 0, 0)", "Move.")),
+        as_placement_step(nested(key("transform", ValueType::Block, "{ }",
+                                  "Its steps, in their order, at this place in the chain: "
+                                  "`transform { translate (0, 1, 0) rotate { angle 45 } scale (-1, 1, 1) }`, or "
+                                  "a name `let` gave to one."),
+                              &kTransform)),
+    };
+}
+
 // The keys that place a shape, after the shape's own keys and before its material.
 std::vector<KeySpec> placed(std::vector<KeySpec> keys, std::vector<KeySpec> after = {}) {
-    keys.push_back(scale_key("Scale factor, uniform or per axis, applied first; a negative factor mirrors."));
-    keys.push_back(rotate_key("Rotation, applied after scaling: `rotate { axis (x, y, z) angle degrees }`."));
-    keys.push_back(key("translate", ValueType::Vector, "(0, 0, 0)", "Translation, applied last."));
-    keys.push_back(nested(key("transform", ValueType::Block, "{ }",
-                              "Instead of `scale`, `rotate` and `translate`: any number of those steps in the "
-                              "order they apply, e.g. `transform { translate (0, 1, 0) rotate { angle 45 } "
-                              "scale (-1, 1, 1) }`."),
-                          &kTransform));
+    for (KeySpec& step : placement_steps()) keys.push_back(std::move(step));
     keys.insert(keys.end(), after.begin(), after.end());
     keys.push_back(key("material", ValueType::MaterialRef, "", "A material name or an inline material block."));
     return keys;
@@ -269,24 +283,17 @@ const BlockSpec kDisc{
 
 const BlockSpec kGroup{
     "group", false, false, Occurs::Any,
-    "The placement of a `group { ... }`, written before its contents: it places every shape and light made "
-    "inside, after their own placement (groups inside groups: the inner one first).",
-    {
-        scale_key("Scale factor, uniform or per axis, applied first; a negative factor mirrors."),
-        rotate_key("Rotation, applied after scaling: `rotate { axis (x, y, z) angle degrees }`."),
-        key("translate", ValueType::Vector, "(0, 0, 0)", "Translation, applied last."),
-        nested(key("transform", ValueType::Block, "{ }",
-                   "Instead of `scale`, `rotate` and `translate`: any number of those steps in the order they "
-                   "apply."),
-               &kTransform),
-    },
+    "The placement of a `group { ... }`, written before its contents: its steps, in the order written, "
+    "place every shape and light made inside, after their own placement (groups inside groups: the "
+    "inner one first).",
+    placement_steps(),
     "",
 };
 
 const BlockSpec kMesh{
     "mesh", false, true, Occurs::Any,
-    "A triangle mesh from an OBJ file, placed by scale, then rotate, then translate (or the steps of "
-    "a `transform`).",
+    "A triangle mesh from an OBJ file, placed by its steps (`scale`, `rotate`, `translate`, "
+    "`transform`) in the order written.",
     placed({key("file", ValueType::Path, "",
                 "The OBJ file, relative to the scene file's folder. Blocks naming the same file share "
                 "it: it is read and its BVH built once.")},

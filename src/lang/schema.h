@@ -36,6 +36,8 @@ struct KeySpec {
     bool perfect_square = false;  // whole numbers: must be N * N (samples)
     bool power_of_two = false;    // numbers: must be 2^k (adaptive_cell)
     bool mirror_size = false;     // sizes that may be negative (mirroring): |x| >= kSmallestSize
+    bool placement_step = false;  // scale, rotate, translate, transform of a placed block: each may
+                                  // repeat, and they apply in the order written
     std::string_view meaning;
     const BlockSpec* block = nullptr;       // ValueType::Block: the nested block's table
     std::vector<std::string_view> choices;  // ValueType::Choice: the allowed names

@@ -163,6 +163,10 @@ bool Validator::check_body(const Body& body, const BlockSpec& spec, Span owner, 
             ok = unknown_key(entry, spec, suggested);
             continue;
         }
+        if (key->placement_step) {  // kept in order, as a transform's steps are
+            ok = check_step(entry, *key, spec, fields) && ok;
+            continue;
+        }
         if (fields.has(*key)) {
             Diagnostic* d = diagnostics_.error(file_, entry.key_span, "duplicate key '" + entry.key + "'");
             Diagnostics::note(d, file_, fields.key_span(*key), "'" + entry.key + "' was first set here");
@@ -196,11 +200,16 @@ bool Validator::check_steps(const Body& body, const BlockSpec& spec, Fields& fie
             ok = unknown_key(entry, spec, suggested);
             continue;
         }
-        auto step = std::make_unique<Fields>(spec);
-        step->set(*key, entry.value, entry.key_span);
-        ok = check_value(entry.value, *key, *step) && ok;
-        fields.add_step(std::move(step));
+        ok = check_step(entry, *key, spec, fields) && ok;
     }
+    return ok;
+}
+
+bool Validator::check_step(const Entry& entry, const KeySpec& key, const BlockSpec& spec, Fields& fields) {
+    auto step = std::make_unique<Fields>(spec);
+    step->set(key, entry.value, entry.key_span);
+    const bool ok = check_value(entry.value, key, *step);
+    fields.add_step(std::move(step));
     return ok;
 }
 

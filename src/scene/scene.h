@@ -134,8 +134,7 @@ struct TransformStep {
 };
 
 // Where a shape's own coordinates go in the world: scale, then rotate about the axis, then
-// translate (the block's keys), then the steps of its transform block in the order written.
-// The validator lets a block use the keys or the steps, not both.
+// translate, then the steps in order (a chain the block wrote in another order, and its groups').
 struct Placed {
     dvec3 scale{1.0};                  // a negative factor mirrors
     dvec3 rotate_axis{0.0, 1.0, 0.0};  // unit length

@@ -23,7 +23,8 @@ Json material_json(const SceneDescription& scene, int index) {
                 {"km", vec(m.km)}, {"n", m.n},        {"kt", vec(m.kt)}, {"ior", m.ior}};
 }
 
-// Where a shape is placed: its scale, rotate and translate keys, or its transform's steps.
+// Where a shape is placed: its scale, rotate and translate, or (with steps after them, its
+// groups' or its own) all of it as steps, the three first where they do anything.
 void add_placement(Json& out, const Placed& placed) {
     if (placed.steps.empty()) {
         out["scale"] = vec(placed.scale);
@@ -31,8 +32,14 @@ void add_placement(Json& out, const Placed& placed) {
         out["translate"] = vec(placed.translate);
         return;
     }
+    std::vector<TransformStep> steps;
+    if (placed.scale != dvec3(1.0)) steps.push_back({TransformStep::Kind::Scale, placed.scale, 0});
+    if (placed.rotate_degrees != 0)
+        steps.push_back({TransformStep::Kind::Rotate, placed.rotate_axis, placed.rotate_degrees});
+    if (placed.translate != dvec3(0.0)) steps.push_back({TransformStep::Kind::Translate, placed.translate, 0});
+    steps.insert(steps.end(), placed.steps.begin(), placed.steps.end());
     out["transform"] = Json::array();
-    for (const TransformStep& step : placed.steps) {
+    for (const TransformStep& step : steps) {
         if (step.kind == TransformStep::Kind::Scale) out["transform"].push_back({{"scale", vec(step.vector)}});
         if (step.kind == TransformStep::Kind::Rotate)
             out["transform"].push_back({{"rotate", {{"axis", vec(step.vector)}, {"angle", step.degrees}}}});

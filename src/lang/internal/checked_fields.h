@@ -54,7 +54,8 @@ public:
     }
     // The checked fields of a nested block (written, or else the table's default, shared).
     const Fields& child(std::string_view name) const;
-    // An ordered block's steps (transform), each with its one key, in the order written.
+    // The steps of an ordered block (transform) or of a placed block (its scale, rotate, translate
+    // and transform keys), each with its one key, in the order written.
     void add_step(std::unique_ptr<Fields> step) { steps_.push_back(std::move(step)); }
     const std::vector<std::unique_ptr<Fields>>& steps() const { return steps_; }
 

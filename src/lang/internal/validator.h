@@ -47,6 +47,8 @@ private:
     bool check_block_header(const Block& block, const BlockSpec& spec);
     std::optional<Fields> check_material_block(const Block& block);
     bool check_steps(const Body& body, const BlockSpec& spec, Fields& fields);
+    // One step of an ordered chain (a transform's, or a placed block's own), checked and kept in order.
+    bool check_step(const Entry& entry, const KeySpec& key, const BlockSpec& spec, Fields& fields);
     bool unknown_key(const Entry& entry, const BlockSpec& spec, std::vector<std::string>& suggested);
     bool check_value(const PlainValue& value, const KeySpec& key, Fields& fields);
     bool check_number(double number, Span span, const KeySpec& key);
