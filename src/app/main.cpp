@@ -306,11 +306,6 @@ int render_to_file(const Options& options) {
     return kOk;
 }
 
-// "12 meshes, " ("" for none; the words of kinds a scene need not have).
-std::string count_of(size_t count, const char* kinds) {
-    return count == 0 ? "" : std::to_string(count) + " " + kinds + ", ";
-}
-
 std::string vector_text(const tracer::dvec3& v) {
     char text[96];
     std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g)", v.x, v.y, v.z);
@@ -323,11 +318,7 @@ int check_only(const Options& options) {
     if (!loaded) return exit_code;
     if (options.json_diagnostics) return kOk;  // the JSON line said it
     const tracer::SceneDescription& scene = loaded->scene;
-    std::cout << scene_name(options) << ": ok (" << scene.spheres.size() << " spheres, " << scene.planes.size()
-              << " planes, " << scene.meshes.size() << " meshes, " << count_of(scene.triangles.size(), "triangles")
-              << count_of(scene.quads.size(), "quads") << count_of(scene.boxes.size(), "boxes")
-              << count_of(scene.cones.size(), "cones") << count_of(scene.discs.size(), "discs") << scene.lights.size()
-              << " lights, " << scene.materials.size() << " materials)\n";
+    std::cout << scene_name(options) << ": ok (" << tracer::scene_counts(scene) << ")\n";
     const tracer::RenderSettings& render = scene.render;
     std::cout << "  image: " << render.width << " x " << render.height << " pixels, " << render.samples
               << (render.samples == 1 ? " sample" : " samples") << " per pixel, max depth " << render.max_depth << '\n';

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "render/whitted.h"
 
@@ -46,6 +48,37 @@ std::string trees_cut_note(const RenderStats& stats) {
                   "their ray trees returned black (README, Limits)",
                   (unsigned long long)stats.rays.trees_cut, kMostRaysPerTree);
     return text;
+}
+
+std::string scene_counts(const SceneDescription& scene) {
+    size_t cylinders = 0;
+    for (const Cone& cone : scene.cones) cylinders += cone.base_radius == cone.top_radius;
+    // (count, singular, plural, said even when 0)
+    struct Count {
+        size_t count;
+        const char* one;
+        const char* many;
+        bool always;
+    };
+    const std::vector<Count> counts = {
+        {scene.spheres.size(), "sphere", "spheres", true},
+        {scene.planes.size(), "plane", "planes", true},
+        {scene.meshes.size(), "mesh", "meshes", true},
+        {scene.triangles.size(), "triangle", "triangles", false},
+        {scene.quads.size(), "quad", "quads", false},
+        {scene.boxes.size(), "box", "boxes", false},
+        {cylinders, "cylinder", "cylinders", false},
+        {scene.cones.size() - cylinders, "cone", "cones", false},
+        {scene.discs.size(), "disc", "discs", false},
+        {scene.lights.size(), "light", "lights", true},
+        {scene.materials.size(), "material", "materials", true},
+    };
+    std::string out;
+    for (const Count& c : counts) {
+        if (c.count == 0 && !c.always) continue;
+        out += (out.empty() ? "" : ", ") + std::to_string(c.count) + " " + (c.count == 1 ? c.one : c.many);
+    }
+    return out;
 }
 
 }  // namespace tracer

@@ -13,6 +13,10 @@ namespace tracer {
 std::string render_summary(const std::string& output, const Image& image, const RenderSettings& render,
                            const RenderStats& stats);
 
+// "4 spheres, 1 plane, 0 meshes, 1 cylinder, 2 cones, 2 lights, 5 materials": --check's counts,
+// the kinds every scene is asked about always, the others where there are some.
+std::string scene_counts(const SceneDescription& scene);
+
 // The note printed when camera rays reached the bound of their ray trees, or "" when none did.
 std::string trees_cut_note(const RenderStats& stats);
 

@@ -4,8 +4,11 @@
 #include <climits>
 #include <cstdio>
 #include <ostream>
+#include <set>
 #include <sstream>
+#include <string_view>
 #include <tuple>
+#include <vector>
 
 namespace tracer {
 
@@ -90,19 +93,37 @@ Location Diagnostics::locate(const Sources& sources, Span span) {
 }
 
 // The notes saying where a span's text came from: each loop iteration and include around it.
-// A chain deeper than a screenful (a recursion) shows its innermost and outermost levels.
+// A chain deeper than a screenful shows its innermost and outermost levels; a recursion (a level
+// met twice: the same call, or the same iteration, again) only its innermost and outermost
+// level, and in one line between them how many levels and which functions it left out.
 static void add_context(Diagnostic* diagnostic, const Sources& sources, Span span) {
     if (!diagnostic) return;
-    constexpr size_t kInnermost = 5, kOutermost = 4;
     const auto context = sources.context(span);
+    bool recursion = false;
+    std::set<std::tuple<const SourceFile*, uint32_t, uint32_t, std::string_view>> levels;
+    for (const auto& [at, text] : context)
+        recursion = recursion || !levels.emplace(&sources.file(at), at.begin, at.end, text).second;
+    const size_t innermost = recursion ? 1 : 5, outermost = recursion ? 1 : 4;
     for (size_t i = 0; i < context.size(); ++i) {
         const auto& [at, text] = context[i];
-        if (context.size() <= kInnermost + kOutermost + 1 || i < kInnermost || i >= context.size() - kOutermost) {
+        if (context.size() <= innermost + outermost + 1 || i < innermost || i >= context.size() - outermost) {
             Diagnostics::note(diagnostic, sources, at, text);
-        } else if (i == kInnermost) {
-            const size_t left_out = context.size() - kInnermost - kOutermost;
-            Diagnostics::note(diagnostic, sources, at,
-                              "... and " + std::to_string(left_out) + " more levels of calls and loops ...");
+        } else if (i == innermost) {
+            const size_t left_out = context.size() - innermost - outermost;
+            std::string message = "... and " + std::to_string(left_out) + " more levels of calls and loops";
+            if (recursion) {
+                std::vector<std::string> functions;  // the left-out calls' texts: "in this call of 'f'"
+                for (size_t k = innermost; k < context.size() - outermost && functions.size() < 3; ++k) {
+                    const std::string& call = context[k].second;
+                    if (call.rfind("in this call of ", 0) == 0 &&
+                        std::find(functions.begin(), functions.end(), call.substr(16)) == functions.end())
+                        functions.push_back(call.substr(16));
+                }
+                for (size_t k = 0; k < functions.size(); ++k) message += (k == 0 ? ": calls of " : ", ") + functions[k];
+            }
+            Location whole = Diagnostics::locate(sources, at);
+            whole.line = 0;  // one line: no source shown
+            Diagnostics::note(diagnostic, whole, message + " ...");
         }
     }
 }

@@ -210,7 +210,7 @@ class CommandLine(unittest.TestCase):
         )
         result = run("--check", scene)
         self.assertEqual(result.returncode, 0, result.stderr)
-        self.assertIn("1 meshes, 1 quads, 1 lights", result.stdout)
+        self.assertIn("1 mesh, 1 quad, 1 light", result.stdout)
         self.assertIn(
             "mesh cube.obj (line 3): 12 triangles, 8 vertices, placed within (-2, 0, -1) to (2, 2, 1)", result.stdout
         )
@@ -400,6 +400,11 @@ class CommandLine(unittest.TestCase):
         result = run("--check", TASK2)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("ok (4 spheres, 2 planes, 0 meshes, 2 lights, 5 materials)", result.stdout)
+        # One of a kind in the singular; cylinders (equal radii) apart from cones.
+        result = run("--check", ROOT / "scenes" / "round_shapes.scn")
+        self.assertIn(
+            "ok (0 spheres, 1 plane, 0 meshes, 1 cylinder, 2 cones, 1 disc, 2 lights, 5 materials)", result.stdout
+        )
 
     def test_dump_json_is_resolved(self):
         result = run("--dump-json", TASK2)

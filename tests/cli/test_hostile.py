@@ -501,6 +501,15 @@ class NumbersNeverWrongSilently(Hostile):
         stderr = self.assertError(run("--check", scene), 1, "of stack (about", "before the limit of 10000 calls)")
         self.assertNotIn("(the limit)", stderr)
 
+    def test_a_runaway_recursion_is_told_in_at_most_12_lines(self):
+        # 33 lines of identical call notes came before (innermost five, outermost four).
+        for body in ("return f(n + 1)", "for i in 0..2 { f(n + 1) }"):
+            scene = self.write("deep.scn", CAMERA + "fn f(n) {\n  " + body + "\n}\nlet x = 0\nf(0)\n")
+            stderr = self.assertError(run("--check", scene), 1, "calls nest more than 10000 deep (the limit)")
+            self.assertLessEqual(len(stderr.splitlines()), 12, stderr)
+            self.assertIn("more levels of calls and loops: calls of 'f' ...", stderr)
+            self.assertIn(":6:1: note: in this call of 'f'", stderr)  # the outermost
+
     def test_options_are_used_as_their_check_read_them(self):
         # --samples 4*4 was checked as 16 and rendered as 4 (the text read as an integer).
         dump = run("--dump-json", self.write("s.scn", SMALL_SCENE), "--samples", "4*4")
