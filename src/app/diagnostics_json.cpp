@@ -25,6 +25,13 @@ nlohmann::json load_report_json(const std::string& scene, const LoadReport& repo
         diagnostics.push_back(diagnostic_json(*diagnostic));
     std::ostringstream text;
     report.diagnostics.print(text);
+    nlohmann::json prints = nlohmann::json::array();
+    for (const Diagnostics::Printed& line : report.diagnostics.prints())
+        prints.push_back({{"path", line.location.path},
+                          {"line", line.location.line},
+                          {"column", line.location.column},
+                          {"length", line.location.length},
+                          {"text", line.text}});
     nlohmann::json names = nlohmann::json::array();
     if (report.names)
         for (const DefinedName& defined : *report.names)
@@ -38,6 +45,8 @@ nlohmann::json load_report_json(const std::string& scene, const LoadReport& repo
             {"errors", report.diagnostics.error_count()},
             {"warnings", report.diagnostics.warning_count()},
             {"diagnostics", std::move(diagnostics)},
+            {"prints", std::move(prints)},
+            {"prints_not_kept", report.diagnostics.prints_not_kept()},
             {"text", text.str()},
             {"files_read", report.files_read},
             {"names", std::move(names)}};

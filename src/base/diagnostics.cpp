@@ -254,7 +254,20 @@ std::vector<const Diagnostic*> Diagnostics::in_print_order() const {
     return ordered;
 }
 
+void Diagnostics::printed(Location location, std::string text) {
+    if (prints_.size() >= kMaxPrints) {
+        ++prints_not_kept_;
+        return;
+    }
+    if (text.size() > kLongestMessage) text = text.substr(0, kLongestMessage) + "...";
+    prints_.push_back({std::move(location), std::move(text)});
+}
+
 void Diagnostics::print(std::ostream& out) const {
+    for (const Printed& line : prints_)
+        out << line.location.path << ':' << line.location.line << ':' << line.location.column
+            << ": print: " << line.text << '\n';
+    if (prints_not_kept_ > 0) out << "print: " << prints_not_kept_ << " more lines printed, not shown\n";
     int errors_shown = 0;
     for (const Diagnostic* d : in_print_order()) {
         if (d->severity == Severity::Error && ++errors_shown > kMaxErrors) continue;

@@ -46,6 +46,13 @@ public:
     static constexpr int kMaxErrors = 20;        // shown: the first in file order
     static constexpr int kMaxErrorsFound = 200;  // the search stops here: later stages find earlier lines
     static constexpr int kMaxWarnings = 20;      // more are counted, not kept
+    static constexpr size_t kMaxPrints = 1000;   // a scene's print(...) lines kept; more are counted
+
+    // A line a scene printed (`print(...)`): where, and the text.
+    struct Printed {
+        Location location;
+        std::string text;
+    };
 
     // Resolves `span` in `file` into a printable location.
     static Location locate(const SourceFile& file, Span span);
@@ -81,11 +88,16 @@ public:
     bool saturated() const { return errors_ >= kMaxErrorsFound; }
     const std::deque<Diagnostic>& all() const { return list_; }
 
+    // Keeps a line a scene printed, in the order printed (past kMaxPrints, only counted).
+    void printed(Location location, std::string text);
+    const std::vector<Printed>& prints() const { return prints_; }
+    size_t prints_not_kept() const { return prints_not_kept_; }
+
     // The diagnostics kept, file by file (in the order they first come up), each file in line
     // order whatever stage found them; whole-file messages last within their file.
     std::vector<const Diagnostic*> in_print_order() const;
-    // Prints the diagnostics kept in that order (of the errors, the first kMaxErrors), then
-    // notices of any limit hit.
+    // Prints the lines the scene printed, in their order, then the diagnostics kept in print
+    // order (of the errors, the first kMaxErrors), then notices of any limit hit.
     void print(std::ostream& out) const;
 
 private:
@@ -108,6 +120,8 @@ private:
     std::map<Place, FirstAt> first_at_;
     int errors_ = 0;
     int warnings_ = 0;
+    std::vector<Printed> prints_;
+    size_t prints_not_kept_ = 0;
 };
 
 // `text` in single quotes for a message: at most 40 characters (then "..."), control bytes

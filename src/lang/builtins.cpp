@@ -52,6 +52,14 @@ RuntimeValue sqrt_of(const BuiltinArguments& args) {
     return RuntimeValue::number(std::sqrt(x));
 }
 
+RuntimeValue str_of(const BuiltinArguments& args) {
+    std::string text = value_text(args[0]);
+    if (text.size() > kMaxStringBytes)
+        throw BuiltinError{args.span(0), "its text would be longer than " + format_number(double(kMaxStringBytes)) +
+                                             " characters (the limit)"};
+    return RuntimeValue::string(std::move(text));
+}
+
 RuntimeValue mod_of(const BuiltinArguments& args) {
     const double a = args.number(0), b = args.number(1);
     if (b == 0) throw BuiltinError{args.span(1), "mod by zero"};
@@ -191,6 +199,10 @@ const std::vector<Builtin>& all_builtins() {
          "random(seed, i): a number in [0, 1), the same for the same two numbers on every machine, "
          "unrelated for different ones (SplitMix64 of their bits; see grammar/README.md).",
          random_of},
+        {"str", 1,
+         "The value as text: numbers in the shortest form that reads back exactly (0.1, 1e-30), "
+         "vectors (1, 2, 3), lists [1, \"a\"], booleans true and false; a string as it is.",
+         str_of},
         {"len", 1, "The number of values in a list.",
          [](Args args) { return RuntimeValue::number(double(args.list(0).size())); }},
     };

@@ -96,6 +96,21 @@ void Compiler::open_scope() {
 
 void Compiler::close_scope() {
     FunctionLevel& level = functions_.back();
+    // A `let` never read that hides a name of the blocks around it: most often meant to change
+    // that name (`let total = total + i` in a loop leaves the outer total as it was).
+    for (const auto& [name, info] : level.scopes.back()) {
+        if (!info.from_let || info.read || info.assigned) continue;
+        for (size_t s = level.scopes.size() - 1; s-- > 0;) {
+            const auto outer = level.scopes[s].find(name);
+            if (outer == level.scopes[s].end()) continue;
+            Diagnostic* d = diagnostics_.warning(
+                sources_, info.defined_at,
+                "this makes a new '" + name + "' inside these braces, and nothing reads it; the outer '" + name +
+                    "' is not changed: to change it, write '" + name + " = ...' (without 'let')");
+            Diagnostics::note(d, sources_, outer->second.defined_at, "the outer '" + name + "' is defined here");
+            break;
+        }
+    }
     level.next_slot -= uint32_t(level.scopes.back().size());  // the scope's slots are free again
     level.scopes.pop_back();
 }
@@ -124,8 +139,29 @@ uint32_t Compiler::bind(const std::string& name, Span defined_at, std::string_vi
     }
     const uint32_t slot = level.next_slot++;
     level.most_slots = std::max(level.most_slots, level.next_slot);
-    scope.emplace(name, NameInfo{slot, defined_at});
+    scope.emplace(name, NameInfo{slot, defined_at, kind == "let"});
     return slot;
+}
+
+// The slot an assignment `name = value` writes: the name's, defined before in this function (or
+// at the file's level, outside functions). Throws CompileError (reported) otherwise.
+uint32_t Compiler::assigned_slot(const Statement& statement) {
+    const std::string& name = statement.name;
+    FunctionLevel& here = functions_.back();
+    for (size_t s = here.scopes.size(); s-- > 0;) {
+        auto found = here.scopes[s].find(name);
+        if (found == here.scopes[s].end()) continue;
+        found->second.assigned = true;
+        return found->second.slot;
+    }
+    ExprCode outer;
+    if (functions_.size() > 1 && resolve(name, functions_.size() - 2, statement.name_span, outer))
+        fail(statement.name_span, "'" + name +
+                                      "' is defined outside this function, which sees it as it was when the function "
+                                      "was defined and cannot change it; return a value instead");
+    fail(statement.name_span, "'" + name + "' is not defined yet: 'let " + name +
+                                  " = ...' defines it, and 'name = ...' changes a name defined before" +
+                                  did_you_mean(name, names_in_scope()));
 }
 
 // The node that reads `name` from the code at `level`: a slot of its frame, a global, the
@@ -135,6 +171,7 @@ bool Compiler::resolve(const std::string& name, size_t level, Span span, ExprCod
     for (size_t s = here.scopes.size(); s-- > 0;) {
         auto found = here.scopes[s].find(name);
         if (found == here.scopes[s].end()) continue;
+        found->second.read = true;
         out = leaf(level == 0 && s == 0 ? ExprCode::Op::Global : ExprCode::Op::Local, span, found->second.slot);
         return true;
     }
@@ -147,12 +184,10 @@ bool Compiler::resolve(const std::string& name, size_t level, Span span, ExprCod
         out = leaf(ExprCode::Op::Capture, span, known->second);
         return true;
     }
+    // The file's own names too are captured (not read when called): a function sees every name
+    // as it was when the function was defined, whatever assignments come after.
     ExprCode outer;
     if (!resolve(name, level - 1, span, outer)) return false;
-    if (outer.op == ExprCode::Op::Global) {
-        out = std::move(outer);
-        return true;
-    }
     const uint32_t index = uint32_t(here.code->captures.size());
     here.code->captures.push_back(std::move(outer));
     here.capture_index.emplace(name, index);
@@ -166,6 +201,46 @@ std::vector<std::string_view> Compiler::names_in_scope() const {
         for (const Scope& scope : level.scopes)
             for (const auto& [name, info] : scope) names.push_back(name);
     return names;
+}
+
+// A call of `print` (unless the scene defines a name print of its own).
+bool Compiler::is_print(const Expr& call) {
+    ExprCode ignored;
+    return call.kind == Expr::Kind::Call && call.text == "print" &&
+           !resolve("print", functions_.size() - 1, call.span, ignored);
+}
+
+// A call on a line of its own: print(...), or a function run for the blocks it makes. False if
+// it is refused (reported).
+bool Compiler::compile_call_statement(const Statement& statement, StatementCode& step) {
+    if (is_print(statement.value)) {
+        step.op = StatementCode::Op::Print;
+        step.value = leaf(ExprCode::Op::List, statement.value.span);
+        for (const Expr& argument : statement.value.operands)
+            step.value.operands.push_back(compile_or_broken(argument));
+        return true;
+    }
+    step.op = StatementCode::Op::Call;
+    try {
+        step.value = compile_expression(statement.value);
+        if (step.value.op == ExprCode::Op::Builtin)
+            fail(statement.value.span, "'" + statement.value.text +
+                                           "' is a built-in function: it gives a value and makes no blocks; use its "
+                                           "value, as in 'let x = " +
+                                           statement.value.text + "(...)'");
+    } catch (const CompileError&) {
+        return false;
+    }
+    return true;
+}
+
+// `expr` compiled, or (its error reported) a broken value, whose uses are not errors too.
+ExprCode Compiler::compile_or_broken(const Expr& expr) {
+    try {
+        return compile_expression(expr);
+    } catch (const CompileError&) {
+        return constant(RuntimeValue::broken(), expr.span);
+    }
 }
 
 void Compiler::compile_statement(const Statement& statement, std::vector<StatementCode>& out) {
@@ -188,23 +263,31 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Stateme
         case Statement::Kind::Let:
         case Statement::Kind::Param: {
             step.op = statement.kind == Statement::Kind::Let ? StatementCode::Op::Let : StatementCode::Op::Param;
-            try {
-                step.value = compile_expression(statement.value);
-            } catch (const CompileError&) {
-                step.value = constant(RuntimeValue::broken(), statement.value.span);  // uses are not errors too
-            }
+            step.value = compile_or_broken(statement.value);
             step.slot = bind(statement.name, statement.name_span, step.op == StatementCode::Op::Let ? "let" : "param");
             if (step.op == StatementCode::Op::Param) parameters_.emplace_back(statement.name, step.slot);
             break;
         }
+        case Statement::Kind::Assign:
+            step.op = StatementCode::Op::Let;
+            try {
+                step.value = compile_expression(statement.value);
+                step.slot = assigned_slot(statement);
+            } catch (const CompileError&) {
+                return;
+            }
+            break;
+        case Statement::Kind::While:
+            step.op = StatementCode::Op::While;
+            step.value = compile_or_broken(statement.value);
+            ++loops_;
+            compile_scoped(statement.statements, step.steps);
+            --loops_;
+            break;
         case Statement::Kind::For: return compile_loop(statement, out);
         case Statement::Kind::If: {
             step.op = StatementCode::Op::If;
-            try {
-                step.value = compile_expression(statement.value);
-            } catch (const CompileError&) {
-                step.value = constant(RuntimeValue::broken(), statement.value.span);
-            }
+            step.value = compile_or_broken(statement.value);
             compile_scoped(statement.statements, step.steps);
             compile_scoped(statement.otherwise, step.otherwise);
             break;
@@ -213,26 +296,10 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Stateme
         case Statement::Kind::Return:
             step.op = StatementCode::Op::Return;
             step.has_value = statement.has_value;
-            if (step.has_value) {
-                try {
-                    step.value = compile_expression(statement.value);
-                } catch (const CompileError&) {
-                    step.value = constant(RuntimeValue::broken(), statement.value.span);
-                }
-            }
+            if (step.has_value) step.value = compile_or_broken(statement.value);
             break;
         case Statement::Kind::Call:
-            step.op = StatementCode::Op::Call;
-            try {
-                step.value = compile_expression(statement.value);
-                if (step.value.op == ExprCode::Op::Builtin)
-                    fail(statement.value.span, "'" + statement.value.text +
-                                                   "' is a built-in function: it gives a value and makes no "
-                                                   "blocks; use its value, as in 'let x = " +
-                                                   statement.value.text + "(...)'");
-            } catch (const CompileError&) {
-                return;
-            }
+            if (!compile_call_statement(statement, step)) return;
             break;
         case Statement::Kind::Group: {
             step.op = StatementCode::Op::Group;
@@ -370,9 +437,17 @@ std::shared_ptr<CompiledBody> Compiler::compile_body(const BodyCode& code, const
             out.body = compile_body(*entry.value.body, entry.key, nested, failed);
         } else {
             try {
+                // A path is any expression of a string (`dir + "/x.obj"`, a name, a call); a word,
+                // a dotted one or a division (`file bunny.obj`, `file meshes/a.obj`) was meant as
+                // a path in quotes.
                 ExprCode named;
-                if (key && key->type == ValueType::Path && entry.value.kind != Expr::Kind::String &&
-                    !(entry.value.kind == Expr::Kind::Name &&
+                const Expr::Kind value_kind = entry.value.kind;
+                const bool may_be_string = value_kind == Expr::Kind::String ||
+                                           (value_kind == Expr::Kind::Binary && entry.value.op == '+') ||
+                                           value_kind == Expr::Kind::Call || value_kind == Expr::Kind::Conditional ||
+                                           value_kind == Expr::Kind::Index;
+                if (key && key->type == ValueType::Path && !may_be_string &&
+                    !(value_kind == Expr::Kind::Name &&
                       resolve(entry.value.text, functions_.size() - 1, entry.value.span, named)))
                     fail(entry.value.span,
                          path_expected(entry.key, sources_.file(entry.value.span).slice(entry.value.span)));

@@ -117,6 +117,8 @@ ExprCode Compiler::compile_call(const Expr& expr) {
         return node;
     }
     const Builtin* function = find_builtin(expr.text);
+    if (!function && expr.text == "print")
+        fail(name_span, "'print(...)' is a statement on its own: it writes its values out and gives none");
     if (!function && (expr.text == "translate" || expr.text == "scale" || expr.text == "rotate"))
         fail(name_span, in_quotes(expr.text) +
                             " here is read as a call of a function, and there is none of that name: as a "

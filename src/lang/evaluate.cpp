@@ -194,6 +194,8 @@ RuntimeValue Interpreter::arithmetic(char operation, const RuntimeValue& a, cons
         return RuntimeValue::number(result);
     }
     const std::string op = std::string("'") + operation + "'";
+    if (a.kind == RuntimeValue::Kind::String || b.kind == RuntimeValue::Kind::String)
+        return join(operation, a, b, a_span, b_span, span);
     for (const auto& [operand, where] : {std::pair{&a, a_span}, std::pair{&b, b_span}}) {
         if (operand->kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
         if (!operand->is_number() && !operand->is_vector())
@@ -219,6 +221,23 @@ RuntimeValue Interpreter::arithmetic(char operation, const RuntimeValue& a, cons
     if (operation == '/' && scalar == 0) fail(b_span, "division by zero");
     for (double c : vector.components()) out.push_back(operation == '*' ? c * scalar : c / scalar);
     return finite(RuntimeValue::vector(out), span);
+}
+
+// a + b where one is a string: the two strings joined, or an error that says how to write it.
+RuntimeValue Interpreter::join(char operation, const RuntimeValue& a, const RuntimeValue& b, Span a_span, Span b_span,
+                               Span span) {
+    if (a.kind == RuntimeValue::Kind::Broken || b.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
+    if (operation != '+')
+        fail(span, std::string("'") + operation + "' does not apply to strings; '+' joins two strings");
+    for (const auto& [operand, where] : {std::pair{&a, a_span}, std::pair{&b, b_span}}) {
+        if (operand->kind != RuntimeValue::Kind::String)
+            fail(where, "'+' joins a string only to a string; this is " + runtime_kind(*operand) +
+                            ": write str(...) around it to make it one");
+    }
+    if (a.text().size() + b.text().size() > kMaxStringBytes)
+        fail(span,
+             "this string would be longer than " + format_number(double(kMaxStringBytes)) + " characters (the limit)");
+    return RuntimeValue::string(a.text() + b.text());
 }
 
 RuntimeValue Interpreter::evaluate_compare(const ExprCode& node) {
@@ -358,8 +377,12 @@ bool Interpreter::entry_value(const CompiledEntry& entry, PlainValue& out) {
         return true;
     }
     const RuntimeValue value = evaluate(node);
-    if (key && key->type == ValueType::Path && value.kind != RuntimeValue::Kind::String)
-        fail(node.span, path_expected(entry.key, sources_.file(node.span).slice(node.span)));
+    if (key && key->type == ValueType::Path && value.kind != RuntimeValue::Kind::String) {
+        if (value.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
+        if (node.op == ExprCode::Op::Constant)
+            fail(node.span, path_expected(entry.key, sources_.file(node.span).slice(node.span)));
+        fail(node.span, "'" + entry.key + "' expects a string (a file path); this is " + runtime_kind(value));
+    }
     if (plain_value(value, out.span, out)) {
         // Written as (a, b, c): each component points at its own expression.
         if (node.op == ExprCode::Op::Vector && node.operands.size() == out.components.size())

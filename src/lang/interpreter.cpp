@@ -145,6 +145,11 @@ Interpreter::Flow Interpreter::run_step(const StatementCode& step) {
         case StatementCode::Op::Param: run_binding(step); break;
         case StatementCode::Op::Range: return run_range(step);
         case StatementCode::Op::Each: return run_each(step);
+        case StatementCode::Op::While:
+            // Each pass counts as a loop iteration: a condition that stays true meets the limit.
+            while (count_iteration(step) && condition(step.value))
+                if (run_steps(step.steps) == Flow::Return) return Flow::Return;
+            break;
         case StatementCode::Op::If: return run_steps(condition(step.value) ? step.steps : step.otherwise);
         case StatementCode::Op::Function: {
             auto function = std::make_shared<FunctionObject>();
@@ -163,6 +168,13 @@ Interpreter::Flow Interpreter::run_step(const StatementCode& step) {
             returned_value_ = step.has_value;  // after the value: computing it may call and return
             return Flow::Return;
         case StatementCode::Op::Call: call(step.value, false); break;
+        case StatementCode::Op::Print: {
+            const RuntimeValue values = evaluate(step.value);
+            std::string text;
+            for (const RuntimeValue& value : values.items()) text += (text.empty() ? "" : " ") + value_text(value);
+            diagnostics_.printed(Diagnostics::locate(sources_, at(step.keyword)), std::move(text));
+            break;
+        }
         case StatementCode::Op::Group: {
             bool failed = false;
             auto group = std::make_shared<Group>();

@@ -7,7 +7,7 @@ namespace tracer {
 
 bool is_statement_keyword(std::string_view word) {
     return word == "let" || word == "param" || word == "for" || word == "include" || word == "if" || word == "fn" ||
-           word == "return" || word == "group";
+           word == "return" || word == "group" || word == "while";
 }
 
 bool is_placement_key(std::string_view word) {

@@ -58,6 +58,8 @@ void Parser::parse_statement(std::vector<Statement>& out) {
     if (word == "let" && at(TokenKind::Identifier, 1)) return parse_binding(out, Statement::Kind::Let);
     if (word == "param" && at(TokenKind::Identifier, 1)) return parse_binding(out, Statement::Kind::Param);
     if (word == "for" && at(TokenKind::Identifier, 1)) return parse_loop(out);
+    if (word == "while") return parse_while(out);
+    if (!is_statement_keyword(word) && at(TokenKind::Equals, 1)) return parse_assignment(out);
     if (word == "include" && at(TokenKind::String, 1)) return parse_include(out);
     if (word == "fn" && at(TokenKind::Identifier, 1)) return parse_function(out);
     if (word == "if") return parse_if(out);
@@ -82,6 +84,40 @@ void Parser::parse_statement(std::vector<Statement>& out) {
         return;
     }
     parse_block(out);
+}
+
+// assignment = identifier "=" expression ;
+void Parser::parse_assignment(std::vector<Statement>& out) {
+    Statement statement;
+    statement.kind = Statement::Kind::Assign;
+    const Token name = take();
+    statement.keyword = name.span;
+    statement.name = std::string(name.text);
+    statement.name_span = name.span;
+    parse_guarded(out, std::move(statement), [&](Statement& assignment) {
+        take();  // '='
+        assignment.value = parse_expression();
+    });
+}
+
+// while = "while" expression "{" { statement } "}" ;
+void Parser::parse_while(std::vector<Statement>& out) {
+    Statement loop;
+    loop.kind = Statement::Kind::While;
+    loop.keyword = take().span;
+    open_.clear();
+    Span open_brace;
+    try {
+        loop.value = parse_expression();
+        if (at(TokenKind::Equals)) fail(peek(), "'=' gives a name its value; to compare two values write '=='");
+        open_brace = expect(TokenKind::LBrace, "'{' after the condition").span;
+    } catch (const SyntaxError&) {
+        skip_broken_header(loop.keyword);
+        return;
+    } catch (const UnclosedBlock&) {
+        return;
+    }
+    if (parse_braced_statements(loop, loop.statements, open_brace, "'while' loop")) out.push_back(std::move(loop));
 }
 
 // let = "let" identifier "=" expression ;   param = "param" identifier "=" expression ;

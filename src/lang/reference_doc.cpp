@@ -44,16 +44,26 @@ struct StatementSpec {
 const StatementSpec kStatements[] = {
     {"let", "let NAME = value",
      "names a value: a number, vector, boolean, string, list, `material { ... }` or `transform { ... }`"},
+    {"", "NAME = value",
+     "gives a name defined before (by `let`, in this function or outside all functions) a new value; `let` "
+     "inside braces would make a new name there instead"},
     {"param", "param NAME = value", "a `let` that `-D NAME=VALUE` on the command line may change (top level only)"},
     {"for", "for NAME in A..B { ... }", "runs its statements for NAME = A, A + 1, ..., B - 1"},
     {"for", "for NAME in LIST { ... }", "runs its statements for each value of the list, in order"},
+    {"while", "while CONDITION { ... }",
+     "runs its statements again and again while the condition is true (each pass counts as a loop iteration)"},
     {"if", "if CONDITION { ... } else { ... }",
      "runs the first statements if the condition is true, else the others (`else` and its braces may be left "
      "out; `else if` chains)"},
     {"fn", "fn NAME(A, B) { ... }", "defines a function; `return VALUE` ends it with a value"},
     {"", "NAME(a, b)", "calls a function for the blocks it makes"},
+    {"print", "print(a, b, ...)",
+     "writes the values as `str` does, separated by spaces, with this file, line and column, to standard error "
+     "(and into `--diagnostics json` and the language server), in the order the scene runs; the first 1,000 "
+     "lines, the rest counted"},
     {"group", "group { translate ... rotate ... scale ... transform ... statements }",
-     "places every block made inside by its placement (written first; nested groups compose)"},
+     "places every block made inside by its placement steps, in the order written (written first; nested groups "
+     "compose)"},
     {"include", "include \"file.scn\"", "runs another file in place (path relative to this file)"},
 };
 

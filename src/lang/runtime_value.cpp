@@ -1,6 +1,8 @@
 #include "lang/internal/runtime_value.h"
 
 #include <algorithm>
+#include <charconv>
+#include <string>
 
 namespace tracer {
 
@@ -43,6 +45,54 @@ RuntimeValue RuntimeValue::list(std::vector<RuntimeValue> items) {
 std::span<const double> RuntimeValue::components() const {
     if (object) return static_cast<const WideVectorObject&>(*object).components;
     return {x, size};
+}
+
+namespace {
+
+void append_text(const RuntimeValue& value, bool quoted, std::string& out) {
+    if (out.size() > kMaxStringBytes) return;
+    auto number = [&](double x) {
+        char text[32];
+        const auto end = std::to_chars(text, text + sizeof text, x == 0 ? 0.0 : x).ptr;  // -0 as 0
+        out.append(text, end);
+    };
+    switch (value.kind) {
+        case RuntimeValue::Kind::Number: number(value.x[0]); return;
+        case RuntimeValue::Kind::Bool: out += value.x[0] != 0 ? "true" : "false"; return;
+        case RuntimeValue::Kind::Vector: {
+            const auto components = value.components();
+            out += '(';
+            for (size_t i = 0; i < components.size(); ++i) {
+                if (i > 0) out += ", ";
+                number(components[i]);
+            }
+            out += ')';
+            return;
+        }
+        case RuntimeValue::Kind::String:
+            if (quoted) out += '"';
+            out += value.text();
+            if (quoted) out += '"';
+            return;
+        case RuntimeValue::Kind::List: {
+            out += '[';
+            for (size_t i = 0; i < value.items().size() && out.size() <= kMaxStringBytes; ++i) {
+                if (i > 0) out += ", ";
+                append_text(value.items()[i], true, out);
+            }
+            out += ']';
+            return;
+        }
+        default: out += runtime_kind(value);
+    }
+}
+
+}  // namespace
+
+std::string value_text(const RuntimeValue& value) {
+    std::string out;
+    append_text(value, false, out);
+    return out;
 }
 
 std::string runtime_kind(const RuntimeValue& value) {

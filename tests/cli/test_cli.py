@@ -396,6 +396,61 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(result.stdout.split("\n")[:2], ["tracer 130", "helper 0"], result.stderr)
         self.assertFalse((self.tmp / "out.png").exists())
 
+    def test_names_change_by_assignment_and_while_loops(self):
+        # `total = total + i` changes the outer name (a `let` there made a new one, silently);
+        # `while` runs under the loop limit; a function keeps the values it was defined with.
+        scene = self.tmp / "change.scn"
+        scene.write_text(
+            "camera { eye (0, 0, 10) lookat (0, 0, 0) }\nlight { position (0, 5, 5) }\n"
+            "let total = 0\nfor i in 0..5 { total = total + i }\n"
+            "let n = 0\nwhile n < 3 { n = n + 1 }\n"
+            "fn seen() { return total }\ntotal = total + 100\n"
+            "sphere { center (n, seen(), total) radius 1 material { kd 1 } }\n"
+        )
+        result = run("--dump-json", scene)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(json.loads(result.stdout)["spheres"][0]["center"], [3.0, 10.0, 110.0])
+        forever = self.tmp / "forever.scn"
+        forever.write_text("camera { eye (0, 0, 10) lookat (0, 0, 0) }\nlet n = 0\nwhile true { n = n + 1 }\n")
+        result = run("--check", forever)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(
+            "forever.scn:3:1: error: the scene runs more than 10000000 loop iterations (the limit)", result.stderr
+        )
+
+    def test_strings_join_str_reads_back_and_print_writes_in_order(self):
+        # str(x) writes the shortest text that reads back as x exactly; print writes each line
+        # where and when it runs, on stderr and in --diagnostics json.
+        rng = __import__("random").Random(53)
+        numbers = [0.1, 1 / 3, 1e-30, 5e-324, 1.7976931348623157e308, -2.5, 100000.0, 123456789012345680.0]
+        numbers += [rng.uniform(-1, 1) * 10 ** rng.randint(-300, 300) for _ in range(200)]
+        scene = self.tmp / "strings.scn"
+        lines = [f"print(str({x!r}))" for x in numbers]
+        scene.write_text(
+            "camera { eye (0, 0, 10) lookat (0, 0, 0) }\nlight { position (0, 5, 5) }\n"
+            'let name = "a" + "/" + str(2) + ".obj"\n'
+            + "\n".join(lines)
+            + '\nfor i in 0..2 { print("i is", i, (i, 0, 1), [i, "x", true]) }\nprint(name)\n'
+        )
+        result = run("--check", scene)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        printed = [line.split(": print: ", 1) for line in result.stderr.splitlines() if ": print: " in line]
+        self.assertEqual([float(text) for _, text in printed[: len(numbers)]], numbers)
+        self.assertEqual(printed[len(numbers)][0], f"{scene}:{len(numbers) + 4}:17")
+        self.assertEqual(
+            [text for _, text in printed[len(numbers) :]],
+            ['i is 0 (0, 0, 1) [0, "x", true]', 'i is 1 (1, 0, 1) [1, "x", true]', "a/2.obj"],
+        )
+        report = json.loads(run("--check", scene, "--diagnostics", "json").stdout.splitlines()[0])
+        self.assertEqual(report["prints"][-1]["text"], "a/2.obj")
+        self.assertEqual(report["prints"][-1]["line"], len(numbers) + 5)
+        # A loop that prints a million lines keeps the first thousand and counts the rest.
+        loud = self.tmp / "loud.scn"
+        loud.write_text("camera { eye (0, 0, 10) lookat (0, 0, 0) }\nfor i in 0..1000000 { print(i) }\n")
+        result = run("--check", loud)
+        self.assertEqual(result.stderr.count(": print: "), 1000)
+        self.assertIn("print: 999000 more lines printed, not shown", result.stderr)
+
     def test_check_reports_ok_on_stdout(self):
         result = run("--check", TASK2)
         self.assertEqual(result.returncode, 0, result.stderr)

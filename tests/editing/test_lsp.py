@@ -129,6 +129,13 @@ def test_diagnostics_follow_the_text_as_it_is_typed(client, tmp_path):
     assert client.diagnostics(uri) == []
 
 
+def test_print_lines_are_shown_where_they_are_printed(client, tmp_path):
+    uri = open_document(client, tmp_path, SCENE + 'print("r is", r)\n')
+    found = client.diagnostics(uri)
+    assert [d["message"] for d in found] == ["print: r is 0.5"]
+    assert found[0]["severity"] == 3 and found[0]["range"]["start"]["line"] == SCENE.count("\n")
+
+
 def test_an_error_in_an_included_file_is_published_for_that_file(client, tmp_path):
     (tmp_path / "lib.scn").write_text("let q = sqrt(-1)\n")
     uri = open_document(client, tmp_path, 'include "lib.scn"\n' + SCENE)

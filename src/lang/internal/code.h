@@ -96,14 +96,16 @@ struct FunctionCode {
 struct StatementCode {
     enum class Op : uint8_t {
         Block,     // kind [name] { body }: a block made
-        Let,       // slot `slot` = value
+        Let,       // slot `slot` = value (a let, or an assignment to a name of this level)
         Param,     // global slot `slot` = value, or the command line's -D value for `name`
         Range,     // for slot `slot` in value..end { steps }
         Each,      // for slot `slot` in value (a list) { steps }
+        While,     // while value { steps }
         If,        // if value { steps } else { otherwise }
         Function,  // slot `slot` = the function `function`, with its captures taken now
         Return,    // return value (`has_value`) from the running function
         Call,      // value (a call) run for the blocks it makes
+        Print,     // print(a, b, ...): value, a list of them, written out
         Group,     // group { body (its placement) steps }
         Include,   // the file `word` (origin `origin`), compiled in place: steps
     };

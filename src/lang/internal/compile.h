@@ -57,6 +57,9 @@ private:
     struct NameInfo {
         uint32_t slot = 0;
         Span defined_at;
+        bool from_let = false;  // defined by a `let` (not a loop, a parameter or a function)
+        bool read = false;      // some expression reads it
+        bool assigned = false;  // some assignment changes it
     };
     using Scope = std::unordered_map<std::string, NameInfo>;
     // The code being compiled at one level: the top level, or a function's body.
@@ -81,6 +84,9 @@ private:
     // Expressions.
     ExprCode compile_expression(const Expr& expr, bool top = false, bool word_key = false);
     ExprCode compile_arithmetic(const Expr& expr);
+    ExprCode compile_or_broken(const Expr& expr);
+    bool is_print(const Expr& call);
+    bool compile_call_statement(const Statement& statement, StatementCode& step);
     ExprCode compile_name(const Expr& expr, bool top, bool word_key);
     ExprCode compile_call(const Expr& expr);
     [[noreturn]] void fail(Span span, std::string message);
@@ -88,6 +94,7 @@ private:
     // Names.
     bool resolve(const std::string& name, size_t level, Span span, ExprCode& out);
     uint32_t bind(const std::string& name, Span defined_at, std::string_view kind);
+    uint32_t assigned_slot(const Statement& statement);
     void record(const std::string& name, Span defined_at, std::string_view kind);
     void open_scope();
     void close_scope();

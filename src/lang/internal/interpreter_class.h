@@ -65,6 +65,8 @@ private:
     RuntimeValue evaluate_arithmetic(const ExprCode& node);
     RuntimeValue arithmetic(char operation, const RuntimeValue& a, const RuntimeValue& b, Span a_span, Span b_span,
                             Span span);
+    RuntimeValue join(char operation, const RuntimeValue& a, const RuntimeValue& b, Span a_span, Span b_span,
+                      Span span);
     [[gnu::noinline]] RuntimeValue evaluate_compare(const ExprCode& node);
     bool condition(const ExprCode& node);
     [[gnu::noinline]] RuntimeValue evaluate_builtin(const ExprCode& node);

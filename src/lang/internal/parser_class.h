@@ -67,6 +67,8 @@ private:
     template <class Parse>
     void parse_guarded(std::vector<Statement>& out, Statement statement, Parse parse);
     void parse_loop(std::vector<Statement>& out);
+    void parse_while(std::vector<Statement>& out);
+    void parse_assignment(std::vector<Statement>& out);
     void parse_if(std::vector<Statement>& out);
     void parse_function(std::vector<Statement>& out);
     void parse_return(std::vector<Statement>& out);

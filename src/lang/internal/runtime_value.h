@@ -87,6 +87,16 @@ struct RuntimeValue {
 
 // What a value is, for messages: "a number", "a vector of 3 numbers", "a list of 4 values".
 std::string runtime_kind(const RuntimeValue& value);
+// The longest string a scene may make (joined or from str): longer is an error, not a memory
+// blow-up from a loop that doubles one.
+constexpr size_t kMaxStringBytes = 1'000'000;
+
+// A value as `str` and `print` write it: numbers in the shortest form that reads back exactly
+// (0.1, 1e-30, 3), vectors (1, 2, 3), lists [1, "a"], strings as they are (quoted inside a
+// list), booleans true and false, other kinds as their kind ("a material"). Stops once it is
+// longer than kMaxStringBytes (the caller then refuses it).
+std::string value_text(const RuntimeValue& value);
+
 // True if the two values are equal: the same kind and equal numbers, components or texts (lists,
 // blocks and functions: the same one; the language does not compare them).
 bool equal_values(const RuntimeValue& a, const RuntimeValue& b);

@@ -71,6 +71,8 @@ struct Statement {
     enum class Kind {
         Block,     // kind [name] { entries }
         Let,       // let name = value
+        Assign,    // name = value (a name already defined, in the same function or file level)
+        While,     // while value { statements }
         Param,     // param name = value (the command line may set it: -D name=value)
         For,       // for name in value..end { statements }, or for name in value { statements } (a list)
         If,        // if value { statements } else { otherwise }
@@ -87,11 +89,12 @@ struct Statement {
     Span name_span;       // Include: the path's span
     BodyCode body;        // Block
     bool broken = false;  // Block: a syntax error was reported inside; do not validate further
-    Expr value;           // Let, Param, Return, Call: the value; For: the first number or the list; If: the condition
-    Expr end;             // For: the end of the range (not included)
+    Expr value;  // Let, Param, Assign, Return, Call: the value; For: the first number or the list; If, While: the
+                 // condition
+    Expr end;    // For: the end of the range (not included)
     bool over_list = false;                                // For: over the elements of a list (no end)
     bool has_value = false;                                // Return: a value is returned
-    std::vector<Statement> statements;                     // For, If, Function, Group: the body
+    std::vector<Statement> statements;                     // For, While, If, Function, Group: the body
     std::vector<Statement> otherwise;                      // If: the else branch (an else-if is one If statement in it)
     std::vector<std::pair<std::string, Span>> parameters;  // Function
     Span end_brace;                                        // For, If, Function, Group: the closing '}'

@@ -30,6 +30,8 @@ CHECK_TIMEOUT = 30.0
 MAX_UNOPENED_BYTES = 16 << 20
 # Completion offers at most this many items at once (marked incomplete past it).
 MAX_COMPLETIONS = 1000
+MAX_PRINTS_SHOWN = 100  # of a scene's print(...) lines, as information at their place
+
 SEVERITY = {
     "error": types.DiagnosticSeverity.Error,
     "warning": types.DiagnosticSeverity.Warning,
@@ -139,6 +141,16 @@ class TracerServer(LanguageServer):
         for found in report["diagnostics"]:
             target = uri if found["path"] == path else path_to_uri(found["path"])
             by_uri.setdefault(target, []).append(self.lsp_diagnostic(found))
+        for line in report.get("prints", [])[:MAX_PRINTS_SHOWN]:  # what print(...) wrote, at its line
+            target = uri if line["path"] == path else path_to_uri(line["path"])
+            by_uri.setdefault(target, []).append(
+                types.Diagnostic(
+                    range=self.lsp_range(line),
+                    message="print: " + line["text"],
+                    source="tracer",
+                    severity=types.DiagnosticSeverity.Information,
+                )
+            )
         for target in self.published.get(uri, set()) - set(by_uri):
             by_uri[target] = []  # cleared
         self.published[uri] = {target for target, items in by_uri.items() if items}
