@@ -156,6 +156,7 @@ Token Lexer::next() {
                              : bad.text == "^" ? "; for a to the power b write pow(a, b)"
                              : bad.text == "&" ? "; for both conditions write 'and'"
                              : bad.text == "|" ? "; for either condition write 'or'"
+                             : bad.text == "?" ? "; a value chosen by a condition is if CONDITION { A } else { B }"
                                                : "";
     report(bad.span, "unexpected character " + in_quotes(bad.text) + hint);
     return bad;
@@ -230,9 +231,15 @@ Token Lexer::lex_number(uint32_t begin) {
 // Other scene languages' directives, written out of habit, are comments here: say so once each.
 void Lexer::warn_about_directive(uint32_t begin) {
     static const std::pair<std::string_view, std::string_view> kHints[] = {
-        {"#include", "write include \"file.scn\""},   {"#declare", "write let NAME = value"},
-        {"#local", "write let NAME = value"},         {"#for", "write for NAME in A..B { ... }"},
-        {"#while", "write for NAME in A..B { ... }"}, {"#if", "tracer has no conditionals"},
+        {"#include", "write include \"file.scn\""},
+        {"#declare", "write let NAME = value"},
+        {"#local", "write let NAME = value"},
+        {"#for", "write for NAME in A..B { ... }"},
+        {"#while", "write while CONDITION { ... }"},
+        {"#if", "write if CONDITION { ... } else { ... }"},
+        {"#else", "write if CONDITION { ... } else { ... }"},
+        {"#debug", "write print(...)"},
+        {"#macro", "write fn NAME(A, B) { ... }"},
     };
     const std::string_view rest = text_.substr(begin);
     for (const auto& [directive, instead] : kHints) {

@@ -10,6 +10,10 @@ bool is_statement_keyword(std::string_view word) {
            word == "return" || word == "group" || word == "while";
 }
 
+bool is_povray_csg(std::string_view word) {
+    return word == "union" || word == "merge" || word == "intersection" || word == "difference";
+}
+
 bool is_placement_key(std::string_view word) {
     return word == "scale" || word == "rotate" || word == "translate" || word == "transform";
 }
@@ -114,7 +118,8 @@ void Parser::skip_broken_header(Span keyword) {
 void Parser::skip_to_next_statement() {
     lexer_.set_quiet(true);
     while (!at(TokenKind::End) && !at(TokenKind::RBrace) &&
-           !(at(TokenKind::Identifier) && (find_block_spec(peek().text) || is_statement_keyword(peek().text))))
+           !(at(TokenKind::Identifier) && (find_block_spec(peek().text) || is_statement_keyword(peek().text) ||
+                                           (is_povray_csg(peek().text) && at(TokenKind::LBrace, 1)))))
         take();
     lexer_.set_quiet(false);
 }

@@ -1,6 +1,7 @@
 #include "lang/internal/parser.h"
 
 #include "lang/internal/parser_class.h"
+#include "lang/internal/suggest.h"
 #include "lang/schema.h"
 
 namespace tracer {
@@ -370,6 +371,17 @@ void Parser::parse_include(std::vector<Statement>& out) {
 void Parser::parse_block(std::vector<Statement>& out) {
     Statement block;
     Token kind = take();
+    // POV-Ray's CSG blocks hold shapes, not keys: read as a body, each shape in them would be
+    // a second error. One message, and the braces skipped whole.
+    if (is_povray_csg(kind.text) && !find_block_spec(kind.text) && at(TokenKind::LBrace)) {
+        diagnostics_.error(file_, kind.span, "unknown block " + in_quotes(kind.text) + povray_hint(kind.text));
+        for (int depth = 0; !at(TokenKind::End);) {
+            const TokenKind taken = take().kind;
+            depth += taken == TokenKind::LBrace ? 1 : taken == TokenKind::RBrace ? -1 : 0;
+            if (depth == 0) break;
+        }
+        return;
+    }
     block.word = std::string(kind.text);
     block.keyword = kind.span;
     open_.clear();
@@ -417,7 +429,11 @@ void Parser::parse_body(BodyCode& body, const std::string& owner) {
 
 // entry = identifier value ;
 void Parser::parse_entry(BodyCode& body) {
-    if (!at(TokenKind::Identifier)) fail(peek(), "expected a key or '}', found " + describe(peek()));
+    if (!at(TokenKind::Identifier))
+        fail(peek(), "expected a key or '}', found " + describe(peek()) +
+                         (at(TokenKind::Less) ? "; each value is named by its key here, and a vector is (x, y, z): "
+                                                "sphere { center (0, 0, 0) radius 1 ... }, not sphere { <0, 0, 0>, 1 }"
+                                              : ""));
     EntryCode entry;
     Token key = take();
     entry.key = std::string(key.text);

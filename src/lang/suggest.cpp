@@ -81,6 +81,7 @@ static const std::vector<Synonym>& synonyms() {
         {"rectangle", {"quad"}},
         {"parallelogram", {"quad"}},
         {"colour", {"color"}},
+        {"radius", {"base_radius"}},  // POV-Ray's cone has two radii; a cylinder's one is radius
     };
     return table;
 }
@@ -108,6 +109,27 @@ bool names_nan_or_infinity(std::string_view word) {
     std::string lower;
     for (char c : word) lower += char(std::tolower(static_cast<unsigned char>(c)));
     return lower == "nan" || lower == "inf" || lower == "infinity";
+}
+
+std::string povray_hint(std::string_view word) {
+    // POV-Ray's word, and tracer's way (a row each: the word, then the whole hint).
+    static const std::pair<std::string_view, std::string_view> kHints[] = {
+        {"union", "tracer has no CSG yet; to place shapes together, write group { ... } around them"},
+        {"merge", "tracer has no CSG yet; to place shapes together, write group { ... } around them"},
+        {"intersection", "tracer has no CSG yet (no intersection of shapes)"},
+        {"difference", "tracer has no CSG yet (no difference of shapes)"},
+        {"pigment", "a colour is the material's kd: material { kd (1, 0.5, 0.2) }"},
+        {"texture", "a surface is a material: material { ka 0.1 kd (1, 0.5, 0.2) ks 0.5 n 30 }"},
+        {"finish", "a finish is the material's ka, kd, ks, n, km: material { kd 0.8 ks 0.5 n 30 }"},
+        {"interior", "refraction is the material's kt and ior: material { kt 0.9 ior 1.5 }"},
+        {"area_light", "tracer's lights are points (no area lights yet)"},
+        {"light_source", "a light is light { position (x, y, z) color 1 }"},
+        {"location", "the camera's position is eye (x, y, z)"},
+        {"look_at", "the camera looks at lookat (x, y, z)"},
+    };
+    for (const auto& [povray, hint] : kHints)
+        if (word == povray) return "; " + std::string(hint);
+    return "";
 }
 
 std::string did_you_mean(std::string_view word, const std::vector<std::string_view>& candidates) {

@@ -48,8 +48,10 @@ std::optional<Fields> Validator::check(const Block& block) {
         std::vector<std::string_view> kinds;
         for (const BlockSpec* s : all_block_specs())
             if (s->top_level) kinds.push_back(s->kind);
-        diagnostics_.error(file_, block.kind_span,
-                           "unknown block " + in_quotes(block.kind) + did_you_mean(block.kind, kinds));
+        diagnostics_.error(
+            file_, block.kind_span,
+            "unknown block " + in_quotes(block.kind) +
+                (povray_hint(block.kind).empty() ? did_you_mean(block.kind, kinds) : povray_hint(block.kind)));
         return std::nullopt;
     }
     if (!check_block_header(block, *spec)) return std::nullopt;
@@ -144,9 +146,9 @@ bool Validator::unknown_key(const Entry& entry, const BlockSpec& spec, std::vect
     std::vector<std::string_view> names;
     for (const KeySpec& k : spec.keys) names.push_back(k.name);
     suggested.push_back(closest_match(entry.key, names));
-    diagnostics_.error(
-        file_, entry.key_span,
-        "unknown key " + in_quotes(entry.key) + " in " + std::string(spec.kind) + did_you_mean(entry.key, names));
+    diagnostics_.error(file_, entry.key_span,
+                       "unknown key " + in_quotes(entry.key) + " in " + std::string(spec.kind) +
+                           (povray_hint(entry.key).empty() ? did_you_mean(entry.key, names) : povray_hint(entry.key)));
     return false;
 }
 

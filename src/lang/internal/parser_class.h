@@ -36,6 +36,8 @@ inline constexpr size_t kMaxEntries = 10'000;
 bool is_statement_keyword(std::string_view word);
 // The keys a group's placement is written with (before its contents).
 bool is_placement_key(std::string_view word);
+// POV-Ray's CSG block kinds (union, merge, intersection, difference), which tracer does not have.
+bool is_povray_csg(std::string_view word);
 
 class Parser {
 public:

@@ -21,4 +21,8 @@ bool names_nan_or_infinity(std::string_view word);
 // "; did you mean 'x'?" or "" — to append to a message.
 std::string did_you_mean(std::string_view word, const std::vector<std::string_view>& candidates);
 
+// For a word of POV-Ray's scene language that tracer spells otherwise or does not have (a block
+// kind or a key: union, pigment, area_light, ...), "; " and how to write it here; else "".
+std::string povray_hint(std::string_view word);
+
 }  // namespace tracer
