@@ -106,19 +106,26 @@ void Parser::parse_while(std::vector<Statement>& out) {
     Statement loop;
     loop.kind = Statement::Kind::While;
     loop.keyword = take().span;
-    open_.clear();
     Span open_brace;
+    if (!parse_condition(loop, open_brace)) return;
+    if (parse_braced_statements(loop, loop.statements, open_brace, "'while' loop")) out.push_back(std::move(loop));
+}
+
+// The condition of an if or a while and the '{' after it (`open_brace`); false after a syntax
+// error (reported, and the header skipped).
+bool Parser::parse_condition(Statement& statement, Span& open_brace) {
+    open_.clear();
     try {
-        loop.value = parse_expression();
+        statement.value = parse_expression();
         if (at(TokenKind::Equals)) fail(peek(), "'=' gives a name its value; to compare two values write '=='");
         open_brace = expect(TokenKind::LBrace, "'{' after the condition").span;
     } catch (const SyntaxError&) {
-        skip_broken_header(loop.keyword);
-        return;
+        skip_broken_header(statement.keyword);
+        return false;
     } catch (const UnclosedBlock&) {
-        return;
+        return false;
     }
-    if (parse_braced_statements(loop, loop.statements, open_brace, "'while' loop")) out.push_back(std::move(loop));
+    return true;
 }
 
 // let = "let" identifier "=" expression ;   param = "param" identifier "=" expression ;
@@ -235,18 +242,8 @@ void Parser::parse_if(std::vector<Statement>& out) {
     Statement condition;
     condition.kind = Statement::Kind::If;
     condition.keyword = take().span;
-    open_.clear();
     Span open_brace;
-    try {
-        condition.value = parse_expression();
-        if (at(TokenKind::Equals)) fail(peek(), "'=' gives a name its value; to compare two values write '=='");
-        open_brace = expect(TokenKind::LBrace, "'{' after the condition").span;
-    } catch (const SyntaxError&) {
-        skip_broken_header(condition.keyword);
-        return;
-    } catch (const UnclosedBlock&) {
-        return;
-    }
+    if (!parse_condition(condition, open_brace)) return;
     if (!parse_braced_statements(condition, condition.statements, open_brace, "'if' body")) return;
     if (at_word("else")) {
         const Token word = take();

@@ -70,6 +70,7 @@ private:
     void parse_guarded(std::vector<Statement>& out, Statement statement, Parse parse);
     void parse_loop(std::vector<Statement>& out);
     void parse_while(std::vector<Statement>& out);
+    bool parse_condition(Statement& statement, Span& open_brace);
     void parse_assignment(std::vector<Statement>& out);
     void parse_if(std::vector<Statement>& out);
     void parse_function(std::vector<Statement>& out);
