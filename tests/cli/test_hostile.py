@@ -503,6 +503,9 @@ class NumbersNeverWrongSilently(Hostile):
 
     def test_a_runaway_recursion_is_told_in_at_most_12_lines(self):
         # 33 lines of identical call notes came before (innermost five, outermost four).
+        if sanitized():
+            # As above: AddressSanitizer's own check fails unwinding 10,000 calls (issue 189).
+            self.skipTest("AddressSanitizer cannot unwind a stack this deep")
         for body in ("return f(n + 1)", "for i in 0..2 { f(n + 1) }"):
             scene = self.write("deep.scn", CAMERA + "fn f(n) {\n  " + body + "\n}\nlet x = 0\nf(0)\n")
             stderr = self.assertError(run("--check", scene), 1, "calls nest more than 10000 deep (the limit)")
