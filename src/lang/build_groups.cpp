@@ -22,12 +22,7 @@ bool add_group_steps(SceneAssembly& a, const Block& block, Placed& out) {
             Fields fields(group_spec());
             Placed placed;
             known.ok = !group->broken && a.check_group_placement(*group, fields) && build_placement(a, fields, placed);
-            if (placed.scale != dvec3(1.0)) known.steps.push_back({TransformStep::Kind::Scale, placed.scale, 0});
-            if (placed.rotate_degrees != 0)
-                known.steps.push_back({TransformStep::Kind::Rotate, placed.rotate_axis, placed.rotate_degrees});
-            if (placed.translate != dvec3(0.0))
-                known.steps.push_back({TransformStep::Kind::Translate, placed.translate, 0});
-            known.steps.insert(known.steps.end(), placed.steps.begin(), placed.steps.end());
+            known.steps = placement_steps(placed);
         }
         if (!known.ok) return false;
         out.steps.insert(out.steps.end(), known.steps.begin(), known.steps.end());

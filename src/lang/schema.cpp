@@ -206,7 +206,7 @@ KeySpec as_placement_step(KeySpec key) {
 }
 
 // The placement steps of a shape or a group: any number of each, applied in the order written.
-std::vector<KeySpec> placement_steps() {
+std::vector<KeySpec> placement_step_keys() {
     return {
         as_placement_step(scale_key("Scale about the origin, uniform or per axis; a negative factor mirrors.")),
         as_placement_step(
@@ -222,7 +222,7 @@ std::vector<KeySpec> placement_steps() {
 
 // The keys that place a shape, after the shape's own keys and before its material.
 std::vector<KeySpec> placed(std::vector<KeySpec> keys, std::vector<KeySpec> after = {}) {
-    for (KeySpec& step : placement_steps()) keys.push_back(std::move(step));
+    for (KeySpec& step : placement_step_keys()) keys.push_back(std::move(step));
     keys.insert(keys.end(), after.begin(), after.end());
     keys.push_back(key("material", ValueType::MaterialRef, "", "A material name or an inline material block."));
     return keys;
@@ -286,7 +286,7 @@ const BlockSpec kGroup{
     "The placement of a `group { ... }`, written before its contents: its steps, in the order written, "
     "place every shape and light made inside, after their own placement (groups inside groups: the "
     "inner one first).",
-    placement_steps(),
+    placement_step_keys(),
     "",
 };
 

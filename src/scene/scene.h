@@ -145,6 +145,17 @@ struct Placed {
     int line = 0;      // the line of the block's first word, for statistics (0: not from a file)
 };
 
+// The whole placement as steps: scale, rotate and translate where they do anything, then the steps.
+inline std::vector<TransformStep> placement_steps(const Placed& placed) {
+    std::vector<TransformStep> steps;
+    if (placed.scale != dvec3(1.0)) steps.push_back({TransformStep::Kind::Scale, placed.scale, 0});
+    if (placed.rotate_degrees != 0)
+        steps.push_back({TransformStep::Kind::Rotate, placed.rotate_axis, placed.rotate_degrees});
+    if (placed.translate != dvec3(0.0)) steps.push_back({TransformStep::Kind::Translate, placed.translate, 0});
+    steps.insert(steps.end(), placed.steps.begin(), placed.steps.end());
+    return steps;
+}
+
 // A triangle mesh from an OBJ file.
 struct Mesh : Placed {
     std::string path;   // absolute

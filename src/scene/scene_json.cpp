@@ -32,14 +32,8 @@ void add_placement(Json& out, const Placed& placed) {
         out["translate"] = vec(placed.translate);
         return;
     }
-    std::vector<TransformStep> steps;
-    if (placed.scale != dvec3(1.0)) steps.push_back({TransformStep::Kind::Scale, placed.scale, 0});
-    if (placed.rotate_degrees != 0)
-        steps.push_back({TransformStep::Kind::Rotate, placed.rotate_axis, placed.rotate_degrees});
-    if (placed.translate != dvec3(0.0)) steps.push_back({TransformStep::Kind::Translate, placed.translate, 0});
-    steps.insert(steps.end(), placed.steps.begin(), placed.steps.end());
     out["transform"] = Json::array();
-    for (const TransformStep& step : steps) {
+    for (const TransformStep& step : placement_steps(placed)) {
         if (step.kind == TransformStep::Kind::Scale) out["transform"].push_back({{"scale", vec(step.vector)}});
         if (step.kind == TransformStep::Kind::Rotate)
             out["transform"].push_back({{"rotate", {{"axis", vec(step.vector)}, {"angle", step.degrees}}}});
