@@ -101,25 +101,26 @@ static void add_context(Diagnostic* diagnostic, const Sources& sources, Span spa
     const auto context = sources.context(span);
     bool recursion = false;
     std::set<std::tuple<const SourceFile*, uint32_t, uint32_t, std::string_view>> levels;
-    for (const auto& [at, text] : context)
-        recursion = recursion || !levels.emplace(&sources.file(at), at.begin, at.end, text).second;
+    for (const Sources::Level& level : context)
+        recursion =
+            recursion || !levels.emplace(&sources.file(level.at), level.at.begin, level.at.end, level.text).second;
     const size_t innermost = recursion ? 1 : 5, outermost = recursion ? 1 : 4;
     for (size_t i = 0; i < context.size(); ++i) {
-        const auto& [at, text] = context[i];
+        const auto& [at, text, called] = context[i];
         if (context.size() <= innermost + outermost + 1 || i < innermost || i >= context.size() - outermost) {
             Diagnostics::note(diagnostic, sources, at, text);
         } else if (i == innermost) {
             const size_t left_out = context.size() - innermost - outermost;
             std::string message = "... and " + std::to_string(left_out) + " more levels of calls and loops";
             if (recursion) {
-                std::vector<std::string> functions;  // the left-out calls' texts: "in this call of 'f'"
+                std::vector<std::string_view> functions;  // the left-out levels' functions, the first 3
                 for (size_t k = innermost; k < context.size() - outermost && functions.size() < 3; ++k) {
-                    const std::string& call = context[k].second;
-                    if (call.rfind("in this call of ", 0) == 0 &&
-                        std::find(functions.begin(), functions.end(), call.substr(16)) == functions.end())
-                        functions.push_back(call.substr(16));
+                    const std::string_view function = context[k].called;
+                    if (!function.empty() && std::find(functions.begin(), functions.end(), function) == functions.end())
+                        functions.push_back(function);
                 }
-                for (size_t k = 0; k < functions.size(); ++k) message += (k == 0 ? ": calls of " : ", ") + functions[k];
+                for (size_t k = 0; k < functions.size(); ++k)
+                    message += (k == 0 ? ": calls of " : ", ") + in_quotes(functions[k]);
             }
             Location whole = Diagnostics::locate(sources, at);
             whole.line = 0;  // one line: no source shown
@@ -255,7 +256,7 @@ std::vector<const Diagnostic*> Diagnostics::in_print_order() const {
 }
 
 void Diagnostics::printed(Location location, std::string text) {
-    if (prints_.size() >= kMaxPrints) {
+    if (prints_full()) {
         ++prints_not_kept_;
         return;
     }

@@ -67,8 +67,8 @@ uint32_t Sources::add_call(uint32_t body_origin, Span called_at, std::string_vie
     return uint32_t(origins_.size() - 1);
 }
 
-std::vector<std::pair<Span, std::string>> Sources::context(Span span) const {
-    std::vector<std::pair<Span, std::string>> out;
+std::vector<Sources::Level> Sources::context(Span span) const {
+    std::vector<Level> out;
     for (uint32_t origin = span.origin; origin != 0;) {
         const Origin& o = origins_[origin];
         char text[128];
@@ -83,7 +83,7 @@ std::vector<std::pair<Span, std::string>> Sources::context(Span span) const {
                           o.name.data());
         else
             std::snprintf(text, sizeof text, "included from here");
-        out.emplace_back(o.at, std::string(text));
+        out.push_back({o.at, std::string(text), o.kind == Kind::Call ? o.name : std::string_view()});
         origin = o.at.origin;
     }
     return out;

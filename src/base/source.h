@@ -76,9 +76,15 @@ public:
     const SourceFile& file_at(size_t index) const { return *files_[index]; }
     // The file a span lies in.
     const SourceFile& file(Span span) const { return *files_[origins_[span.origin].file]; }
-    // Where a span's text came from, innermost first: each an explaining span and its text
-    // ("in iteration i = 5 of this loop", "included from here").
-    std::vector<std::pair<Span, std::string>> context(Span span) const;
+    // One level of where a span's text came from: the explaining span, its text ("in iteration
+    // i = 5 of this loop", "included from here") and, for a call, the function's name.
+    struct Level {
+        Span at;
+        std::string text;
+        std::string_view called;  // empty unless a call
+    };
+    // Where a span's text came from, innermost first.
+    std::vector<Level> context(Span span) const;
     // The spans of the include statements above `origin`'s file, innermost first.
     std::vector<Span> include_chain(uint32_t origin) const;
     size_t origins() const { return origins_.size(); }
