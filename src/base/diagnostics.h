@@ -90,6 +90,8 @@ public:
 
     // Keeps a line a scene printed, in the order printed (past kMaxPrints, only counted).
     void printed(Location location, std::string text);
+    // True once kMaxPrints lines are kept: a caller may skip writing the next one out.
+    bool prints_full() const { return prints_.size() >= kMaxPrints; }
     const std::vector<Printed>& prints() const { return prints_; }
     size_t prints_not_kept() const { return prints_not_kept_; }
 

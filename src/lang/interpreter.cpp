@@ -169,7 +169,11 @@ Interpreter::Flow Interpreter::run_step(const StatementCode& step) {
             return Flow::Return;
         case StatementCode::Op::Call: call(step.value, false); break;
         case StatementCode::Op::Print: {
-            const RuntimeValue values = evaluate(step.value);
+            const RuntimeValue values = evaluate(step.value);  // its errors reported, kept or not
+            if (diagnostics_.prints_full()) {                  // only counted: no text, no location
+                diagnostics_.printed({}, {});
+                break;
+            }
             std::string text;
             for (const RuntimeValue& value : values.items()) text += (text.empty() ? "" : " ") + value_text(value);
             diagnostics_.printed(Diagnostics::locate(sources_, at(step.keyword)), std::move(text));
