@@ -19,6 +19,11 @@ constexpr size_t kBigStackBytes = size_t(128) << 20;
 // it throws is thrown again here. Runs it on this thread if no such thread can be made.
 void run_on_big_stack(const std::function<void()>& work);
 
+// To call before throwing an exception that may unwind deep calls: clears AddressSanitizer's
+// marks on the stack above, which it leaves when the stack in use is over 64 MiB (its issue 189)
+// and then reports as overflows in the unwound frames; no-op without the sanitizer.
+void stack_about_to_unwind();
+
 // The address of the caller's frame on the native stack (not a sanitizer's stand-in for it).
 #define TRACER_STACK_ADDRESS() static_cast<const char*>(__builtin_frame_address(0))
 

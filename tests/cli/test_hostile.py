@@ -70,6 +70,14 @@ def peak_memory_mb(*args):
     return int(code), int(megabytes)
 
 
+# The lines AddressSanitizer adds when an exception unwinds a stack over 64 MiB deep (besides its
+# first, which names addresses): tracer clears the stack itself (base/big_stack.h).
+ASAN_DEEP_STACK_WARNING = (
+    "False positive error reports may follow",
+    "For details see https://github.com/google/sanitizers/issues/189",
+)
+
+
 def sanitized():
     """True for an AddressSanitizer build (address-space limits do not apply to it)."""
     ldd = subprocess.run(["ldd", TRACER], capture_output=True, text=True)
@@ -492,10 +500,6 @@ class NumbersNeverWrongSilently(Hostile):
 
     def test_a_recursion_stopped_by_the_stack_says_so(self):
         # It said "calls nest more than 625 deep (the limit)" where the limit is 10,000 calls.
-        if sanitized():
-            # AddressSanitizer's own check fails when an exception unwinds this deep a stack this
-            # large (google/sanitizers issue 189); the message is checked in the release build.
-            self.skipTest("AddressSanitizer cannot unwind a 512 MiB stack this deep")
         deep = "1 + (" * 150 + "f(n + 1)" + ")" * 150
         scene = self.write("r.scn", "fn f(n) { return " + deep + " }\nlet x = f(0)\n" + CAMERA)
         stderr = self.assertError(run("--check", scene), 1, "of stack (about", "before the limit of 10000 calls)")
@@ -503,13 +507,14 @@ class NumbersNeverWrongSilently(Hostile):
 
     def test_a_runaway_recursion_is_told_in_at_most_12_lines(self):
         # 33 lines of identical call notes came before (innermost five, outermost four).
-        if sanitized():
-            # As above: AddressSanitizer's own check fails unwinding 10,000 calls (issue 189).
-            self.skipTest("AddressSanitizer cannot unwind a stack this deep")
         for body in ("return f(n + 1)", "for i in 0..2 { f(n + 1) }"):
             scene = self.write("deep.scn", CAMERA + "fn f(n) {\n  " + body + "\n}\nlet x = 0\nf(0)\n")
             stderr = self.assertError(run("--check", scene), 1, "calls nest more than 10000 deep (the limit)")
-            self.assertLessEqual(len(stderr.splitlines()), 12, stderr)
+            # Under AddressSanitizer, its three-line warning that it leaves the clearing of a stack
+            # this deep to tracer (google/sanitizers issue 189) comes first.
+            lines = [line for line in stderr.splitlines() if line not in ASAN_DEEP_STACK_WARNING]
+            lines = [line for line in lines if "ASan is ignoring requested __asan_handle_no_return" not in line]
+            self.assertLessEqual(len(lines), 12, stderr)
             self.assertIn("more levels of calls and loops: calls of 'f' ...", stderr)
             self.assertIn(":6:1: note: in this call of 'f'", stderr)  # the outermost
 

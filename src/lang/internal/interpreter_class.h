@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "base/big_stack.h"
 #include "lang/internal/code.h"
 #include "lang/internal/compile.h"
 #include "lang/interpreter.h"
@@ -17,10 +18,15 @@ namespace tracer {
 bool plain_value(const RuntimeValue& value, Span span, PlainValue& out);
 
 // Thrown after an error while running has been reported: the entry or statement is dropped.
-struct EvaluationError {};
+// Made just before it is thrown, deep in calls it may be: the stack is readied for unwinding.
+struct EvaluationError {
+    EvaluationError() { stack_about_to_unwind(); }
+};
 // Thrown when a limit is reached (reported): nothing more is run, however deep the calls are
 // (one exception through them all, not one per level).
-struct EvaluationStopped {};
+struct EvaluationStopped {
+    EvaluationStopped() { stack_about_to_unwind(); }
+};
 
 // Where the code running now came from, innermost last: a loop iteration, a call or an include.
 // Its origin (Sources) is made only when something made in it needs a span.
