@@ -257,8 +257,7 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Stateme
                 record(statement.name, statement.name_span, "material");
             bool failed = false;
             step.body = compile_body(statement.body, statement.word, find_block_spec(statement.word), failed);
-            step.broken = step.broken || failed;
-            break;
+            break;  // entries that failed to compile are kept broken: the block is still checked
         }
         case Statement::Kind::Let:
         case Statement::Kind::Param: {
@@ -414,7 +413,7 @@ void Compiler::compile_include(const Statement& statement, std::vector<Statement
 }
 
 // A body's entries compiled, their keys looked up in `spec` (the block's table; none for an
-// unknown block); `failed` is set if an entry had a mistake (reported; the entry is dropped).
+// unknown block); `failed` is set if an entry had a mistake (reported; the entry is kept, broken).
 std::shared_ptr<CompiledBody> Compiler::compile_body(const BodyCode& code, const std::string& kind,
                                                      const BlockSpec* spec, bool& failed) {
     auto body = std::make_shared<CompiledBody>();
@@ -454,8 +453,10 @@ std::shared_ptr<CompiledBody> Compiler::compile_body(const BodyCode& code, const
                 const bool word_key = key && (key->type == ValueType::MaterialRef || key->type == ValueType::Choice);
                 out.value = compile_expression(entry.value, may_be_word(key, entry.value), word_key);
             } catch (const CompileError&) {
+                // Kept, broken: the block's other entries are still checked, and the key is
+                // not reported missing.
                 failed = true;
-                continue;
+                out.value = constant(RuntimeValue::broken(), entry.value.span);
             }
         }
         body->entries.push_back(std::move(out));

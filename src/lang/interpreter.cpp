@@ -220,7 +220,7 @@ void Interpreter::run_block(const StatementCode& step) {
     block.name_span = at(step.name_span);
     bool failed = false;
     fill_body(*step.body, block.body, failed);
-    block.broken = step.broken || failed;  // reported: not validated too
+    block.broken = step.broken;  // a syntax error: not validated too (broken entries are)
     block.group = current_group_;
     if (!on_block_) return scene_.blocks.push_back(std::move(block));
     const bool kept = on_block_(std::move(block));
@@ -257,9 +257,11 @@ void Interpreter::fill_body(const CompiledBody& code, Body& filled, bool& failed
                 ok = entry_value(entry, out.value);
             } catch (const EvaluationError&) {
             }
-            if (!ok) {
+            if (!ok) {  // reported; kept so that the rest of the block is still checked
                 failed = true;
-                continue;
+                out.value = PlainValue{};
+                out.value.kind = PlainValue::Kind::Broken;
+                out.value.span = at(entry.value.span);
             }
         }
         body->entries.push_back(std::move(out));

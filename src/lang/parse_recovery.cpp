@@ -1,6 +1,7 @@
 // The parser after a syntax error: skipping to where the next statement can start, so that one
 // run reports the errors of several blocks, and telling a missing '}' from a new statement.
 #include "lang/internal/parser_class.h"
+#include "lang/internal/suggest.h"
 #include "lang/schema.h"
 
 namespace tracer {
@@ -111,6 +112,35 @@ void Parser::skip_broken_header(Span keyword) {
         if (!at_word("else")) return;
         keyword = peek().span;
     }
+}
+
+// `word` begins no statement and no block follows it: said once, and the rest of its line (with
+// what its brackets hold past the line) skipped.
+void Parser::skip_unknown_statement(const Token& word) {
+    std::vector<std::string_view> words;
+    for (const BlockSpec* spec : all_block_specs())
+        if (spec->top_level) words.push_back(spec->kind);
+    for (std::string_view keyword : {"let", "param", "for", "include", "if", "fn", "return", "group", "while", "scale",
+                                     "rotate", "translate", "transform"})
+        words.push_back(keyword);
+    const std::string hint = povray_hint(word.text);
+    std::string message = "unknown word " + in_quotes(word.text) +
+                          ": a statement begins with a block (sphere { ... }), a keyword (let, for, if, ...), "
+                          "a call f(...) or an assignment NAME = value";
+    const std::string suggestion = hint.empty() ? did_you_mean(word.text, words) : hint;
+    if (!suggestion.empty()) message = "unknown word " + in_quotes(word.text) + suggestion;
+    diagnostics_.error(file_, word.span, message);
+    lexer_.set_quiet(true);
+    const int line = file_.locate(word.span.begin).line;
+    for (int depth = 0; !at(TokenKind::End);) {
+        if (depth == 0 && (at(TokenKind::RBrace) || file_.locate(peek().span.begin).line != line)) break;
+        const TokenKind taken = take().kind;
+        depth += taken == TokenKind::LParen || taken == TokenKind::LBracket   ? 1
+                 : taken == TokenKind::RParen || taken == TokenKind::RBracket ? -1
+                                                                              : 0;
+        if (depth < 0) depth = 0;
+    }
+    lexer_.set_quiet(false);
 }
 
 // After a broken statement: skip to what can start the next one (a statement keyword, a block

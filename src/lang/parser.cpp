@@ -379,6 +379,11 @@ void Parser::parse_block(std::vector<Statement>& out) {
         }
         return;
     }
+    // A word that is no block, with no body after it (`scael 2`): one message, not "expected
+    // '{'" and then "unknown block" for the same word.
+    if (!find_block_spec(kind.text) && !at(TokenKind::LBrace) &&
+        !(at(TokenKind::Identifier) && at(TokenKind::LBrace, 1)))
+        return skip_unknown_statement(kind);
     block.word = std::string(kind.text);
     block.keyword = kind.span;
     open_.clear();

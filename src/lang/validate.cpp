@@ -32,6 +32,7 @@ std::string describe_found(const PlainValue& value) {
         case PlainValue::Kind::String: return "a string";
         case PlainValue::Kind::Identifier: return in_quotes(value.text);
         case PlainValue::Kind::Block: return "a block { ... }";
+        case PlainValue::Kind::Broken: return "a value with an error";
     }
     return "a value";
 }
@@ -237,6 +238,7 @@ bool Validator::check_value(const PlainValue& value, const KeySpec& key, Fields&
         }
         return ok;
     };
+    if (value.kind == Kind::Broken) return false;  // reported where it was made
     switch (key.type) {
         case ValueType::Number:
             return value.kind == Kind::Number ? check_number(value.number, value.span, key) : type_error(value, key);

@@ -125,7 +125,14 @@ def test_diagnostics_follow_the_text_as_it_is_typed(client, tmp_path):
     )
     for diagnostic in found:
         assert diagnostic["message"] in check.stderr
-    change(client, uri, 3, SCENE)
+    # Two mistakes in one block, of two stages (a name, a key): both at once, not one per round.
+    both = SCENE.replace("(i, 0, 0) radius r", "(ii, 0, 0) radus r")
+    change(client, uri, 3, both)
+    messages = [d["message"] for d in client.diagnostics(uri)]
+    assert len(messages) == 2, messages
+    assert messages[1].startswith("unknown key 'radus' in sphere; did you mean 'radius'?")
+    assert messages[0] == "undefined name 'ii'"
+    change(client, uri, 4, SCENE)
     assert client.diagnostics(uri) == []
 
 

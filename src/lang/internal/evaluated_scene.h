@@ -27,7 +27,9 @@ struct NameDefinition {
 constexpr size_t kMostNamesRecorded = 100000;
 
 struct PlainValue {
-    enum class Kind { Number, Vector, String, Identifier, Block };
+    // Broken: its error was reported where it was made; the key counts as given, and nothing
+    // more is said of it (no second message), but its block is not built.
+    enum class Kind { Number, Vector, String, Identifier, Block, Broken };
     Kind kind = Kind::Number;
     Span span;
     double number = 0;               // Number

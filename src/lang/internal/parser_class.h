@@ -112,6 +112,7 @@ private:
     bool starts_statement();
     void skip_to_next_statement();
     void skip_broken_header(Span keyword);
+    void skip_unknown_statement(const Token& word);
     void skip_rest_of_file();
     std::string range_call_hint(const Expr& call, const std::string& name) const;
     [[noreturn]] void fail(const Token& token, std::string message);
