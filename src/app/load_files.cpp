@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "io/obj_mesh.h"
+#include "lang/standard_library.h"
 
 namespace tracer {
 
@@ -14,7 +15,7 @@ ReportLoad print_diagnostics_to(std::ostream& out) {
 std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
                                                   const std::function<void(SceneDescription&)>& adjust,
                                                   const ReportLoad& report) {
-    LoadResult loaded = load_scene(input.path, input.parameters, {}, input.standard_input_name);
+    LoadResult loaded = load_scene(input.path, input.arguments, {}, input.standard_input_name);
     std::optional<SceneMeshes> meshes;
     const std::string name = input.path == "-" ? input.standard_input_name : input.path;
     if (loaded.scene) {
@@ -28,7 +29,8 @@ std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
     }
     LoadReport found{loaded.diagnostics, {}, loaded.unreadable, &loaded.names};
     if (input.path != "-") found.files_read.push_back(input.path);
-    for (const std::string& path : loaded.included_paths) found.files_read.push_back(path);
+    for (const std::string& path : loaded.included_paths)
+        if (!is_library_path(path)) found.files_read.push_back(path);  // not a file: part of tracer
     if (loaded.scene)
         for (const Mesh& mesh : loaded.scene->meshes) found.files_read.push_back(mesh.path);
     std::sort(found.files_read.begin() + (input.path != "-"), found.files_read.end());  // each once

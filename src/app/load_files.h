@@ -26,7 +26,7 @@ struct SceneInput {
     std::string path;
     // For "-": the name messages give it; relative paths start from its folder.
     std::string standard_input_name = std::string(kStandardInputName);
-    ParameterValues parameters;
+    SceneArguments arguments;  // -D values and include folders
 };
 
 // What a load found besides the scene: every diagnostic, and every file it read (the scene, the

@@ -34,6 +34,7 @@
 #include "lang/load_scene.h"
 #include "lang/reference_doc.h"
 #include "lang/schema.h"
+#include "lang/standard_library.h"
 #include "lang/validate.h"
 #include "render/render_stats.h"
 #include "render/renderer.h"
@@ -103,9 +104,10 @@ struct Options {
     std::string samples;
     std::string adaptive;  // THRESHOLD[:DEPTH[:CELL]]
     std::string max_depth;
-    std::vector<std::string> defines;  // -D NAME=VALUE
-    std::vector<int> region;           // --region X0 Y0 W H (empty: the whole frame)
-    bool region_list = false;          // --region-list: regions read from stdin
+    std::vector<std::string> defines;       // -D NAME=VALUE
+    std::vector<std::string> include_dirs;  // -I DIR
+    std::vector<int> region;                // --region X0 Y0 W H (empty: the whole frame)
+    bool region_list = false;               // --region-list: regions read from stdin
     bool stats = false;
     std::string stats_json;
     bool json_diagnostics = false;  // --diagnostics json: one line of JSON per load on stdout
@@ -122,6 +124,18 @@ tracer::ParameterValues parameter_values(const Options& options) {
         out.emplace_back(define.substr(0, equals), define.substr(equals + 1));
     }
     return out;
+}
+
+// The folders includes are looked for in: -I's in order, then TRACER_PATH's (':' between them).
+std::vector<std::string> include_folders(const Options& options) {
+    std::vector<std::string> folders = options.include_dirs;
+    const char* path = std::getenv("TRACER_PATH");
+    for (std::string_view rest = path ? path : ""; !rest.empty();) {
+        const size_t colon = rest.find(':');
+        if (const std::string_view folder = rest.substr(0, colon); !folder.empty()) folders.emplace_back(folder);
+        rest = colon == std::string_view::npos ? std::string_view{} : rest.substr(colon + 1);
+    }
+    return folders;
 }
 
 // The name a scene read from standard input goes by (--stdin-name, else <stdin>).
@@ -154,7 +168,8 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
 // The same, handing the diagnostics to `report`.
 std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code, const tracer::ReportLoad& report) {
     bool unreadable = false;
-    tracer::SceneInput input{options.scene, standard_input_name(options), parameter_values(options)};
+    tracer::SceneInput input{
+        options.scene, standard_input_name(options), {parameter_values(options), include_folders(options)}};
     auto loaded = tracer::load_scene_with_meshes(
         input,
         [&](tracer::SceneDescription& scene) {
@@ -333,10 +348,12 @@ int check_only(const Options& options) {
     }
     if (scene.meshes.size() > kMeshesListed)
         std::cout << "  and " << scene.meshes.size() - kMeshesListed << " more mesh blocks (--dump-json lists all)\n";
-    // Every other file the render reads, each once (tools/farm keys its kept tiles on them).
+    // Every other file the render reads, each once (tools/farm keys its kept tiles on them);
+    // the standard library's are part of tracer.
     std::set<std::string> listed;
     for (const std::string& path : scene.included_paths)
-        if (listed.insert(path).second) std::cout << "  reads: " << path << '\n';
+        if (listed.insert(path).second)
+            std::cout << (tracer::is_library_path(path) ? "  built in: " : "  reads: ") << path << '\n';
     for (const tracer::Mesh& mesh : scene.meshes)
         if (listed.insert(mesh.path).second) std::cout << "  reads: " << mesh.path << '\n';
     return kOk;
@@ -432,6 +449,11 @@ void add_options(CLI::App& app, Options& options) {
                 return equals == std::string::npos || equals == 0 ? "expected NAME=VALUE, e.g. -D radius=0.3" : "";
             },
             "NAME=VALUE"))
+        ->allow_extra_args(false);
+    app.add_option("-I,--include-dir", options.include_dirs,
+                   "Look for an included file here when it is not beside the file that includes it; repeatable, "
+                   "searched in order, then the folders of TRACER_PATH (separated by ':'). include \"std/...\" "
+                   "is the standard library built into tracer")
         ->allow_extra_args(false);
     app.add_option("--region", options.region,
                    "Render only this window of the frame, each pixel as the whole render has it: X0 Y0 W H "

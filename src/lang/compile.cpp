@@ -9,6 +9,7 @@
 #include "lang/internal/suggest.h"
 #include "lang/internal/take_apart.h"
 #include "lang/schema.h"
+#include "lang/standard_library.h"
 
 namespace tracer {
 
@@ -365,11 +366,17 @@ void Compiler::compile_function(const Statement& statement, std::vector<Statemen
 // names joining the scope of the include.
 void Compiler::compile_include(const Statement& statement, std::vector<StatementCode>& out) {
     const Span path_span = statement.name_span;
-    const SourceFile& including = sources_.file(path_span);
-    fs::path path = statement.word;
-    if (path.is_relative()) path = fs::path(including.path()).parent_path() / path;
+    const LibraryFile* library = nullptr;
+    fs::path path;
+    if (names_standard_library(statement.word)) {
+        library = find_library_file(fs::path(statement.word).lexically_normal().string());
+        if (!library) return missing_library_file(statement);
+        path = std::string(library_display_prefix()) + std::string(statement.word.substr(4));
+    } else {
+        path = include_search(statement);
+    }
     std::error_code ignored;
-    const std::string canonical = fs::weakly_canonical(path, ignored).string();
+    const std::string canonical = library ? path.string() : fs::weakly_canonical(path, ignored).string();
     if (std::find(include_stack_.begin(), include_stack_.end(), canonical) != include_stack_.end()) {
         diagnostics_.error(sources_, path_span, "'" + statement.word + "' includes itself (through the files noted)");
         return;
@@ -382,10 +389,16 @@ void Compiler::compile_include(const Statement& statement, std::vector<Statement
     if (auto known = included_.find(canonical); known != included_.end()) {
         file_origin = sources_.add_include_again(known->second, path_span);
     } else {
-        InputFile input = read_input_file(path.string(), kMaxSceneFileBytes);
+        InputFile input =
+            library ? InputFile{std::string(library->text), {}} : read_input_file(path.string(), kMaxSceneFileBytes);
         if (!input.problem.empty()) {
+            std::string searched;
+            for (const std::string& folder : include_dirs_) searched += (searched.empty() ? "" : ", ") + folder;
             diagnostics_.error(sources_, path_span,
-                               "cannot include '" + path.lexically_normal().string() + "': " + input.problem);
+                               "cannot include '" + path.lexically_normal().string() + "': " + input.problem +
+                                   (searched.empty() || fs::path(statement.word).is_absolute()
+                                        ? ""
+                                        : " (nor is it in the include folders " + searched + ")"));
             return;
         }
         file_origin = sources_.add_include(
@@ -410,6 +423,27 @@ void Compiler::compile_include(const Statement& statement, std::vector<Statement
     compile_statements(program.statements, step.steps);
     include_stack_.pop_back();
     out.push_back(std::move(step));
+}
+
+// Where `include "WORD"` finds its file: beside the including file, else in the first of the
+// search folders (-I, then TRACER_PATH) that has it; beside it when none has (reported then).
+fs::path Compiler::include_search(const Statement& statement) const {
+    const fs::path written = statement.word;
+    const fs::path beside = fs::path(sources_.file(statement.name_span).path()).parent_path() / written;
+    if (written.is_absolute()) return written;
+    std::error_code ignored;
+    if (fs::exists(beside, ignored)) return beside;
+    for (const std::string& folder : include_dirs_)
+        if (fs::path candidate = fs::path(folder) / written; fs::exists(candidate, ignored)) return candidate;
+    return beside;
+}
+
+// `include "std/NAME"` of a file the standard library does not have: its files listed.
+void Compiler::missing_library_file(const Statement& statement) {
+    std::string names;
+    for (const LibraryFile& file : standard_library()) names += (names.empty() ? "" : ", ") + std::string(file.name);
+    diagnostics_.error(sources_, statement.name_span,
+                       "the standard library has no file " + in_quotes(statement.word) + "; it has " + names);
 }
 
 // A body's entries compiled, their keys looked up in `spec` (the block's table; none for an

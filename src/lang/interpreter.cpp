@@ -61,7 +61,9 @@ void Interpreter::out_of_operations(Span span) {
                    "one): a loop or a recursion doing more work than a scene needs?");
 }
 
-EvaluatedScene Interpreter::run(const ParameterValues& parameters) {
+EvaluatedScene Interpreter::run(const SceneArguments& arguments) {
+    const ParameterValues& parameters = arguments.parameters;
+    compiler_.set_include_dirs(arguments.include_dirs);
     stack_top_ = TRACER_STACK_ADDRESS();
     // Step 1: the command line's parameters, each a value alone.
     for (const auto& [name, text] : parameters) {
@@ -376,13 +378,13 @@ bool Interpreter::single_value(const Expr& expr, PlainValue& out) {
     }
 }
 
-EvaluatedScene interpret(Sources& sources, Diagnostics& diagnostics, const ParameterValues& parameters,
+EvaluatedScene interpret(Sources& sources, Diagnostics& diagnostics, const SceneArguments& arguments,
                          const InterpretLimits& limits, const BlockSink& on_block) {
     EvaluatedScene scene;
     // On a stack of its own, large enough for calls nested as deep as the limit allows.
     run_on_big_stack([&] {
         Interpreter interpreter(sources, diagnostics, limits, on_block);
-        scene = interpreter.run(parameters);
+        scene = interpreter.run(arguments);
     });
     return scene;
 }

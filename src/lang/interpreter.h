@@ -30,6 +30,15 @@ constexpr size_t kMaxCallDepth = 10'000;
 // -D NAME=VALUE from the command line, in order: each must name a `param` of the scene.
 using ParameterValues = std::vector<std::pair<std::string, std::string>>;
 
+// What a run gives the scene besides its file: the -D values, and the folders an include not
+// found beside its file is looked for in, in order (-I, then TRACER_PATH's).
+struct SceneArguments {
+    ParameterValues parameters;
+    std::vector<std::string> include_dirs;
+    SceneArguments(ParameterValues given = {}, std::vector<std::string> folders = {})  // NOLINT: implicit
+        : parameters(std::move(given)), include_dirs(std::move(folders)) {}
+};
+
 // How much one scene may make: each limit reached is an error at its place.
 struct InterpretLimits {
     size_t max_blocks = kMaxGeneratedBlocks;  // lower for fuzzing, where memory and time are short
@@ -45,9 +54,9 @@ struct InterpretLimits {
 using BlockSink = std::function<bool(Block&&)>;
 
 // The scene file `sources.scene()` parsed and run, one statement at a time, with the command
-// line's `parameters`; problems go to `diagnostics`. Included files are added to `sources`.
+// line's `arguments`; problems go to `diagnostics`. Included files are added to `sources`.
 // Blocks go to `on_block` when it is set, else into the result.
-EvaluatedScene interpret(Sources& sources, Diagnostics& diagnostics, const ParameterValues& parameters = {},
+EvaluatedScene interpret(Sources& sources, Diagnostics& diagnostics, const SceneArguments& arguments = {},
                          const InterpretLimits& limits = {}, const BlockSink& on_block = {});
 
 // One value alone, with no names defined (a default in the block tables, a setting or a -D

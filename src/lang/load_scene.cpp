@@ -7,7 +7,7 @@
 
 namespace tracer {
 
-LoadResult load_scene_text(const std::string& path, std::string text, bool fragment, const ParameterValues& parameters,
+LoadResult load_scene_text(const std::string& path, std::string text, bool fragment, const SceneArguments& arguments,
                            const InterpretLimits& limits) {
     LoadResult result;
     Sources sources(std::make_unique<SourceFile>(path, std::move(text)));
@@ -16,7 +16,7 @@ LoadResult load_scene_text(const std::string& path, std::string text, bool fragm
     options.fragment = fragment;
     SceneBuilder builder(sources, result.diagnostics, options);
     const BlockSink check_and_build = [&](Block&& block) { return builder.add(block); };
-    const EvaluatedScene evaluated = interpret(sources, result.diagnostics, parameters, limits, check_and_build);
+    const EvaluatedScene evaluated = interpret(sources, result.diagnostics, arguments, limits, check_and_build);
     result.scene = builder.finish(evaluated.parameters);
     for (size_t i = 1; i < sources.files(); ++i) result.included_paths.push_back(sources.file_at(i).path());
     for (const NameDefinition& defined : evaluated.names) {  // line and column only: no line text copied
@@ -29,7 +29,7 @@ LoadResult load_scene_text(const std::string& path, std::string text, bool fragm
     return result;
 }
 
-LoadResult load_scene(const std::string& path, const ParameterValues& parameters, const InterpretLimits& limits,
+LoadResult load_scene(const std::string& path, const SceneArguments& arguments, const InterpretLimits& limits,
                       std::string_view standard_input_name) {
     // "-": standard input, named <stdin> in messages by default; its relative paths start from
     // the folder of its name (the working folder for <stdin>).
@@ -37,7 +37,7 @@ LoadResult load_scene(const std::string& path, const ParameterValues& parameters
     const std::string name = standard_input ? std::string(standard_input_name) : path;
     InputFile input =
         standard_input ? read_standard_input(kMaxSceneFileBytes) : read_input_file(path, kMaxSceneFileBytes);
-    if (input.problem.empty()) return load_scene_text(name, std::move(input.text), false, parameters, limits);
+    if (input.problem.empty()) return load_scene_text(name, std::move(input.text), false, arguments, limits);
     LoadResult result;
     result.unreadable = true;
     result.diagnostics.report(Severity::Error, Diagnostics::whole_file(name),

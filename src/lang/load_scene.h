@@ -32,12 +32,12 @@ struct LoadResult {
 // "-" reads standard input, named `standard_input_name` in messages, relative paths starting
 // from that name's folder (by default kStandardInputName: the working folder).
 inline constexpr std::string_view kStandardInputName = "<stdin>";
-LoadResult load_scene(const std::string& path, const ParameterValues& parameters = {},
-                      const InterpretLimits& limits = {}, std::string_view standard_input_name = kStandardInputName);
+LoadResult load_scene(const std::string& path, const SceneArguments& arguments = {}, const InterpretLimits& limits = {},
+                      std::string_view standard_input_name = kStandardInputName);
 
 // Parses and validates scene text held in memory (`path` names it in messages and anchors
 // relative paths). A `fragment` (an example of the reference) needs no camera.
 LoadResult load_scene_text(const std::string& path, std::string text, bool fragment = false,
-                           const ParameterValues& parameters = {}, const InterpretLimits& limits = {});
+                           const SceneArguments& arguments = {}, const InterpretLimits& limits = {});
 
 }  // namespace tracer

@@ -8,6 +8,7 @@
 
 #include "lang/internal/builtins.h"
 #include "lang/schema.h"
+#include "lang/standard_library.h"
 
 namespace tracer {
 namespace {
@@ -64,7 +65,9 @@ const StatementSpec kStatements[] = {
     {"group", "group { translate ... rotate ... scale ... transform ... statements }",
      "places every block made inside by its placement steps, in the order written (written first; nested groups "
      "compose)"},
-    {"include", "include \"file.scn\"", "runs another file in place (path relative to this file)"},
+    {"include", "include \"file.scn\"",
+     "runs another file in place: found beside this file, else in the -I folders and then TRACER_PATH's, in "
+     "order; `include \"std/NAME.scn\"` is the standard library built into tracer (below)"},
 };
 
 // The words of expressions: operators and literals.
@@ -89,6 +92,8 @@ std::string occurs_text(Occurs occurs) {
 }
 
 }  // namespace
+
+std::string standard_library_markdown();
 
 std::string reference_markdown() {
     std::ostringstream out;
@@ -131,6 +136,38 @@ std::string reference_markdown() {
            "| function | arguments | gives |\n|---|---|---|\n";
     for (const Builtin& function : all_builtins())
         out << "| `" << function.name << "` | " << function.arity << " | " << function.meaning << " |\n";
+    out << standard_library_markdown();
+    return out.str();
+}
+
+// Each file of the standard library: its opening comment, then every name it defines (a `let`
+// or `fn` at the start of a line) with what it is, as written.
+std::string standard_library_markdown() {
+    std::ostringstream out;
+    out << "\n## Standard library\n\n"
+           "Files built into tracer, the same on every machine: `include \"std/NAME.scn\"` runs one (a file on\n"
+           "disk is never looked at for a `std/` path). Their names join the scene's like any include's.\n";
+    for (const LibraryFile& file : standard_library()) {
+        out << "\n### `" << file.name << "`\n\n";
+        std::istringstream lines{std::string(file.text)};
+        std::string line;
+        bool opening = true;
+        std::ostringstream names;
+        while (std::getline(lines, line)) {
+            if (opening && line.starts_with("#")) {
+                out << (line.size() > 2 ? line.substr(2) : "") << '\n';
+                continue;
+            }
+            opening = false;
+            if (line.starts_with("let ")) {
+                const size_t equals = line.find(" = ");
+                names << "| `" << line.substr(4, equals - 4) << "` | `" << line.substr(equals + 3) << "` |\n";
+            } else if (line.starts_with("fn ")) {
+                names << "| `" << line.substr(3, line.find(')') - 2) << "` | a function |\n";
+            }
+        }
+        out << "\n| name | defined as |\n|---|---|\n" << names.str();
+    }
     return out.str();
 }
 
@@ -166,11 +203,11 @@ nlohmann::json language_json() {
     nlohmann::json functions = nlohmann::json::array();
     for (const Builtin& function : all_builtins())
         functions.push_back({{"name", function.name}, {"arity", function.arity}, {"meaning", function.meaning}});
-    return {{"blocks", std::move(blocks)},
-            {"statements", std::move(statements)},
-            {"words", std::move(words)},
-            {"constants", std::move(constants)},
-            {"functions", std::move(functions)}};
+    nlohmann::json library = nlohmann::json::object();  // name -> text: editors show its definitions
+    for (const LibraryFile& file : standard_library()) library[std::string(file.name)] = file.text;
+    return {{"blocks", std::move(blocks)},       {"statements", std::move(statements)},
+            {"words", std::move(words)},         {"constants", std::move(constants)},
+            {"functions", std::move(functions)}, {"library", std::move(library)}};
 }
 
 }  // namespace tracer

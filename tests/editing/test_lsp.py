@@ -8,6 +8,7 @@ import queue
 import subprocess
 import threading
 import time
+import urllib.parse
 
 import pytest
 from conftest import start_tool
@@ -25,8 +26,8 @@ light { position (2, 3, 4) color 1 }
 class Client:
     """A minimal LSP client: Content-Length framed JSON-RPC on the server's stdin and stdout."""
 
-    def __init__(self, tracer):
-        self.process = start_tool("lsp", "--tracer", tracer, stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+    def __init__(self, tracer, *options):
+        self.process = start_tool("lsp", *options, "--tracer", tracer, stdin=subprocess.PIPE, stdout=subprocess.PIPE)
         self.messages = queue.Queue()
         self.next_id = 0
         threading.Thread(target=self._read, daemon=True).start()
@@ -71,18 +72,27 @@ class Client:
                 return message["params"]["diagnostics"]
 
 
-@pytest.fixture
-def client(tracer_bin):
-    client = Client(tracer_bin)
+def started(client):
+    """`client` after the LSP's handshake."""
     result = client.request("initialize", {"processId": os.getpid(), "rootUri": None, "capabilities": {}})
     capabilities = result["capabilities"]
     assert capabilities["hoverProvider"]
     assert capabilities["completionProvider"]
     client.notify("initialized", {})
-    yield client
+    return client
+
+
+def stopped(client):
     assert client.request("shutdown", None) is None
     client.notify("exit", None)
     assert client.process.wait(timeout=10) == 0
+
+
+@pytest.fixture
+def client(tracer_bin):
+    client = started(Client(tracer_bin))
+    yield client
+    stopped(client)
 
 
 def position_of(text, needle, delta=0):
@@ -242,3 +252,42 @@ def test_go_to_definition_takes_the_inner_name_that_hides_an_outer_one(client, t
     assert found["range"]["start"] == position_of(text, "r = j")
     outer = client.request_at("textDocument/definition", uri, text, "r material")
     assert outer["range"]["start"] == position_of(text, "r = 0.5")
+
+
+def test_a_standard_library_name_leads_to_a_read_only_copy_of_its_file(client, tmp_path, tracer_bin):
+    text = 'include "std/colors.scn"\n' + SCENE.replace("color 1", "color tomato")
+    uri = open_document(client, tmp_path, text)
+    assert client.diagnostics(uri) == []
+    found = client.request_at("textDocument/definition", uri, text, "tomato }")
+    copy = pathlib.Path(urllib.parse.unquote(urllib.parse.urlparse(found["uri"]).path))
+    library = json.loads(subprocess.run([tracer_bin, "--language-json"], capture_output=True, text=True).stdout)
+    assert copy.name == "colors.scn" and copy.read_text() == library["library"]["std/colors.scn"]
+    assert not os.access(copy, os.W_OK) or os.geteuid() == 0  # read-only (root may write anyway)
+    assert not copy.stat().st_mode & 0o222
+    lines = copy.read_text().splitlines()
+    assert lines[found["range"]["start"]["line"]].startswith("let tomato = ")
+    hover = client.request_at("textDocument/hover", uri, text, "tomato }")
+    assert "colors.scn" in hover["contents"]["value"]
+
+
+def test_include_folders_reach_tracer_and_the_copies_go_at_exit(tracer_bin, tmp_path, monkeypatch):
+    for folder, name, value in (("one", "lib.scn", "let k = 2"), ("two", "more.scn", "let q = 3")):
+        (tmp_path / folder).mkdir()
+        (tmp_path / folder / name).write_text(value + "\n")
+    monkeypatch.setenv("TRACER_PATH", str(tmp_path / "two"))  # the server's tracer inherits it
+    client = started(Client(tracer_bin, "-I", tmp_path / "one"))
+    scene = SCENE.replace("radius r material shiny", "radius r * k / q material glass")
+    text = 'include "lib.scn"\ninclude "more.scn"\ninclude "std/materials.scn"\n' + scene.replace(
+        "material shiny { kd (1, 0.5, 0.2) ks 0.5 n 20 }\n", ""
+    )
+    uri = open_document(client, tmp_path, text)
+    assert client.diagnostics(uri) == []
+    found = client.request_at("textDocument/definition", uri, text, "k / q")
+    assert found["uri"] == (tmp_path / "one" / "lib.scn").as_uri()
+    found = client.request_at("textDocument/definition", uri, text, "q material")
+    assert found["uri"] == (tmp_path / "two" / "more.scn").as_uri()
+    found = client.request_at("textDocument/definition", uri, text, "glass }")
+    copy = pathlib.Path(urllib.parse.unquote(urllib.parse.urlparse(found["uri"]).path))
+    assert copy.name == "materials.scn" and copy.exists()
+    stopped(client)
+    assert not copy.parent.parent.exists()  # the server's copies of the library, removed at its exit

@@ -4,6 +4,7 @@
 // an unknown function, an include that cannot be read) are reported once, where written.
 #pragma once
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -48,6 +49,8 @@ public:
     uint32_t top_level_slots() const { return functions_.front().most_slots; }
     // The include stack starts with the scene file's canonical path (a scene including itself).
     void set_scene_path(std::string canonical) { include_stack_ = {std::move(canonical)}; }
+    // The folders an include not found beside its file is looked for in, in order.
+    void set_include_dirs(std::vector<std::string> folders) { include_dirs_ = std::move(folders); }
     // The names defined so far, in the order compiled (at most kMostNamesRecorded).
     std::vector<NameDefinition> take_definitions() { return std::move(definitions_); }
     // The parameters declared so far, by name (their global slots).
@@ -76,6 +79,8 @@ private:
     void compile_loop(const Statement& statement, std::vector<StatementCode>& out);
     void compile_function(const Statement& statement, std::vector<StatementCode>& out);
     void compile_include(const Statement& statement, std::vector<StatementCode>& out);
+    std::filesystem::path include_search(const Statement& statement) const;
+    void missing_library_file(const Statement& statement);
     // `statements` in a scope of their own (a loop's, a branch's, a group's body).
     void compile_scoped(const std::vector<Statement>& statements, std::vector<StatementCode>& out);
     std::shared_ptr<CompiledBody> compile_body(const BodyCode& code, const std::string& kind, const BlockSpec* spec,
@@ -104,6 +109,7 @@ private:
     Diagnostics& diagnostics_;
     std::vector<FunctionLevel> functions_;
     std::vector<std::string> include_stack_;
+    std::vector<std::string> include_dirs_;
     std::map<std::string, uint32_t> included_;  // each file read, by canonical path: its first origin
     size_t included_bytes_ = 0;
     std::vector<std::pair<std::string, uint32_t>> parameters_;

@@ -45,7 +45,7 @@ class Interpreter {
 public:
     Interpreter(Sources& sources, Diagnostics& diagnostics, const InterpretLimits& limits, BlockSink on_block);
 
-    EvaluatedScene run(const ParameterValues& parameters);
+    EvaluatedScene run(const SceneArguments& arguments);
     bool single_value(const Expr& expr, PlainValue& out);
 
 private:

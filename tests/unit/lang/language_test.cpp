@@ -172,7 +172,7 @@ TEST(Language, AValueFromTheCommandLineSaysSoWhereItIsRefused) {
     const LoadResult r = load_scene_text(
         "/scenes/t.scn",
         kCamera + "param r = 1\nfor i in 0..3 { sphere { center (i, 0, 0) radius r material { kd 1 } } }", false,
-        {{"r", "-1"}}, {});
+        ParameterValues{{"r", "-1"}}, {});
     ASSERT_EQ(errors(r).size(), 1u);
     const Diagnostic& d = r.diagnostics.all()[0];
     EXPECT_EQ(d.message, "'radius' must be greater than 0, found -1");

@@ -19,6 +19,7 @@ class Entry:
 class Language:
     def __init__(self, tables: dict):
         self.blocks = {block["kind"]: block for block in tables["blocks"]}
+        self.library: dict[str, str] = tables.get("library", {})  # the standard library's files: name -> text
         self.top_level = [block["kind"] for block in tables["blocks"] if block["top_level"]]
         self.words: dict[str, Entry] = {}
         for statement in tables["statements"]:

@@ -4,15 +4,22 @@ that includes and meshes are found beside it), explains keys, blocks and built-i
 (tracer --language-json: the same tables as the reference) and completes block kinds, keys,
 material names and the names in scope.
 
-Usage: tools/lsp [--tracer build/release/tracer]  (an editor starts it; see docs/editing.md)"""
+Names from tracer's standard library (include "std/...", built into tracer) are shown from copies
+of its files the server writes, read-only, into a temporary folder.
+
+Usage: tools/lsp [--tracer build/release/tracer] [-I DIR ...]  (an editor starts it; see
+docs/editing.md)"""
 
 import argparse
 import asyncio
+import atexit
 import json
 import os
 import pathlib
+import shutil
 import subprocess
 import sys
+import tempfile
 import urllib.parse
 
 from lsprotocol import types
@@ -26,6 +33,8 @@ from tracer_tools.editing.language import Entry, Language
 CHECK_DELAY = 0.15
 # A check still running after this long (a scene that loops for minutes) is stopped.
 CHECK_TIMEOUT = 30.0
+# How tracer names a file of its standard library in messages (built in: no such file on disk).
+LIBRARY_PREFIX = "<std>/"
 # A file the editor has not opened (an included one) is read only if regular and at most this long.
 MAX_UNOPENED_BYTES = 16 << 20
 # Completion offers at most this many items at once (marked incomplete past it).
@@ -90,10 +99,12 @@ def offset_of(text: str, position: types.Position) -> int:
 
 
 class TracerServer(LanguageServer):
-    def __init__(self, tracer: str):
+    def __init__(self, tracer: str, include_dirs: tuple[str, ...] = ()):
         super().__init__("tracer-lsp", "1")
         self.tracer = tracer
+        self.include_dirs = include_dirs  # given to tracer as -I (TRACER_PATH reaches it by the environment)
         self.language = Language.from_tracer(tracer)
+        self.library_folder: str | None = None  # where the standard library's files are copied, once
         self.pending: dict[str, asyncio.Task] = {}
         self.names: dict[str, list[dict]] = {}  # by document: the names of its last check
         self.published: dict[str, set[str]] = {}  # by document: the URIs given diagnostics
@@ -104,6 +115,37 @@ class TracerServer(LanguageServer):
         if (document := self.workspace.text_documents.get(uri)) is not None:
             return document.source
         return read_unopened(uri_to_path(uri))
+
+    def library_file(self, path: str) -> str:
+        """A file of tracer's standard library ("<std>/colors.scn") as a read-only copy editors can open;
+        `path` itself if it names none."""
+        text = (
+            self.language.library.get("std/" + path[len(LIBRARY_PREFIX) :]) if path.startswith(LIBRARY_PREFIX) else None
+        )
+        if text is None:
+            return path
+        if self.library_folder is None:
+            self.library_folder = tempfile.mkdtemp(prefix="tracer-lsp-")
+            atexit.register(shutil.rmtree, self.library_folder, True)
+        target = pathlib.Path(self.library_folder, "std", path[len(LIBRARY_PREFIX) :])
+        if not target.exists():
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.write_text(text)
+            target.chmod(0o444)
+        return str(target)
+
+    def with_library_files(self, value: object) -> object:
+        """tracer's report with every "path" of a library file replaced by its copy's."""
+        if isinstance(value, dict):
+            return {
+                key: self.library_file(item)
+                if key == "path" and isinstance(item, str)
+                else self.with_library_files(item)
+                for key, item in value.items()
+            }
+        if isinstance(value, list):
+            return [self.with_library_files(item) for item in value]
+        return value
 
     async def check(self, uri: str) -> None:
         """Runs tracer on the document's text and publishes what it says, by file."""
@@ -116,6 +158,7 @@ class TracerServer(LanguageServer):
             "json",
             "--stdin-name",
             path,
+            *(argument for folder in self.include_dirs for argument in ("-I", folder)),
             "-",
             stdin=asyncio.subprocess.PIPE,
             stdout=asyncio.subprocess.PIPE,
@@ -132,7 +175,7 @@ class TracerServer(LanguageServer):
             await process.wait()
             return
         try:
-            report = json.loads(out.decode().splitlines()[0])
+            report = self.with_library_files(json.loads(out.decode().splitlines()[0]))
         except (IndexError, ValueError):
             return
         if report["names"] or report["ok"]:
@@ -317,9 +360,9 @@ class TracerServer(LanguageServer):
         return types.CompletionList(is_incomplete=False, items=items)
 
 
-def make_server(tracer: str) -> TracerServer:
+def make_server(tracer: str, include_dirs: tuple[str, ...] = ()) -> TracerServer:
     """The server with its handlers, checking with the tracer executable at `tracer`."""
-    server = TracerServer(tracer)
+    server = TracerServer(tracer, include_dirs)
 
     @server.feature(types.TEXT_DOCUMENT_DID_OPEN)
     async def did_open(ls: TracerServer, params: types.DidOpenTextDocumentParams):
@@ -368,9 +411,17 @@ def main() -> int:
         default=str(ROOT / "build" / "release" / "tracer"),
         help="the tracer executable (default: %(default)s)",
     )
+    parser.add_argument(
+        "-I",
+        "--include-dir",
+        action="append",
+        default=[],
+        type=option_types.existing_folder,
+        help="a folder tracer looks for included files in (tracer -I); repeatable, in order",
+    )
     args = parser.parse_args()
     try:
-        server = make_server(args.tracer)
+        server = make_server(args.tracer, tuple(str(folder) for folder in args.include_dir))
     except (OSError, ValueError, subprocess.SubprocessError) as error:
         print(f"tools/lsp: error: {args.tracer} --language-json gave no language tables: {error}", file=sys.stderr)
         return 1
