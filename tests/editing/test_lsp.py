@@ -244,6 +244,18 @@ def test_go_to_definition_finds_the_name_in_scope(client, tmp_path):
     assert definition("sphere {") is None  # a block kind, not a name
 
 
+def test_an_assigned_name_leads_to_its_let_on_hover_and_definition(client, tmp_path):
+    # `total = total + i` gives the outer name a new value: both uses are that `let`.
+    text = SCENE + "let total = 0\nfor k in 0..4 {\n  total = total + k\n}\nprint(total)\n"
+    uri = open_document(client, tmp_path, text)
+    client.diagnostics(uri)
+    for needle in ("total = total", "total + k", "total)"):
+        found = client.request_at("textDocument/definition", uri, text, needle)
+        assert found["range"]["start"] == position_of(text, "total = 0"), needle
+        hover = client.request_at("textDocument/hover", uri, text, needle)
+        assert hover["contents"]["value"].startswith("`total`: let, defined at scene.scn:"), hover
+
+
 def test_go_to_definition_takes_the_inner_name_that_hides_an_outer_one(client, tmp_path):
     text = SCENE + "for j in 0..2 {\n  let r = j + 1\n  sphere { center (j, 2, 0) radius r / 9 material shiny }\n}\n"
     uri = open_document(client, tmp_path, text)

@@ -34,6 +34,13 @@ CASES = {
         POV_HEADER + "sphere { <0, 0, 0>, 1 pigment { rgb 1 } }\n"
         "#declare I = 0;\n#while (I < 10000000)\n  #declare X = I * 2;\n  #declare I = I + 1;\n#end\n",
     ),
+    "accumulate": (
+        "10^7 iterations of a loop adding to one name (total = total + i)",
+        SCN_HEADER + "sphere { center (0, 0, 0) radius 1 material { kd 1 } }\n"
+        "let total = 0\nfor i in 0..10000000 { total = total + i }\n",
+        POV_HEADER + "sphere { <0, 0, 0>, 1 pigment { rgb 1 } }\n"
+        "#declare T = 0;\n#declare I = 0;\n#while (I < 10000000)\n  #declare T = T + I;\n  #declare I = I + 1;\n#end\n",
+    ),
     "spheres": (
         "10^6 spheres from two nested loops, sin and cos in their centres",
         SCN_HEADER + "material m { kd 1 }\nfor i in 0..1000 {\n  for j in 0..1000 {\n"
