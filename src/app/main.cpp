@@ -104,6 +104,7 @@ struct Options {
     std::string samples;
     std::string adaptive;  // THRESHOLD[:DEPTH[:CELL]]
     std::string max_depth;
+    std::string encoding;                   // --encoding linear|srgb
     std::vector<std::string> defines;       // -D NAME=VALUE
     std::vector<std::string> include_dirs;  // -I DIR
     std::vector<int> region;                // --region X0 Y0 W H (empty: the whole frame)
@@ -175,6 +176,7 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code, 
         [&](tracer::SceneDescription& scene) {
             tracer::RenderSettings& render = scene.render;
             if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
+            if (!options.encoding.empty()) tracer::encoding_from_name(options.encoding, render.encoding);
             // Each option's text is the number its check read (setting_problem wrote it back).
             auto number = [](const std::string& text) { return std::strtod(text.c_str(), nullptr); };
             auto whole = [&](const std::string& text, int scene_value) {
@@ -300,7 +302,7 @@ int render_to_file(const Options& options) {
     if (!complete || g_interrupted) exit_interrupted("tracer: interrupted; nothing written\n");
 
     // Step 3: write atomically and summarise.
-    if (auto problem = tracer::write_image(options.output, image)) {
+    if (auto problem = tracer::write_image(options.output, image, scene.render.encoding)) {
         std::cerr << "tracer: error: " << *problem << '\n';
         return kIoError;
     }
@@ -336,7 +338,8 @@ int check_only(const Options& options) {
     std::cout << scene_name(options) << ": ok (" << tracer::scene_counts(scene) << ")\n";
     const tracer::RenderSettings& render = scene.render;
     std::cout << "  image: " << render.width << " x " << render.height << " pixels, " << render.samples
-              << (render.samples == 1 ? " sample" : " samples") << " per pixel, max depth " << render.max_depth << '\n';
+              << (render.samples == 1 ? " sample" : " samples") << " per pixel, max depth " << render.max_depth
+              << (render.encoding == tracer::Encoding::Srgb ? ", 8-bit files sRGB-encoded" : "") << '\n';
     // Each mesh block's facts, where it puts its triangles (the first few; --dump-json has all).
     constexpr size_t kMeshesListed = 20;
     for (size_t block = 0; block < std::min(scene.meshes.size(), kMeshesListed); ++block) {
@@ -427,6 +430,10 @@ void add_render_overrides(CLI::App& app, Options& options) {
             "", "adaptive"));
     app.add_option("--max-depth", options.max_depth, "Override the scene's reflection and refraction depth")
         ->transform(render_key("max_depth"));
+    app.add_option("--encoding", options.encoding,
+                   "Override how 8-bit images hold the colours: linear (round(255 v), the default) or srgb "
+                   "(the sRGB curve, and a PNG marked sRGB, as viewers expect)")
+        ->transform(render_key("encoding"));
 }
 
 // Every option and flag of the command line, bound to `options`.

@@ -78,7 +78,7 @@ bool render_region_list(const World& world, const SceneDescription& scene, Rende
             Image image;
             RenderStats stats;
             if (!render(world, scene, options, image, stats)) return false;
-            problem = write_image(output, image);
+            problem = write_image(output, image, scene.render.encoding);
         }
         if (problem)
             replies << "error" << (output.empty() ? "" : " " + output) << ": " << *problem << std::endl;

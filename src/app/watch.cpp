@@ -249,7 +249,7 @@ bool render_and_write(const World& world, SceneDescription& scene, const RenderS
     const std::string summary = render_summary(settings.output, image, scene.render, stats);
     scene.render = full;
     if (!complete) return false;
-    if (auto problem = write_image(settings.output, image)) {
+    if (auto problem = write_image(settings.output, image, full.encoding)) {
         events.problem(*problem);
         return false;
     }

@@ -13,17 +13,12 @@
 namespace tracer {
 namespace fs = std::filesystem;
 
-unsigned char to_8bit(double value) {
-    if (!(value > 0)) return 0;  // also NaN
-    return static_cast<unsigned char>(std::lround(255.0 * std::min(value, 1.0)));
-}
-
 namespace {
 
 // The encoder module's entry points (io/oiio_codec.cpp), loaded on first use.
 struct Codec {
     void (*can_write)(const std::string& path, bool& ok) = nullptr;
-    void (*encode)(const std::string& path, const Image& image, std::vector<unsigned char>& encoded,
+    void (*encode)(const std::string& path, const Image& image, bool srgb, std::vector<unsigned char>& encoded,
                    std::string& error) = nullptr;
     std::string problem;  // why it could not be loaded
 };
@@ -64,13 +59,13 @@ std::optional<std::string> check_output_path(const std::string& path) {
     return std::nullopt;
 }
 
-std::optional<std::string> write_image(const std::string& path, const Image& image) {
+std::optional<std::string> write_image(const std::string& path, const Image& image, Encoding encoding) {
     const Codec& writer = codec();
     if (!writer.problem.empty()) return "cannot write '" + path + "': " + writer.problem;
     // The encoded file in memory, then on disk in one atomic write.
     std::vector<unsigned char> encoded;
     std::string error;
-    writer.encode(path, image, encoded, error);
+    writer.encode(path, image, encoding == Encoding::Srgb, encoded, error);
     if (!error.empty()) return "cannot write '" + path + "': " + error;
     const std::string_view file(reinterpret_cast<const char*>(encoded.data()), encoded.size());
     if (auto problem = write_file_atomically(path, file)) return "cannot write '" + path + "': " + *problem;

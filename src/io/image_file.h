@@ -1,13 +1,14 @@
 // Image files through OpenImageIO, format chosen by the file extension. 8-bit formats get
-// round(255 v) of v clamped to [0, 1], no gamma; float formats (EXR, HDR, PFM) get the
-// unclamped values. Files are written to a temporary name and renamed, so a failed or
-// interrupted write never leaves a truncated image behind.
+// round(255 v) of v clamped to [0, 1], no gamma (or of the sRGB-encoded v, Encoding::Srgb);
+// float formats (EXR, HDR, PFM) get the unclamped linear values. Files are written to a temporary name and renamed, so
+// a failed or interrupted write never leaves a truncated image behind.
 #pragma once
 
 #include <optional>
 #include <string>
 
 #include "base/image.h"
+#include "scene/scene.h"
 
 namespace tracer {
 
@@ -16,10 +17,9 @@ namespace tracer {
 std::optional<std::string> check_output_path(const std::string& path);
 
 // Writes the image (a window where the format can record it: EXR's data window inside the
-// frame's display window); returns an error message on failure (and leaves `path` untouched).
-std::optional<std::string> write_image(const std::string& path, const Image& image);
-
-// round(255 v) of v clamped to [0, 1]: the 8-bit value of conventions.md.
-unsigned char to_8bit(double value);
+// frame's display window), 8-bit formats by `encoding`; returns an error message on failure
+// (and leaves `path` untouched).
+std::optional<std::string> write_image(const std::string& path, const Image& image,
+                                       Encoding encoding = Encoding::Linear);
 
 }  // namespace tracer

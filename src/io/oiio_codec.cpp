@@ -19,9 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-unsigned char eight_bit(double value) {  // as image_file.h's to_8bit
-    if (!(value > 0)) return 0;
-    return static_cast<unsigned char>(std::lround(255.0 * std::min(value, 1.0)));
+unsigned char eight_bit_srgb(double value) {
+    return to_8bit(srgb_encoded(value));
 }
 
 bool is_float_format(const std::string& path) {
@@ -46,8 +45,9 @@ extern "C" void tracer_oiio_can_write(const std::string& path, bool& ok) {
     ok = tracer::memory_writer(path) != nullptr;
 }
 
-// The image encoded as `path`'s format into `encoded`; `error` says why not, if it could not be.
-extern "C" void tracer_oiio_encode(const std::string& path, const tracer::Image& image,
+// The image encoded as `path`'s format into `encoded` (8-bit formats by the sRGB curve and marked
+// so if `srgb`); `error` says why not, if it could not be.
+extern "C" void tracer_oiio_encode(const std::string& path, const tracer::Image& image, bool srgb,
                                    std::vector<unsigned char>& encoded, std::string& error) {
     using namespace tracer;
     auto output = memory_writer(path);
@@ -73,7 +73,8 @@ extern "C" void tracer_oiio_encode(const std::string& path, const tracer::Image&
     if (as_float)
         floats.assign(image.rgb.begin(), image.rgb.end());
     else
-        std::transform(image.rgb.begin(), image.rgb.end(), std::back_inserter(bytes), eight_bit);
+        std::transform(image.rgb.begin(), image.rgb.end(), std::back_inserter(bytes), srgb ? eight_bit_srgb : to_8bit);
+    if (srgb && !as_float) spec.attribute("oiio:ColorSpace", "sRGB");  // PNG: its sRGB chunk
     // Step 2: the file encoded in memory.
     OIIO::Filesystem::IOVecOutput memory(encoded);
     const bool ok = output->set_ioproxy(&memory) && output->open(path, spec, OIIO::ImageOutput::Create) &&

@@ -124,6 +124,7 @@ void build_render(SceneAssembly& a, const Block& block, const Fields& fields) {
     render.adaptive_cell = fields.number("adaptive_cell");
     accelerator_from_name(fields.text("accel"), render.accel);
     render.leaf_size = fields.integer("leaf_size");
+    encoding_from_name(fields.text("encoding"), render.encoding);
 
     if (const std::string problem = render_settings_problem(render); !problem.empty())
         a.diagnostics.error(a.file, block.kind_span, problem);

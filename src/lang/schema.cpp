@@ -112,6 +112,15 @@ const BlockSpec kRender{
         ranged(key("leaf_size", ValueType::Integer, "4",
                    "Most triangles in a BVH leaf (`median` splits every larger node; `sah` may stop "
                    "earlier where splitting does not pay)."), 1, 255),
+        one_of(key("encoding", ValueType::Choice, "linear",
+                   "How 8-bit image files (PNG, JPEG, TIFF, BMP) hold the computed colours. `linear`: "
+                   "round(255 v) of each value clamped to 0..1, as the assignment's Figure 1 was made "
+                   "(an image viewer shows it darker than the light computed). `srgb`: each value "
+                   "encoded by the sRGB curve first (12.92 v up to 0.0031308, else 1.055 v^(1/2.4) - "
+                   "0.055) and a PNG marked sRGB, so that viewers show the light as computed, as "
+                   "POV-Ray's `assumed_gamma 1.0` output and Mitsuba's PNGs are. Float files (EXR, "
+                   "HDR, PFM) hold the linear values either way."),
+               {encoding_name(Encoding::Linear), encoding_name(Encoding::Srgb)}),
     },
     "render {\n  width 600\n  height 400\n  max_depth 4\n  background (0, 0, 0)\n}\n",
 };

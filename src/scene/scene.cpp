@@ -18,6 +18,7 @@ constexpr Words<Accelerator, 4> kAcceleratorWords{{{Accelerator::None, "none"},
                                                    {Accelerator::Sah, "sah"}}};
 constexpr Words<SpawnRules, 2> kSpawnRulesWords{{{SpawnRules::Tracer, "tracer"}, {SpawnRules::Spd, "spd"}}};
 constexpr Words<Antialias, 2> kAntialiasWords{{{Antialias::Uniform, "uniform"}, {Antialias::Adaptive, "adaptive"}}};
+constexpr Words<Encoding, 2> kEncodingWords{{{Encoding::Linear, "linear"}, {Encoding::Srgb, "srgb"}}};
 
 template <typename Enum, size_t N>
 const char* word_of(const Words<Enum, N>& words, Enum value) {
@@ -55,6 +56,12 @@ const char* antialias_name(Antialias antialias) {
 }
 bool antialias_from_name(std::string_view name, Antialias& out) {
     return value_of(kAntialiasWords, name, out);
+}
+const char* encoding_name(Encoding encoding) {
+    return word_of(kEncodingWords, encoding);
+}
+bool encoding_from_name(std::string_view name, Encoding& out) {
+    return value_of(kEncodingWords, name, out);
 }
 
 std::string render_settings_problem(const RenderSettings& render) {

@@ -49,6 +49,11 @@ enum class SpawnRules { Tracer, Spd };
 // split where they differ (adaptive; render/adaptive.h).
 enum class Antialias { Uniform, Adaptive };
 
+// How 8-bit image files hold the computed values: as they are (linear: round(255 v), Figure 1's
+// rule), or encoded by the sRGB curve (IEC 61966-2-1) and marked so, as viewers expect. Float
+// files (EXR, HDR, PFM) are linear either way.
+enum class Encoding { Linear, Srgb };
+
 // How rays find triangles: every triangle (none), one bounding box around the mesh (box),
 // or a bounding volume hierarchy built by median splits (median) or the SAH (sah).
 enum class Accelerator { None, Box, Median, Sah };
@@ -61,6 +66,8 @@ const char* spawn_rules_name(SpawnRules rules);
 bool spawn_rules_from_name(std::string_view name, SpawnRules& out);
 const char* antialias_name(Antialias antialias);
 bool antialias_from_name(std::string_view name, Antialias& out);
+const char* encoding_name(Encoding encoding);
+bool encoding_from_name(std::string_view name, Encoding& out);
 
 struct RenderSettings {
     int width = 1200;
@@ -78,7 +85,9 @@ struct RenderSettings {
     int adaptive_depth = 3;            // the most times a pixel is split (into 2^depth x 2^depth cells)
     double adaptive_cell = 1;          // the side of the first cells, in pixels: a power of two, 2^-depth .. 16
     Accelerator accel = Accelerator::Sah;
-    int leaf_size = 4;  // most triangles in a BVH leaf (median; sah may make smaller leaves)
+    int leaf_size = 4;
+    Encoding encoding = Encoding::Linear;  // of 8-bit image files  // most triangles in a BVH leaf (median; sah may
+                                           // make smaller leaves)
 };
 
 // The largest image, in pixels (8192 x 8192: 1.6 GB of pixel data in double precision).

@@ -96,6 +96,7 @@ Json render_json(const RenderSettings& r) {
     // Only when set: older readers know no such keys.
     if (r.transparent_shadows) out["transparent_shadows"] = true;
     if (r.spawn_rules != SpawnRules::Tracer) out["spawn_rules"] = spawn_rules_name(r.spawn_rules);
+    if (r.encoding != Encoding::Linear) out["encoding"] = encoding_name(r.encoding);
     if (r.antialias == Antialias::Adaptive) {
         out["antialias"] = antialias_name(r.antialias);
         out["adaptive_threshold"] = r.adaptive_threshold;

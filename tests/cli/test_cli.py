@@ -326,6 +326,46 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(out.read_bytes()[:4], b"\x76\x2f\x31\x01")  # OpenEXR magic number
 
+    def test_srgb_encoding_of_8_bit_files(self):
+        # A plane of ambient colour fills the view: every pixel is its ka, linear or encoded by
+        # the sRGB curve (computed here from IEC 61966-2-1); a PNG says which in its chunks.
+        ka = (0.002, 0.2, 0.9)
+        scene = self.tmp / "flat.scn"
+        scene.write_text(
+            "render { width 4 height 2 }\ncamera { eye (0, 0, 5) lookat (0, 0, 0) }\nlight { position (0, 5, 5) "
+            f"color 0 }}\nplane {{ point (0, 0, 0) normal (0, 0, 1) material {{ ka ({ka[0]}, {ka[1]}, {ka[2]}) }} }}\n"
+        )
+
+        def encoded(v):
+            return 12.92 * v if v <= 0.0031308 else 1.055 * v ** (1 / 2.4) - 0.055
+
+        def pixels(*options):  # binary PPM: header, then the 8 pixels' bytes
+            out = self.tmp / "out.ppm"
+            self.assertEqual(run(scene, "-o", out, *options).returncode, 0)
+            return list(out.read_bytes()[len(b"P6\n4 2\n255\n") :])
+
+        self.assertEqual(pixels(), [round(255 * v) for v in ka] * 8)
+        self.assertEqual(pixels("--encoding", "srgb"), [round(255 * encoded(v)) for v in ka] * 8)
+        scene.write_text(scene.read_text().replace("width 4", "width 4 encoding srgb"))
+        self.assertEqual(pixels(), [round(255 * encoded(v)) for v in ka] * 8)
+        self.assertEqual(pixels("--encoding", "linear"), [round(255 * v) for v in ka] * 8)
+
+        def chunks(path):
+            data, at, kinds = path.read_bytes(), 8, []
+            while at < len(data):
+                kinds.append(data[at + 4 : at + 8].decode())
+                at += 12 + int.from_bytes(data[at : at + 4], "big")
+            return kinds
+
+        for encoding, marked in (("linear", False), ("srgb", True)):
+            run(scene, "-o", self.tmp / "out.png", "--encoding", encoding)
+            self.assertEqual("sRGB" in chunks(self.tmp / "out.png"), marked, encoding)
+        # Float files stay linear: the same bytes either way.
+        run(scene, "-o", self.tmp / "a.exr", "--encoding", "srgb")
+        run(scene, "-o", self.tmp / "b.exr", "--encoding", "linear")
+        self.assertEqual((self.tmp / "a.exr").read_bytes(), (self.tmp / "b.exr").read_bytes())
+        self.assertIn('"encoding": "srgb"', run("--dump-json", scene).stdout)
+
     def test_scene_errors_exit_1_and_write_nothing(self):
         bad = self.tmp / "bad.scn"
         bad.write_text(SMALL_SCENE.replace("radius 1", "radius -1"))

@@ -110,3 +110,21 @@ def test_a_chains_hit_on_a_mesh_is_solved_in_float64(dump, tmp_path, scene_path)
     assert off_plane(point).max() < 1e-14 * scale
     assert off_plane(mitsuba_point).max() > 1e-9 * scale
     assert np.allclose(np.linalg.norm(np.array(shading, dtype=np.float64).T[unhidden], axis=1), 1.0, atol=1e-15)
+
+
+def test_mitsuba_pngs_follow_the_scene_s_encoding(tmp_path):
+    # tools/mitsuba-render writes what tracer would: the sRGB curve and the sRGB chunk, or neither.
+    from PIL import Image
+
+    from tracer_tools.xcheck import images
+
+    linear = np.array([[[0.002, 0.2, 0.8], [0.0, 1.0, 0.35]]], dtype=np.float32)  # no value near a tie
+    values = [float(v) for v in linear.reshape(-1)]
+    curve = [12.92 * v if v <= 0.0031308 else 1.055 * v ** (1 / 2.4) - 0.055 for v in values]
+    for srgb, expected in ((False, values), (True, curve)):
+        path = tmp_path / f"{srgb}.png"
+        images.write_png(path, linear, srgb=srgb)
+        with Image.open(path) as image:
+            image.load()  # checks every chunk's CRC
+            assert list(np.asarray(image).reshape(-1)) == [round(255 * v) for v in expected]
+        assert (b"sRGB" in path.read_bytes()[:64]) == srgb

@@ -31,6 +31,25 @@ def test_tiled_render_is_identical_to_tracer_alone(tracer_bin, tmp_path, scene, 
     assert [name for name in os.listdir(tmp_path) if name.startswith(".")] == []  # no temporary files left
 
 
+def test_an_srgb_scene_is_tiled_into_the_same_srgb_file(tracer_bin, tmp_path):
+    scene = tmp_path / "srgb.scn"
+    scene.write_text((SCENES / "task2.scn").read_text().replace("max_depth 4", "max_depth 4 encoding srgb"))
+    alone = render(tracer_bin, scene, tmp_path / "alone.png", "--width", "300")
+    result = farm(scene, "-o", tmp_path / "farm.png", "--width", 300, "--workers", 2, "--tile", 90, tracer=tracer_bin)
+    assert result.returncode == 0, result.stderr
+    tiled, _ = read_pixels(tmp_path / "farm.png")
+    assert np.array_equal(tiled, alone)
+
+    def chunks(path):  # the kinds of a PNG file's chunks, in order
+        data, at, kinds = path.read_bytes(), 8, []
+        while at < len(data):
+            kinds.append(data[at + 4 : at + 8].decode())
+            at += 12 + int.from_bytes(data[at : at + 4], "big")
+        return kinds
+
+    assert "sRGB" in chunks(tmp_path / "alone.png") and "sRGB" in chunks(tmp_path / "farm.png")
+
+
 def test_jobs_file_renders_a_parameter_sweep(tracer_bin, tmp_path):
     jobs = [
         {"scene": str(SCENES / "chessboard.scn"), "output": f"ball{size}.png", "define": {"ball": size}, "width": 200}

@@ -263,7 +263,7 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
                     canvases[index].paste(region, kept[region])
                     kept_tiles += 1
             if canvases[index].complete():  # every tile kept: only the writing was left
-                write_atomically(job.output, canvases[index].pixels)
+                write_atomically(job.output, canvases[index].pixels, job.srgb)
                 written.append(index)
                 stores[index].remove()
                 canvases[index] = None
@@ -300,7 +300,7 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
                 raise KeyboardInterrupt
             moment = time.perf_counter()
             if canvas.complete():
-                write_atomically(jobs[index].output, canvas.pixels)
+                write_atomically(jobs[index].output, canvas.pixels, jobs[index].srgb)
                 written.append(index)
                 stores[index].remove()
                 canvases[index] = None

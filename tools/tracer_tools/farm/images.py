@@ -40,9 +40,10 @@ def decode_tile(data: bytes, suffix: str, dtype: np.dtype) -> np.ndarray:
     return np.asarray(pixels, dtype=dtype).reshape(image.spec().height, image.spec().width, -1)[:, :, :3]
 
 
-def write_atomically(path: str, pixels: np.ndarray) -> None:
+def write_atomically(path: str, pixels: np.ndarray, srgb: bool = False) -> None:
     """Writes the image beside `path` under a temporary name, then renames it: `path` is either
-    untouched or the whole image, never a partial file."""
+    untouched or the whole image, never a partial file. `srgb`: 8-bit pixels are sRGB-encoded, and
+    the file says so where its format can (a PNG's sRGB chunk), as tracer's own files do."""
     folder, name = os.path.split(os.path.abspath(path))
     extension = os.path.splitext(name)[1]
     handle, temporary = tempfile.mkstemp(prefix=f".{name}.", suffix=extension, dir=folder)
@@ -53,6 +54,8 @@ def write_atomically(path: str, pixels: np.ndarray) -> None:
             raise OSError(f"cannot write '{path}': {oiio.geterror()}")
         height, width = pixels.shape[:2]
         spec = oiio.ImageSpec(width, height, 3, oiio.UINT8 if pixels.dtype == np.uint8 else oiio.FLOAT)
+        if srgb and pixels.dtype == np.uint8:
+            spec.attribute("oiio:ColorSpace", "sRGB")
         if not (output.open(temporary, spec) and output.write_image(pixels) and output.close()):
             raise OSError(f"cannot write '{path}': {output.geterror()}")
         os.chmod(temporary, 0o644)

@@ -33,6 +33,7 @@ class Job:
     overrides: dict[str, str] = field(default_factory=dict)  # samples, width, height, max_depth
     width: int = 0  # the frame, as tracer --check reports it
     height: int = 0
+    srgb: bool = False  # 8-bit files sRGB-encoded, as tracer --check reports it (the tiles are; the file says so)
     inputs: list[str] = field(default_factory=list)  # the other files it reads, as tracer --check lists them
     manifest: dict = field(default_factory=dict)  # what its image depends on (resume.identity)
 
@@ -104,7 +105,7 @@ def jobs_from_file(path: str) -> list[Job]:
     return jobs
 
 
-_IMAGE_LINE = re.compile(r"^  image: (\d+) x (\d+) pixels", re.MULTILINE)
+_IMAGE_LINE = re.compile(r"^  image: (\d+) x (\d+) pixels(.*)$", re.MULTILINE)
 _READS_LINE = re.compile(r"^  reads: (.*)$", re.MULTILINE)
 
 
@@ -118,6 +119,7 @@ def check_job(tracer: str, job: Job) -> str:
     if not size:
         raise JobError(f"'{tracer} --check' did not report the image size; is it an older tracer?", 3)
     job.width, job.height = int(size.group(1)), int(size.group(2))
+    job.srgb = size.group(3).endswith(", 8-bit files sRGB-encoded")
     job.inputs = _READS_LINE.findall(result.stdout)
     return result.stderr
 

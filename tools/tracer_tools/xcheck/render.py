@@ -1,6 +1,7 @@
 """tools/mitsuba-render SCENE -o IMAGE: Mitsuba 3's image of a tracer scene (the plugins of
 xcheck.plugins loaded), with the converted XML written beside the image as IMAGE.xml.
-.exr keeps floats; other extensions get tracer's 8-bit rule. Exit codes as tools/crosscheck."""
+.exr keeps floats; other extensions get tracer's 8-bit rule (the scene's `encoding` too). Exit codes as
+tools/crosscheck."""
 
 from __future__ import annotations
 
@@ -29,7 +30,7 @@ def render(args: argparse.Namespace) -> int:
     if args.output.suffix.lower() == ".exr":
         images.write_exr(args.output, image)
     else:
-        images.write_png(args.output, image)
+        images.write_png(args.output, image, srgb=scene["render"].get("encoding") == "srgb")
     return 0
 
 
