@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "lang/schema.h"
+#include "scene/noise.h"
 
 namespace tracer {
 
@@ -140,6 +141,20 @@ RuntimeValue random_of(const BuiltinArguments& args) {
     return RuntimeValue::number(double(word >> 11) * 0x1.0p-53);  // the top 53 bits: [0, 1)
 }
 
+RuntimeValue noise_of(const BuiltinArguments& args) {
+    const std::span<const double> p = args.vector(0);
+    return RuntimeValue::number(improved_noise({p[0], p[1], p[2]}));
+}
+
+RuntimeValue turbulence_of(const BuiltinArguments& args) {
+    const std::span<const double> p = args.vector(0);
+    const double octaves = args.number(1);
+    if (!(octaves >= 1 && octaves <= kMaxOctaves) || std::floor(octaves) != octaves)
+        throw BuiltinError{args.span(1), "turbulence takes a whole number of octaves from 1 to " +
+                                             std::to_string(kMaxOctaves) + ", not " + format_number(octaves)};
+    return RuntimeValue::number(turbulence({p[0], p[1], p[2]}, int(octaves)));
+}
+
 RuntimeValue cross_of(const BuiltinArguments& args) {
     const std::span<const double> a = args.vector(0), b = args.vector(1);
     return RuntimeValue::vector3(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
@@ -199,6 +214,14 @@ const std::vector<Builtin>& all_builtins() {
          "random(seed, i): a number in [0, 1), the same for the same two numbers on every machine, "
          "unrelated for different ones (SplitMix64 of their bits; see grammar/README.md).",
          random_of},
+        {"noise", 1,
+         "noise(p): Perlin's improved noise (2002) at the point p, within about -1..1, 0 on the integer "
+         "lattice; the exact definition is in src/scene/noise.h and grammar/README.md.",
+         noise_of},
+        {"turbulence", 2,
+         "turbulence(p, octaves): the sum over octaves i = 0, 1, ... of |noise(2^i p)| / 2^i (Perlin, "
+         "1985), 1 to 30 octaves; 0 or more, below 2.",
+         turbulence_of},
         {"str", 1,
          "The value as text: numbers in the shortest form that reads back exactly (0.1, 1e-30), "
          "vectors (1, 2, 3), lists [1, \"a\"], booleans true and false; a string as it is.",
