@@ -71,6 +71,22 @@ static bool may_be_word(const KeySpec* key, const Expr& value) {
     }
 }
 
+// Whether `value` is one of a choice key's own words: read as that word whatever names the scene
+// has (`encoding srgb` where std/colors.scn defines a function srgb).
+static bool is_choice_word(const KeySpec* key, const Expr& value) {
+    return key && key->type == ValueType::Choice && value.kind == Expr::Kind::Name &&
+           std::find(key->choices.begin(), key->choices.end(), value.text) != key->choices.end();
+}
+
+// A word as a key's value, read by the validator.
+static ExprCode word(const Expr& value) {
+    ExprCode node;
+    node.op = ExprCode::Op::Word;
+    node.span = value.span;
+    node.text = value.text;
+    return node;
+}
+
 void Compiler::compile_top_level(const Statement& statement, std::vector<StatementCode>& out) {
     compile_statement(statement, out);
 }
@@ -485,7 +501,9 @@ std::shared_ptr<CompiledBody> Compiler::compile_body(const BodyCode& code, const
                     fail(entry.value.span,
                          path_expected(entry.key, sources_.file(entry.value.span).slice(entry.value.span)));
                 const bool word_key = key && (key->type == ValueType::MaterialRef || key->type == ValueType::Choice);
-                out.value = compile_expression(entry.value, may_be_word(key, entry.value), word_key);
+                out.value = is_choice_word(key, entry.value)
+                                ? word(entry.value)  // `encoding srgb` beside a function named srgb
+                                : compile_expression(entry.value, may_be_word(key, entry.value), word_key);
             } catch (const CompileError&) {
                 // Kept, broken: the block's other entries are still checked, and the key is
                 // not reported missing.

@@ -89,6 +89,13 @@ class StandardLibrary(unittest.TestCase):
         self.assertEqual(sorted(tables["library"]), [f"std/{p.name}" for p in sorted(LIBRARY.glob("*.scn"))])
         self.assertEqual(tables["library"]["std/colors.scn"], (LIBRARY / "colors.scn").read_text())
 
+    def test_a_choice_s_own_word_is_not_taken_for_a_library_name(self):
+        # std/colors.scn defines a function `srgb`; `encoding srgb` is still the choice.
+        path = self.write("s.scn", 'include "std/colors.scn"\nrender { encoding srgb }\n' + CAMERA)
+        result = run("--check", path)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("8-bit files sRGB-encoded", result.stdout)
+
     def test_a_file_the_library_lacks_is_an_error_listing_what_it_has(self):
         path = self.write("s.scn", 'include "std/colours.scn"\n' + CAMERA)
         result = run("--check", path)

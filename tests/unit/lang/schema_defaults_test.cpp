@@ -62,6 +62,7 @@ std::vector<DefaultRow> rows() {
         {"render", "adaptive_cell", [=](auto& s) { EXPECT_EQ(s.render.adaptive_cell, render.adaptive_cell); }},
         {"render", "accel", [=](auto& s) { EXPECT_EQ(s.render.accel, render.accel); }},
         {"render", "leaf_size", [=](auto& s) { EXPECT_EQ(s.render.leaf_size, render.leaf_size); }},
+        {"render", "encoding", [=](auto& s) { EXPECT_EQ(s.render.encoding, render.encoding); }},
         {"camera", "up", [=](auto& s) { EXPECT_EQ(s.camera.up, camera.up); }},
         {"camera", "fovy", [=](auto& s) { EXPECT_EQ(s.camera.fovy_degrees, camera.fovy_degrees); }},
         {"camera", "focal", [=](auto& s) { EXPECT_EQ(s.camera.focal, camera.focal); }},
