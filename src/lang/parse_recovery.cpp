@@ -1,14 +1,25 @@
 // The parser after a syntax error: skipping to where the next statement can start, so that one
 // run reports the errors of several blocks, and telling a missing '}' from a new statement.
+#include <algorithm>
+#include <array>
+
 #include "lang/internal/parser_class.h"
 #include "lang/internal/suggest.h"
 #include "lang/schema.h"
 
 namespace tracer {
 
+namespace {
+
+// The words that begin a statement, and a group's placement keys (written before its statements).
+constexpr std::array<std::string_view, 9> kStatementKeywords{"let", "param",  "for",   "include", "if",
+                                                             "fn",  "return", "group", "while"};
+constexpr std::array<std::string_view, 4> kPlacementKeys{"scale", "rotate", "translate", "transform"};
+
+}  // namespace
+
 bool is_statement_keyword(std::string_view word) {
-    return word == "let" || word == "param" || word == "for" || word == "include" || word == "if" || word == "fn" ||
-           word == "return" || word == "group" || word == "while";
+    return std::find(kStatementKeywords.begin(), kStatementKeywords.end(), word) != kStatementKeywords.end();
 }
 
 bool is_povray_csg(std::string_view word) {
@@ -16,7 +27,7 @@ bool is_povray_csg(std::string_view word) {
 }
 
 bool is_placement_key(std::string_view word) {
-    return word == "scale" || word == "rotate" || word == "translate" || word == "transform";
+    return std::find(kPlacementKeys.begin(), kPlacementKeys.end(), word) != kPlacementKeys.end();
 }
 
 void Parser::fail(const Token& token, std::string message) {
@@ -120,9 +131,8 @@ void Parser::skip_unknown_statement(const Token& word) {
     std::vector<std::string_view> words;
     for (const BlockSpec* spec : all_block_specs())
         if (spec->top_level) words.push_back(spec->kind);
-    for (std::string_view keyword : {"let", "param", "for", "include", "if", "fn", "return", "group", "while", "scale",
-                                     "rotate", "translate", "transform"})
-        words.push_back(keyword);
+    words.insert(words.end(), kStatementKeywords.begin(), kStatementKeywords.end());
+    words.insert(words.end(), kPlacementKeys.begin(), kPlacementKeys.end());
     const std::string hint = povray_hint(word.text);
     std::string message = "unknown word " + in_quotes(word.text) +
                           ": a statement begins with a block (sphere { ... }), a keyword (let, for, if, ...), "
