@@ -100,10 +100,23 @@ void append_part(PlacedTriangles& out, const MeshPart& part, int threads) {
         out.tags.push_back(part.tag);
         out.numbers.push_back(t);
     }
+    // Surface coordinates, their corners in the order just stored (swapped with them if mirrored).
+    if (out.keep_uvs) {
+        const bool known = file.texcoord_ids.size() == file.triangles.size();
+        for (size_t t = 0; t < file.triangles.size(); ++t) {
+            std::array<glm::vec2, 3> uv{};
+            if (known)
+                for (size_t k = 0; k < 3; ++k) uv[k] = glm::vec2(file.texcoords[file.texcoord_ids[t][k]]);
+            if (mirrored) std::swap(uv[1], uv[2]);
+            out.uvs.push_back(uv);
+        }
+    }
 }
 
-PlacedTriangles place(const std::vector<MeshPart>& parts, int threads, size_t flat_positions, size_t flat_triangles) {
+PlacedTriangles place(const std::vector<MeshPart>& parts, int threads, size_t flat_positions, size_t flat_triangles,
+                      bool keep_uvs) {
     PlacedTriangles mesh;
+    mesh.keep_uvs = keep_uvs;
     size_t positions = flat_positions, normals = 0, triangles = flat_triangles;
     for (const MeshPart& part : parts) {
         positions += part.file->positions.size();
@@ -138,7 +151,7 @@ std::vector<uint32_t> small_shapes(const std::vector<uint32_t>& tags) {
 // Placing is loading, as reading the file is: not in build_seconds, which times what Embree's
 // build does.
 MeshAccel::MeshAccel(const std::vector<MeshPart>& parts, const SearchSettings& settings)
-    : MeshAccel(place(parts, settings.threads), settings) {}
+    : MeshAccel(place(parts, settings.threads, 0, 0, settings.keep_uvs), settings) {}
 
 MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : brute_force_(settings.brute_force) {
     const size_t n = mesh.triangles.size();
@@ -260,6 +273,11 @@ void MeshAccel::store_hit_records(const PlacedTriangles& mesh, const std::vector
             const bool flat = mesh.normal_ids[triangle][0] == PlacedTriangles::kFlat;
             hit_records_[i] = {mesh.numbers[triangle], mesh.tags[triangle], flat ? kFlat : uint32_t(smooth++)};
         }
+    }
+    if (mesh.keep_uvs) {
+        uvs_.resize(n);
+        parallel_for(
+            n, [&](size_t i) { uvs_[i] = mesh.uvs[triangle_in_slot(i)]; }, threads);
     }
     vertex_normals_.resize(smooth);
     parallel_for(
@@ -509,6 +527,13 @@ Vec3 MeshAccel::surface_point(uint32_t slot, Real u, Real v, Vec3& error) const 
     return a + b + c;
 }
 
+glm::dvec2 MeshAccel::surface_uv(uint32_t slot, Real u, Real v) const {
+    if (uvs_.empty()) return glm::dvec2(0.0);
+    const std::array<glm::vec2, 3>& c = uvs_[slot];
+    const double a = double(u), b = double(v);
+    return (1 - a - b) * glm::dvec2(c[0]) + a * glm::dvec2(c[1]) + b * glm::dvec2(c[2]);
+}
+
 Vec3 MeshAccel::geometric_normal(uint32_t slot) const {
     const Triangle t = triangle(slot);
     return normalize_or_zero(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
@@ -538,7 +563,7 @@ Vec3 MeshAccel::shading_normal(uint32_t slot, Real u, Real v, const Mat3& normal
 
 size_t MeshAccel::memory_bytes() const {
     return bvh_.memory_bytes() + columns_.capacity() * sizeof(Real) + hit_records_.capacity() * sizeof(HitRecord) +
-           vertex_normals_.capacity() * sizeof(vertex_normals_[0]);
+           vertex_normals_.capacity() * sizeof(vertex_normals_[0]) + uvs_.capacity() * sizeof(uvs_[0]);
 }
 
 }  // namespace tracer

@@ -23,7 +23,8 @@ struct SearchSettings {
     bool brute_force = false;  // test every primitive for every ray (no BVH)
     BvhBuild build = BvhBuild::Sah;
     int leaf_size = 4;
-    int threads = 0;  // build threads (0: one per core)
+    int threads = 0;        // build threads (0: one per core)
+    bool keep_uvs = false;  // keep each triangle's surface coordinates (a pattern maps by them)
 };
 
 // Triangles in slots first .. first + count - 1.
@@ -55,6 +56,9 @@ struct PlacedTriangles {
     std::vector<std::array<uint32_t, 3>> normal_ids;
     std::vector<uint32_t> tags;     // per triangle: its part's tag
     std::vector<uint32_t> numbers;  // per triangle: its number in its part's file
+    // Per triangle, when `keep_uvs`: its corners' surface coordinates ((0, 0) where its file has none).
+    bool keep_uvs = false;
+    std::vector<std::array<glm::vec2, 3>> uvs;
 
     // Room for this many more positions, normals and triangles.
     void reserve_more(size_t positions, size_t normals, size_t triangles);
@@ -67,7 +71,7 @@ void append_part(PlacedTriangles& out, const MeshPart& part, int threads);
 // The parts placed (append_part), with room for flat parts of this many more positions and
 // triangles to be appended.
 PlacedTriangles place(const std::vector<MeshPart>& parts, int threads, size_t flat_positions = 0,
-                      size_t flat_triangles = 0);
+                      size_t flat_triangles = 0, bool keep_uvs = false);
 
 class MeshAccel {
 public:
@@ -112,6 +116,9 @@ public:
     // the same mesh built placed would.
     Vec3 shading_normal(uint32_t slot, Real u, Real v) const;
     Vec3 shading_normal(uint32_t slot, Real u, Real v, const Mat3& normal_map) const;
+    // The surface coordinates (u, v) at barycentric (u, v) of the triangle in `slot`,
+    // interpolated from its corners'; (0, 0) if the mesh was built without them (keep_uvs).
+    glm::dvec2 surface_uv(uint32_t slot, Real u, Real v) const;
     // The triangle in `slot` as its file numbers it (after dropping zero-area ones), and its part's tag.
     uint32_t triangle_of(uint32_t slot) const { return hit_records_[slot].triangle; }
     uint32_t tag_of(uint32_t slot) const { return hit_records_[slot].tag; }
@@ -170,6 +177,7 @@ private:
     size_t triangle_count_ = 0;
     LargeArray<HitRecord> hit_records_;
     LargeArray<std::array<Vec3, 3>> vertex_normals_;  // of the triangles not flat, in leaf order
+    LargeArray<std::array<glm::vec2, 3>> uvs_;        // every triangle's, in leaf order (keep_uvs), or none
     Bounds bounds_;
     double build_seconds_ = 0;
 };

@@ -116,11 +116,12 @@ World::World(SceneDescription& scene, const SceneMeshes& meshes, int threads, Re
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
              SceneDescription* releasable)
-    : materials_(scene.materials), lights_(scene.lights) {
+    : materials_(scene.materials), lights_(scene.lights), patterns_(scene.patterns), images_(scene.images) {
     static std::atomic<uint64_t> worlds{0};
     serial_ = ++worlds;
     for (const Material& material : materials_) refracts_ = refracts_ || material.kt != dvec3(0.0);
-    const SearchSettings settings = search_settings(scene.render, threads);
+    SearchSettings settings = search_settings(scene.render, threads);
+    settings.keep_uvs = uses_surface_coordinates(scene.patterns);
     // Step 1: spheres and planes (room for them at once: a million spheres would otherwise
     // leave up to a million records' room unused).
     objects_.reserve(scene.spheres.size() + scene.planes.size());
@@ -159,6 +160,7 @@ void World::add_round_shapes(const SceneDescription& scene, const SearchSettings
         const uint32_t index = uint32_t(cones_.size()), object = uint32_t(objects_.size());
         objects_.push_back({ObjectKind::Cone, index, c.material});
         cones_.push_back(make_cone_shape(c.base, c.top, c.base_radius, c.top_radius, c.caps));
+        if (settings.keep_uvs) cone_ends_.push_back({c.base, c.top, c.base_radius, c.top_radius});
         const std::vector<Bounds> pieces = cone_piece_boxes(c, axis, bvh ? kMostConePieces : 1);
         for (const Bounds& box : pieces) add_bounded(box, object, index, ObjectKind::Cone);
         extra_entries_ += pieces.size() - 1;
@@ -213,7 +215,7 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
     if (merged.empty() && flat_shapes == 0) return;
     PlacedTriangles placed =
         place(merged, settings.threads, 3 * scene.triangles.size() + 4 * scene.quads.size() + 8 * scene.boxes.size(),
-              scene.triangles.size() + 2 * scene.quads.size() + 12 * scene.boxes.size());
+              scene.triangles.size() + 2 * scene.quads.size() + 12 * scene.boxes.size(), settings.keep_uvs);
     if (flat_shapes > 0) {
         merged_instances.push_back(uint32_t(instances_.size()));
         instances_.emplace_back();

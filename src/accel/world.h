@@ -156,6 +156,13 @@ public:
     bool may_hit(const Ray& ray) const;
 
     const std::vector<Material>& materials() const { return materials_; }
+    const std::vector<Pattern>& patterns() const { return patterns_; }
+    const std::vector<ImageFile>& images() const { return images_; }
+    // The surface coordinates (u, v) of a hit (scene/pattern.h's uv mapping; docs/guide/patterns.md):
+    // a triangle's from its corners', a round shape's or a plane's from where the hit lies in the
+    // shape's own coordinates, `to_object` being the linear part of the map there from the world.
+    // (0, 0) on meshes built without them (no pattern maps by them).
+    glm::dvec2 surface_uv(const Hit& hit, const SurfaceHit& surface, const glm::dmat3& to_object) const;
     // True if some material transmits (kt > 0): only then can the ray tree branch.
     bool refracts() const { return refracts_; }
     const std::vector<Light>& lights() const { return lights_; }
@@ -251,6 +258,9 @@ private:
     Real sphere_radius2_ = -1;
     bool refracts_ = false;
     std::vector<Material> materials_;
+    std::vector<Pattern> patterns_;
+    std::vector<ImageFile> images_;
+    std::vector<Cone> cone_ends_;  // the cones as the scene gives them, when surface coordinates are kept
     std::vector<Light> lights_;
     uint64_t serial_;
 };

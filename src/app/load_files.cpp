@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <ostream>
 
+#include "io/image_file.h"
 #include "io/obj_mesh.h"
 #include "lang/standard_library.h"
 
@@ -21,7 +22,7 @@ std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
     if (loaded.scene) {
         if (adjust) adjust(*loaded.scene);
         const std::string problem = render_settings_problem(loaded.scene->render);
-        if (problem.empty())
+        if (problem.empty() && load_images(*loaded.scene, loaded.diagnostics))
             meshes = load_meshes(*loaded.scene, loaded.diagnostics);
         else
             loaded.diagnostics.report(Severity::Error, Diagnostics::whole_file(name),
@@ -33,6 +34,8 @@ std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
         if (!is_library_path(path)) found.files_read.push_back(path);  // not a file: part of tracer
     if (loaded.scene)
         for (const Mesh& mesh : loaded.scene->meshes) found.files_read.push_back(mesh.path);
+    if (loaded.scene)
+        for (const ImageFile& image : loaded.scene->images) found.files_read.push_back(image.path);
     std::sort(found.files_read.begin() + (input.path != "-"), found.files_read.end());  // each once
     found.files_read.erase(std::unique(found.files_read.begin(), found.files_read.end()), found.files_read.end());
     if (report) report(found);

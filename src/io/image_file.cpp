@@ -8,6 +8,7 @@
 #include <mutex>
 #include <vector>
 
+#include "base/input_file.h"
 #include "base/output_file.h"
 
 namespace tracer {
@@ -20,6 +21,7 @@ struct Codec {
     void (*can_write)(const std::string& path, bool& ok) = nullptr;
     void (*encode)(const std::string& path, const Image& image, bool srgb, std::vector<unsigned char>& encoded,
                    std::string& error) = nullptr;
+    void (*read)(const std::string& path, Texels& out, size_t most_bytes, std::string& error) = nullptr;
     std::string problem;  // why it could not be loaded
 };
 
@@ -40,7 +42,9 @@ const Codec& codec() {
         }
         loaded.can_write = reinterpret_cast<decltype(loaded.can_write)>(dlsym(module, "tracer_oiio_can_write"));
         loaded.encode = reinterpret_cast<decltype(loaded.encode)>(dlsym(module, "tracer_oiio_encode"));
-        if (!loaded.can_write || !loaded.encode) loaded.problem = "libtracer_oiio.so lacks its entry points";
+        loaded.read = reinterpret_cast<decltype(loaded.read)>(dlsym(module, "tracer_oiio_read"));
+        if (!loaded.can_write || !loaded.encode || !loaded.read)
+            loaded.problem = "libtracer_oiio.so lacks its entry points";
     });
     return loaded;
 }
@@ -57,6 +61,30 @@ std::optional<std::string> check_output_path(const std::string& path) {
                "': unknown image format (use an extension such as .png, .exr, .jpg, .tif, .bmp, .hdr)";
     if (auto problem = output_path_problem(path)) return "cannot write '" + path + "': " + *problem;
     return std::nullopt;
+}
+
+bool load_images(SceneDescription& scene, Diagnostics& diagnostics) {
+    bool ok = true;
+    for (ImageFile& image : scene.images) {
+        if (image.texels) continue;
+        const Codec& reader = codec();
+        auto texels = std::make_shared<Texels>();
+        std::string error = reader.problem;
+        if (error.empty()) {
+            if (auto problem = input_file_problem(image.path, kMaxImageFileBytes); !problem.empty())
+                error = problem;
+            else
+                reader.read(image.path, *texels, kMostTexelBytes, error);
+        }
+        if (!error.empty()) {
+            diagnostics.report(Severity::Error, image.named_at,
+                               "cannot read image file '" + image.path + "': " + error);
+            ok = false;
+            continue;
+        }
+        image.texels = std::move(texels);
+    }
+    return ok;
 }
 
 std::optional<std::string> write_image(const std::string& path, const Image& image, Encoding encoding) {

@@ -13,6 +13,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "base/image.h"
+#include "scene/pattern.h"
 
 namespace tracer {
 namespace {
@@ -84,5 +85,54 @@ extern "C" void tracer_oiio_encode(const std::string& path, const tracer::Image&
     if (!ok) {
         const std::string message = output->geterror();
         error = message.empty() ? "encoding the image failed" : message;
+    }
+}
+
+// The texels of the image file `path` into `out` (scene/pattern.h's Texels: 8-bit files as
+// bytes, other integer files decoded from sRGB into floats, float files as they are; grey or
+// RGB, other channels dropped); `error` says why not, if they could not be read. A picture of
+// more than `most_bytes` of texels is refused before any is read.
+extern "C" void tracer_oiio_read(const std::string& path, tracer::Texels& out, size_t most_bytes, std::string& error) {
+    using namespace tracer;
+    auto input = OIIO::ImageInput::open(path);
+    if (!input) {
+        const std::string message = OIIO::geterror();
+        error = message.empty() ? "not an image OpenImageIO can read" : message;
+        return;
+    }
+    // Step 1: the header: size and channels, checked before a texel is read.
+    const OIIO::ImageSpec& spec = input->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+        error = "the image has no texels (" + std::to_string(spec.width) + " x " + std::to_string(spec.height) + ")";
+        return;
+    }
+    const int channels = spec.nchannels >= 3 ? 3 : 1;
+    const bool bytes = spec.format == OIIO::TypeDesc::UINT8;
+    const bool floats = spec.format.is_floating_point();
+    const size_t texels = size_t(spec.width) * size_t(spec.height);
+    if (texels * size_t(channels) * (bytes ? 1 : sizeof(float)) > most_bytes) {
+        error = "the image is " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                " texels, more than tracer holds (" + std::to_string(most_bytes >> 20) + " MB of texels)";
+        return;
+    }
+    // Step 2: the texels, the first `channels` of each.
+    out.width = spec.width, out.height = spec.height, out.channels = channels;
+    bool ok = true;
+    if (bytes) {
+        out.bytes.resize(texels * size_t(channels));
+        ok = input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, out.bytes.data());
+    } else {
+        out.floats.resize(texels * size_t(channels));
+        ok = input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, out.floats.data());
+        if (ok && !floats)  // 16-bit and other integer files hold sRGB-encoded values, as 8-bit ones do
+            for (float& v : out.floats) {
+                const double c = std::clamp(double(v), 0.0, 1.0);
+                v = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+            }
+    }
+    if (!ok) {
+        const std::string message = input->geterror();
+        error = message.empty() ? "reading the texels failed" : message;
+        out = Texels{};
     }
 }

@@ -60,6 +60,7 @@ void build_plane(SceneAssembly& a, const Block& block, const Fields& fields) {
         const Placement placement(placed);
         plane.point = placement.point(plane.point);
         plane.normal = normalized(placement.normal * plane.normal);
+        place_material(a, ShapeList::Planes, plane.material, placement);
     }
     a.scene.planes.push_back(plane);
 }

@@ -74,7 +74,9 @@ void build_sphere(SceneAssembly& a, const Block& block, const Fields& fields) {
     if (!place_round(a, block, fields, "sphere", placement, size)) return;
     sphere.center = placement.point(sphere.center);
     sphere.radius *= size;
-    if (check_round_reach(a, block, "sphere", {sphere.center}, sphere.radius)) a.scene.spheres.push_back(sphere);
+    if (!check_round_reach(a, block, "sphere", {sphere.center}, sphere.radius)) return;
+    place_material(a, ShapeList::Spheres, sphere.material, placement);
+    a.scene.spheres.push_back(sphere);
 }
 
 // A cylinder is a cone with one radius.
@@ -114,8 +116,9 @@ void build_cone(SceneAssembly& a, const Block& block, const Fields& fields) {
     if (cone.base == cone.top)  // placed so small that both ends round to one point
         return (void)a.diagnostics.error(a.file, block.kind_span,
                                          "this " + std::string(what) + " is scaled so small that its ends meet");
-    if (check_round_reach(a, block, what, {cone.base, cone.top}, std::max(cone.base_radius, cone.top_radius)))
-        a.scene.cones.push_back(cone);
+    if (!check_round_reach(a, block, what, {cone.base, cone.top}, std::max(cone.base_radius, cone.top_radius))) return;
+    place_material(a, ShapeList::Cones, cone.material, placement);
+    a.scene.cones.push_back(cone);
 }
 
 void build_disc(SceneAssembly& a, const Block& block, const Fields& fields) {
@@ -127,7 +130,9 @@ void build_disc(SceneAssembly& a, const Block& block, const Fields& fields) {
     disc.center = placement.point(disc.center);
     disc.normal = normalized(placement.normal * disc.normal);
     disc.radius *= size;
-    if (check_round_reach(a, block, "disc", {disc.center}, disc.radius)) a.scene.discs.push_back(disc);
+    if (!check_round_reach(a, block, "disc", {disc.center}, disc.radius)) return;
+    place_material(a, ShapeList::Discs, disc.material, placement);
+    a.scene.discs.push_back(disc);
 }
 
 }  // namespace tracer

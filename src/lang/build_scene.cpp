@@ -37,11 +37,12 @@ SceneAssembly::SceneAssembly(const Sources& sources, Diagnostics& reports, Check
     scene.source_path = fs::absolute(scene_file, ignored).lexically_normal().string();
 }
 
-Material build_material(const Fields& fields, std::string name) {
+Material build_material(SceneAssembly& a, const Fields& fields, std::string name) {
     Material material;
     material.name = std::move(name);
-    material.ka = fields.triple("ka");
-    material.kd = fields.triple("kd");
+    const Paint ka = build_paint(a, fields, "ka"), kd = build_paint(a, fields, "kd");
+    material.ka = ka.color, material.ka_pattern = ka.pattern;
+    material.kd = kd.color, material.kd_pattern = kd.pattern;
     material.ks = fields.triple("ks");
     material.km = fields.triple("km");
     material.n = fields.number("n");
@@ -57,7 +58,8 @@ int material_index(SceneAssembly& a, const Fields& fields) {
     if (value.kind == PlainValue::Kind::Block) {
         if (auto shared = a.value_materials.find(value.body.get()); shared != a.value_materials.end())
             return shared->second.index;
-        a.scene.materials.push_back(build_material(fields.child("material"), ""));
+        Material material = build_material(a, fields.child("material"), "");
+        a.scene.materials.push_back(std::move(material));
         const int index = int(a.scene.materials.size()) - 1;
         if (value.body.use_count() > 1) {
             a.value_materials.emplace(value.body.get(), SceneAssembly::SharedMaterial{value.body, index});
@@ -79,7 +81,8 @@ void build_light(SceneAssembly& a, const Block& block, const Fields& fields) {
 // A named material: the next of the scene's materials.
 static void build_named_material(SceneAssembly& a, const Block& block, const Fields& fields) {
     a.material_by_name[block.name] = int(a.scene.materials.size());
-    a.scene.materials.push_back(build_material(fields, block.name));
+    Material material = build_material(a, fields, block.name);
+    a.scene.materials.push_back(std::move(material));
 }
 
 // The builder of each kind of block.
@@ -242,7 +245,9 @@ void build_mesh(SceneAssembly& a, const Block& block, const Fields& fields) {
     if (!problem.empty())
         a.diagnostics.error(a.file, fields.value_span("file"), "cannot read mesh file '" + mesh.path + "': " + problem);
     mesh.flat = fields.text("shading") == "flat";
-    if (build_placed(a, block, fields, mesh)) a.scene.meshes.push_back(mesh);
+    if (!build_placed(a, block, fields, mesh)) return;
+    place_material(a, ShapeList::Meshes, mesh.material, Placement(mesh));
+    a.scene.meshes.push_back(mesh);
 }
 
 // Placed, no corner of a flat shape may leave the renderer's range.
@@ -270,8 +275,9 @@ void build_flat_shape(SceneAssembly& a, const Block& block, const Fields& fields
         if (parallel(side1, side2))
             return (void)a.diagnostics.error(a.file, block.kind_span,
                                              "the triangle's corners lie on one line: it has no area");
-        if (build_placed(a, block, fields, shape) && check_reach(a, block, shape, triangle_mesh(shape)))
-            a.scene.triangles.push_back(shape);
+        if (!build_placed(a, block, fields, shape) || !check_reach(a, block, shape, triangle_mesh(shape))) return;
+        place_material(a, ShapeList::Triangles, shape.material, Placement(shape));
+        a.scene.triangles.push_back(shape);
     } else if (kind == "quad") {
         Quad shape;
         shape.corner = fields.triple("corner"), shape.edge1 = fields.triple("edge1");
@@ -279,8 +285,9 @@ void build_flat_shape(SceneAssembly& a, const Block& block, const Fields& fields
         if (parallel(shape.edge1, shape.edge2))
             return (void)a.diagnostics.error(a.file, fields.value_span("edge2"),
                                              "'edge2' is parallel to 'edge1': the quad has no area");
-        if (build_placed(a, block, fields, shape) && check_reach(a, block, shape, triangle_mesh(shape)))
-            a.scene.quads.push_back(shape);
+        if (!build_placed(a, block, fields, shape) || !check_reach(a, block, shape, triangle_mesh(shape))) return;
+        place_material(a, ShapeList::Quads, shape.material, Placement(shape));
+        a.scene.quads.push_back(shape);
     } else {
         Box shape;
         shape.min = fields.triple("min"), shape.max = fields.triple("max");
@@ -291,8 +298,9 @@ void build_flat_shape(SceneAssembly& a, const Block& block, const Fields& fields
                                                  "xyz"[axis] + ", " + format_number(shape.max[axis]) +
                                                  " is not greater than " + format_number(shape.min[axis]));
         }
-        if (build_placed(a, block, fields, shape) && check_reach(a, block, shape, triangle_mesh(shape)))
-            a.scene.boxes.push_back(shape);
+        if (!build_placed(a, block, fields, shape) || !check_reach(a, block, shape, triangle_mesh(shape))) return;
+        place_material(a, ShapeList::Boxes, shape.material, Placement(shape));
+        a.scene.boxes.push_back(shape);
     }
 }
 

@@ -12,7 +12,9 @@ namespace tracer {
 const PlainValue& default_of(const KeySpec& key) {
     static const std::map<const KeySpec*, PlainValue> defaults = [] {
         std::map<const KeySpec*, PlainValue> parsed;
-        for (const BlockSpec* spec : all_block_specs()) {
+        std::vector<const BlockSpec*> specs = all_block_specs();
+        specs.insert(specs.end(), pattern_specs().begin(), pattern_specs().end());
+        for (const BlockSpec* spec : specs) {
             for (const KeySpec& row : spec->keys) {
                 if (row.required()) continue;
                 SourceFile file("<default>", std::string(row.default_value));

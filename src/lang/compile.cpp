@@ -66,6 +66,8 @@ static bool may_be_word(const KeySpec* key, const Expr& value) {
         case ValueType::Integer:
         case ValueType::Vector:
         case ValueType::Triple:
+        case ValueType::Paint:
+        case ValueType::ColorMap:
             return value.text == "true" || value.text == "false" || names_nan_or_infinity(value.text);
         default: return true;
     }

@@ -55,7 +55,8 @@ ExprCode Compiler::compile_expression(const Expr& expr, bool top, bool word_key)
             bool failed = false;
             node.op = ExprCode::Op::Block;
             node.text = expr.text;
-            node.block = compile_body(*expr.body, expr.text, find_block_spec(expr.text), failed);
+            const BlockSpec* spec = find_block_spec(expr.text);
+            node.block = compile_body(*expr.body, expr.text, spec ? spec : find_pattern_spec(expr.text), failed);
             if (failed) throw CompileError{};
             return node;
         }

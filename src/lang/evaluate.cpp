@@ -6,6 +6,7 @@
 #include "lang/internal/builtins.h"
 #include "lang/internal/interpreter_class.h"
 #include "lang/schema.h"
+#include "scene/pattern.h"
 
 namespace tracer {
 
@@ -392,10 +393,13 @@ bool Interpreter::entry_value(const CompiledEntry& entry, PlainValue& out) {
     switch (value.kind) {
         case RuntimeValue::Kind::Block: {
             const std::string& kind = value.block().kind;
-            const std::string_view wanted = !key                                  ? std::string_view(kind)
-                                            : key->type == ValueType::MaterialRef ? "material"
-                                            : key->block                          ? key->block->kind
-                                                                                  : std::string_view();
+            const bool pattern = find_pattern_spec(kind) != nullptr;
+            const std::string_view wanted = !key                                       ? std::string_view(kind)
+                                            : key->type == ValueType::MaterialRef      ? "material"
+                                            : key->type == ValueType::Paint && pattern ? std::string_view(kind)
+                                            : key->type == ValueType::Paint            ? "pattern"
+                                            : key->block                               ? key->block->kind
+                                                                                       : std::string_view();
             if (wanted != kind)
                 fail(node.span, "'" + entry.key + "' takes " +
                                     (wanted.empty()         ? std::string("no block")
@@ -404,9 +408,21 @@ bool Interpreter::entry_value(const CompiledEntry& entry, PlainValue& out) {
                                     "; this is a " + kind);
             out.kind = PlainValue::Kind::Block;
             out.body = value.block().body;
+            out.text = kind;
             return true;
         }
         case RuntimeValue::Kind::List:
+            if (!key || key->type == ValueType::ColorMap) {
+                // Checked for size before it is copied: a list of a million stops is refused, not made.
+                if (value.items().size() > kMostColorStops)
+                    fail(node.span, "a colour map holds at most " + std::to_string(kMostColorStops) +
+                                        " stops; this list has " + std::to_string(value.items().size()));
+                if (plain_list(value, out.span, out)) return true;
+                fail(node.span, "'" + entry.key +
+                                    "' takes a list of stops [value, colour], as in "
+                                    "[[0, (1, 0, 0)], [1, 1]]; an item here is " +
+                                    first_unplain_kind(value));
+            }
             fail(node.span, "'" + entry.key + "' takes one value, not a list; pick one with [i], as in 'list[0]'");
         case RuntimeValue::Kind::Function:
             fail(node.span, "'" + entry.key + "' takes a value, not a function; call it, as in 'f(...)'");
@@ -414,6 +430,40 @@ bool Interpreter::entry_value(const CompiledEntry& entry, PlainValue& out) {
         default: break;  // the plain kinds, done above
     }
     return false;
+}
+
+// A stop of a colour map: a plain value, or a short list of plain values.
+static bool plain_stop(const RuntimeValue& item, Span span, PlainValue& out) {
+    if (item.kind != RuntimeValue::Kind::List) return plain_value(item, span, out);
+    constexpr size_t kMostStopItems = 16;
+    if (item.items().size() > kMostStopItems) return false;
+    out.kind = PlainValue::Kind::List;
+    out.span = span;
+    out.items.resize(item.items().size());
+    for (size_t i = 0; i < out.items.size(); ++i)
+        if (!plain_value(item.items()[i], span, out.items[i])) return false;
+    return true;
+}
+
+bool plain_list(const RuntimeValue& value, Span span, PlainValue& out) {
+    out.kind = PlainValue::Kind::List;
+    out.span = span;
+    out.items.resize(value.items().size());
+    for (size_t i = 0; i < out.items.size(); ++i)
+        if (!plain_stop(value.items()[i], span, out.items[i])) return false;
+    return true;
+}
+
+std::string first_unplain_kind(const RuntimeValue& value) {
+    for (const RuntimeValue& item : value.items()) {
+        PlainValue ignored;
+        if (plain_stop(item, Span{}, ignored)) continue;
+        if (item.kind != RuntimeValue::Kind::List) return runtime_kind(item);
+        for (const RuntimeValue& inner : item.items())
+            if (!plain_value(inner, Span{}, ignored)) return runtime_kind(inner);
+        return runtime_kind(item);
+    }
+    return "";
 }
 
 bool plain_value(const RuntimeValue& value, Span span, PlainValue& out) {

@@ -11,6 +11,7 @@ std::string plain_kind(const PlainValue& value) {
         case PlainValue::Kind::String: return "a string";
         case PlainValue::Kind::Identifier: return "the word " + in_quotes(value.text);
         case PlainValue::Kind::Block: return "a block";
+        case PlainValue::Kind::List: return "a list of " + std::to_string(value.items.size()) + " values";
         case PlainValue::Kind::Broken: return "a value with an error";
     }
     return "a value";

@@ -1,6 +1,7 @@
 // The parser's expression rules, lowest precedence first (grammar/scene.ebnf): or, and, not,
 // comparisons, + -, * /, signs, components and indexes, and the primaries.
 #include "lang/internal/parser_class.h"
+#include "lang/schema.h"
 
 namespace tracer {
 
@@ -244,7 +245,7 @@ Expr Parser::parse_primary() {
             }
             value.kind = Expr::Kind::Name;
             value.text = std::string(take().text);
-            if ((value.text == "material" || value.text == "transform") &&
+            if ((value.text == "material" || value.text == "transform" || find_pattern_spec(value.text)) &&
                 at(TokenKind::LBrace)) {  // a block as a value
                 value.kind = Expr::Kind::Block;
                 value.body = std::make_shared<BodyCode>();

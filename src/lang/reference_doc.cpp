@@ -106,8 +106,8 @@ std::string reference_markdown() {
            "vectors `(x, y, z)`; a colour or a scale may be one number, meaning the same value\n"
            "in all three components. Paths are strings in double quotes, relative to the scene\n"
            "file's folder. `#` starts a comment that runs to the end of the line.\n";
-    for (const BlockSpec* spec : all_block_specs()) {
-        out << "\n## `" << spec->kind << "`\n\n" << spec->summary << "\n\n";
+    auto block_section = [&out](const BlockSpec* spec, std::string_view level) {
+        out << "\n" << level << " `" << spec->kind << "`\n\n" << spec->summary << "\n\n";
         if (spec->top_level)
             out << "Written `" << spec->kind << (spec->named ? " NAME" : "") << " { ... }`; "
                 << occurs_text(spec->occurs) << ".\n\n";
@@ -118,7 +118,19 @@ std::string reference_markdown() {
                 << allowed_text(key) << " | " << key.meaning << " |\n";
         }
         if (!spec->example.empty()) out << "\nExample:\n\n```scn\n" << spec->example << "```\n";
-    }
+    };
+    for (const BlockSpec* spec : all_block_specs()) block_section(spec, "##");
+    out << "\n## Patterns\n\n"
+           "A material's `ka` and `kd` take a colour or a pattern, written `KIND { keys }` (`kd checker { }`)\n"
+           "or named by `let` (`let floor = checker { ... }`, then `kd floor`). A pattern maps a point to a\n"
+           "colour. The point is the hit in the shape's own coordinates (those its block is written in,\n"
+           "before its placement and its groups'), so a pattern moves with its shape; the pattern's own\n"
+           "steps (`scale`, `rotate`, `translate`, `transform`) place it on the shape, and its `mapping`\n"
+           "turns the point into its coordinates. A checker's squares may be patterns themselves (up to 16\n"
+           "levels), placed inside the checker's space; colour-map stops are colours. The guide's page\n"
+           "docs/guide/patterns.md shows each with a picture; the noise is Perlin's improved noise (2002),\n"
+           "defined exactly in src/scene/noise.h.\n";
+    for (const BlockSpec* spec : pattern_specs()) block_section(spec, "###");
     out << "\n## Statements\n\n"
            "Between blocks (and inside braces) a scene may also have these; what they mean is in\n"
            "[README.md](README.md).\n\n"
@@ -173,7 +185,9 @@ std::string standard_library_markdown() {
 
 nlohmann::json language_json() {
     nlohmann::json blocks = nlohmann::json::array();
-    for (const BlockSpec* spec : all_block_specs()) {
+    std::vector<const BlockSpec*> specs = all_block_specs();
+    specs.insert(specs.end(), pattern_specs().begin(), pattern_specs().end());
+    for (const BlockSpec* spec : specs) {
         nlohmann::json keys = nlohmann::json::array();
         for (const KeySpec& key : spec->keys)
             keys.push_back({{"name", key.name},
@@ -189,6 +203,7 @@ nlohmann::json language_json() {
                           {"occurs", occurs_text(spec->occurs)},
                           {"summary", spec->summary},
                           {"example", spec->example},
+                          {"pattern", find_pattern_spec(spec->kind) == spec},
                           {"keys", std::move(keys)}});
     }
     nlohmann::json statements = nlohmann::json::array();

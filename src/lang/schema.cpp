@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "scene/noise.h"
 #include "scene/scene.h"
 
 namespace tracer {
@@ -147,8 +148,9 @@ const BlockSpec kMaterial{
     "A named Phong material, used by shapes as `material NAME`. The same keys may be written "
     "inline in a shape: `material { kd 0.5 }`. Leaving every key out gives a black material.",
     {
-        ranged(key("ka", ValueType::Triple, "0", "Ambient colour, added once and never shadowed."), 0, kInf),
-        ranged(key("kd", ValueType::Triple, "0", "Diffuse colour."), 0, kInf),
+        ranged(key("ka", ValueType::Paint, "0",
+                   "Ambient colour, added once and never shadowed; or a pattern (`ka checker { ... }`)."), 0, kInf),
+        ranged(key("kd", ValueType::Paint, "0", "Diffuse colour; or a pattern (`kd marble { ... }`)."), 0, kInf),
         ranged(key("ks", ValueType::Triple, "0", "Specular colour."), 0, kInf),
         ranged(key("km", ValueType::Triple, "0",
                    "Mirror reflectance, 0 to 1: the weight of the reflected ray (a surface passes on at most the "
@@ -344,6 +346,87 @@ const BlockSpec kBox{
     "  material { kd (0.2, 0.4, 0.9) }\n}\n",
 };
 
+// The patterns: values of a material's ka and kd (pattern.h has their definitions).
+KeySpec mapping_key(std::string_view default_value) {
+    return one_of(key("mapping", ValueType::Choice, default_value,
+                      "How a point becomes the pattern's coordinates: `solid` the point itself (in the shape's "
+                      "own coordinates, through the pattern's steps); `planar` its (x, y); `spherical` "
+                      "(longitude, latitude) around the origin, each 0..1, u = 0.5 towards +z and rising towards "
+                      "+x; `cylindrical` (longitude, y); `uv` the surface's own (u, v), not the point's."),
+                  {"solid", "planar", "spherical", "cylindrical", "uv"});
+}
+KeySpec colors_key(std::string_view default_value) {
+    return key("colors", ValueType::ColorMap, default_value,
+               "The colour map: stops [value, colour] in order of value (0..1), linear between them; below "
+               "the first stop its colour, above the last the last's.");
+}
+KeySpec axis_key(std::string_view default_value, std::string_view meaning) {
+    return nonzero(key("axis", ValueType::Vector, default_value, meaning));
+}
+KeySpec octaves_key(std::string_view default_value) {
+    return ranged(key("octaves", ValueType::Integer, default_value,
+                      "Octaves of Perlin's turbulence: sum |noise(2^i p)| / 2^i for i below this."), 1, kMaxOctaves);
+}
+KeySpec turbulence_key(std::string_view default_value) {
+    return ranged(key("turbulence", ValueType::Number, default_value,
+                      "How far turbulence displaces the value (0: none)."), 0, kLargestMagnitude);
+}
+
+// A pattern's table: its own keys, then its mapping and its placement steps.
+BlockSpec pattern(std::string_view kind, std::string_view summary, std::vector<KeySpec> keys,
+                  std::string_view mapping_default, std::string_view example) {
+    keys.push_back(mapping_key(mapping_default));
+    for (KeySpec& step : placement_step_keys()) keys.push_back(std::move(step));
+    return BlockSpec{kind, false, false, Occurs::Any, summary, std::move(keys), example};
+}
+
+const BlockSpec kChecker = pattern("checker",
+    "Cubes of side 1 in two colours (or two patterns): `even` where floor(x) + floor(y) + floor(z) "
+    "is even, `odd` where it is odd, each coordinate nudged up by 1e-6 first so that a surface on a cell "
+    "boundary (a floor at y = 0) takes the cell above it. With a 2D mapping, squares.",
+    {ranged(key("even", ValueType::Paint, "1", "The colour (or pattern) of the even cells."), 0, kInf),
+     ranged(key("odd", ValueType::Paint, "0", "The colour (or pattern) of the odd cells."), 0, kInf)},
+    "solid", "plane {\n  point (0, -1, 0)\n  normal (0, 1, 0)\n  material { ka 0.1 kd checker { even 0.9 odd (0.8, 0.1, 0.1) scale 0.5 } }\n}\n");
+const BlockSpec kStripes = pattern("stripes",
+    "Bands across `axis`: the colour map stepped (no blending) at the fraction of the distance along it.",
+    {colors_key("[[0, 1], [0.5, 0]]"), axis_key("(0, 1, 0)", "The direction across the bands.")},
+    "solid", "sphere {\n  center (0, 0, 0)\n  radius 1\n  material { kd stripes { colors [[0, (1, 0, 0)], [0.5, 1]] axis (1, 0, 0) scale 0.2 } }\n}\n");
+const BlockSpec kGradient = pattern("gradient",
+    "The colour map along `axis`, blended, repeating every unit: the value is the fraction of p . axis.",
+    {colors_key("[[0, 0], [1, 1]]"), axis_key("(0, 1, 0)", "The direction of the ramp.")},
+    "solid", "sphere {\n  center (0, 0, 0)\n  radius 100\n  material { ka gradient { colors [[0, (0.2, 0.3, 0.8)], [1, 1]] scale 100 } }\n}\n");
+const BlockSpec kRings = pattern("rings",
+    "Rings around the line through the origin along `axis`: the fraction of the distance from it.",
+    {colors_key("[[0, 1], [0.5, 0], [1, 1]]"), axis_key("(0, 1, 0)", "The line the rings are around.")},
+    "solid", "disc {\n  center (0, 0, 0)\n  normal (0, 0, 1)\n  radius 1\n  material { kd rings { axis (0, 0, 1) scale 0.25 } }\n}\n");
+const BlockSpec kSpots = pattern("spots",
+    "Perlin's improved noise (2002) as the value: 0.5 + 0.5 noise(p), clamped to 0..1.",
+    {colors_key("[[0, 0], [1, 1]]")}, "solid", "sphere {\n  center (0, 0, 0)\n  radius 1\n  material { kd spots { colors [[0.4, 0.1], [0.6, (0.9, 0.8, 0.2)]] scale 0.3 } }\n}\n");
+const BlockSpec kTurbulence = pattern("turbulence",
+    "Perlin's turbulence as the value, clamped to 0..1.",
+    {colors_key("[[0, 0], [1, 1]]"), octaves_key("6")}, "solid", "sphere {\n  center (0, 0, 0)\n  radius 1\n  material { kd turbulence { octaves 4 scale 0.5 } }\n}\n");
+const BlockSpec kMarble = pattern("marble",
+    "Veins across `axis`: 0.5 + 0.5 sin(2 pi (p . axis + turbulence * turbulence(p, octaves))).",
+    {colors_key("[[0, (0.9, 0.9, 0.85)], [0.7, (0.55, 0.55, 0.6)], [1, (0.2, 0.2, 0.3)]]"),
+     axis_key("(1, 0, 0)", "The direction across the veins."), turbulence_key("1"), octaves_key("6")},
+    "solid", "let stone = marble { turbulence 1.5 scale 0.5 }\nbox {\n  min (-1, -1, -1)\n  max (1, 1, 1)\n  material { ka 0.1 kd stone }\n}\n");
+const BlockSpec kWood = pattern("wood",
+    "Rings around `axis` disturbed by turbulence: the fraction of (distance from the axis + turbulence * "
+    "turbulence(p, octaves)).",
+    {colors_key("[[0, (0.85, 0.6, 0.35)], [0.6, (0.6, 0.35, 0.15)], [1, (0.85, 0.6, 0.35)]]"),
+     axis_key("(0, 1, 0)", "The trunk's line."), turbulence_key("0.05"), octaves_key("4")},
+    "solid", "cylinder {\n  base (0, 0, 0)\n  top (0, 2, 0)\n  radius 0.5\n  material { kd wood { scale 0.1 rotate { axis (1, 0, 0) angle 90 } } }\n}\n");
+const BlockSpec kImage = pattern("image",
+    "A picture read through OpenImageIO (PNG, JPEG, EXR, ...) over the square 0..1 of (u, v): u across, v up, "
+    "bilinear between texel centers. 8-bit files are decoded from sRGB to linear; float files (EXR, HDR) are "
+    "linear already.",
+    {key("file", ValueType::Path, "", "The image file, relative to the scene file's folder."),
+     one_of(key("wrap", ValueType::Choice, "repeat",
+                "Outside 0..1: `repeat` tiles the picture, `clamp` extends its edge texels, `mirror` tiles it "
+                "flipped every other time."),
+            {"repeat", "clamp", "mirror"})},
+    "planar", "quad {\n  corner (-1, -1, 0)\n  edge1 (2, 0, 0)\n  edge2 (0, 2, 0)\n  material { kd image { file \"../scenes/textures/uv_grid.png\" mapping uv } }\n}\n");
+
 const BlockSpec kLight{
     "light", false, true, Occurs::Any,
     "A point light without fall-off.",
@@ -368,6 +451,18 @@ const std::vector<const BlockSpec*>& all_block_specs() {
                                                      &kTriangle, &kQuad,      &kBox,      &kCylinder, &kCone,  &kDisc,
                                                      &kRotate,   &kTransform, &kGroup,    &kLight};
     return specs;
+}
+
+const std::vector<const BlockSpec*>& pattern_specs() {
+    static const std::vector<const BlockSpec*> specs{&kChecker,    &kStripes, &kGradient, &kRings, &kSpots,
+                                                     &kTurbulence, &kMarble,  &kWood,     &kImage};
+    return specs;
+}
+
+const BlockSpec* find_pattern_spec(std::string_view kind) {
+    for (const BlockSpec* spec : pattern_specs())
+        if (spec->kind == kind) return spec;
+    return nullptr;
 }
 
 const BlockSpec& group_spec() {
@@ -400,6 +495,8 @@ std::string_view describe(ValueType type) {
         case ValueType::MaterialRef: return "a material name or an inline material { ... }";
         case ValueType::Block: return "a block { ... }";
         case ValueType::Choice: return "a name";
+        case ValueType::Paint: return "a colour (a number or (r, g, b)) or a pattern such as checker { ... }";
+        case ValueType::ColorMap: return "a list of stops [value, colour]";
     }
     return "a value";
 }

@@ -20,6 +20,8 @@ enum class ValueType {
     MaterialRef,  // the name of a material block, or an inline { ... } material
     Block,        // a nested { ... } block with its own table
     Choice,       // one of the names listed in KeySpec::choices
+    Paint,        // a colour (as Triple) or a pattern block: checker { ... } (pattern_specs())
+    ColorMap,     // a list of stops [value, colour]: [[0, (1, 0, 0)], [1, 1]]
 };
 
 struct BlockSpec;
@@ -64,6 +66,12 @@ struct BlockSpec {
 const std::vector<const BlockSpec*>& all_block_specs();
 // The top-level block kind called `kind`, or nullptr.
 const BlockSpec* find_block_spec(std::string_view kind);
+// The tables of the patterns (checker, stripes, ... image), which are values, not statements.
+const std::vector<const BlockSpec*>& pattern_specs();
+// The pattern called `kind`, or nullptr.
+const BlockSpec* find_pattern_spec(std::string_view kind);
+// Most patterns one pattern may hold inside it, level within level (checker in checker).
+constexpr int kMostPatternNesting = 16;
 // The table of a group's placement (`group { translate ... }`).
 const BlockSpec& group_spec();
 // A number as messages and the reference print it: 100000, 0.5, 1e-30.

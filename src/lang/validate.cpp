@@ -31,7 +31,8 @@ std::string describe_found(const PlainValue& value) {
                    (value.components.size() == 1 ? "" : "s");
         case PlainValue::Kind::String: return "a string";
         case PlainValue::Kind::Identifier: return in_quotes(value.text);
-        case PlainValue::Kind::Block: return "a block { ... }";
+        case PlainValue::Kind::Block: return value.text.empty() ? "a block { ... }" : "a " + value.text + " { ... }";
+        case PlainValue::Kind::List: return "a list of " + std::to_string(value.items.size()) + " values";
         case PlainValue::Kind::Broken: return "a value with an error";
     }
     return "a value";
@@ -253,6 +254,15 @@ bool Validator::check_value(const PlainValue& value, const KeySpec& key, Fields&
         case ValueType::Triple:
             if (value.kind == Kind::Number) return check_number(value.number, value.span, key);
             return value.kind == Kind::Vector ? check_vector() : type_error(value, key);
+        case ValueType::Paint:
+            if (value.kind == Kind::Number) return check_number(value.number, value.span, key);
+            if (value.kind == Kind::Vector) return check_vector();
+            if (value.kind == Kind::Block && find_pattern_spec(value.text)) return check_pattern(value, key, fields);
+            return type_error(value, key,
+                              value.kind == Kind::Block && value.text.empty()
+                                  ? "; a pattern is written with its kind: checker { ... }"
+                                  : "");
+        case ValueType::ColorMap: return check_color_map(value, key);
         case ValueType::Path:
             if (value.kind != Kind::String) return type_error(value, key);
             if (value.text.empty()) {
@@ -305,6 +315,76 @@ static std::string beyond_range_reason(std::string_view key) {
                "keeps no fraction of a turn";
     if (key == "ior") return "an index of refraction of 1e30 already bends every ray along the normal";
     return "the renderer keeps bounding boxes in float and squares and cubes lengths";
+}
+
+// A pattern as a colour: its body against its own table, no deeper than kMostPatternNesting.
+bool Validator::check_pattern(const PlainValue& value, const KeySpec& key, Fields& fields) {
+    const BlockSpec& spec = *find_pattern_spec(value.text);
+    if (pattern_depth_ >= kMostPatternNesting) {
+        diagnostics_.error(file_, value.span,
+                           "patterns are nested more than " + std::to_string(kMostPatternNesting) +
+                               " deep here (a pattern's colours hold patterns that hold patterns ...)");
+        return false;
+    }
+    ++pattern_depth_;
+    auto child = std::make_unique<Fields>(spec);
+    const bool ok = check_body(*value.body, spec, value.span, *child);
+    --pattern_depth_;
+    fields.set_child(key, std::move(child));
+    return ok;
+}
+
+// A colour map: stops [value, colour], values in 0..1 and in order, colours >= 0; not empty.
+bool Validator::check_color_map(const PlainValue& value, const KeySpec& key) {
+    const std::string name(key.name);
+    if (value.kind != PlainValue::Kind::List) return type_error(value, key, "; as in [[0, (1, 0, 0)], [1, 1]]");
+    if (value.items.empty()) {
+        diagnostics_.error(file_, value.span, "'" + name + "' needs at least one stop [value, colour]");
+        return false;
+    }
+    if (value.items.size() > kMostColorStops) {
+        diagnostics_.error(file_, value.span,
+                           "'" + name + "' holds at most " + std::to_string(kMostColorStops) + " stops; this has " +
+                               std::to_string(value.items.size()));
+        return false;
+    }
+    double previous = 0;
+    for (size_t i = 0; i < value.items.size(); ++i) {
+        const PlainValue& stop = value.items[i];
+        const std::string which = "stop " + std::to_string(i) + " of '" + name + "'";
+        auto is_colour = [](const PlainValue& c) {
+            return c.kind == PlainValue::Kind::Number ||
+                   (c.kind == PlainValue::Kind::Vector && c.components.size() == 3);
+        };
+        if (stop.kind != PlainValue::Kind::List || stop.items.size() != 2 ||
+            stop.items[0].kind != PlainValue::Kind::Number || !is_colour(stop.items[1])) {
+            diagnostics_.error(file_, value.span,
+                               which + " must be [value, colour] (a number, then a number or (r, g, b)), found " +
+                                   describe_found(stop));
+            return false;
+        }
+        const double at = stop.items[0].number;
+        const PlainValue& colour = stop.items[1];
+        const std::vector<double> channels =
+            colour.kind == PlainValue::Kind::Number ? std::vector<double>{colour.number} : colour.components;
+        const bool colour_ok = std::all_of(channels.begin(), channels.end(), [](double c) {
+            return std::isfinite(c) && c >= 0 && c <= kLargestMagnitude;
+        });
+        if (!(at >= 0 && at <= 1) || !colour_ok) {
+            diagnostics_.error(file_, value.span,
+                               which + (colour_ok ? ": its value must be within 0..1, found " + format_number(at)
+                                                  : ": its colour must be finite, 0 to 1e30 in each channel"));
+            return false;
+        }
+        if (i > 0 && at < previous) {
+            diagnostics_.error(file_, value.span,
+                               which + " is at " + format_number(at) + ", below the stop before it (" +
+                                   format_number(previous) + "): stops go in order of value");
+            return false;
+        }
+        previous = at;
+    }
+    return true;
 }
 
 bool Validator::check_number(double number, Span span, const KeySpec& key) {
@@ -426,6 +506,7 @@ std::optional<SceneDescription> SceneBuilder::finish(
     State& state = *state_;
     state.validator.finish();
     resolve_later_materials(state.assembly);
+    place_later_materials(state.assembly);
     const Diagnostics& diagnostics = state.assembly.diagnostics;
     if (!state.options.fragment && !diagnostics.has_errors()) warn_about_the_picture(state.assembly);
     if (diagnostics.has_errors()) return std::nullopt;

@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "render/spawn.h"
+#include "scene/pattern.h"
 
 namespace tracer {
 
@@ -64,7 +65,7 @@ static Color light_through(const World& world, SpawnedRay shadow, const Vec3& li
 // whose unshadowed term is exactly zero (a mirror with kd = ks = 0, a back face without
 // specular) adds nothing either way, so it costs no shadow ray; under the SPD's, a shadow ray
 // goes wherever the normal faces the light, and nowhere else.
-static Color direct_light(const World& world, const RenderSettings& settings, const Material& material,
+static Color direct_light(const World& world, const RenderSettings& settings, const Material& material, const Color& kd,
                           const SurfaceHit& hit, const SpawnPoint& spawn, const Vec3& normal, const Vec3& to_viewer,
                           std::span<Occluder> last_blockers, RayCounts& counts) {
     const bool spd_rules = settings.spawn_rules == SpawnRules::Spd;
@@ -79,7 +80,7 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         const Real n_dot_l = glm::dot(normal, to_light);
         const Vec3 reflected_light = 2 * n_dot_l * normal - to_light;  // R = 2(N.L)N - L
         const Real r_dot_v = std::max(Real(0), glm::dot(reflected_light, to_viewer));
-        const Color diffuse = material.kd * double(std::max(Real(0), n_dot_l));
+        const Color diffuse = kd * double(std::max(Real(0), n_dot_l));
         const Color specular =
             material.ks == Color(0.0) ? Color(0.0) : material.ks * std::pow(double(r_dot_v), material.n);
         Color term = light.color * (diffuse + specular);
@@ -97,6 +98,19 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         sum += term;
     }
     return sum;
+}
+
+// A patterned material's ka and kd at a hit (scene/pattern.h): its patterns evaluated at the
+// point carried into the shape's own coordinates, and at the surface's (u, v).
+[[gnu::noinline]] static void paint(const World& world, const Material& material, const Hit& found,
+                                    const SurfaceHit& hit, Color& ka, Color& kd) {
+    const glm::dvec3 point = material.to_object(glm::dvec3(hit.point));
+    const glm::dvec2 uv = world.surface_uv(found, hit, material.to_object.linear);
+    const glm::dvec3 uv_point(uv, 0);
+    if (material.ka_pattern >= 0)
+        ka = pattern_color(world.patterns(), world.images(), material.ka_pattern, point, uv_point);
+    if (material.kd_pattern >= 0)
+        kd = pattern_color(world.patterns(), world.images(), material.kd_pattern, point, uv_point);
 }
 
 // The refracted direction of unit `direction` through a surface whose unit `normal` faces it,
@@ -221,8 +235,11 @@ template <bool kRefracts>
             const Vec3 normal = glm::dot(hit.normal, ray.direction) > 0 ? -hit.normal : hit.normal;
             const Vec3 to_viewer = -ray.direction;
             const SpawnPoint spawn(hit);
-            color += weight * (material.ka + direct_light(world, settings, material, hit, spawn, normal, to_viewer,
-                                                          last_blockers, counts));
+            Color ka = material.ka, kd = material.kd;
+            if (material.patterned()) [[unlikely]]
+                paint(world, material, *found, hit, ka, kd);
+            color += weight * (ka + direct_light(world, settings, material, kd, hit, spawn, normal, to_viewer,
+                                                 last_blockers, counts));
             if (depth == settings.max_depth) break;
 
             // Step 3: the refracted ray, a branch of its own; on total internal reflection, kt joins km.

@@ -1,5 +1,7 @@
 #include "scene/flat_shapes.h"
 
+#include <array>
+
 namespace tracer {
 namespace {
 
@@ -15,6 +17,8 @@ TriangleMesh triangle_mesh(const FlatTriangle& shape) {
     TriangleMesh mesh;
     mesh.positions = {shape.a, shape.b, shape.c};
     mesh.triangles = {{0, 1, 2}};
+    mesh.texcoords = {{0, 0}, {1, 0}, {0, 1}};
+    mesh.texcoord_ids = mesh.triangles;
     return mesh;
 }
 
@@ -23,6 +27,8 @@ TriangleMesh triangle_mesh(const Quad& shape) {
     mesh.positions = {shape.corner, shape.corner + shape.edge1, shape.corner + shape.edge1 + shape.edge2,
                       shape.corner + shape.edge2};
     add_quad(mesh, 0, 1, 2, 3);
+    mesh.texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    mesh.texcoord_ids = mesh.triangles;
     return mesh;
 }
 
@@ -38,6 +44,26 @@ TriangleMesh triangle_mesh(const Box& shape) {
     add_quad(mesh, 2, 6, 7, 3);  // y = max, normal +y
     add_quad(mesh, 0, 2, 3, 1);  // z = min, normal -z
     add_quad(mesh, 4, 5, 7, 6);  // z = max, normal +z
+    // Each face's corners' (u, v) from their place in the box (0 at min, 1 at max on each axis).
+    using Face = glm::dvec2 (*)(const glm::dvec3& at);
+    constexpr Face kFaceCoordinates[] = {
+        [](const glm::dvec3& at) { return glm::dvec2(at.z, at.y); },      // -x
+        [](const glm::dvec3& at) { return glm::dvec2(1 - at.z, at.y); },  // +x
+        [](const glm::dvec3& at) { return glm::dvec2(at.x, at.z); },      // -y
+        [](const glm::dvec3& at) { return glm::dvec2(at.x, 1 - at.z); },  // +y
+        [](const glm::dvec3& at) { return glm::dvec2(1 - at.x, at.y); },  // -z
+        [](const glm::dvec3& at) { return glm::dvec2(at.x, at.y); },      // +z
+    };
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        std::array<uint32_t, 3> ids{};
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t i = mesh.triangles[t][k];
+            const glm::dvec3 at(i & 1 ? 1 : 0, i & 2 ? 1 : 0, i & 4 ? 1 : 0);
+            ids[k] = uint32_t(mesh.texcoords.size());
+            mesh.texcoords.push_back(kFaceCoordinates[t / 2](at));
+        }
+        mesh.texcoord_ids.push_back(ids);
+    }
     return mesh;
 }
 

@@ -7,6 +7,11 @@
 
 namespace tracer {
 
+// Each also has surface coordinates (u, v): a triangle's (0, 0) at a, (1, 0) at b, (0, 1) at c;
+// a quad's (0, 0) at `corner`, (1, 0) at corner + edge1, (0, 1) at corner + edge2; a box's per
+// face, 0..1 across it, seen from outside with y up on the sides (u towards +x on the +z face,
+// -x on -z, -z on +x, +z on -x) and with -z up on the top (+z up on the bottom), u towards +x.
+
 // One triangle a, b, c.
 TriangleMesh triangle_mesh(const FlatTriangle& shape);
 // Two triangles sharing the diagonal from `corner` to `corner + edge1 + edge2`, wound like the quad.

@@ -5,12 +5,10 @@
 #include <cstdio>
 #include <utility>
 
+#include "scene/words.h"
+
 namespace tracer {
 namespace {
-
-// A choice's values and their words, in the order of the enum.
-template <typename Enum, size_t N>
-using Words = std::array<std::pair<Enum, const char*>, N>;
 
 constexpr Words<Accelerator, 4> kAcceleratorWords{{{Accelerator::None, "none"},
                                                    {Accelerator::Box, "box"},
@@ -19,23 +17,6 @@ constexpr Words<Accelerator, 4> kAcceleratorWords{{{Accelerator::None, "none"},
 constexpr Words<SpawnRules, 2> kSpawnRulesWords{{{SpawnRules::Tracer, "tracer"}, {SpawnRules::Spd, "spd"}}};
 constexpr Words<Antialias, 2> kAntialiasWords{{{Antialias::Uniform, "uniform"}, {Antialias::Adaptive, "adaptive"}}};
 constexpr Words<Encoding, 2> kEncodingWords{{{Encoding::Linear, "linear"}, {Encoding::Srgb, "srgb"}}};
-
-template <typename Enum, size_t N>
-const char* word_of(const Words<Enum, N>& words, Enum value) {
-    for (const auto& [each, word] : words)
-        if (each == value) return word;
-    return words[0].second;
-}
-
-template <typename Enum, size_t N>
-bool value_of(const Words<Enum, N>& words, std::string_view word, Enum& out) {
-    for (const auto& [each, each_word] : words)
-        if (word == each_word) {
-            out = each;
-            return true;
-        }
-    return false;
-}
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 #include "base/diagnostics.h"
+#include "scene/pattern.h"
 
 namespace tracer {
 
@@ -31,6 +32,13 @@ struct Material {
     double n = 1.0;    // specular (Phong) exponent
     dvec3 kt{0.0};     // transmission (refraction)
     double ior = 1.0;  // index of refraction of the inside (the side the normal points away from)
+    // Patterns (pattern.h) in place of ka and kd, indices into SceneDescription::patterns (-1:
+    // the colour), evaluated at the hit carried into the shape's own coordinates by `to_object`.
+    int ka_pattern = -1;
+    int kd_pattern = -1;
+    Affine to_object;  // world -> the shape's own coordinates (a copy of the material per placement)
+
+    bool patterned() const { return ka_pattern >= 0 || kd_pattern >= 0; }
 };
 
 struct Camera {
@@ -85,9 +93,8 @@ struct RenderSettings {
     int adaptive_depth = 3;            // the most times a pixel is split (into 2^depth x 2^depth cells)
     double adaptive_cell = 1;          // the side of the first cells, in pixels: a power of two, 2^-depth .. 16
     Accelerator accel = Accelerator::Sah;
-    int leaf_size = 4;
-    Encoding encoding = Encoding::Linear;  // of 8-bit image files  // most triangles in a BVH leaf (median; sah may
-                                           // make smaller leaves)
+    int leaf_size = 4;                     // most triangles in a BVH leaf (median; sah may make smaller leaves)
+    Encoding encoding = Encoding::Linear;  // of 8-bit image files
 };
 
 // The largest image, in pixels (8192 x 8192: 1.6 GB of pixel data in double precision).
@@ -213,6 +220,8 @@ struct SceneDescription {
     std::vector<Cone> cones;
     std::vector<Disc> discs;
     std::vector<Light> lights;
+    std::vector<Pattern> patterns;  // of the materials (pattern.h)
+    std::vector<ImageFile> images;  // that image patterns read
 };
 
 }  // namespace tracer

@@ -17,10 +17,66 @@ Json vec(const dvec3& v) {
     return Json::array({v.x, v.y, v.z});
 }
 
+// `second` after `first`.
+Affine then(const Affine& first, const Affine& second) {
+    return {second.linear * first.linear, second.linear * first.offset + second.offset};
+}
+
+// An affine map as three rows of four numbers.
+Json affine_json(const Affine& map) {
+    Json rows = Json::array();
+    for (int r = 0; r < 3; ++r)
+        rows.push_back(Json::array({map.linear[0][r], map.linear[1][r], map.linear[2][r], map.offset[r]}));
+    return rows;
+}
+
+// A pattern with its whole placement: `to_pattern` maps world points (uv mapping: (u, v, 0))
+// into its space, through the shape's, the outer patterns' and its own steps.
+Json pattern_json(const SceneDescription& scene, int index, const Affine& to_outer, const Affine& uv_to_outer);
+
+Json paint_json(const SceneDescription& scene, const dvec3& color, int pattern, const Affine& to_outer,
+                const Affine& uv_to_outer) {
+    return pattern >= 0 ? pattern_json(scene, pattern, to_outer, uv_to_outer) : vec(color);
+}
+
+Json pattern_json(const SceneDescription& scene, int index, const Affine& to_outer, const Affine& uv_to_outer) {
+    const Pattern& p = scene.patterns.at(size_t(index));
+    const Affine to_own = then(to_outer, p.to_pattern), uv_to_own = then(uv_to_outer, p.to_pattern);
+    Json out{{"pattern", pattern_kind_name(p.kind)},
+             {"mapping", mapping_name(p.mapping)},
+             {"to_pattern", affine_json(p.mapping == Mapping::Uv ? uv_to_own : to_own)}};
+    switch (p.kind) {
+        case PatternKind::Checker:
+            out["even"] = paint_json(scene, p.even.color, p.even.pattern, to_own, uv_to_own);
+            out["odd"] = paint_json(scene, p.odd.color, p.odd.pattern, to_own, uv_to_own);
+            break;
+        case PatternKind::Image:
+            out["file"] = scene.images.at(size_t(p.image)).path;
+            out["wrap"] = wrap_name(p.wrap);
+            break;
+        default:
+            out["colors"] = Json::array();
+            for (const ColorStop& stop : p.colors) out["colors"].push_back(Json::array({stop.at, vec(stop.color)}));
+            out["axis"] = vec(p.axis);
+            out["turbulence"] = p.turbulence;
+            out["octaves"] = p.octaves;
+    }
+    return out;
+}
+
 Json material_json(const SceneDescription& scene, int index) {
     const Material& m = scene.materials.at(size_t(index));
-    return Json{{"name", m.name},  {"ka", vec(m.ka)}, {"kd", vec(m.kd)}, {"ks", vec(m.ks)},
-                {"km", vec(m.km)}, {"n", m.n},        {"kt", vec(m.kt)}, {"ior", m.ior}};
+    Json out{{"name", m.name},
+             {"ka", paint_json(scene, m.ka, m.ka_pattern, m.to_object, Affine{})},
+             {"kd", paint_json(scene, m.kd, m.kd_pattern, m.to_object, Affine{})},
+             {"ks", vec(m.ks)},
+             {"km", vec(m.km)},
+             {"n", m.n},
+             {"kt", vec(m.kt)},
+             {"ior", m.ior}};
+    // Where the shape's own coordinates are (its surface's (u, v) are measured there).
+    if (m.patterned() && !(m.to_object == Affine{})) out["to_object"] = affine_json(m.to_object);
+    return out;
 }
 
 // Where a shape is placed: its scale, rotate and translate, or (with steps after them, its

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 namespace tracer {
@@ -16,6 +17,9 @@ struct TriangleMesh {
     std::vector<glm::dvec3> normals;                  // as the file gives them (not normalised); may be empty
     std::vector<std::array<uint32_t, 3>> normal_ids;  // per triangle: indices into normals; empty
                                                       // unless every triangle has file normals
+    // Surface coordinates (u, v): the file's `vt`, or the flat shape's (flat_shapes.h); empty if none.
+    std::vector<glm::dvec2> texcoords;
+    std::vector<std::array<uint32_t, 3>> texcoord_ids;  // per triangle: indices into texcoords, or empty
 };
 
 // The meshes of a scene: each file read once, however many mesh blocks name it.

@@ -58,6 +58,7 @@ public:
     // and transform keys), each with its one key, in the order written.
     void add_step(std::unique_ptr<Fields> step) { steps_.push_back(std::move(step)); }
     const std::vector<std::unique_ptr<Fields>>& steps() const { return steps_; }
+    const BlockSpec& spec() const { return *spec_; }
 
 private:
     // The table's row for `name`; throws std::logic_error, naming both, if the block has none.

@@ -29,14 +29,15 @@ constexpr size_t kMostNamesRecorded = 100000;
 struct PlainValue {
     // Broken: its error was reported where it was made; the key counts as given, and nothing
     // more is said of it (no second message), but its block is not built.
-    enum class Kind { Number, Vector, String, Identifier, Block, Broken };
+    enum class Kind { Number, Vector, String, Identifier, Block, List, Broken };
     Kind kind = Kind::Number;
     Span span;
     double number = 0;               // Number
     std::vector<double> components;  // Vector
     std::vector<Span> component_spans;
-    std::string text;            // String (contents) or Identifier
-    std::shared_ptr<Body> body;  // Block (an inline block such as `material { ... }`)
+    std::string text;               // String (contents), Identifier, or a Block's kind when written as a value
+    std::shared_ptr<Body> body;     // Block (an inline block such as `material { ... }`)
+    std::vector<PlainValue> items;  // List (a colour map's stops)
 };
 
 inline bool is_number(const PlainValue& value) {

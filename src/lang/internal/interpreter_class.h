@@ -16,6 +16,11 @@ namespace tracer {
 // `value` as validation reads it, at `span` (each component too), if it is a number, vector,
 // boolean or string; false for the other kinds.
 bool plain_value(const RuntimeValue& value, Span span, PlainValue& out);
+// A list (a colour map) as a plain value, each item plain or a list of at most 16 plain values;
+// false if some item is not.
+bool plain_list(const RuntimeValue& value, Span span, PlainValue& out);
+// What the first item of a list that plain_list refuses is ("a function").
+std::string first_unplain_kind(const RuntimeValue& value);
 
 // Thrown after an error while running has been reported: the entry or statement is dropped.
 // Made just before it is thrown, deep in calls it may be: the stack is readied for unwinding.

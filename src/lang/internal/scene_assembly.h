@@ -25,6 +25,9 @@
 
 namespace tracer {
 
+// The shapes' lists, for the materials of shapes placed before their material's block.
+enum class ShapeList : uint8_t { Spheres, Planes, Meshes, Triangles, Quads, Boxes, Cones, Discs };
+
 struct SceneAssembly {
     // Checks a group's placement against the group table, filling `fields` (the validator's
     // check_body): asked the first time a block placed by the group is built.
@@ -57,6 +60,16 @@ struct SceneAssembly {
     // stands for later_materials[i], until resolve_later_materials.
     static constexpr int kLaterMaterial = -2;
     std::vector<std::string> later_materials;
+    // Pattern values shared by several materials, by their body (as value_materials).
+    std::map<const Body*, std::pair<std::shared_ptr<const Body>, int>> value_patterns;
+    // Placed copies of patterned materials, by material and placement.
+    std::map<std::pair<int, std::vector<double>>, int> placed_materials;
+    struct LaterPlacement {  // a shape placed with a material not yet defined
+        ShapeList list;
+        size_t index;
+        Affine to_object;
+    };
+    std::vector<LaterPlacement> later_placements;
     bool kept = false;  // the block being built had a span of its kept (in the members above)
 };
 
@@ -72,7 +85,17 @@ void set_parameters(SceneAssembly& a, const std::vector<std::pair<std::string, P
 void warn_about_the_picture(const SceneAssembly& a);
 
 // The builders' shared steps.
-Material build_material(const Fields& fields, std::string name);
+Material build_material(SceneAssembly& a, const Fields& fields, std::string name);
+// A colour key that may hold a pattern (ka, kd, a checker's squares): the colour, or the
+// pattern built into scene.patterns (once for a pattern value that many materials share).
+Paint build_paint(SceneAssembly& a, const Fields& fields, std::string_view key);
+// Gives the shape about to be added as the next of `list` the material it carries in
+// `material`, placed by `placement` (own coordinates -> world): a patterned material's patterns
+// move with the shape, so it gets a copy with that placement (one per material and placement).
+void place_material(SceneAssembly& a, ShapeList list, int& material, const Placement& placement);
+// Gives the shapes whose material was defined after them their placed copies (after
+// resolve_later_materials).
+void place_later_materials(SceneAssembly& a);
 // The index of the shape's material: a named one, or its inline block added to the list.
 int material_index(SceneAssembly& a, const Fields& fields);
 // The placement and material of a mesh or flat shape; false if the placement is refused.

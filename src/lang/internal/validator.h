@@ -51,6 +51,8 @@ private:
     bool check_step(const Entry& entry, const KeySpec& key, const BlockSpec& spec, Fields& fields);
     bool unknown_key(const Entry& entry, const BlockSpec& spec, std::vector<std::string>& suggested);
     bool check_value(const PlainValue& value, const KeySpec& key, Fields& fields);
+    bool check_pattern(const PlainValue& value, const KeySpec& key, Fields& fields);
+    bool check_color_map(const PlainValue& value, const KeySpec& key);
     bool check_number(double number, Span span, const KeySpec& key);
     bool check_perfect_square(double number, Span span, const KeySpec& key);
     bool check_power_of_two(double number, Span span, const KeySpec& key);
@@ -75,6 +77,7 @@ private:
     };
     std::vector<LaterUse> later_uses_;
     std::map<const BlockSpec*, Span> first_of_kind_;  // each kind's first block, by its table
+    int pattern_depth_ = 0;                           // patterns being checked, one inside another
     bool kept_ = false;  // the block being checked had a span of its kept (in the members above)
 };
 
