@@ -103,7 +103,7 @@ std::optional<TriangleMesh> mesh_from_obj_text(const std::string& path, std::str
         for (int k = 0; k < 3; ++k) triangles[t][k] = obj->corner_vertex[corners[t][k]];
     const std::vector<bool> keep = triangles_to_keep(obj->positions, triangles);
     TriangleMesh out;
-    bool file_normals = !obj->normals.empty();
+    bool file_normals = !obj->normals.empty(), file_texcoords = !obj->texcoords.empty();
     size_t degenerate = 0;
     for (size_t t = 0; t < corners.size(); ++t) {
         if (!keep[t]) {
@@ -115,6 +115,9 @@ std::optional<TriangleMesh> mesh_from_obj_text(const std::string& path, std::str
         const int32_t n0 = obj->corner_normal[c[0]], n1 = obj->corner_normal[c[1]], n2 = obj->corner_normal[c[2]];
         file_normals = file_normals && n0 >= 0 && n1 >= 0 && n2 >= 0;
         if (file_normals) out.normal_ids.push_back({uint32_t(n0), uint32_t(n1), uint32_t(n2)});
+        const int32_t t0 = obj->corner_texcoord[c[0]], t1 = obj->corner_texcoord[c[1]], t2 = obj->corner_texcoord[c[2]];
+        file_texcoords = file_texcoords && t0 >= 0 && t1 >= 0 && t2 >= 0;
+        if (file_texcoords) out.texcoord_ids.push_back({uint32_t(t0), uint32_t(t1), uint32_t(t2)});
     }
     auto warn = [&](size_t count, const std::string& what) {
         if (count > 0)
@@ -133,12 +136,17 @@ std::optional<TriangleMesh> mesh_from_obj_text(const std::string& path, std::str
         return std::nullopt;
     }
 
-    // Step 3: the positions, and the file's normals when every triangle has them.
+    // Step 3: the positions, and the file's normals and texture coordinates when every
+    // triangle has them.
     out.positions = std::move(obj->positions);
     if (file_normals)
         out.normals = std::move(obj->normals);
     else
         out.normal_ids.clear();
+    if (file_texcoords)
+        out.texcoords = std::move(obj->texcoords);
+    else
+        out.texcoord_ids.clear();
     return out;
 }
 

@@ -33,16 +33,22 @@ public:
         for_each_statement([&](std::string_view keyword) {
             vertex_total_ += keyword == "v";
             normal_total_ += keyword == "vn";
+            texcoord_total_ += keyword == "vt";
             out_.material_statements += keyword == "usemtl" || keyword == "mtllib";
         });
         out_.positions.reserve(vertex_total_);
         out_.normals.reserve(normal_total_);
+        out_.texcoords.reserve(texcoord_total_);
         out_.face_starts.push_back(0);
 
         // Step 2: read them, checking every number and index.
         for_each_statement([&](std::string_view keyword) {
             if (keyword == "v" || keyword == "vn") {
                 read_coordinates(keyword, keyword == "v" ? out_.positions : out_.normals);
+            } else if (keyword == "vt") {
+                glm::dvec3 uvw(0.0);
+                read_numbers(keyword, 1, 3, uvw);
+                out_.texcoords.push_back({uvw.x, uvw.y});
             } else if (keyword == "f") {
                 read_face();
             }
@@ -84,10 +90,17 @@ private:
     // `v`, a weight or a colour, are checked as numbers and not used).
     void read_coordinates(std::string_view keyword, std::vector<glm::dvec3>& into) {
         glm::dvec3 point(0.0);
-        if (tokens_.size() < 3) {
+        read_numbers(keyword, 3, keyword == "v" ? 6 : 3, point);
+        into.push_back(point);  // even when wrong, so later indices still count right
+    }
+
+    // The numbers of a `v`, `vn` or `vt`: `least` to `allowed` finite ones in range, the first
+    // three (at most) into `point`.
+    void read_numbers(std::string_view keyword, size_t least, size_t allowed, glm::dvec3& point) {
+        if (tokens_.size() < least) {
             error(tokens_.empty() ? keyword_span_ : tokens_.back().span,
-                  "'" + std::string(keyword) + "' needs three coordinates");
-        } else if (const size_t allowed = keyword == "v" ? 6 : 3; tokens_.size() > allowed) {
+                  "'" + std::string(keyword) + "' needs " + (least == 3 ? "three coordinates" : "a coordinate"));
+        } else if (tokens_.size() > allowed) {
             error(tokens_[allowed].span,
                   "'" + std::string(keyword) + "' has more than " + std::to_string(allowed) + " numbers");
         } else {
@@ -106,10 +119,9 @@ private:
                     point[int(i)] = value;
             }
         }
-        into.push_back(point);  // even when wrong, so later indices still count right
     }
 
-    // `f v v v ...`, each corner v, v/vt, v/vt/vn or v//vn (texture indices: form only).
+    // `f v v v ...`, each corner v, v/vt, v/vt/vn or v//vn.
     void read_face() {
         if (tokens_.size() < 3) error(keyword_span_, "a face needs at least three vertices");
         if (tokens_.size() > kMaxFaceCorners) {
@@ -130,22 +142,24 @@ private:
             if (slash == 0) error(token.span, in_quotes(token.text) + " has no vertex index");
             const long vertex =
                 index(token, corner.substr(0, slash), out_.positions.size(), vertex_total_, "vertex", "vertices");
-            long normal = -1;
+            long normal = -1, texcoord = -1;
             if (slash != std::string_view::npos) {
                 const size_t second = corner.find('/', slash + 1);
-                index(token, corner.substr(slash + 1, second - slash - 1), 0, 0, nullptr, nullptr);
+                texcoord = index(token, corner.substr(slash + 1, second - slash - 1), out_.texcoords.size(),
+                                 texcoord_total_, "texture coordinate", "texture coordinates");
                 if (second != std::string_view::npos)
                     normal = index(token, corner.substr(second + 1), out_.normals.size(), normal_total_, "normal",
                                    "normals");
             }
             out_.corner_vertex.push_back(uint32_t(std::max(vertex, 0L)));
             out_.corner_normal.push_back(int32_t(normal));
+            out_.corner_texcoord.push_back(int32_t(texcoord));
         }
         out_.face_starts.push_back(uint32_t(out_.corner_vertex.size()));
     }
 
     // One index of a face corner, 0-based, or -1 if absent or wrong (reported; an absent one
-    // is read_face's to judge). `what` null: only its form is checked (the texture index).
+    // is read_face's to judge).
     long index(const Token& token, std::string_view digits, size_t so_far, size_t total, const char* what,
                const char* plural) {
         if (digits.empty()) return -1;
@@ -155,7 +169,6 @@ private:
             error(token.span, in_quotes(token.text) + " is not a valid face corner");
             return -1;
         }
-        if (!what) return -1;
         const long resolved = number < 0 ? long(so_far) + number + 1 : number;  // negative: relative to here
         if (number == 0 || resolved < 1 || resolved > long(total)) {
             error(token.span, std::string(what) + " index " + std::to_string(number) +
@@ -176,7 +189,7 @@ private:
     ObjContents out_;
     std::vector<Token> tokens_;
     Span keyword_span_;
-    size_t vertex_total_ = 0, normal_total_ = 0;
+    size_t vertex_total_ = 0, normal_total_ = 0, texcoord_total_ = 0;
     double polygon_work_ = 0;  // corner pairs of the faces of 5 or more corners so far
     bool work_reported_ = false;
     bool ok_ = true;

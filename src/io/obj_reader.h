@@ -1,9 +1,8 @@
-// Reading the mesh statements of an OBJ file (`v`, `vn`, `f`) in one pass that checks as it
+// Reading the mesh statements of an OBJ file (`v`, `vn`, `vt`, `f`) in one pass that checks as it
 // reads, so every problem is reported at its line and column and nothing unchecked reaches
-// the renderer. Other statements (texture coordinates, groups, materials, lines, ...) are
-// skipped. Written here rather than taken from tinyobjloader, which the project used first:
-// it counts a face's corners in a byte (a 300-corner polygon came out wrong), triangulates
-// large polygons in cubic time, reads "nan" as 0, overflows on an exponent like 1e2147483648,
+// the renderer. Other statements (groups, materials, lines, ...) are skipped. Written here rather than taken from
+// tinyobjloader, which the project used first: it counts a face's corners in a byte (a 300-corner polygon came out
+// wrong), triangulates large polygons in cubic time, reads "nan" as 0, overflows on an exponent like 1e2147483648,
 // splits lines differently from any checker put in front of it, and peaked at ~8x the file
 // size in memory.
 #pragma once
@@ -12,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "base/diagnostics.h"
@@ -30,10 +30,12 @@ inline constexpr double kMaxPolygonWork = 2e10;
 struct ObjContents {
     std::vector<glm::dvec3> positions;
     std::vector<glm::dvec3> normals;
-    std::vector<uint32_t> face_starts;    // per face: its first corner; one more entry at the end
-    std::vector<uint32_t> corner_vertex;  // per corner: index into positions
-    std::vector<int32_t> corner_normal;   // per corner: index into normals, or -1 if none
-    size_t material_statements = 0;       // usemtl / mtllib lines, which tracer does not use
+    std::vector<glm::dvec2> texcoords;     // (u, v) of each `vt` (a missing v is 0; a w is checked, not used)
+    std::vector<uint32_t> face_starts;     // per face: its first corner; one more entry at the end
+    std::vector<uint32_t> corner_vertex;   // per corner: index into positions
+    std::vector<int32_t> corner_normal;    // per corner: index into normals, or -1 if none
+    std::vector<int32_t> corner_texcoord;  // per corner: index into texcoords, or -1 if none
+    size_t material_statements = 0;        // usemtl / mtllib lines, which tracer does not use
 };
 
 // Reads the mesh statements of `file`; reports every problem found

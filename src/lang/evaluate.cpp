@@ -400,6 +400,11 @@ bool Interpreter::entry_value(const CompiledEntry& entry, PlainValue& out) {
                                             : key->type == ValueType::Paint            ? "pattern"
                                             : key->block                               ? key->block->kind
                                                                                        : std::string_view();
+            if (wanted != kind && pattern && key && key->type == ValueType::Triple)
+                fail(node.span, "'" + entry.key +
+                                    "' takes a colour, not a pattern: only a material's ka and kd take "
+                                    "patterns (kd " +
+                                    kind + " { ... })");
             if (wanted != kind)
                 fail(node.span, "'" + entry.key + "' takes " +
                                     (wanted.empty()         ? std::string("no block")

@@ -431,11 +431,16 @@ void Parser::parse_body(BodyCode& body, const std::string& owner) {
 
 // entry = identifier value ;
 void Parser::parse_entry(BodyCode& body) {
-    if (!at(TokenKind::Identifier))
-        fail(peek(), "expected a key or '}', found " + describe(peek()) +
-                         (at(TokenKind::Less) ? "; each value is named by its key here, and a vector is (x, y, z): "
-                                                "sphere { center (0, 0, 0) radius 1 ... }, not sphere { <0, 0, 0>, 1 }"
-                                              : ""));
+    if (!at(TokenKind::Identifier)) {
+        // Inside POV-Ray's `pigment { checker ..., ... }`: its hint says what tracer writes instead.
+        const std::string owner_hint = open_.empty() ? "" : povray_hint(open_.back().owner);
+        fail(peek(),
+             "expected a key or '}', found " + describe(peek()) +
+                 (!owner_hint.empty()   ? owner_hint + " (inside '" + open_.back().owner + "')"
+                  : at(TokenKind::Less) ? "; each value is named by its key here, and a vector is (x, y, z): "
+                                          "sphere { center (0, 0, 0) radius 1 ... }, not sphere { <0, 0, 0>, 1 }"
+                                        : ""));
+    }
     EntryCode entry;
     Token key = take();
     entry.key = std::string(key.text);

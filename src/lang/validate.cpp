@@ -358,9 +358,14 @@ bool Validator::check_color_map(const PlainValue& value, const KeySpec& key) {
         };
         if (stop.kind != PlainValue::Kind::List || stop.items.size() != 2 ||
             stop.items[0].kind != PlainValue::Kind::Number || !is_colour(stop.items[1])) {
-            diagnostics_.error(file_, value.span,
-                               which + " must be [value, colour] (a number, then a number or (r, g, b)), found " +
-                                   describe_found(stop));
+            const bool pair = stop.kind == PlainValue::Kind::List && stop.items.size() == 2;
+            const std::string found = !pair ? describe_found(stop)
+                                      : stop.items[0].kind != PlainValue::Kind::Number
+                                          ? "a value that is " + describe_found(stop.items[0])
+                                          : "a colour that is " + describe_found(stop.items[1]);
+            diagnostics_.error(
+                file_, value.span,
+                which + " must be [value, colour] (a number, then a number or (r, g, b)), found " + found);
             return false;
         }
         const double at = stop.items[0].number;

@@ -74,5 +74,29 @@ TEST(ObjMesh, AFileWithoutFacesIsAnError) {
     EXPECT_TRUE(diagnostics.has_errors());
 }
 
+TEST(ObjMesh, TextureCoordinatesAreKeptOnlyWhenEveryFaceHasThem) {
+    const std::string square = kSquare + "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.5\n";
+    Diagnostics all;
+    const auto every = mesh_from_obj_text("t.obj", square + "f 1/1 2/2 3/3\nf 1/1/ 3/3 4/4\n", all);
+    ASSERT_TRUE(every);
+    ASSERT_EQ(every->texcoord_ids.size(), 2u);
+    EXPECT_EQ(every->texcoord_ids[1], (std::array<uint32_t, 3>{0, 2, 3}));
+    EXPECT_EQ(every->texcoords[3], glm::dvec2(0.5, 0));  // a missing v is 0
+    Diagnostics some;
+    const auto partly = mesh_from_obj_text("t.obj", square + "f 1/1 2/2 3/3\nf 1 3 4\n", some);
+    ASSERT_TRUE(partly);
+    EXPECT_TRUE(partly->texcoord_ids.empty());
+    EXPECT_TRUE(partly->texcoords.empty());
+}
+
+TEST(ObjMesh, BadTextureCoordinatesAreErrors) {
+    for (const std::string& bad : {kSquare + "vt 0 0\nf 1/2 2/1 3/1\n", kSquare + "vt nan 0\nf 1/1 2/1 3/1\n",
+                                   kSquare + "vt\nf 1 2 3\n", kSquare + "vt 0 0 0 0\nf 1 2 3\n"}) {
+        Diagnostics diagnostics;
+        EXPECT_FALSE(mesh_from_obj_text("bad.obj", bad, diagnostics)) << bad;
+        EXPECT_GE(diagnostics.error_count(), 1) << bad;
+    }
+}
+
 }  // namespace
 }  // namespace tracer
