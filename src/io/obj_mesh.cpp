@@ -167,6 +167,16 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
         }
     }
     if (!ok) return std::nullopt;
+    // A pattern mapped by (u, v) on a file without them sees (0, 0) everywhere: one colour.
+    for (size_t block = 0; block < scene.meshes.size(); ++block) {
+        const Mesh& mesh = scene.meshes[block];
+        if (mesh.material < 0 || !meshes.files[meshes.file_of_block[block]].texcoord_ids.empty()) continue;
+        const Material& material = scene.materials[size_t(mesh.material)];
+        if (maps_by_uv(scene.patterns, material.ka_pattern) || maps_by_uv(scene.patterns, material.kd_pattern))
+            diagnostics.report(Severity::Warning, mesh.named_at,
+                               "this mesh's material maps a pattern by (u, v), but the file gives no texture "
+                               "coordinates (vt) for every face: the pattern sees (0, 0) all over it");
+    }
     // Placed, no coordinate may leave the renderer's range either: a bound on each block's
     // placed coordinates (scaled, turned, moved) from its file's largest coordinate.
     std::vector<double> largest(meshes.files.size(), 0.0);

@@ -178,6 +178,13 @@ bool uses_surface_coordinates(std::span<const Pattern> patterns) {
                        [](const Pattern& pattern) { return pattern.mapping == Mapping::Uv; });
 }
 
+bool maps_by_uv(std::span<const Pattern> patterns, int index) {
+    if (index < 0) return false;
+    const Pattern& pattern = patterns[size_t(index)];
+    return pattern.mapping == Mapping::Uv || maps_by_uv(patterns, pattern.even.pattern) ||
+           maps_by_uv(patterns, pattern.odd.pattern);
+}
+
 dvec3 pattern_color(std::span<const Pattern> patterns, std::span<const ImageFile> images, int index, const dvec3& point,
                     const dvec3& uv) {
     const Pattern& pattern = patterns[size_t(index)];

@@ -101,6 +101,8 @@ double srgb_decoded(uint8_t byte);
 
 // True if some pattern maps by the surface's own (u, v) (Mapping::Uv).
 bool uses_surface_coordinates(std::span<const Pattern> patterns);
+// True if patterns[index], or a pattern inside it, maps by (u, v); false for index -1.
+bool maps_by_uv(std::span<const Pattern> patterns, int index);
 
 // The colour of `patterns[index]` at a point of the shape's own coordinates and at its surface
 // (u, v) (read only by `uv` mapping), with the images it may read.
