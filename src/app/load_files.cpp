@@ -22,11 +22,11 @@ std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
     if (loaded.scene) {
         if (adjust) adjust(*loaded.scene);
         const std::string problem = render_settings_problem(loaded.scene->render);
-        if (problem.empty() && load_images(*loaded.scene, loaded.diagnostics))
-            meshes = load_meshes(*loaded.scene, loaded.diagnostics);
-        else
+        if (!problem.empty())
             loaded.diagnostics.report(Severity::Error, Diagnostics::whole_file(name),
                                       "with the command line's overrides, " + problem);
+        else if (load_images(*loaded.scene, loaded.diagnostics))
+            meshes = load_meshes(*loaded.scene, loaded.diagnostics);
     }
     LoadReport found{loaded.diagnostics, {}, loaded.unreadable, &loaded.names};
     if (input.path != "-") found.files_read.push_back(input.path);
