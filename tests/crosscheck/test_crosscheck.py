@@ -124,11 +124,14 @@ POVRAY_MISSING = "POV-Ray is not installed (Debian's povray; tools/bootstrap --p
         (ROOT / "scenes" / "task2.scn", 0.0),
         (HERE / "glass_transparent_shadows.scn", 0.0005),
         (HERE / "cylinders_discs.scn", 0.0005),
+        (ROOT / "scenes" / "whitted1980.scn", 0.0),
+        (HERE / "patterns_povray.scn", 0.0005),
     ],
 )
 def test_povray_agrees(tracer_bin, tmp_path, scene, most_over_2):
     """POV-Ray 3.7 (xcheck.povray): task2 to the level, glass under transparent shadows (POV-Ray's
-    own) and the analytic cylinders and disc within a few pixels."""
+    own) and the analytic cylinders and disc within a few pixels; Whitted's checkered floor, and
+    nested checkers, gradient, stripes, rings and a planar picture, within a few pixels."""
     result = run_tool("crosscheck", scene, *SMALL, "--with", "povray", "--out", tmp_path, "--json")
     assert result.returncode == 0, result.stdout + result.stderr
     report = json.loads(result.stdout)

@@ -5,7 +5,7 @@ import math
 import pytest
 from conftest import ROOT
 
-from tracer_tools.xcheck import povray
+from tracer_tools.xcheck import ToolError, povray
 
 
 def material(**keys):
@@ -59,3 +59,26 @@ def test_render_times_are_read_from_povrays_statistics():
         "  Trace Time:       0 hours  1 minutes  2 seconds (62.125 seconds)\n"
     )
     assert povray.render_times(log) == {"parse_seconds": 0.019, "trace_seconds": 62.125}
+
+
+def test_patterns_povray_cannot_express_are_refused_with_a_reason():
+    placed = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]]
+    base = {"name": "", "ks": [0, 0, 0], "km": [0, 0, 0], "n": 1, "kt": [0, 0, 0], "ior": 1}
+    marble = {
+        "pattern": "marble",
+        "mapping": "solid",
+        "to_pattern": placed,
+        "colors": [[0, [1, 1, 1]]],
+        "axis": [1, 0, 0],
+        "turbulence": 1,
+        "octaves": 6,
+    }
+    uv = {"pattern": "checker", "mapping": "uv", "to_pattern": placed, "even": [1, 1, 1], "odd": [0, 0, 0]}
+    solid = dict(uv, mapping="solid")
+    for kd, ka, why in ((marble, [0, 0, 0], "noise"), (uv, [0, 0, 0], "mapping uv"), (solid, [0.1, 0.1, 0.1], "ka")):
+        with pytest.raises(ToolError, match=why):
+            povray.texture({**base, "kd": kd, "ka": ka})
+    # ka the same checker scaled: POV-Ray's ambient, per channel.
+    dim = dict(solid, even=[0.1, 0.1, 0.1], odd=[0, 0, 0])
+    text = povray.texture({**base, "kd": solid, "ka": dim})
+    assert "ambient rgb <0.1, 0.1, 0.1>" in text and "checker" in text and "matrix <1.0, 0.0, 0.0," in text

@@ -18,6 +18,11 @@ each where the two renderers' defaults differ:
 - shadows through transmitting surfaces: POV-Ray always lets light through them, multiplied by
   T at each surface (tracer's `transparent_shadows true`); tracer's default opaque shadows differ
   there, and the report says so.
+- patterns (ka, kd): checker, gradient, stripes (a stepped colour map) and rings (POV-Ray's wood
+  without turbulence) in solid mapping, and images in planar mapping, each placed by a `matrix`
+  (the inverse of the JSON's to_pattern); ka must be 0 or kd's pattern scaled per channel
+  (POV-Ray's ambient multiplies the pigment). Spots, turbulence, marble and wood are refused
+  (POV-Ray's noise is not Perlin's reference), as are uv mapping and mirrored image tiling.
 - shapes: spheres, planes, discs, cones and cylinders as POV-Ray's own (analytic); meshes as
   `mesh2` with tracer's placed corners and normals (xcheck.exact_meshes), each with an
   `inside_vector` (see _mesh2: without one POV-Ray may miss a mesh's farther faces); the flat
@@ -64,6 +69,126 @@ def _grey(values: Sequence[float], what: str, material: dict) -> float:
     return float(sum(values) / 3)
 
 
+def _pov_matrix(to_pattern: Sequence[Sequence[float]]) -> str:
+    """POV-Ray's `matrix` placing a pattern whose space is `to_pattern` (rows of 4) of the world:
+    the inverse map, written as POV-Ray's rows (the images of x, y, z, then the origin)."""
+    forward = np.array([*to_pattern, [0, 0, 0, 1]], dtype=np.float64)
+    inverse = np.linalg.inv(forward)
+    rows = [inverse[:3, column] for column in range(4)]
+    return "matrix <" + ", ".join(repr(float(v)) for row in rows for v in row) + ">"
+
+
+def _color_map(stops: list, stepped: bool) -> str:
+    """A colour map; stepped (stripes): each stop's colour held up to the next stop."""
+    entries = []
+    for i, (at, colour) in enumerate(stops):
+        if stepped and i > 0:
+            entries.append(f"[{float(at)!r} rgb {_v(stops[i - 1][1])}]")
+        entries.append(f"[{float(at)!r} rgb {_v(colour)}]")
+    if stepped:
+        entries.append(f"[1 rgb {_v(stops[-1][1])}]")
+    return "color_map { " + " ".join(entries) + " }"
+
+
+def _axis_turn(axis: Sequence[float], to: Sequence[float]) -> np.ndarray:
+    """A rotation (3 x 3) taking unit `axis` onto unit `to` (POV-Ray's patterns run along fixed axes)."""
+    a, b = np.array(axis, dtype=np.float64), np.array(to, dtype=np.float64)
+    k, c = np.cross(a, b), float(np.dot(a, b))
+    if c < -1 + 1e-12:  # opposite: a half turn about any axis across them
+        other = np.array([1.0, 0, 0]) if abs(a[0]) < 0.9 else np.array([0, 1.0, 0])
+        n = np.cross(a, other) / np.linalg.norm(np.cross(a, other))
+        return 2 * np.outer(n, n) - np.eye(3)
+    skew = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + skew + skew @ skew / (1 + c)
+
+
+def pigment(paint: list | dict, factor: Sequence[float] = (1, 1, 1), outer: np.ndarray | None = None) -> str:
+    """A colour or a pattern (from the JSON) as POV-Ray's pigment, each colour times `factor`;
+    `outer`: the enclosing pattern's world -> pattern map (4 x 4), which POV-Ray applies to a
+    nested pigment before its own. POV-Ray's own noise differs from Perlin's reference: spots,
+    turbulence, marble and wood are refused (their definition is checked by tracer's unit tests
+    instead); uv mapping too."""
+    if isinstance(paint, list):
+        return f"pigment {{ rgb {_v([c * f for c, f in zip(paint, factor, strict=True)])} }}"
+    kind, mapping = paint["pattern"], paint["mapping"]
+    if mapping not in ("solid", "planar") or (mapping == "planar" and kind != "image"):
+        raise ToolError(f"a {kind} pattern with mapping {mapping}: not written for POV-Ray")
+    full = np.array([*paint["to_pattern"], [0, 0, 0, 1]], dtype=np.float64)
+    to_pattern = full if outer is None else full @ np.linalg.inv(outer)  # from the outer pattern's space
+    if kind == "checker":
+        even, odd = pigment(paint["even"], factor, full), pigment(paint["odd"], factor, full)
+        body = f"checker {even}, {odd}"
+    elif kind in ("gradient", "stripes", "rings"):
+        # Turned so that the pattern's axis is POV-Ray's: x for a gradient, z for wood's rings.
+        to = (1, 0, 0) if kind != "rings" else (0, 0, 1)
+        turn = np.eye(4)
+        turn[:3, :3] = _axis_turn(paint["axis"], to)
+        to_pattern = turn @ to_pattern
+        stops = [[at, [c * f for c, f in zip(colour, factor, strict=True)]] for at, colour in paint["colors"]]
+        # POV-Ray's wood has a triangle wave by default; tracer's rings rise and jump (a ramp).
+        pattern = "gradient x" if kind != "rings" else "wood ramp_wave"
+        body = pattern + " " + _color_map(stops, kind == "stripes")
+    elif kind == "image":
+        if any(f != 1 for f in factor):
+            raise ToolError("an image pattern scaled for the ambient term: not written for POV-Ray")
+        interpolate = "interpolate 2"
+        once = "" if paint["wrap"] == "repeat" else " once"
+        if paint["wrap"] == "mirror":
+            raise ToolError("an image with wrap mirror: POV-Ray's image_map has no mirrored tiling")
+        body = f'image_map {{ png "{paint["file"]}" gamma srgb map_type 0 {interpolate}{once} }}'
+    else:
+        raise ToolError(f"a {kind} pattern: POV-Ray's noise is not Perlin's reference, so it is not cross-checked")
+    return f"pigment {{ {body} {_pov_matrix(to_pattern[:3])} }}"
+
+
+def _scaled_copy(ka: dict | list, kd: dict, ratio: list[float] | None = None) -> list[float] | None:
+    """The per-channel factor s with ka = s kd for two patterns of one shape, or None."""
+    if isinstance(ka, list) or isinstance(kd, list):
+        if not (isinstance(ka, list) and isinstance(kd, list)):
+            return None
+        out = list(ratio) if ratio is not None else [None, None, None]
+        for channel, (a, d) in enumerate(zip(ka, kd, strict=True)):
+            if d == 0:  # any factor fits a black channel, if ka's is black too
+                if a != 0:
+                    return None
+                continue
+            if out[channel] is not None and abs(a / d - out[channel]) > 1e-12 * max(1.0, abs(out[channel])):
+                return None
+            out[channel] = a / d
+        return out
+    if {k: v for k, v in ka.items() if k not in ("even", "odd", "colors")} != {
+        k: v for k, v in kd.items() if k not in ("even", "odd", "colors")
+    }:
+        return None
+    if ka["pattern"] == "checker":
+        ratio = _scaled_copy(ka["even"], kd["even"], ratio)
+        return None if ratio is None else _scaled_copy(ka["odd"], kd["odd"], ratio)
+    for (at_a, colour_a), (at_d, colour_d) in zip(ka.get("colors", []), kd.get("colors", []), strict=False):
+        if at_a != at_d:
+            return None
+        ratio = _scaled_copy(colour_a, colour_d, ratio)
+        if ratio is None:
+            return None
+    return ratio
+
+
+def _patterned_texture(material: dict, finish_parts: list[str]) -> str:
+    """A material whose ka or kd is a pattern: the pigment is kd's; POV-Ray's ambient multiplies
+    it, so ka must be 0 or the same pattern scaled per channel (else refused)."""
+    kd, ka = material["kd"], material["ka"]
+    if any(material.get("kt", [0, 0, 0])):
+        raise ToolError("a patterned material that transmits: not written for POV-Ray")
+    if isinstance(kd, list):
+        raise ToolError("a patterned ka on a plain kd: POV-Ray's ambient multiplies the pigment")
+    ambient = [0.0, 0.0, 0.0] if isinstance(ka, list) and not any(ka) else _scaled_copy(ka, kd)
+    if ambient is not None:
+        ambient = [0.0 if f is None else f for f in ambient]
+    if ambient is None:
+        raise ToolError("ka is not kd's pattern scaled: POV-Ray's ambient multiplies the pigment")
+    finish = " ".join([f"ambient rgb {_v(ambient)} diffuse 1 brilliance 1", *finish_parts])
+    return f"texture {{ {pigment(kd)} finish {{ {finish} }} }}"
+
+
 def texture(material: dict) -> str:
     """A material as POV-Ray's texture and interior (the rules in the module's docstring)."""
     kd, ka, kt_colour = material["kd"], material["ka"], material.get("kt", [0, 0, 0])
@@ -73,6 +198,8 @@ def texture(material: dict) -> str:
         finish_parts.append(f"phong {ks!r} phong_size {float(material['n'])!r}")
     if any(material["km"]):
         finish_parts.append(f"reflection {{ rgb {_v(material['km'])} }}")
+    if isinstance(kd, dict) or isinstance(ka, dict):
+        return _patterned_texture(material, finish_parts)
     if not any(kd) and not any(ka) and any(kt_colour):
         # Clear glass: the pigment is free, so a coloured kt is exact as a filter of 1.
         finish = " ".join(["ambient 0 diffuse 0", *finish_parts])
