@@ -122,6 +122,10 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
     for (const Material& material : materials_) refracts_ = refracts_ || material.kt != dvec3(0.0);
     SearchSettings settings = search_settings(scene.render, threads);
     settings.keep_uvs = uses_surface_coordinates(scene.patterns);
+    if (settings.keep_uvs)
+        for (const Material& material : materials_)
+            uv_materials_.push_back(tracer::maps_by_uv(patterns_, material.ka_pattern) ||
+                                    tracer::maps_by_uv(patterns_, material.kd_pattern));
     // Step 1: spheres and planes (room for them at once: a million spheres would otherwise
     // leave up to a million records' room unused).
     objects_.reserve(scene.spheres.size() + scene.planes.size());

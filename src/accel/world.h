@@ -157,6 +157,8 @@ public:
 
     const std::vector<Material>& materials() const { return materials_; }
     const std::vector<Pattern>& patterns() const { return patterns_; }
+    // True if material `index`'s patterns read the surface's (u, v) (else surface_uv is not needed).
+    bool maps_by_uv(int index) const { return !uv_materials_.empty() && uv_materials_[size_t(index)]; }
     const std::vector<ImageFile>& images() const { return images_; }
     // The surface coordinates (u, v) of a hit (scene/pattern.h's uv mapping; docs/guide/patterns.md):
     // a triangle's from its corners', a round shape's or a plane's from where the hit lies in the
@@ -260,7 +262,8 @@ private:
     std::vector<Material> materials_;
     std::vector<Pattern> patterns_;
     std::vector<ImageFile> images_;
-    std::vector<Cone> cone_ends_;  // the cones as the scene gives them, when surface coordinates are kept
+    std::vector<uint8_t> uv_materials_;  // per material: maps_by_uv (empty if none does)
+    std::vector<Cone> cone_ends_;        // the cones as the scene gives them, when surface coordinates are kept
     std::vector<Light> lights_;
     uint64_t serial_;
 };

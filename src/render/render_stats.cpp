@@ -114,6 +114,20 @@ nlohmann::ordered_json render_stats_json(const World& world, const SceneDescript
 
     out["objects"] = objects_json(world);
     out["meshes"] = meshes_json(world, scene);
+    // The image patterns' files as held: texels, bytes (8-bit files keep one byte a channel).
+    if (!world.images().empty()) {
+        out["images"] = nlohmann::ordered_json::array();
+        for (const ImageFile& image : world.images()) {
+            const Texels empty;
+            const Texels& texels = image.texels ? *image.texels : empty;
+            out["images"].push_back({{"file", image.path},
+                                     {"width", texels.width},
+                                     {"height", texels.height},
+                                     {"channels", texels.channels},
+                                     {"eight_bit", !texels.bytes.empty()},
+                                     {"memory_bytes", texels.memory_bytes()}});
+        }
+    }
     return out;
 }
 
@@ -163,6 +177,15 @@ std::string render_stats_text(const nlohmann::ordered_json& s) {
         std::snprintf(line, sizeof line, "; %s; %.1f KiB\n", use.c_str(), mesh["memory_bytes"].get<double>() / 1024);
         out += line;
     }
+    if (s.contains("images"))
+        for (const auto& image : s["images"]) {
+            const double texels = std::max(1.0, double(image["width"].get<int>()) * image["height"].get<int>());
+            std::snprintf(line, sizeof line, "image %s: %d x %d texels, %s; %.1f KiB (%.2f bytes a texel)\n",
+                          image["file"].get<std::string>().c_str(), image["width"].get<int>(),
+                          image["height"].get<int>(), image["eight_bit"].get<bool>() ? "8-bit" : "float",
+                          image["memory_bytes"].get<double>() / 1024, image["memory_bytes"].get<double>() / texels);
+            out += line;
+        }
     const auto& rays = s["rays"];
     std::snprintf(
         line, sizeof line,

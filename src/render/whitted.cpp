@@ -105,8 +105,8 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
 [[gnu::noinline]] static void paint(const World& world, const Material& material, const Hit& found,
                                     const SurfaceHit& hit, Color& ka, Color& kd) {
     const glm::dvec3 point = material.to_object(glm::dvec3(hit.point));
-    const glm::dvec2 uv = world.surface_uv(found, hit, material.to_object.linear);
-    const glm::dvec3 uv_point(uv, 0);
+    const glm::dvec3 uv_point(
+        world.maps_by_uv(hit.material) ? world.surface_uv(found, hit, material.to_object.linear) : glm::dvec2(0.0), 0);
     if (material.ka_pattern >= 0)
         ka = pattern_color(world.patterns(), world.images(), material.ka_pattern, point, uv_point);
     if (material.kd_pattern >= 0)

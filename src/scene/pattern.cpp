@@ -189,13 +189,16 @@ dvec3 pattern_color(std::span<const Pattern> patterns, std::span<const ImageFile
                     const dvec3& uv) {
     const Pattern& pattern = patterns[size_t(index)];
     const dvec3 own_point = pattern.to_pattern(point);
-    const dvec3 own_uv = pattern.to_pattern(uv);
+    // The surface's (u, v) in this pattern's space, where it or a pattern inside it reads them.
+    const bool uv_read = pattern.mapping == Mapping::Uv || pattern.even.patterned() || pattern.odd.patterned();
+    const dvec3 own_uv = uv_read ? pattern.to_pattern(uv) : uv;
     const dvec3 q = pattern.mapping == Mapping::Uv ? own_uv : mapped(pattern.mapping, own_point);
     switch (pattern.kind) {
         case PatternKind::Checker: {
             const double sum =
                 std::floor(q.x + kCheckerNudge) + std::floor(q.y + kCheckerNudge) + std::floor(q.z + kCheckerNudge);
-            const Paint& square = std::fmod(sum, 2.0) == 0 ? pattern.even : pattern.odd;
+            const double half = 0.5 * sum;  // even: a whole number of pairs
+            const Paint& square = half == std::floor(half) ? pattern.even : pattern.odd;
             return square.patterned() ? pattern_color(patterns, images, square.pattern, own_point, own_uv)
                                       : square.color;
         }
