@@ -260,11 +260,11 @@ private:
     Real sphere_radius2_ = -1;
     bool refracts_ = false;
     std::vector<Material> materials_;
+    std::vector<Light> lights_;
     std::vector<Pattern> patterns_;
     std::vector<ImageFile> images_;
     std::vector<uint8_t> uv_materials_;  // per material: maps_by_uv (empty if none does)
     std::vector<Cone> cone_ends_;        // the cones as the scene gives them, when surface coordinates are kept
-    std::vector<Light> lights_;
     uint64_t serial_;
 };
 

@@ -20,11 +20,19 @@ def load(dump, scene_path, tmp_path, *extra):
     return scene, mitsuba_render.load(convert.write_mitsuba_scene(scene, tmp_path), scene)
 
 
+# Committed scenes whose patterns Mitsuba cannot draw (xcheck.mitsuba_textures says which and why).
+UNDRAWABLE_PATTERNS = {"globe.scn", "marble_and_wood.scn", "uv_shapes.scn"}
+
+
 @pytest.mark.parametrize("scene_path", SCENES, ids=lambda p: p.name)
 def test_every_scene_loads(dump, tmp_path, scene_path):
     scene = dump(scene_path)
     if scene["render"].get("transparent_shadows") and convert.refracts(scene):
         with pytest.raises(ToolError, match="transparent_shadows"):
+            convert.write_mitsuba_scene(scene, tmp_path)
+        return
+    if scene_path.name in UNDRAWABLE_PATTERNS:  # noise patterns, or (u, v) Mitsuba lays otherwise
+        with pytest.raises(ToolError, match="Mitsuba has no texture"):
             convert.write_mitsuba_scene(scene, tmp_path)
         return
     loaded = mitsuba_render.load(convert.write_mitsuba_scene(scene, tmp_path), scene)

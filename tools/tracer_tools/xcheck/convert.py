@@ -12,7 +12,9 @@ import pathlib
 from collections.abc import Sequence
 from xml.sax.saxutils import quoteattr
 
-from . import PHONG_PLUGIN, WHITTED_PLUGIN, ToolError, round_shapes
+import numpy as np
+
+from . import PHONG_PLUGIN, WHITTED_PLUGIN, ToolError, exact_meshes, mitsuba_textures, round_shapes
 
 # Primary rays start this far in front of the eye (the camera's near clip). Secondary rays
 # leave surfaces by Mitsuba's spawn_ray / spawn_ray_to, as tracer's by its spawn rule.
@@ -69,6 +71,18 @@ def plane_extent(scene: dict, plane: dict) -> float:
     return PLANE_MARGIN * max(height, 1.0) / pixel_angle(scene)
 
 
+def plane_frame(scene: dict, plane: dict) -> tuple[list[float], list[float], list[float]]:
+    """The centre (the foot of the eye) and the two unit directions plane_mesh_obj lays its
+    square along: a point of the plane is centre + a tangent + b bitangent, its OBJ's vt (a, b)."""
+    normal = _normalize(plane["normal"])
+    eye = scene["camera"]["eye"]
+    height = _dot(_sub(eye, plane["point"]), normal)
+    centre = _sub(eye, [x * height for x in normal])
+    helper = [1.0, 0.0, 0.0] if abs(normal[0]) < 0.9 else [0.0, 1.0, 0.0]
+    tangent = _normalize(_cross(helper, normal))
+    return centre, tangent, _cross(normal, tangent)  # (tangent, bitangent, normal) is right-handed
+
+
 def plane_mesh_obj(scene: dict, plane: dict) -> str:
     """OBJ text of a square of half-size plane_extent(...) in the plane, centred at the foot of
     the eye: a centre square of half-size h (as in plane_extent) and around it rings, each
@@ -76,12 +90,8 @@ def plane_mesh_obj(scene: dict, plane: dict) -> str:
     from the centre. Mitsuba intersects triangles in float32 (Embree): one pair of triangles
     10^6 units wide loses hits near the eye."""
     normal = _normalize(plane["normal"])
-    eye = scene["camera"]["eye"]
-    height = _dot(_sub(eye, plane["point"]), normal)
-    centre = _sub(eye, [x * height for x in normal])
-    helper = [1.0, 0.0, 0.0] if abs(normal[0]) < 0.9 else [0.0, 1.0, 0.0]
-    tangent = _normalize(_cross(helper, normal))
-    bitangent = _cross(normal, tangent)  # (tangent, bitangent, normal) is right-handed
+    height = _dot(_sub(scene["camera"]["eye"], plane["point"]), normal)
+    centre, tangent, bitangent = plane_frame(scene, plane)
     size, extent = max(abs(height), 1.0), plane_extent(scene, plane)
     lines = [
         f"# plane through {plane['point']} with normal {plane['normal']}: half-size {extent:.6g}",
@@ -92,13 +102,14 @@ def plane_mesh_obj(scene: dict, plane: dict) -> str:
         for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):  # counter-clockwise seen from the normal
             point = [c + size * (a * t + b * u) for c, t, u in zip(centre, tangent, bitangent, strict=False)]
             lines.append(f"v {point[0]!r} {point[1]!r} {point[2]!r}")
+            lines.append(f"vt {size * a!r} {size * b!r}")  # for textures (xcheck.mitsuba_textures)
         squares += 1
         if size >= extent:
             break
         size = min(2 * size, extent)
 
     def face(*corners):
-        return "f " + " ".join(f"{corner}//1" for corner in corners)
+        return "f " + " ".join(f"{corner}/{corner}/1" for corner in corners)
 
     lines += [face(1, 2, 3), face(1, 3, 4)]
     for ring in range(1, squares):
@@ -207,7 +218,46 @@ def box_to_cube(box: dict) -> list[list[float]]:
 def triangle_obj(triangle: dict) -> str:
     """OBJ text of a flat triangle."""
     corners = "".join(f"v {p[0]!r} {p[1]!r} {p[2]!r}\n" for p in (triangle["a"], triangle["b"], triangle["c"]))
-    return corners + "f 1 2 3\n"
+    return corners + "vt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n"  # (u, v) as tracer's
+
+
+def _write_bsdf(out: _Writer, material: dict, bsdf_id: str | None = None, maps: tuple = (None, None)) -> None:
+    """A material as the Phong plugin; a patterned ka or kd as a texture over the shape's (u, v),
+    `maps` being the shape's (uv_to_uv, uv_to_world) (xcheck.mitsuba_textures)."""
+    out.open("bsdf", type=PHONG_PLUGIN, **({"id": bsdf_id} if bsdf_id else {}))
+    for name in ("ka", "kd"):
+        mitsuba_textures.write_paint(out, name, material.get(name, [0, 0, 0]), *maps)
+    for name in ("ks", "km", "kt"):
+        out.leaf("rgb", name=name, value=_numbers(material.get(name, [0, 0, 0])))
+    out.leaf("float", name="n", value=repr(float(material["n"])))
+    out.leaf("float", name="ior", value=repr(float(material.get("ior", 1.0))))
+    out.close("bsdf")
+
+
+def _use_material(out: _Writer, ids: dict, material: dict, maps: tuple = (None, None)) -> None:
+    """A shape's material: a reference to the shared one, or, patterned, its own with textures
+    placed on this shape."""
+    if mitsuba_textures.patterned(material):
+        _write_bsdf(out, material, maps=maps)
+    else:
+        out.leaf("ref", id=ids[_material_key(material)])
+
+
+def _flat_maps(kind: str, shape: dict, scene: dict) -> tuple:
+    """(uv_to_uv, uv_to_world) of a quad, a triangle or a plane as this converter writes them."""
+    if kind == "plane":
+        centre, tangent, bitangent = (np.array(v) for v in plane_frame(scene, shape))
+        return None, mitsuba_textures.world_map(centre + bitangent, tangent, -bitangent)  # vt's v turned
+    linear, translate = exact_meshes.placement(shape)
+    if kind == "quad":
+        corner, edge1, edge2 = (np.array(shape[k], dtype=np.float64) for k in ("corner", "edge1", "edge2"))
+        world = mitsuba_textures.world_map(linear @ corner + translate, linear @ edge1, linear @ edge2)
+        return mitsuba_textures.uv_map_of_rectangle(), world
+    if kind == "triangle":
+        a, b, c = (np.array(shape[k], dtype=np.float64) for k in ("a", "b", "c"))
+        world = mitsuba_textures.world_map(linear @ c + translate, linear @ (b - a), -(linear @ (c - a)))
+        return mitsuba_textures.uv_map_of_obj(), world
+    return None, None
 
 
 def to_mitsuba_xml(scene: dict) -> str:
@@ -292,22 +342,17 @@ def to_mitsuba_xml(scene: dict) -> str:
     for shape in shapes(scene):
         material = shape["material"]
         key = _material_key(material)
-        if key in ids:
+        if key in ids or mitsuba_textures.patterned(material):  # patterned: each shape its own
             continue
         ids[key] = f"material{len(ids)}-{material['name']}"
-        out.open("bsdf", type=PHONG_PLUGIN, id=ids[key])
-        for name in ("ka", "kd", "ks", "km", "kt"):
-            out.leaf("rgb", name=name, value=_numbers(material.get(name, [0, 0, 0])))
-        out.leaf("float", name="n", value=repr(float(material["n"])))
-        out.leaf("float", name="ior", value=repr(float(material.get("ior", 1.0))))
-        out.close("bsdf")
+        _write_bsdf(out, material, ids[key])
 
     # Step 4: shapes.
     for index, sphere in enumerate(scene["spheres"]):
         out.open("shape", type="sphere", id=f"sphere{index}")
         out.leaf("point", name="center", value=_numbers(sphere["center"]))
         out.leaf("float", name="radius", value=repr(float(sphere["radius"])))
-        out.leaf("ref", id=ids[_material_key(sphere["material"])])
+        _use_material(out, ids, sphere["material"])
         out.close("shape")
     for index, plane in enumerate(scene["planes"]):
         out.line(
@@ -316,7 +361,7 @@ def to_mitsuba_xml(scene: dict) -> str:
         )
         out.open("shape", type="obj", id=f"plane{index}")
         out.leaf("string", name="filename", value=f"plane{index}.obj")
-        out.leaf("ref", id=ids[_material_key(plane["material"])])
+        _use_material(out, ids, plane["material"], _flat_maps("plane", plane, scene))
         out.close("shape")
     for index, mesh in enumerate(scene["meshes"]):
         out.open("shape", type="obj", id=f"mesh{index}")
@@ -326,7 +371,7 @@ def to_mitsuba_xml(scene: dict) -> str:
             out.leaf("boolean", name="face_normals", value="true")
         if mirrors(mesh):
             out.leaf("boolean", name="flip_normals", value="true")
-        out.leaf("ref", id=ids[_material_key(mesh["material"])])
+        _use_material(out, ids, mesh["material"], (mitsuba_textures.uv_map_of_obj(), None))
         out.close("shape")
     # The flat shapes: Mitsuba's own rectangle and cube (not tracer's triangles), and a one-face
     # OBJ for each triangle.
@@ -341,7 +386,7 @@ def to_mitsuba_xml(scene: dict) -> str:
         _placement(out, shape, matrix)
         if mirrors(shape):
             out.leaf("boolean", name="flip_normals", value="true")
-        out.leaf("ref", id=ids[_material_key(shape["material"])])
+        _use_material(out, ids, shape["material"], _flat_maps(kind, shape, scene))
         out.close("shape")
 
     # The round shapes: cones and cylinders as OBJ files (round_shapes.cone_obj), discs and caps
@@ -349,14 +394,14 @@ def to_mitsuba_xml(scene: dict) -> str:
     for index, cone in enumerate(scene.get("cones", [])):
         out.open("shape", type="obj", id=f"cone{index}")
         out.leaf("string", name="filename", value=f"cone{index}.obj")
-        out.leaf("ref", id=ids[_material_key(cone["material"])])
+        _use_material(out, ids, cone["material"])
         out.close("shape")
     for name, matrix, material in round_shapes.disks_of(scene):
         out.open("shape", type="disk", id=name)
         out.open("transform", name="to_world")
         out.leaf("matrix", value=" ".join(repr(float(x)) for row in matrix for x in row))
         out.close("transform")
-        out.leaf("ref", id=ids[_material_key(material)])
+        _use_material(out, ids, material)
         out.close("shape")
 
     # Step 5: point lights; the integrator undoes Mitsuba's 1/r^2 fall-off.

@@ -20,14 +20,25 @@ def _color(props, name):
     return mi.Color3f(value[0], value[1], value[2])
 
 
+def _paint(props, name):
+    """ka or kd: a colour, or a nested Mitsuba texture (checkerboard, bitmap) for a pattern."""
+    value = props.get(name)
+    return value if isinstance(value, mi.Texture) else mi.Color3f(value[0], value[1], value[2])
+
+
+def _paint_at(paint, si, active):
+    """A colour, or a texture's colour at the interaction (its uv)."""
+    return paint.eval(si, active) if isinstance(paint, mi.Texture) else paint
+
+
 class PhongBSDF(mi.BSDF):
     """Phong, not Blinn-Phong: eval = kd max(0, N.L) + ks max(0, R.V)^n with the normal turned
     to face the viewer; sample = the mirror direction with weight km; attribute "ka"."""
 
     def __init__(self, props) -> None:
         mi.BSDF.__init__(self, props)
-        self.ka = _color(props, "ka")
-        self.kd = _color(props, "kd")
+        self.ka = _paint(props, "ka")
+        self.kd = _paint(props, "kd")
         self.ks = _color(props, "ks")
         self.km = _color(props, "km")
         self.kt = _color(props, "kt") if "kt" in props else mi.Color3f(0.0)
@@ -46,7 +57,7 @@ class PhongBSDF(mi.BSDF):
         side = dr.select(si.wi.z < 0, -1.0, 1.0)
         n_dot_l = wo.z * side
         r_dot_v = -wo.x * si.wi.x - wo.y * si.wi.y + n_dot_l * si.wi.z * side  # R = 2(N.L)N - L
-        diffuse = self.kd * dr.maximum(n_dot_l, 0.0)
+        diffuse = _paint_at(self.kd, si, active) * dr.maximum(n_dot_l, 0.0)
         specular = self.ks * dr.power(dr.maximum(r_dot_v, 0.0), self.n)
         return dr.select(active, diffuse + specular, 0.0)
 
@@ -73,6 +84,8 @@ class PhongBSDF(mi.BSDF):
         values = {"ka": self.ka, "kt": self.kt, "ior": mi.Color3f(self.ior)}
         if name not in values:
             raise ValueError(f"{PHONG_PLUGIN} has no attribute '{name}'")
+        if name == "ka":
+            return dr.select(active, mi.Color3f(_paint_at(self.ka, si, active)), 0.0)
         return dr.select(active, mi.Color3f(values[name]), 0.0)
 
     def traverse(self, callback) -> None:
