@@ -252,6 +252,9 @@ class WhittedIntegrator(mi.SamplingIntegrator):
             first[registry_id], count[registry_id] = start, triangles
             for k, value in enumerate([*np.asarray(to_object).ravel(), *translate]):
                 maps[k][registry_id] = float(value)
+        if not any(count):  # no mesh taken (a scene of rectangles and spheres): nothing to gather from
+            self._mesh_table = None
+            return
         columns = [
             mi.Float64(np.ascontiguousarray(table.reshape(-1, 9)[:, k]))
             for table in (corners, normals)
