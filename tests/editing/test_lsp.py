@@ -303,3 +303,16 @@ def test_include_folders_reach_tracer_and_the_copies_go_at_exit(tracer_bin, tmp_
     assert copy.name == "materials.scn" and copy.exists()
     stopped(client)
     assert not copy.parent.parent.exists()  # the server's copies of the library, removed at its exit
+
+
+def test_patterns_are_completed_after_their_keys_and_explained(client, tmp_path):
+    text = SCENE + "plane { point (0, 0, 0) normal (0, 1, 0) material { kd checker { even 1 scale 0.5 } } }\n"
+    uri = open_document(client, tmp_path, text)
+    client.diagnostics(uri)
+    after_kd = client.request_at("textDocument/completion", uri, text, "kd checker", 3)
+    labels = {item["label"] for item in after_kd["items"]}
+    assert {"checker", "marble", "image", "gradient"} <= labels  # patterns as kd's value
+    inside = client.request_at("textDocument/completion", uri, text, "even 1", 0)
+    assert {"even", "odd", "mapping", "scale"} <= {item["label"] for item in inside["items"]}
+    hover = client.request_at("textDocument/hover", uri, text, "even 1", 1)
+    assert "even" in hover["contents"]["value"] and "odd" not in {item["label"] for item in after_kd["items"]}

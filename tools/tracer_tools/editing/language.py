@@ -21,6 +21,7 @@ class Language:
         self.blocks = {block["kind"]: block for block in tables["blocks"]}
         self.library: dict[str, str] = tables.get("library", {})  # the standard library's files: name -> text
         self.top_level = [block["kind"] for block in tables["blocks"] if block["top_level"]]
+        self.patterns = [block["kind"] for block in tables["blocks"] if block.get("pattern")]
         self.words: dict[str, Entry] = {}
         for statement in tables["statements"]:
             if statement["keyword"]:
@@ -66,6 +67,12 @@ class Language:
 
     def keys(self, kind: str) -> list[Entry]:
         return [self.key_entry(kind, key["name"]) for key in self.blocks.get(kind, {}).get("keys", [])]
+
+    def key_takes_pattern(self, kind: str, name: str) -> bool:
+        """True if the key's value may be a pattern (ka, kd, a checker's squares)."""
+        return any(
+            key["name"] == name and "pattern" in key["type"] for key in self.blocks.get(kind, {}).get("keys", [])
+        )
 
     def key_is_material(self, kind: str, name: str) -> bool:
         return any(

@@ -324,6 +324,10 @@ class TracerServer(LanguageServer):
         entries: list[Entry] = []
         if kind:
             entries += self.language.keys(kind)
+            # After a key that takes a pattern (`kd ch`): the patterns, as values.
+            before = scene_text.words_before(text, offset - len(typed), 1)
+            if before and self.language.key_takes_pattern(kind, before[-1]):
+                entries += [self.language.block_entry(k) for k in self.language.patterns]
         else:
             entries += [self.language.block_entry(k) for k in self.language.top_level]
             entries += [e for e in self.language.words.values() if e.kind == "statement"]
