@@ -27,20 +27,9 @@ import zlib
 
 from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import TRACER, git, machine
+from tracer_tools.bench.versus import THREADS, tracer_render_seconds, versus_povray
 
-THREADS = 2
 CHECKERED_FLOOR = "material matte   { ka 0.1  kd checker { even 1 odd 0.5 }  ks 0  km 0    n 0 }"
-
-
-def render_seconds(scene: pathlib.Path, folder: pathlib.Path) -> float:
-    """tracer's render time (its summary line's: the render loop alone)."""
-    done = subprocess.run(
-        [str(TRACER), str(scene), "-o", str(folder / "out.png"), "--threads", str(THREADS)],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    return float(re.search(r", ([0-9.]+) s, ", done.stderr.strip().splitlines()[-1]).group(1))
 
 
 def checkered_task2(folder: pathlib.Path, pairs: int) -> dict:
@@ -52,8 +41,8 @@ def checkered_task2(folder: pathlib.Path, pairs: int) -> dict:
     checkered.write_text(text.replace(matte, CHECKERED_FLOOR))
     ratios, plain_s, checkered_s = [], [], []
     for _ in range(pairs):
-        plain_s.append(render_seconds(plain, folder))
-        checkered_s.append(render_seconds(checkered, folder))
+        plain_s.append(tracer_render_seconds(plain, folder))
+        checkered_s.append(tracer_render_seconds(checkered, folder))
         ratios.append(checkered_s[-1] / plain_s[-1])
     return {
         "ratio": statistics.median(ratios),
@@ -133,20 +122,6 @@ def texture_load(folder: pathlib.Path, pairs: int) -> dict:
     }
 
 
-def whitted_versus_povray(folder: pathlib.Path, pairs: int) -> dict:
-    from tracer_tools.xcheck import povray, tracer_cli
-
-    scene = ROOT / "scenes" / "whitted1980.scn"
-    description = tracer_cli.dump_json(scene)
-    ratios, ours, theirs = [], [], []
-    for _ in range(pairs):
-        ours.append(render_seconds(scene, folder))
-        _, times = povray.render_scene(description, folder)
-        theirs.append(times["trace_seconds"])
-        ratios.append(ours[-1] / theirs[-1])
-    return {"ratio": statistics.median(ratios), "tracer": statistics.median(ours), "povray": statistics.median(theirs)}
-
-
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--pairs", type=option_types.whole_number(1, 1000), default=7)
@@ -174,10 +149,11 @@ def main() -> int:
             f"the whole picture into a buffer of its own first) | {'yes' if load['held_per_texel'] <= 4 else 'no'} |",
             flush=True,
         )
-        whitted = whitted_versus_povray(folder, args.pairs)
+        whitted = versus_povray(ROOT / "scenes" / "whitted1980.scn", args.pairs, folder)
         print(
             f"| Whitted's scene >= 3x faster than POV-Ray's trace | {1 / whitted['ratio']:.1f}x "
-            f"(tracer {whitted['tracer']:.3f} s, POV-Ray {whitted['povray']:.3f} s; ratio {whitted['ratio']:.3f}) | "
+            f"(tracer {whitted['tracer_s']:.3f} s, POV-Ray {whitted['povray_s']:.3f} s; "
+            f"ratio {whitted['ratio']:.3f}) | "
             f"{'yes' if whitted['ratio'] <= 1 / 3 else 'no'} |"
         )
     return 0
