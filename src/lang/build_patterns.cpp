@@ -74,6 +74,7 @@ int build_pattern(SceneAssembly& a, const Fields& fields) {
     if (has("octaves")) pattern.octaves = fields.integer("octaves");
     if (has("file")) pattern.image = add_image(a, fields);
     if (has("wrap")) wrap_from_name(fields.text("wrap"), pattern.wrap);
+    pattern.multiply = fields.triple("multiply");
     a.scene.patterns.push_back(std::move(pattern));
     return int(a.scene.patterns.size()) - 1;
 }

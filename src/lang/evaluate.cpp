@@ -1,5 +1,7 @@
 // The interpreter's expressions: values computed from compiled nodes, user functions called,
 // and an entry's value handed to validation with its spans.
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "base/big_stack.h"
@@ -197,6 +199,8 @@ RuntimeValue Interpreter::arithmetic(char operation, const RuntimeValue& a, cons
     const std::string op = std::string("'") + operation + "'";
     if (a.kind == RuntimeValue::Kind::String || b.kind == RuntimeValue::Kind::String)
         return join(operation, a, b, a_span, b_span, span);
+    if (a.kind == RuntimeValue::Kind::Block || b.kind == RuntimeValue::Kind::Block)
+        return scaled_pattern(operation, a, b, a_span, b_span, span);
     for (const auto& [operand, where] : {std::pair{&a, a_span}, std::pair{&b, b_span}}) {
         if (operand->kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
         if (!operand->is_number() && !operand->is_vector())
@@ -222,6 +226,65 @@ RuntimeValue Interpreter::arithmetic(char operation, const RuntimeValue& a, cons
     if (operation == '/' && scalar == 0) fail(b_span, "division by zero");
     for (double c : vector.components()) out.push_back(operation == '*' ? c * scalar : c / scalar);
     return finite(RuntimeValue::vector(out), span);
+}
+
+RuntimeValue Interpreter::scaled_pattern(char operation, const RuntimeValue& a, const RuntimeValue& b, Span a_span,
+                                         Span b_span, Span span) {
+    if (a.kind == RuntimeValue::Kind::Broken || b.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};
+    const bool pattern_first = a.kind == RuntimeValue::Kind::Block;
+    const RuntimeValue& pattern = pattern_first ? a : b;
+    const RuntimeValue& factor = pattern_first ? b : a;
+    const Span pattern_span = pattern_first ? a_span : b_span, factor_span = pattern_first ? b_span : a_span;
+    const std::string op = std::string("'") + operation + "'";
+    if (!find_pattern_spec(pattern.block().kind))
+        fail(pattern_span,
+             op + " applies to numbers and vectors (and scales patterns); this is " + runtime_kind(pattern));
+    const bool colour = factor.is_number() || (factor.is_vector() && factor.components().size() == 3);
+    if (!colour || (operation != '*' && !(operation == '/' && pattern_first && factor.is_number())))
+        fail(span, "a pattern is scaled by a number or a colour: 0.1 * pattern, pattern * (1, 0.5, 0.5), pattern / 10");
+    if (operation == '/' && factor.x[0] == 0) fail(factor_span, "division by zero");
+    // The factor, channel by channel, times any `multiply` the pattern already has.
+    const auto channels = [](const RuntimeValue& v) {
+        return v.is_number() ? std::array{v.x[0], v.x[0], v.x[0]} : std::array{v.x[0], v.x[1], v.x[2]};
+    };
+    std::array<double, 3> scale = channels(factor);
+    if (operation == '/')
+        for (double& c : scale) c = 1 / c;
+    auto body = std::make_shared<Body>(*pattern.block().body);
+    auto existing = std::find_if(body->entries.begin(), body->entries.end(),
+                                 [](const Entry& entry) { return entry.key == "multiply"; });
+    if (existing == body->entries.end()) {
+        Entry entry;
+        entry.key = "multiply";
+        entry.key_span = at(span);
+        body->entries.push_back(entry);
+        existing = body->entries.end() - 1;
+        existing->value.kind = PlainValue::Kind::Number;
+        existing->value.number = 1;
+    }
+    PlainValue& value = existing->value;
+    if (value.kind == PlainValue::Kind::Number || value.kind == PlainValue::Kind::Vector) {
+        std::array<double, 3> before{value.number, value.number, value.number};
+        if (value.kind == PlainValue::Kind::Vector && value.components.size() == 3)
+            before = {value.components[0], value.components[1], value.components[2]};
+        const std::array<double, 3> after{before[0] * scale[0], before[1] * scale[1], before[2] * scale[2]};
+        value.span = at(span);
+        if (after[0] == after[1] && after[1] == after[2]) {  // grey: one number (one message if it is wrong)
+            value.kind = PlainValue::Kind::Number;
+            value.number = after[0];
+        } else {
+            value.kind = PlainValue::Kind::Vector;
+            value.components = {after[0], after[1], after[2]};
+            value.component_spans.assign(3, value.span);
+        }
+    }
+    auto scaled = std::make_shared<BlockObject>();
+    scaled->kind = pattern.block().kind;
+    scaled->body = std::move(body);
+    RuntimeValue out;
+    out.kind = RuntimeValue::Kind::Block;
+    out.object = std::move(scaled);
+    return out;
 }
 
 // a + b where one is a string: the two strings joined, or an error that says how to write it.

@@ -44,7 +44,8 @@ struct StatementSpec {
 };
 const StatementSpec kStatements[] = {
     {"let", "let NAME = value",
-     "names a value: a number, vector, boolean, string, list, `material { ... }` or `transform { ... }`"},
+     "names a value: a number, vector, boolean, string, list, `material { ... }`, `transform { ... }` or a "
+     "pattern (`checker { ... }`)"},
     {"", "NAME = value",
      "gives a name defined before (by `let`, in this function or outside all functions) a new value; `let` "
      "inside braces would make a new name there instead"},

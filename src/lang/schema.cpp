@@ -376,6 +376,10 @@ KeySpec turbulence_key(std::string_view default_value) {
 BlockSpec pattern(std::string_view kind, std::string_view summary, std::vector<KeySpec> keys,
                   std::string_view mapping_default, std::string_view example) {
     keys.push_back(mapping_key(mapping_default));
+    keys.push_back(ranged(key("multiply", ValueType::Triple, "1",
+                              "Every colour of the pattern times this, channel by channel: what `0.1 * pattern` "
+                              "writes (an ambient term that follows the diffuse pattern: `ka 0.1 * floor`)."),
+                          0, kInf));
     for (KeySpec& step : placement_step_keys()) keys.push_back(std::move(step));
     return BlockSpec{kind, false, false, Occurs::Any, summary, std::move(keys), example};
 }

@@ -72,6 +72,7 @@ struct Pattern {
     int octaves = 6;                 // spots, turbulence, marble, wood: octaves of the noise sum
     int image = -1;                  // image: index into SceneDescription::images
     Wrap wrap = Wrap::Repeat;        // image
+    glm::dvec3 multiply{1.0};        // every colour it gives, times this (0.1 * pattern)
 };
 
 // An image's texels as read: 8-bit files keep their bytes (decoded from sRGB on lookup), others

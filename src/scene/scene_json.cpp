@@ -45,6 +45,7 @@ Json pattern_json(const SceneDescription& scene, int index, const Affine& to_out
     Json out{{"pattern", pattern_kind_name(p.kind)},
              {"mapping", mapping_name(p.mapping)},
              {"to_pattern", affine_json(p.mapping == Mapping::Uv ? uv_to_own : to_own)}};
+    if (p.multiply != dvec3(1.0)) out["multiply"] = vec(p.multiply);
     switch (p.kind) {
         case PatternKind::Checker:
             out["even"] = paint_json(scene, p.even.color, p.even.pattern, to_own, uv_to_own);

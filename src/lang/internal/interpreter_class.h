@@ -76,6 +76,10 @@ private:
     RuntimeValue evaluate_arithmetic(const ExprCode& node);
     RuntimeValue arithmetic(char operation, const RuntimeValue& a, const RuntimeValue& b, Span a_span, Span b_span,
                             Span span);
+    // A pattern times a number or a colour (either side; divided by a number): the pattern with
+    // its `multiply` key times that.
+    RuntimeValue scaled_pattern(char operation, const RuntimeValue& a, const RuntimeValue& b, Span a_span, Span b_span,
+                                Span span);
     RuntimeValue join(char operation, const RuntimeValue& a, const RuntimeValue& b, Span a_span, Span b_span,
                       Span span);
     [[gnu::noinline]] RuntimeValue evaluate_compare(const ExprCode& node);

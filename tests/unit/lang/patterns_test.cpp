@@ -118,5 +118,20 @@ TEST(Patterns, ImagePatternsNameTheirFileOnce) {
     EXPECT_EQ(scene.patterns[1].image, 0);
 }
 
+TEST(Patterns, APatternTimesANumberOrAColourMultipliesItsColours) {
+    const SceneDescription scene = load_ok(
+        "let floor = checker { even (1, 0.5, 0.2) }\n"
+        "sphere { center (0, 0, 0) radius 1 material { ka 0.1 * floor kd floor } }\n"
+        "sphere { center (0, 0, 0) radius 1 material { kd floor * (1, 0, 0) / 2 } }\n"
+        "sphere { center (0, 0, 0) radius 1 material { kd 2 * checker { multiply 0.25 } } }\n");
+    const Material& first = scene.materials[size_t(scene.spheres[0].material)];
+    EXPECT_EQ(scene.patterns[size_t(first.ka_pattern)].multiply, glm::dvec3(0.1));
+    EXPECT_EQ(scene.patterns[size_t(first.kd_pattern)].multiply, glm::dvec3(1));  // the value itself is unchanged
+    const Material& second = scene.materials[size_t(scene.spheres[1].material)];
+    EXPECT_EQ(scene.patterns[size_t(second.kd_pattern)].multiply, glm::dvec3(0.5, 0, 0));
+    const Material& third = scene.materials[size_t(scene.spheres[2].material)];
+    EXPECT_EQ(scene.patterns[size_t(third.kd_pattern)].multiply, glm::dvec3(0.5));  // 2 x its own 0.25
+}
+
 }  // namespace
 }  // namespace tracer

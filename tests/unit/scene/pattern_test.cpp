@@ -60,6 +60,22 @@ TEST(Pattern, NestedCheckerIsEvaluatedInTheOuterSpace) {
     EXPECT_EQ(color_at(patterns, {1.3, 0.1, 0.1}), dvec3(0.5));  // outer odd
 }
 
+TEST(Pattern, MultiplyScalesEveryColourNestedOnesTwice) {
+    Pattern outer, inner;
+    outer.even = {dvec3(0), 1};
+    outer.odd = {dvec3(0.5)};
+    outer.multiply = dvec3(0.5, 1, 2);
+    inner.even = {dvec3(1)};
+    inner.odd = {dvec3(1)};
+    inner.multiply = dvec3(0.1);
+    const std::vector<Pattern> patterns{outer, inner};
+    const dvec3 even = color_at(patterns, {0.5, 0.5, 0.5});  // the inner checker, times both
+    EXPECT_NEAR(even.r, 0.05, 1e-15);
+    EXPECT_NEAR(even.g, 0.1, 1e-15);
+    EXPECT_NEAR(even.b, 0.2, 1e-15);
+    EXPECT_EQ(color_at(patterns, {1.5, 0.5, 0.5}), dvec3(0.25, 0.5, 1));
+}
+
 TEST(Pattern, ColorMapBlendsBetweenStopsAndHoldsBeyondThem) {
     const std::vector<ColorStop> stops{{0.2, dvec3(1, 0, 0)}, {0.6, dvec3(0, 0, 1)}, {0.6, dvec3(0, 1, 0)}};
     EXPECT_EQ(color_map_at(stops, 0.0), dvec3(1, 0, 0));

@@ -63,10 +63,13 @@ def write_paint(
     """`name` (ka, kd, color0, color1) as an <rgb> or a <texture>. `uv_to_uv` maps Mitsuba's
     (u, v) to tracer's surface (u, v, 0); `uv_to_world` to the world point, where the shape is
     flat (a quad, a plane), else None (solid patterns are then refused)."""
+    paint = folded(paint)
     if isinstance(paint, list):
         _rgb(out, name, paint)
         return
     kind, mapping = paint["pattern"], paint["mapping"]
+    if "multiply" in paint:
+        raise ToolError("an image times a colour: Mitsuba's bitmap has no factor")
     to_pattern = _affine4(paint["to_pattern"])
     if mapping == "uv" and uv_to_uv is not None:
         q = to_pattern @ uv_to_uv
@@ -106,6 +109,24 @@ def _checkerboard(
     write_paint(out, "color1", second, uv_to_uv, uv_to_world)
     _to_uv(out, rows)
     out.close("texture")
+
+
+def folded(paint: list | dict, factor: tuple = (1.0, 1.0, 1.0)) -> list | dict:
+    """A colour or pattern with its `multiply` (and `factor`) folded into its colours: the same
+    colours, written without `multiply`. An image keeps its `multiply` (its texels are a file)."""
+    if isinstance(paint, list):
+        return [c * f for c, f in zip(paint, factor, strict=True)]
+    factor = tuple(f * m for f, m in zip(factor, paint.get("multiply", (1.0, 1.0, 1.0)), strict=True))
+    out = {key: value for key, value in paint.items() if key != "multiply"}
+    if paint["pattern"] == "image":
+        if factor != (1.0, 1.0, 1.0):
+            out["multiply"] = list(factor)
+        return out
+    if paint["pattern"] == "checker":
+        out["even"], out["odd"] = folded(paint["even"], factor), folded(paint["odd"], factor)
+    else:
+        out["colors"] = [[at, folded(colour, factor)] for at, colour in paint["colors"]]
+    return out
 
 
 def patterned(material: dict) -> bool:

@@ -39,7 +39,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import ToolError, exact_meshes
+from . import ToolError, exact_meshes, mitsuba_textures
 
 TINY_PIGMENT = 1e-9  # a kd channel of 0 with ka above 0 (see the module's rules)
 
@@ -108,15 +108,16 @@ def pigment(paint: list | dict, factor: Sequence[float] = (1, 1, 1), outer: np.n
     nested pigment before its own. POV-Ray's own noise differs from Perlin's reference: spots,
     turbulence, marble and wood are refused (their definition is checked by tracer's unit tests
     instead); uv mapping too."""
+    paint = mitsuba_textures.folded(paint, tuple(factor))
     if isinstance(paint, list):
-        return f"pigment {{ rgb {_v([c * f for c, f in zip(paint, factor, strict=True)])} }}"
+        return f"pigment {{ rgb {_v(paint)} }}"
     kind, mapping = paint["pattern"], paint["mapping"]
     if mapping not in ("solid", "planar") or (mapping == "planar" and kind != "image"):
         raise ToolError(f"a {kind} pattern with mapping {mapping}: not written for POV-Ray")
     full = np.array([*paint["to_pattern"], [0, 0, 0, 1]], dtype=np.float64)
     to_pattern = full if outer is None else full @ np.linalg.inv(outer)  # from the outer pattern's space
     if kind == "checker":
-        even, odd = pigment(paint["even"], factor, full), pigment(paint["odd"], factor, full)
+        even, odd = pigment(paint["even"], outer=full), pigment(paint["odd"], outer=full)
         body = f"checker {even}, {odd}"
     elif kind in ("gradient", "stripes", "rings"):
         # Turned so that the pattern's axis is POV-Ray's: x for a gradient, z for wood's rings.
@@ -124,12 +125,12 @@ def pigment(paint: list | dict, factor: Sequence[float] = (1, 1, 1), outer: np.n
         turn = np.eye(4)
         turn[:3, :3] = _axis_turn(paint["axis"], to)
         to_pattern = turn @ to_pattern
-        stops = [[at, [c * f for c, f in zip(colour, factor, strict=True)]] for at, colour in paint["colors"]]
+        stops = paint["colors"]
         # POV-Ray's wood has a triangle wave by default; tracer's rings rise and jump (a ramp).
         pattern = "gradient x" if kind != "rings" else "wood ramp_wave"
         body = pattern + " " + _color_map(stops, kind == "stripes")
     elif kind == "image":
-        if any(f != 1 for f in factor):
+        if "multiply" in paint:
             raise ToolError("an image pattern scaled for the ambient term: not written for POV-Ray")
         interpolate = "interpolate 2"
         once = "" if paint["wrap"] == "repeat" else " once"
@@ -180,6 +181,7 @@ def _patterned_texture(material: dict, finish_parts: list[str]) -> str:
         raise ToolError("a patterned material that transmits: not written for POV-Ray")
     if isinstance(kd, list):
         raise ToolError("a patterned ka on a plain kd: POV-Ray's ambient multiplies the pigment")
+    ka, kd = mitsuba_textures.folded(ka), mitsuba_textures.folded(kd)
     ambient = [0.0, 0.0, 0.0] if isinstance(ka, list) and not any(ka) else _scaled_copy(ka, kd)
     if ambient is not None:
         ambient = [0.0 if f is None else f for f in ambient]
