@@ -2,7 +2,10 @@
 // of the primitive test a search takes, per-ray counts, the depth bound, and the leaf visit.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <glm/common.hpp>
 
@@ -25,6 +28,35 @@ struct Bounds {
     }
     Vec3 center() const { return (lower + upper) * Real(0.5); }
 };
+
+// The relative margin of ray_may_meet_box, far above the rounding of any primitive's test (a
+// triangle's is a few ulps of its vertices' and the ray origin's size).
+constexpr Real kBoxMargin = sizeof(Real) == sizeof(float) ? Real(1e-5) : Real(1e-9);
+
+// The box grown by kBoxMargin of its coordinates' size on every side, for ray_may_meet_box.
+inline Bounds padded_for_rays(const Bounds& box) {
+    const Vec3 size = glm::abs(box.lower) + glm::abs(box.upper) + (box.upper - box.lower);
+    const Vec3 pad = size * kBoxMargin + std::numeric_limits<Real>::min();
+    return {box.lower - pad, box.upper + pad};
+}
+
+// False only if `ray` passes outside `box` (a padded_for_rays box) between t = 0 and range.max:
+// a slab test in Real on the box grown by kBoxMargin of the origin's size, the far end grown by
+// kBoxMargin; an axis whose distances are NaN (an origin on a slab of an axis-parallel ray)
+// rules nothing out. A cheap filter before a mesh's own set-up, never its answer.
+[[gnu::always_inline]] inline bool ray_may_meet_box(const Ray& ray, const Bounds& box, Interval range) {
+    const Vec3 o = ray.origin;
+    const Real reach = kBoxMargin * std::max({std::abs(o.x), std::abs(o.y), std::abs(o.z)});
+    Real near = 0, far = range.max;
+    for (int axis = 0; axis < 3; ++axis) {
+        const Real t0 = (box.lower[axis] - reach - o[axis]) / ray.direction[axis];
+        const Real t1 = (box.upper[axis] + reach - o[axis]) / ray.direction[axis];
+        if (t0 != t0 || t1 != t1) continue;
+        near = std::max(near, std::min(t0, t1));
+        far = std::min(far, std::max(t0, t1));
+    }
+    return near <= far * (1 + kBoxMargin);
+}
 
 // A test of a leaf's entries [first, first + count) at once, which a search takes in place of
 // a test of one entry: test_leaf(first, count, range) returns true on a hit (for the nearest

@@ -276,6 +276,8 @@ void World::build_top_level(const SearchSettings& settings) {
         for (uint32_t entry = 0; entry < bounded_.size(); ++entry)  // a sphere's object follows it
             if (bounded_[entry].kind == ObjectKind::Sphere) objects_[bounded_[entry].object].index = entry;
     }
+    if (linear_)
+        for (const Bounds& box : boxes_) linear_boxes_.push_back(padded_for_rays(box));
     boxes_ = decltype(boxes_)();  // only the build needs them (`= {}` would keep the memory)
     top_build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -283,8 +285,8 @@ void World::build_top_level(const SearchSettings& settings) {
 bool World::may_hit(const Ray& ray) const {
     if (!planes_.empty()) return true;
     if (!linear_) return line_may_meet_sphere(ray, sphere_center_, sphere_radius2_);
-    for (const Bounded& b : bounded_)
-        if (line_may_meet_sphere(ray, b.center, b.radius * b.radius)) return true;
+    for (size_t entry = 0; entry < bounded_.size(); ++entry)
+        if (may_meet_entry(entry, ray, Interval{})) return true;
     return false;
 }
 
@@ -303,7 +305,7 @@ bool World::packet_shares_a_mesh(const Ray* const* rays, int count) const {
         const Bounded& b = bounded_[e];
         if (b.kind != ObjectKind::MeshInstance) continue;
         int n = 0;
-        for (int i = 0; i < count; ++i) n += line_may_meet_sphere(*rays[i], b.center, b.radius * b.radius);
+        for (int i = 0; i < count; ++i) n += may_meet_entry(e, *rays[i], Interval{});
         if (n >= kFewestInPacket) return true;
     }
     return false;
@@ -332,7 +334,7 @@ void World::nearest_hits(const Ray* const* rays, int count, Interval range, std:
         int members[kPacket];
         int n = 0;
         for (int i = 0; i < count; ++i)
-            if (line_may_meet_sphere(*rays[i], b.center, b.radius * b.radius)) members[n++] = i;
+            if (may_meet_entry(e, *rays[i], ranges[i])) members[n++] = i;
         if (b.kind != ObjectKind::MeshInstance || n < kFewestInPacket) {
             for (int k = 0; k < n; ++k)
                 found[members[k]] = hit_bounded(b, *rays[members[k]], ranges[members[k]], hits[members[k]], counts) ||

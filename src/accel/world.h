@@ -239,6 +239,9 @@ private:
     bool nearest_sphere_or_plane(const Ray& ray, Interval& range, Hit& hit, uint32_t left_behind) const;
     bool nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts,
                             uint32_t left_behind) const;
+    // False only if the ray misses bounded object `entry` before range.max, while the top level
+    // is linear: the line misses the sphere around its box, or the ray misses the box.
+    bool may_meet_entry(size_t entry, const Ray& ray, Interval range) const;
 
     std::vector<Object> objects_;
     std::vector<PlaneShape> planes_;
@@ -248,9 +251,10 @@ private:
     std::vector<ConeShape> cones_;
     std::vector<DiscShape> discs_;
     std::vector<Bounded> bounded_;
-    size_t extra_entries_ = 0;   // the pieces of long cones beyond the first (cone_piece_boxes)
-    uint32_t sphere_count_ = 0;  // the spheres: bounded_'s first entries while the top level is linear
-    LargeArray<Bounds> boxes_;   // of bounded_, while the world is built
+    size_t extra_entries_ = 0;          // the pieces of long cones beyond the first (cone_piece_boxes)
+    uint32_t sphere_count_ = 0;         // the spheres: bounded_'s first entries while the top level is linear
+    LargeArray<Bounds> boxes_;          // of bounded_, while the world is built
+    std::vector<Bounds> linear_boxes_;  // of bounded_ (padded_for_rays) while the top level is linear
     Bvh top_;
     bool linear_ = true;
     bool packet_search_possible_ = false;  // linear_, and some object is a mesh

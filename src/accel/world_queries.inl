@@ -123,6 +123,12 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     return nearest_plane(ray, range, hit) || found;
 }
 
+[[gnu::always_inline]] inline bool World::may_meet_entry(size_t entry, const Ray& ray, Interval range) const {
+    const Bounded& b = bounded_[entry];
+    return line_may_meet_sphere(ray, b.center, b.radius * b.radius) &&
+           ray_may_meet_box(ray, linear_boxes_[entry], range);
+}
+
 [[gnu::always_inline]] inline bool World::nearest_one_by_one(const Ray& ray, Interval& range, Hit& hit,
                                                              SearchCounts& counts, uint32_t left_behind) const {
     // Spheres, planes, then meshes (objects are numbered in this order; bounded_ lists the
@@ -130,7 +136,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     bool found = nearest_sphere_or_plane(ray, range, hit, left_behind);
     for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
         const Bounded& b = bounded_[i];
-        if (b.object != left_behind && line_may_meet_sphere(ray, b.center, b.radius * b.radius))
+        if (b.object != left_behind && may_meet_entry(i, ray, range))
             found = hit_bounded(b, ray, range, hit, counts) || found;
     }
     counts.objects.primitive_tests += bounded_.size();
@@ -288,7 +294,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
         for (size_t i = sphere_count_; i < bounded_.size(); ++i) {
             const Bounded& b = bounded_[i];
             ++counts.objects.primitive_tests;
-            if (b.object != left_behind && line_may_meet_sphere(ray, b.center, b.radius * b.radius) &&
+            if (b.object != left_behind && may_meet_entry(i, ray, range) &&
                 bounded_blocks(uint32_t(i), ray, range, counts, last))
                 return true;
         }

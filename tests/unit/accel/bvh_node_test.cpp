@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "accel/bvh_node.h"
+#include "accel/bvh_search.h"
 
 namespace tracer {
 namespace {
@@ -120,6 +121,27 @@ TEST(BoxTests, EnterNoBoxTheRayClearlyMisses) {
     EXPECT_EQ(entered.binary, 0);
     EXPECT_EQ(entered.subtract, 0);
     EXPECT_EQ(entered.fused, 0);
+}
+
+// The world's filter before a mesh (ray_may_meet_box, in Real on a padded box) on the same
+// cases: it must let through each ray that touches the box, and nearly none that clearly miss
+// (its margin grows with the origin's size: in float a few of those far away pass).
+TEST(BoxTests, TheWorldsBoxFilterKeepsEveryRayThatTouchesTheBox) {
+    for (const bool outside : {false, true}) {
+        std::mt19937 random(outside ? 4 : 3);
+        int kept = 0;
+        for (int i = 0; i < 200000; ++i) {
+            const Case c = random_case(random, outside);
+            Bounds box;
+            box.extend(Vec3(c.lower[0], c.lower[1], c.lower[2]));
+            box.extend(Vec3(c.upper[0], c.upper[1], c.upper[2]));
+            kept += ray_may_meet_box(c.ray, padded_for_rays(box), {0, outside ? Real(1) : kInfinity});
+        }
+        if (outside)
+            EXPECT_LT(kept, 200000 / 100) << "rays that clearly miss";
+        else
+            EXPECT_EQ(kept, 200000) << "rays that touch";
+    }
 }
 
 }  // namespace
