@@ -2,6 +2,7 @@
 
 import json
 import os
+import re
 import shutil
 import subprocess
 
@@ -35,6 +36,28 @@ def test_tracer_and_mitsuba_agree_at_reduced_resolution(tracer_bin, tmp_path, sc
     assert report["over_2"] <= 0.001 and report["psnr"] > 60
     for name in ("tracer.png", "mitsuba.png", "heatmap.png", "side_by_side.png", "scene.xml", "report.json"):
         assert (tmp_path / name).is_file(), name
+
+
+@pytest.mark.parametrize(
+    ("scene", "edit"),
+    [
+        (ROOT / "scenes" / "textured_vase.scn", ("", "")),
+        (ROOT / "scenes" / "whitted1980.scn", ("transparent_shadows true", "transparent_shadows false")),
+        (HERE / "uv_spheres.scn", ("", "")),
+    ],
+    ids=lambda value: value.stem if hasattr(value, "stem") else "",
+)
+def test_patterned_scenes_agree_with_mitsuba(tracer_bin, tmp_path, scene, edit):
+    """Patterns against Mitsuba's textures, within 0.1% of pixels over 2 levels: the textured mesh
+    (an image by its vt, a checkered quad; 0 pixels at 640 x 480), Whitted's checkered floor (with
+    opaque shadows, Mitsuba's; 2 pixels at 640 x 480), and spheres' (u, v) turned and grouped."""
+    # A copy, its files (relative to the scene's folder) named by absolute paths.
+    text = re.sub(r'file "([^"/][^"]*)"', lambda m: f'file "{scene.parent / m[1]}"', scene.read_text())
+    path = tmp_path / scene.name
+    path.write_text(text.replace(*edit))
+    result = run_tool("crosscheck", path, *SMALL, "--out", tmp_path / "out", "--json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert json.loads(result.stdout)["over_2"] <= 0.001
 
 
 @pytest.mark.parametrize("scene", ["gears", "mount", "teapot", "tetra"])
@@ -126,12 +149,14 @@ POVRAY_MISSING = "POV-Ray is not installed (Debian's povray; tools/bootstrap --p
         (HERE / "cylinders_discs.scn", 0.0005),
         (ROOT / "scenes" / "whitted1980.scn", 0.0),
         (HERE / "patterns_povray.scn", 0.0005),
+        (ROOT / "scenes" / "textured_vase.scn", 0.0),
     ],
 )
 def test_povray_agrees(tracer_bin, tmp_path, scene, most_over_2):
     """POV-Ray 3.7 (xcheck.povray): task2 to the level, glass under transparent shadows (POV-Ray's
     own) and the analytic cylinders and disc within a few pixels; Whitted's checkered floor, and
-    nested checkers, gradient, stripes, rings and a planar picture, within a few pixels."""
+    nested checkers, gradient, stripes, rings and a planar picture, within a few pixels; the
+    textured mesh (POV-Ray's uv_mapping on a mesh2 given tracer's (u, v)) to the level."""
     result = run_tool("crosscheck", scene, *SMALL, "--with", "povray", "--out", tmp_path, "--json")
     assert result.returncode == 0, result.stdout + result.stderr
     report = json.loads(result.stdout)

@@ -2,10 +2,11 @@
 
 import math
 
+import numpy as np
 import pytest
 from conftest import ROOT
 
-from tracer_tools.xcheck import ToolError, povray
+from tracer_tools.xcheck import ToolError, exact_meshes, povray
 
 
 def material(**keys):
@@ -82,3 +83,22 @@ def test_patterns_povray_cannot_express_are_refused_with_a_reason():
     dim = dict(solid, even=[0.1, 0.1, 0.1], odd=[0, 0, 0])
     text = povray.texture({**base, "kd": solid, "ka": dim})
     assert "ambient rgb <0.1, 0.1, 0.1>" in text and "checker" in text and "matrix <1.0, 0.0, 0.0," in text
+
+
+def test_uv_mapping_on_a_mesh_is_povrays_uv_mapping_given_tracers_uv(tmp_path):
+    """A uv pattern on a mesh2 becomes POV-Ray's uv_mapping over uv_vectors carrying tracer's
+    (u, v) (an OBJ's vt, fanned as its faces are); on other shapes it is refused."""
+    obj = tmp_path / "square.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n")
+    uvs = exact_meshes.fan_texcoords(obj)
+    assert uvs.tolist() == [[[0, 0], [0.5, 0], [0.5, 1]], [[0, 0], [0.5, 1], [0, 1]]]
+    (tmp_path / "partial.obj").write_text(obj.read_text() + "v 0 0 1\nf 1 2 5\n")
+    assert not exact_meshes.fan_texcoords(tmp_path / "partial.obj").any()  # tracer's (0, 0) then
+    placed = [[2.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]]
+    image = {"pattern": "image", "mapping": "uv", "to_pattern": placed, "file": "grid.png", "wrap": "repeat"}
+    corners = np.array([[[0, 0, 0], [1, 0, 0], [1, 1, 0]]], dtype=np.float64)
+    text = povray._mesh2(corners, np.zeros_like(corners), material(kd=image), uvs[:1])
+    assert "uv_vectors { 3,\n    <0.0, 0.0>, <0.5, 0.0>, <0.5, 1.0>" in text and "uv_indices { 1," in text
+    assert "pigment { uv_mapping image_map" in text and "matrix <0.5, 0.0, 0.0," in text
+    with pytest.raises(ToolError, match="mapping uv on a shape"):
+        povray.texture(material(kd=image))

@@ -350,9 +350,14 @@ def to_mitsuba_xml(scene: dict) -> str:
     # Step 4: shapes.
     for index, sphere in enumerate(scene["spheres"]):
         out.open("shape", type="sphere", id=f"sphere{index}")
-        out.leaf("point", name="center", value=_numbers(sphere["center"]))
-        out.leaf("float", name="radius", value=repr(float(sphere["radius"])))
-        _use_material(out, ids, sphere["material"])
+        if mitsuba_textures.patterned(sphere["material"]):  # turned to lay (u, v) as tracer does
+            out.open("transform", name="to_world")
+            out.leaf("matrix", value=" ".join(repr(float(v)) for v in mitsuba_textures.sphere_to_world(sphere).ravel()))
+            out.close("transform")
+        else:
+            out.leaf("point", name="center", value=_numbers(sphere["center"]))
+            out.leaf("float", name="radius", value=repr(float(sphere["radius"])))
+        _use_material(out, ids, sphere["material"], (mitsuba_textures.uv_map_of_sphere(), None))
         out.close("shape")
     for index, plane in enumerate(scene["planes"]):
         out.line(

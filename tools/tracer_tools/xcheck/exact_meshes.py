@@ -25,13 +25,16 @@ class ObjUnreadable(Exception):
     """A file this reader does not take (tracer's own reader reports the problem itself)."""
 
 
-def read_obj(path: str | pathlib.Path) -> tuple[np.ndarray, np.ndarray, list]:
-    """(positions (n, 3), normals (m, 3), faces): each face a list of (position index, normal
-    index or -1) from 0, as the file gives them (negative indices counted from the end)."""
-    positions, normals, faces = [], [], []
+def read_obj(path: str | pathlib.Path) -> tuple[np.ndarray, np.ndarray, list, np.ndarray]:
+    """(positions (n, 3), normals (m, 3), faces, texture coordinates (k, 2)): each face a list of
+    (position index, normal index or -1, texture coordinate index or -1) from 0, as the file
+    gives them (negative indices counted from the end)."""
+    positions, normals, faces, texcoords = [], [], [], []
 
-    def index(text: str, count: int) -> int:
-        number = int(text)
+    def index(parts: list, at: int, count: int) -> int:
+        if len(parts) <= at or not parts[at]:
+            return -1
+        number = int(parts[at])
         return number - 1 if number > 0 else count + number
 
     with open(path, encoding="utf-8", errors="replace") as file:
@@ -43,17 +46,25 @@ def read_obj(path: str | pathlib.Path) -> tuple[np.ndarray, np.ndarray, list]:
                 positions.append([float(x) for x in fields[1:4]])
             elif fields[0] == "vn":
                 normals.append([float(x) for x in fields[1:4]])
+            elif fields[0] == "vt":
+                texcoords.append([float(x) for x in (fields[1:3] + ["0"])[:2]])
             elif fields[0] == "f":
                 face = []
                 for corner in fields[1:]:
                     parts = corner.split("/")
-                    normal = index(parts[2], len(normals)) if len(parts) == 3 and parts[2] else -1
-                    face.append((index(parts[0], len(positions)), normal))
+                    face.append(
+                        (
+                            index(parts, 0, len(positions)),
+                            index(parts, 2, len(normals)),
+                            index(parts, 1, len(texcoords)),
+                        )
+                    )
                 faces.append(face)
     return (
         np.array(positions, dtype=np.float64).reshape(-1, 3),
         np.array(normals, dtype=np.float64).reshape(-1, 3),
         faces,
+        np.array(texcoords, dtype=np.float64).reshape(-1, 2),
     )
 
 
@@ -64,6 +75,18 @@ def fan_triangles(faces: list) -> tuple[np.ndarray, np.ndarray]:
     corners = np.array([[c[0] for c in t] for t in triangles], dtype=np.int64).reshape(-1, 3)
     normal_ids = np.array([[c[1] for c in t] for t in triangles], dtype=np.int64).reshape(-1, 3)
     return corners, normal_ids
+
+
+def fan_texcoords(path: str | pathlib.Path) -> np.ndarray:
+    """The (u, v) of each fan triangle's corners (t, 3, 2), as tracer reads them: the file's
+    `vt` when every face corner names one, else (0, 0) everywhere (src/io/obj_mesh.cpp)."""
+    _, _, faces, texcoords = read_obj(path)
+    ids = np.array(
+        [[face[0][2], face[k][2], face[k + 1][2]] for face in faces for k in range(1, len(face) - 1)], dtype=np.int64
+    ).reshape(-1, 3)
+    if not ids.size or ids.min() < 0 or ids.max() >= len(texcoords):
+        return np.zeros((len(ids), 3, 2))
+    return texcoords[ids]
 
 
 def uses_file_normals(file_normals: np.ndarray, normal_ids: np.ndarray) -> bool:
@@ -79,7 +102,7 @@ def uses_file_normals(file_normals: np.ndarray, normal_ids: np.ndarray) -> bool:
 def obj_normals_used(path: str | pathlib.Path) -> bool:
     """uses_file_normals for an OBJ file (False for a file this reader does not take)."""
     try:
-        _, file_normals, faces = read_obj(path)
+        _, file_normals, faces, _ = read_obj(path)
         return uses_file_normals(file_normals, fan_triangles(faces)[1])
     except (ValueError, IndexError):
         return False
@@ -132,7 +155,7 @@ def area_weighted_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarra
 
 def _triangles(path: str, linear: np.ndarray, translate: np.ndarray, smooth: bool) -> tuple[np.ndarray, np.ndarray]:
     """(corners (t, 3, 3), normals (t, 3, 3)) of an OBJ file mapped by (linear, translate)."""
-    positions, file_normals, faces = read_obj(path)
+    positions, file_normals, faces, _ = read_obj(path)
     corners, normal_ids = fan_triangles(faces)
     if corners.size and (corners.min() < 0 or corners.max() >= len(positions)):
         raise ObjUnreadable(f"{path}: a face names a vertex the file lacks")

@@ -4,9 +4,11 @@ surface's (u, v). Mitsuba's checkerboard is the checker of half-unit squares ove
 coordinates (color0 where both fractions are on the same side of 0.5), so a tracer checker
 becomes one when its cells' parity varies with two coordinates that are affine in the shape's
 (u, v): any checker in `uv` mapping, and a solid one on a quad or a plane whose third
-coordinate is constant across it. Mitsuba's bitmap has its (0, 0) at the picture's top left, and
+coordinate is constant across it. A sphere's (u, v) are Mitsuba's, turned (sphere_to_world).
+Mitsuba's bitmap has its (0, 0) at the picture's top left, and
 its OBJ loader turns each `vt`'s v into 1 - v; both are undone by each texture's to_uv. Other
-patterns (noise, colour maps, other mappings, shapes whose (u, v) Mitsuba draws otherwise) are
+patterns (noise, colour maps, other mappings, boxes, cones and discs, whose (u, v) Mitsuba lays
+otherwise) are
 refused with a reason.
 """
 
@@ -34,6 +36,31 @@ def uv_map_of_obj() -> SurfaceMap:
 def uv_map_of_rectangle() -> SurfaceMap:
     """Mitsuba's (u, v) of a rectangle (a quad) are tracer's (u, v, 0) already."""
     return np.array([[1, 0, 0], [0, 1, 0], [0, 0, 0], [0, 0, 1]], dtype=np.float64)
+
+
+def uv_map_of_sphere() -> SurfaceMap:
+    """Mitsuba's (u, v) of a sphere written by sphere_to_world -> tracer's (u, v, 0): u is the
+    same, v turned (Mitsuba's 0 is the north pole, tracer's the south)."""
+    return uv_map_of_obj()
+
+
+# Mitsuba's sphere in its own coordinates has u = atan2(y, x) / 2 pi (0 towards +x, rising
+# towards +y) and v = the angle from +z / pi; tracer's sphere (docs/guide/patterns.md) has u = 0
+# towards -z rising towards -x, and its north pole at +y. Mitsuba's x, y, z are tracer's -z, -x, y.
+_SPHERE_TURN = np.array([[0, -1, 0], [0, 0, 1], [-1, 0, 0]], dtype=np.float64)
+
+
+def sphere_to_world(sphere: dict) -> np.ndarray:
+    """The 4 x 4 to_world of a Mitsuba sphere that lays (u, v) as tracer's: its centre and
+    radius, turned as the sphere's own coordinates are (its material's to_object)."""
+    to_object = np.array(sphere["material"].get("to_object", np.eye(3, 4)), dtype=np.float64)[:, :3]
+    placed = np.linalg.inv(to_object)
+    if np.linalg.det(placed) < 0:
+        raise ToolError("a mirrored sphere's (u, v): Mitsuba's sphere has no mirrored placement")
+    turn = placed / np.linalg.norm(placed[:, 0]) @ _SPHERE_TURN
+    matrix = np.eye(4)
+    matrix[:3, :3], matrix[:3, 3] = float(sphere["radius"]) * turn, sphere["center"]
+    return matrix
 
 
 def world_map(origin: np.ndarray, along_u: np.ndarray, along_v: np.ndarray) -> SurfaceMap:

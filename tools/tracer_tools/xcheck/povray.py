@@ -22,7 +22,10 @@ each where the two renderers' defaults differ:
   without turbulence) in solid mapping, and images in planar mapping, each placed by a `matrix`
   (the inverse of the JSON's to_pattern); ka must be 0 or kd's pattern scaled per channel
   (POV-Ray's ambient multiplies the pigment). Spots, turbulence, marble and wood are refused
-  (POV-Ray's noise is not Perlin's reference), as are uv mapping and mirrored image tiling.
+  (POV-Ray's noise is not Perlin's reference), as is mirrored image tiling; uv mapping is
+  POV-Ray's uv_mapping on meshes, triangles and quads, written as mesh2 with tracer's (u, v)
+  (`uv_vectors`), and refused on the other shapes (POV-Ray's own (u, v) of a sphere, a box, a
+  cone or a disc are not tracer's).
 - shapes: spheres, planes, discs, cones and cylinders as POV-Ray's own (analytic); meshes as
   `mesh2` with tracer's placed corners and normals (xcheck.exact_meshes), each with an
   `inside_vector` (see _mesh2: without one POV-Ray may miss a mesh's farther faces); the flat
@@ -102,22 +105,29 @@ def _axis_turn(axis: Sequence[float], to: Sequence[float]) -> np.ndarray:
     return np.eye(3) + skew + skew @ skew / (1 + c)
 
 
-def pigment(paint: list | dict, factor: Sequence[float] = (1, 1, 1), outer: np.ndarray | None = None) -> str:
+def pigment(
+    paint: list | dict, factor: Sequence[float] = (1, 1, 1), outer: np.ndarray | None = None, has_uv: bool = False
+) -> str:
     """A colour or a pattern (from the JSON) as POV-Ray's pigment, each colour times `factor`;
     `outer`: the enclosing pattern's world -> pattern map (4 x 4), which POV-Ray applies to a
-    nested pigment before its own. POV-Ray's own noise differs from Perlin's reference: spots,
+    nested pigment before its own; `has_uv`: the shape is a mesh2 given tracer's (u, v) (so uv
+    mapping is POV-Ray's uv_mapping). POV-Ray's own noise differs from Perlin's reference: spots,
     turbulence, marble and wood are refused (their definition is checked by tracer's unit tests
-    instead); uv mapping too."""
+    instead)."""
     paint = mitsuba_textures.folded(paint, tuple(factor))
     if isinstance(paint, list):
         return f"pigment {{ rgb {_v(paint)} }}"
     kind, mapping = paint["pattern"], paint["mapping"]
-    if mapping not in ("solid", "planar") or (mapping == "planar" and kind != "image"):
-        raise ToolError(f"a {kind} pattern with mapping {mapping}: not written for POV-Ray")
+    drawn = mapping == "solid" or (mapping == "planar" and kind == "image") or (mapping == "uv" and has_uv)
+    if not drawn:
+        where = " on a shape POV-Ray is not given tracer's (u, v) for" if mapping == "uv" else ""
+        raise ToolError(f"a {kind} pattern with mapping {mapping}{where}: not written for POV-Ray")
+    if mapping == "uv" and outer is not None:
+        raise ToolError("a uv pattern inside another pattern: not written for POV-Ray")
     full = np.array([*paint["to_pattern"], [0, 0, 0, 1]], dtype=np.float64)
     to_pattern = full if outer is None else full @ np.linalg.inv(outer)  # from the outer pattern's space
     if kind == "checker":
-        even, odd = pigment(paint["even"], outer=full), pigment(paint["odd"], outer=full)
+        even, odd = pigment(paint["even"], outer=full, has_uv=has_uv), pigment(paint["odd"], outer=full, has_uv=has_uv)
         body = f"checker {even}, {odd}"
     elif kind in ("gradient", "stripes", "rings"):
         # Turned so that the pattern's axis is POV-Ray's: x for a gradient, z for wood's rings.
@@ -139,7 +149,8 @@ def pigment(paint: list | dict, factor: Sequence[float] = (1, 1, 1), outer: np.n
         body = f'image_map {{ png "{paint["file"]}" gamma srgb map_type 0 {interpolate}{once} }}'
     else:
         raise ToolError(f"a {kind} pattern: POV-Ray's noise is not Perlin's reference, so it is not cross-checked")
-    return f"pigment {{ {body} {_pov_matrix(to_pattern[:3])} }}"
+    uv_mapping = "uv_mapping " if mapping == "uv" else ""
+    return f"pigment {{ {uv_mapping}{body} {_pov_matrix(to_pattern[:3])} }}"
 
 
 def _scaled_copy(ka: dict | list, kd: dict, ratio: list[float] | None = None) -> list[float] | None:
@@ -173,7 +184,7 @@ def _scaled_copy(ka: dict | list, kd: dict, ratio: list[float] | None = None) ->
     return ratio
 
 
-def _patterned_texture(material: dict, finish_parts: list[str]) -> str:
+def _patterned_texture(material: dict, finish_parts: list[str], has_uv: bool) -> str:
     """A material whose ka or kd is a pattern: the pigment is kd's; POV-Ray's ambient multiplies
     it, so ka must be 0 or the same pattern scaled per channel (else refused)."""
     kd, ka = material["kd"], material["ka"]
@@ -188,11 +199,12 @@ def _patterned_texture(material: dict, finish_parts: list[str]) -> str:
     if ambient is None:
         raise ToolError("ka is not kd's pattern scaled: POV-Ray's ambient multiplies the pigment")
     finish = " ".join([f"ambient rgb {_v(ambient)} diffuse 1 brilliance 1", *finish_parts])
-    return f"texture {{ {pigment(kd)} finish {{ {finish} }} }}"
+    return f"texture {{ {pigment(kd, has_uv=has_uv)} finish {{ {finish} }} }}"
 
 
-def texture(material: dict) -> str:
-    """A material as POV-Ray's texture and interior (the rules in the module's docstring)."""
+def texture(material: dict, has_uv: bool = False) -> str:
+    """A material as POV-Ray's texture and interior (the rules in the module's docstring);
+    `has_uv`: on a mesh2 given tracer's (u, v)."""
     kd, ka, kt_colour = material["kd"], material["ka"], material.get("kt", [0, 0, 0])
     ks = _grey(material.get("ks", [0, 0, 0]), "ks", material)
     finish_parts = []
@@ -201,7 +213,7 @@ def texture(material: dict) -> str:
     if any(material["km"]):
         finish_parts.append(f"reflection {{ rgb {_v(material['km'])} }}")
     if isinstance(kd, dict) or isinstance(ka, dict):
-        return _patterned_texture(material, finish_parts)
+        return _patterned_texture(material, finish_parts, has_uv)
     if not any(kd) and not any(ka) and any(kt_colour):
         # Clear glass: the pigment is free, so a coloured kt is exact as a filter of 1.
         finish = " ".join(["ambient 0 diffuse 0", *finish_parts])
@@ -237,8 +249,8 @@ def _camera(scene: dict) -> str:
     return f"camera {{ perspective location {_v(eye)} direction {_v(-w)} right {_v(u * width)} up {_v(v * height)} }}"
 
 
-def _mesh2(corners: np.ndarray, normals: np.ndarray, material: dict) -> str:
-    """Triangles (t, 3, 3) with their corner normals (zero: flat) as one mesh2."""
+def _mesh2(corners: np.ndarray, normals: np.ndarray, material: dict, uvs: np.ndarray | None = None) -> str:
+    """Triangles (t, 3, 3) with their corner normals (zero: flat) and (u, v) (t, 3, 2) as one mesh2."""
     count = len(corners)
     if count == 0:
         return ""
@@ -253,35 +265,45 @@ def _mesh2(corners: np.ndarray, normals: np.ndarray, material: dict) -> str:
         lines.append(f"  normal_vectors {{ {3 * count},")
         lines += ["    " + ", ".join(_v(n) for n in triangle) for triangle in normals]
         lines.append("  }")
-    lines.append(f"  face_indices {{ {count},")
-    lines += [f"    <{3 * t}, {3 * t + 1}, {3 * t + 2}>" for t in range(count)]
-    lines.append("  }")
+    if uvs is not None:
+        lines.append(f"  uv_vectors {{ {3 * count},")
+        lines += ["    " + ", ".join(_v(uv) for uv in triangle) for triangle in uvs]
+        lines.append("  }")
+    indices = [f"    <{3 * t}, {3 * t + 1}, {3 * t + 2}>" for t in range(count)]
+    lines += [f"  face_indices {{ {count},", *indices, "  }"]
+    if uvs is not None:
+        lines += [f"  uv_indices {{ {count},", *indices, "  }"]
     # Every mesh a solid: refraction needs an inside, and without one POV-Ray's search of the
     # mesh stops at the first hit it finds, even one the ray then ignores as nearer than its
     # tolerance, hiding the mesh's farther faces (shadow rays from a tooth's root passed
     # through the next tooth: 0.14% of SPD gears' pixels).
     lines.append("  inside_vector <0, 0, 1>")
-    lines.append(f"  {texture(material)}\n}}")
+    lines.append(f"  {texture(material, has_uv=uvs is not None)}\n}}")
     return "\n".join(lines)
 
 
-def _flat_triangles(scene: dict) -> list[tuple[np.ndarray, dict]]:
-    """Each flat shape as placed triangles (t, 3, 3) with its material."""
+def _flat_triangles(scene: dict) -> list[tuple[np.ndarray, dict, np.ndarray | None]]:
+    """Each flat shape as placed triangles (t, 3, 3) with its material and, for a triangle or
+    a quad, the corners' (u, v) (t, 3, 2) as docs/guide/patterns.md gives them."""
     out = []
     for kind in ("triangles", "quads", "boxes"):
         for shape in scene.get(kind, []):
             if kind == "triangles":
                 local = [[shape["a"], shape["b"], shape["c"]]]
+                uvs = [[(0, 0), (1, 0), (0, 1)]]
             elif kind == "quads":
                 c, e1, e2 = (np.array(shape[k], dtype=np.float64) for k in ("corner", "edge1", "edge2"))
                 local = [[c, c + e1, c + e1 + e2], [c, c + e1 + e2, c + e2]]
+                uvs = [[(0, 0), (1, 0), (1, 1)], [(0, 0), (1, 1), (0, 1)]]
             else:
                 lo, hi = np.array(shape["min"], dtype=np.float64), np.array(shape["max"], dtype=np.float64)
                 p = [np.where([i & 1, i & 2, i & 4], hi, lo) for i in range(8)]
                 quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
                 local = [t for a, b, c, d in quads for t in ([p[a], p[b], p[c]], [p[a], p[c], p[d]])]
+                uvs = None  # a box's faces' (u, v) are not written
             linear, translate = exact_meshes.placement(shape)
-            out.append((np.array(local, dtype=np.float64) @ linear.T + translate, shape["material"]))
+            placed = np.array(local, dtype=np.float64) @ linear.T + translate
+            out.append((placed, shape["material"], None if uvs is None else np.array(uvs, dtype=np.float64)))
     return out
 
 
@@ -321,9 +343,9 @@ def to_povray_sdl(scene: dict) -> str:
     for mesh in scene["meshes"]:
         linear, translate = exact_meshes.placement(mesh)
         corners, normals = exact_meshes._triangles(mesh["file"], linear, translate, mesh.get("shading") != "flat")
-        out.append(_mesh2(corners, normals, mesh["material"]))
-    for corners, material in _flat_triangles(scene):
-        out.append(_mesh2(corners, np.zeros_like(corners), material))
+        out.append(_mesh2(corners, normals, mesh["material"], exact_meshes.fan_texcoords(mesh["file"])))
+    for corners, material, uvs in _flat_triangles(scene):
+        out.append(_mesh2(corners, np.zeros_like(corners), material, uvs))
     return "\n".join(out) + "\n"
 
 
