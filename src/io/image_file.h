@@ -24,8 +24,6 @@ std::optional<std::string> write_image(const std::string& path, const Image& ima
 
 // The most bytes of texels one image pattern's file may hold (8-bit RGB: 16384 x 16384 texels).
 constexpr size_t kMostTexelBytes = size_t(3) << 28;
-// The largest image file read.
-constexpr uint64_t kMaxImageFileBytes = uint64_t(1) << 30;
 
 // Reads the texels of every image the scene's patterns name (ImageFile::texels); false if one
 // cannot be read (reported at its `file` value).

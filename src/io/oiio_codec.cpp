@@ -2,8 +2,12 @@
 // loads only when it writes an image: OpenImageIO and the 260 libraries it needs take 0.15 s
 // and 130 MB to load, which --check, --dump-json and the language have no use for. The two
 // entry points below are all image_file.cpp calls (same compiler, so C++ types cross).
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -19,6 +23,39 @@ namespace tracer {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Standard error sent to /dev/null while one lives: libpng prints a line of its own ("libpng
+// error: ...") before OpenImageIO returns the same failure, which tracer then reports at the
+// scene's `file` value. Images are read one at a time, before rendering starts.
+class QuietStandardError {
+public:
+    QuietStandardError() {
+        std::fflush(stderr);
+        saved_ = dup(STDERR_FILENO);
+        const int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+        if (saved_ >= 0 && null >= 0) dup2(null, STDERR_FILENO);
+        if (null >= 0) close(null);
+    }
+    ~QuietStandardError() {
+        if (saved_ < 0) return;
+        std::fflush(stderr);
+        dup2(saved_, STDERR_FILENO);
+        close(saved_);
+    }
+    QuietStandardError(const QuietStandardError&) = delete;
+    QuietStandardError& operator=(const QuietStandardError&) = delete;
+
+private:
+    int saved_ = -1;
+};
+
+// The last line of one of OpenImageIO's messages, which may stack a library's lines (the
+// most specific last), for a diagnostic of one line.
+std::string last_line(std::string message) {
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+    const size_t newline = message.rfind('\n');
+    return newline == std::string::npos ? message : message.substr(newline + 1);
+}
 
 unsigned char eight_bit_srgb(double value) {
     return to_8bit(srgb_encoded(value));
@@ -94,9 +131,10 @@ extern "C" void tracer_oiio_encode(const std::string& path, const tracer::Image&
 // more than `most_bytes` of texels is refused before any is read.
 extern "C" void tracer_oiio_read(const std::string& path, tracer::Texels& out, size_t most_bytes, std::string& error) {
     using namespace tracer;
+    const QuietStandardError quiet;
     auto input = OIIO::ImageInput::open(path);
     if (!input) {
-        const std::string message = OIIO::geterror();
+        const std::string message = last_line(OIIO::geterror());
         error = message.empty() ? "not an image OpenImageIO can read" : message;
         return;
     }
@@ -131,7 +169,7 @@ extern "C" void tracer_oiio_read(const std::string& path, tracer::Texels& out, s
             }
     }
     if (!ok) {
-        const std::string message = input->geterror();
+        const std::string message = last_line(input->geterror());
         error = message.empty() ? "reading the texels failed" : message;
         out = Texels{};
     }

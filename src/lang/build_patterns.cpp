@@ -8,14 +8,12 @@
 #include "base/input_file.h"
 #include "lang/internal/scene_assembly.h"
 #include "lang/schema.h"
+#include "scene/pattern.h"
 
 namespace tracer {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The largest image file read (as io/image_file.h's; a PNG of 16384 x 16384 texels is far less).
-constexpr uint64_t kMaxImageFileBytes = uint64_t(1) << 30;
 
 // `placement`'s inverse: world (or the outer space) -> own coordinates.
 Affine inverse_of(const Placement& placement) {

@@ -500,26 +500,26 @@ bool Interpreter::entry_value(const CompiledEntry& entry, PlainValue& out) {
     return false;
 }
 
-// A stop of a colour map: a plain value, or a short list of plain values.
-static bool plain_stop(const RuntimeValue& item, Span span, PlainValue& out) {
-    if (item.kind != RuntimeValue::Kind::List) return plain_value(item, span, out);
-    constexpr size_t kMostStopItems = 16;
-    if (item.items().size() > kMostStopItems) return false;
-    out.kind = PlainValue::Kind::List;
-    out.span = span;
-    out.items.resize(item.items().size());
-    for (size_t i = 0; i < out.items.size(); ++i)
-        if (!plain_value(item.items()[i], span, out.items[i])) return false;
-    return true;
-}
-
-bool plain_list(const RuntimeValue& value, Span span, PlainValue& out) {
+// `out` as the list of `value`'s items, each made plain by `item` (false at one that is not).
+template <typename ItemRule>
+static bool plain_items(const RuntimeValue& value, Span span, PlainValue& out, ItemRule item) {
     out.kind = PlainValue::Kind::List;
     out.span = span;
     out.items.resize(value.items().size());
     for (size_t i = 0; i < out.items.size(); ++i)
-        if (!plain_stop(value.items()[i], span, out.items[i])) return false;
+        if (!item(value.items()[i], span, out.items[i])) return false;
     return true;
+}
+
+// A stop of a colour map: a plain value, or a short list of plain values.
+static bool plain_stop(const RuntimeValue& item, Span span, PlainValue& out) {
+    if (item.kind != RuntimeValue::Kind::List) return plain_value(item, span, out);
+    constexpr size_t kMostStopItems = 16;
+    return item.items().size() <= kMostStopItems && plain_items(item, span, out, plain_value);
+}
+
+bool plain_list(const RuntimeValue& value, Span span, PlainValue& out) {
+    return plain_items(value, span, out, plain_stop);
 }
 
 std::string first_unplain_kind(const RuntimeValue& value) {

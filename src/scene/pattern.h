@@ -52,6 +52,9 @@ struct ColorStop {
 
 // The most stops a colour map may hold.
 constexpr size_t kMostColorStops = 65536;
+// The largest file an image pattern may name (a PNG of 16384 x 16384 texels is far less): the
+// language refuses a larger one at its `file` value, and the loader checks again.
+constexpr uint64_t kMaxImageFileBytes = uint64_t(1) << 30;
 
 // A colour, or the pattern SceneDescription::patterns[pattern] (pattern >= 0).
 struct Paint {

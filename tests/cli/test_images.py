@@ -151,6 +151,11 @@ class ImagePatterns(unittest.TestCase):
         self.assertIn("cannot read image file", result.stderr)
         self.assertNotIn("overrides", result.stderr)  # one message, about the image
         self.assertNotIn("Traceback", result.stderr)
+        # The message alone: no line of libpng's own, the source line right after it.
+        self.assertNotIn("libpng", result.stderr)
+        lines = result.stderr.splitlines()
+        at = next(i for i, line in enumerate(lines) if "cannot read image file" in line)
+        self.assertIn("file", lines[at + 1], result.stderr)
         for fragment in fragments:
             self.assertIn(fragment, result.stderr)
         return result.stderr
