@@ -90,7 +90,10 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
             const SpawnedRay shadow = spawn.ray_to(light_offset, distance);
             const uint32_t left_behind = object_left_behind(hit, to_light);
             if (through_glass) {
-                term *= light_through(world, shadow, Vec3(light.position), left_behind, counts);
+                // Most shadow rays meet nothing: the any-hit search (the same tests, fewer steps)
+                // says so; only the others are followed through each surface they cross.
+                if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l], left_behind))
+                    term *= light_through(world, shadow, Vec3(light.position), left_behind, counts);
             } else if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l], left_behind)) {
                 continue;
             }

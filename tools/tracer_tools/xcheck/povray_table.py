@@ -24,7 +24,7 @@ from tracer_tools.scenes import edit
 
 from . import convert, speed_vs_error, tracer_cli
 
-SCENES = ["task2", "bunny_room", "room", "glass", "whitted1980"]
+SCENES = ["task2", "bunny_room", "room", "glass", "whitted1980", "textured_vase"]
 HEADER = (
     "| scene | shadows | size | over 2 levels | px | over 8 levels | largest | POV-Ray trace s | tracer render s "
     "| written approximately |\n|---|---|---|--:|--:|--:|--:|--:|--:|---|"
