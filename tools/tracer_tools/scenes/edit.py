@@ -6,8 +6,15 @@ import re
 
 
 def with_render_key(scn_path: pathlib.Path, out_path: pathlib.Path, key: str) -> None:
-    """The scene with `key` (e.g. `transparent_shadows true`) added to its render block."""
+    """The scene with `key` (e.g. `transparent_shadows true`) in its render block: its value
+    replaced where the block sets the key already (the block's first line to the first `}`),
+    else added."""
     text = scn_path.read_text()
-    if not re.search(r"^render \{", text, flags=re.MULTILINE):
+    block = re.search(r"^render \{[^}]*", text, flags=re.MULTILINE)
+    if not block:
         raise ValueError(f"{scn_path}: no render block to add {key} to")
-    out_path.write_text(re.sub(r"^render \{", "render { " + key + " ", text, count=1, flags=re.MULTILINE))
+    name = key.split()[0]
+    body, count = re.subn(rf"\b{re.escape(name)}\s+\S+", key, block[0], count=1)
+    if not count:
+        body = block[0].replace("render {", "render { " + key + " ", 1)
+    out_path.write_text(text[: block.start()] + body + text[block.end() :])
