@@ -46,11 +46,12 @@ inline Bounds padded_for_rays(const Bounds& box) {
 // rules nothing out. A cheap filter before a mesh's own set-up, never its answer.
 [[gnu::always_inline]] inline bool ray_may_meet_box(const Ray& ray, const Bounds& box, Interval range) {
     const Vec3 o = ray.origin;
+    const Vec3 inverse = Real(1) / ray.direction;  // +-infinity for a zero component
     const Real reach = kBoxMargin * std::max({std::abs(o.x), std::abs(o.y), std::abs(o.z)});
     Real near = 0, far = range.max;
     for (int axis = 0; axis < 3; ++axis) {
-        const Real t0 = (box.lower[axis] - reach - o[axis]) / ray.direction[axis];
-        const Real t1 = (box.upper[axis] + reach - o[axis]) / ray.direction[axis];
+        const Real t0 = (box.lower[axis] - reach - o[axis]) * inverse[axis];
+        const Real t1 = (box.upper[axis] + reach - o[axis]) * inverse[axis];
         if (t0 != t0 || t1 != t1) continue;
         near = std::max(near, std::min(t0, t1));
         far = std::min(far, std::max(t0, t1));

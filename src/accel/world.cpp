@@ -305,7 +305,7 @@ bool World::packet_shares_a_mesh(const Ray* const* rays, int count) const {
         const Bounded& b = bounded_[e];
         if (b.kind != ObjectKind::MeshInstance) continue;
         int n = 0;
-        for (int i = 0; i < count; ++i) n += may_meet_entry(e, *rays[i], Interval{});
+        for (int i = 0; i < count; ++i) n += line_may_meet_sphere(*rays[i], b.center, b.radius * b.radius);
         if (n >= kFewestInPacket) return true;
     }
     return false;
