@@ -22,6 +22,7 @@ struct SpanEnd {
     Real t = 0;
     uint32_t surface = 0;  // the leaf whose surface bounds the span here
     bool turned = false;   // the surface seen from its inside (its normal turned)
+    uint8_t part = 0;      // which face of the leaf: a box's 2 axis + (1 on the upper side)
 };
 
 // A stretch of the ray inside a solid.

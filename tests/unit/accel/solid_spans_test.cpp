@@ -59,7 +59,9 @@ TEST(SolidSpans, EachOperationHoldsWhatItsTruthTableSays) {
             for (size_t k = 0; k < out.size(); ++k) {
                 // Between ends that are one place there is no span, and the spans are in order.
                 ASSERT_GT(out[k].leave.t - out[k].enter.t, kTolerance / 2) << "trial " << trial;
-                if (k > 0) ASSERT_GT(out[k].enter.t - out[k - 1].leave.t, kTolerance / 2) << "trial " << trial;
+                if (k > 0) {
+                    ASSERT_GT(out[k].enter.t - out[k - 1].leave.t, kTolerance / 2) << "trial " << trial;
+                }
                 // A difference's ends from the cutter (b) are its surface turned; the others are not.
                 for (const SpanEnd& end : {out[k].enter, out[k].leave})
                     ASSERT_EQ(end.turned, op == SolidOp::Difference && end.surface >= 100);
