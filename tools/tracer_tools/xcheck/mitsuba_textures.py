@@ -5,11 +5,10 @@ coordinates (color0 where both fractions are on the same side of 0.5), so a trac
 becomes one when its cells' parity varies with two coordinates that are affine in the shape's
 (u, v): any checker in `uv` mapping, and a solid one on a quad or a plane whose third
 coordinate is constant across it. A sphere's (u, v) are Mitsuba's, turned (sphere_to_world).
-Mitsuba's bitmap has its (0, 0) at the picture's top left, and
-its OBJ loader turns each `vt`'s v into 1 - v; both are undone by each texture's to_uv. Other
-patterns (noise, colour maps, other mappings, boxes, cones and discs, whose (u, v) Mitsuba lays
-otherwise) are
-refused with a reason.
+Mitsuba's bitmap has its (0, 0) at the picture's top left, and its OBJ loader turns each `vt`'s
+v into 1 - v; both are undone by each texture's to_uv. Other patterns (noise, colour maps, other
+mappings; boxes, cones and discs, whose (u, v) Mitsuba lays otherwise) are refused with a
+reason.
 """
 
 from __future__ import annotations
