@@ -23,7 +23,7 @@ def test_the_reader_takes_every_corner_form_negative_indices_and_polygons(tmp_pa
     positions, normals, faces, texcoords = exact_meshes.read_obj(path)
     assert positions.shape == (5, 3) and normals.shape == (2, 3) and texcoords.shape == (1, 2)
     assert [corner[2] for corner in faces[1]] == [0, 0, 0] and faces[0][0][2] == -1
-    corners, normal_ids = exact_meshes.fan_triangles(faces)
+    corners, normal_ids, _ = exact_meshes.fan_triangles(faces)
     assert corners.tolist() == [[0, 1, 2], [0, 2, 3], [0, 1, 2], [0, 1, 2], [0, 1, 2], [0, 2, 3], [0, 3, 4]]
     assert normal_ids[2].tolist() == [1, 1, 0] and normal_ids[3].tolist() == [1, 1, 0]
     assert (normal_ids[[0, 1, 4, 5, 6]] == -1).all()

@@ -90,10 +90,11 @@ def test_uv_mapping_on_a_mesh_is_povrays_uv_mapping_given_tracers_uv(tmp_path):
     (u, v) (an OBJ's vt, fanned as its faces are); on other shapes it is refused."""
     obj = tmp_path / "square.obj"
     obj.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 0.5 0\nvt 0.5 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n")
-    uvs = exact_meshes.fan_texcoords(obj)
+    uvs = exact_meshes._triangles(obj, np.eye(3), np.zeros(3), False)[2]
     assert uvs.tolist() == [[[0, 0], [0.5, 0], [0.5, 1]], [[0, 0], [0.5, 1], [0, 1]]]
     (tmp_path / "partial.obj").write_text(obj.read_text() + "v 0 0 1\nf 1 2 5\n")
-    assert not exact_meshes.fan_texcoords(tmp_path / "partial.obj").any()  # tracer's (0, 0) then
+    partial = exact_meshes._triangles(tmp_path / "partial.obj", np.eye(3), np.zeros(3), False)[2]
+    assert not partial.any()  # tracer's (0, 0) then
     placed = [[2.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]]
     image = {"pattern": "image", "mapping": "uv", "to_pattern": placed, "file": "grid.png", "wrap": "repeat"}
     corners = np.array([[[0, 0, 0], [1, 0, 0], [1, 1, 0]]], dtype=np.float64)

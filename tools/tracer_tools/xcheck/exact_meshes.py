@@ -68,25 +68,22 @@ def read_obj(path: str | pathlib.Path) -> tuple[np.ndarray, np.ndarray, list, np
     )
 
 
-def fan_triangles(faces: list) -> tuple[np.ndarray, np.ndarray]:
+def fan_triangles(faces: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Each face cut into a fan from its first corner: (corners (t, 3) position indices, normal
-    indices (t, 3), -1 where a corner names none)."""
+    indices (t, 3), texture coordinate indices (t, 3)), -1 where a corner names none."""
     triangles = [(face[0], face[k], face[k + 1]) for face in faces for k in range(1, len(face) - 1)]
-    corners = np.array([[c[0] for c in t] for t in triangles], dtype=np.int64).reshape(-1, 3)
-    normal_ids = np.array([[c[1] for c in t] for t in triangles], dtype=np.int64).reshape(-1, 3)
-    return corners, normal_ids
+    corners, normal_ids, texcoord_ids = (
+        np.array([[c[part] for c in t] for t in triangles], dtype=np.int64).reshape(-1, 3) for part in range(3)
+    )
+    return corners, normal_ids, texcoord_ids
 
 
-def fan_texcoords(path: str | pathlib.Path) -> np.ndarray:
-    """The (u, v) of each fan triangle's corners (t, 3, 2), as tracer reads them: the file's
-    `vt` when every face corner names one, else (0, 0) everywhere (src/io/obj_mesh.cpp)."""
-    _, _, faces, texcoords = read_obj(path)
-    ids = np.array(
-        [[face[0][2], face[k][2], face[k + 1][2]] for face in faces for k in range(1, len(face) - 1)], dtype=np.int64
-    ).reshape(-1, 3)
-    if not ids.size or ids.min() < 0 or ids.max() >= len(texcoords):
-        return np.zeros((len(ids), 3, 2))
-    return texcoords[ids]
+def corner_texcoords(texcoords: np.ndarray, texcoord_ids: np.ndarray) -> np.ndarray:
+    """The (u, v) of each triangle's corners (t, 3, 2), as tracer reads them: the file's `vt`
+    when every face corner names one, else (0, 0) everywhere (src/io/obj_mesh.cpp)."""
+    if not texcoord_ids.size or texcoord_ids.min() < 0 or texcoord_ids.max() >= len(texcoords):
+        return np.zeros((len(texcoord_ids), 3, 2))
+    return texcoords[texcoord_ids]
 
 
 def uses_file_normals(file_normals: np.ndarray, normal_ids: np.ndarray) -> bool:
@@ -153,20 +150,23 @@ def area_weighted_normals(positions: np.ndarray, faces: np.ndarray) -> np.ndarra
     return _unit_rows(sums)
 
 
-def _triangles(path: str, linear: np.ndarray, translate: np.ndarray, smooth: bool) -> tuple[np.ndarray, np.ndarray]:
-    """(corners (t, 3, 3), normals (t, 3, 3)) of an OBJ file mapped by (linear, translate)."""
-    positions, file_normals, faces, _ = read_obj(path)
-    corners, normal_ids = fan_triangles(faces)
+def _triangles(
+    path: str, linear: np.ndarray, translate: np.ndarray, smooth: bool
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(corners (t, 3, 3), normals (t, 3, 3), (u, v) (t, 3, 2)) of an OBJ file mapped by (linear,
+    translate), the file read once."""
+    positions, file_normals, faces, texcoords = read_obj(path)
+    corners, normal_ids, texcoord_ids = fan_triangles(faces)
     if corners.size and (corners.min() < 0 or corners.max() >= len(positions)):
         raise ObjUnreadable(f"{path}: a face names a vertex the file lacks")
     placed = positions @ linear.T + translate
-    triangles = placed[corners]
+    triangles, uvs = placed[corners], corner_texcoords(texcoords, texcoord_ids)
     if not smooth:
-        return triangles, np.zeros_like(triangles)
+        return triangles, np.zeros_like(triangles), uvs
     if uses_file_normals(file_normals, normal_ids):
         normal_map = np.linalg.inv(linear).T
-        return triangles, _unit_rows(file_normals @ normal_map.T)[normal_ids]
-    return triangles, area_weighted_normals(placed, corners)[corners]
+        return triangles, _unit_rows(file_normals @ normal_map.T)[normal_ids], uvs
+    return triangles, area_weighted_normals(placed, corners)[corners], uvs
 
 
 def exact_meshes(scene: dict, folder: pathlib.Path) -> tuple[list[str], list[np.ndarray], list[np.ndarray]]:
@@ -195,7 +195,7 @@ def exact_meshes(scene: dict, folder: pathlib.Path) -> tuple[list[str], list[np.
         try:
             if instanced:  # built once in the file's own coordinates; rays carried there
                 if (path, smooth) not in shared:
-                    triangles, normals = _triangles(path, np.eye(3), np.zeros(3), smooth)
+                    triangles, normals, _ = _triangles(path, np.eye(3), np.zeros(3), smooth)
                     shared[(path, smooth)] = (first, len(triangles))
                     corner_parts.append(triangles)
                     normal_parts.append(normals)
@@ -203,7 +203,7 @@ def exact_meshes(scene: dict, folder: pathlib.Path) -> tuple[list[str], list[np.
                 start, count = shared[(path, smooth)]
                 shapes[name] = (start, count, np.linalg.inv(linear), translate)
             else:
-                triangles, normals = _triangles(path, linear, translate, smooth)
+                triangles, normals, _ = _triangles(path, linear, translate, smooth)
                 shapes[name] = (first, len(triangles), np.eye(3), np.zeros(3))
                 corner_parts.append(triangles)
                 normal_parts.append(normals)

@@ -342,8 +342,8 @@ def to_povray_sdl(scene: dict) -> str:
         )
     for mesh in scene["meshes"]:
         linear, translate = exact_meshes.placement(mesh)
-        corners, normals = exact_meshes._triangles(mesh["file"], linear, translate, mesh.get("shading") != "flat")
-        out.append(_mesh2(corners, normals, mesh["material"], exact_meshes.fan_texcoords(mesh["file"])))
+        corners, normals, uvs = exact_meshes._triangles(mesh["file"], linear, translate, mesh.get("shading") != "flat")
+        out.append(_mesh2(corners, normals, mesh["material"], uvs))
     for corners, material, uvs in _flat_triangles(scene):
         out.append(_mesh2(corners, np.zeros_like(corners), material, uvs))
     return "\n".join(out) + "\n"
