@@ -1,5 +1,9 @@
 #include "accel/solid_spans.h"
 
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+
 namespace tracer {
 namespace {
 
@@ -14,21 +18,14 @@ struct Crossing {
 std::vector<Crossing> merged_crossings(std::span<const Span> a, std::span<const Span> b) {
     std::vector<Crossing> crossings;
     crossings.reserve(2 * (a.size() + b.size()));
-    size_t i = 0, j = 0;
-    auto push = [&](const Span& span, bool from_b, bool leave) {
-        crossings.push_back({leave ? span.leave : span.enter, from_b, !leave});
-    };
-    // Each list is walked end by end: 2 k is span k's enter, 2 k + 1 its leave.
-    while (i < 2 * a.size() || j < 2 * b.size()) {
-        const bool take_a =
-            j >= 2 * b.size() || (i < 2 * a.size() && (i % 2 ? a[i / 2].leave.t : a[i / 2].enter.t) <=
-                                                          (j % 2 ? b[j / 2].leave.t : b[j / 2].enter.t));
-        if (take_a) {
-            push(a[i / 2], false, i % 2), ++i;
-        } else {
-            push(b[j / 2], true, j % 2), ++j;
+    for (const auto& [spans, from_b] : {std::pair{a, false}, std::pair{b, true}})
+        for (const Span& span : spans) {
+            crossings.push_back({span.enter, from_b, true});
+            crossings.push_back({span.leave, from_b, false});
         }
-    }
+    // Each half is in order already; the merge is stable, so a's come first on a tie.
+    std::inplace_merge(crossings.begin(), crossings.begin() + std::ptrdiff_t(2 * a.size()), crossings.end(),
+                       [](const Crossing& x, const Crossing& y) { return x.end.t < y.end.t; });
     return crossings;
 }
 

@@ -40,6 +40,13 @@ std::vector<Span> random_solid(std::mt19937& random, uint32_t first_surface) {
     return spans;
 }
 
+// `a` op `b` as combine_spans gives it.
+std::vector<Span> combined(SolidOp op, const std::vector<Span>& a, const std::vector<Span>& b) {
+    std::vector<Span> out;
+    combine_spans(op, a, b, kTolerance, out);
+    return out;
+}
+
 bool truth(SolidOp op, bool a, bool b) {
     return op == SolidOp::Union ? a || b : op == SolidOp::Intersection ? a && b : a && !b;
 }
@@ -49,8 +56,7 @@ TEST(SolidSpans, EachOperationHoldsWhatItsTruthTableSays) {
     for (int trial = 0; trial < 20000; ++trial) {
         const std::vector<Span> a = random_solid(random, 0), b = random_solid(random, 100);
         for (const SolidOp op : {SolidOp::Union, SolidOp::Intersection, SolidOp::Difference}) {
-            std::vector<Span> out;
-            combine_spans(op, a, b, kTolerance, out);
+            const std::vector<Span> out = combined(op, a, b);
             for (Real t = -0.5; t <= 20.5; t += 0.5) {
                 if (t == std::floor(t)) continue;  // on the grid: an end may lie there
                 ASSERT_EQ(inside_spans(out, t), truth(op, inside_spans(a, t), inside_spans(b, t)))
@@ -73,23 +79,18 @@ TEST(SolidSpans, EachOperationHoldsWhatItsTruthTableSays) {
 TEST(SolidSpans, CoincidentFacesGiveTheFirstSolidsFaceOrNone) {
     const Span box{{0, 1, false}, {4, 2, false}};
     const Span cutter{{kTolerance / 3, 11, false}, {2, 12, false}};  // its front face on the box's
-    std::vector<Span> out;
-    combine_spans(SolidOp::Difference, std::vector<Span>{box}, std::vector<Span>{cutter}, kTolerance, out);
+    std::vector<Span> out = combined(SolidOp::Difference, {box}, {cutter});
     ASSERT_EQ(out.size(), 1u);             // no sliver between the two front faces
     EXPECT_EQ(out[0].enter.surface, 12u);  // the cutter's back face, seen from inside it
     EXPECT_TRUE(out[0].enter.turned);
     EXPECT_EQ(out[0].leave.surface, 2u);
     // A union of two solids touching at one place is one span: no face inside (merge).
-    out.clear();
-    combine_spans(SolidOp::Union, std::vector<Span>{{{0, 1, false}, {1, 2, false}}},
-                  std::vector<Span>{{{1, 3, false}, {2, 4, false}}}, kTolerance, out);
+    out = combined(SolidOp::Union, {{{0, 1, false}, {1, 2, false}}}, {{{1, 3, false}, {2, 4, false}}});
     ASSERT_EQ(out.size(), 1u);
     EXPECT_EQ(out[0].enter.surface, 1u);
     EXPECT_EQ(out[0].leave.surface, 4u);
     // Two coincident fronts: the first solid's face.
-    out.clear();
-    combine_spans(SolidOp::Intersection, std::vector<Span>{{{0, 1, false}, {3, 2, false}}},
-                  std::vector<Span>{{{0, 3, false}, {2, 4, false}}}, kTolerance, out);
+    out = combined(SolidOp::Intersection, {{{0, 1, false}, {3, 2, false}}}, {{{0, 3, false}, {2, 4, false}}});
     ASSERT_EQ(out.size(), 1u);
     EXPECT_EQ(out[0].enter.surface, 1u);
     EXPECT_EQ(out[0].leave.surface, 4u);
@@ -101,9 +102,8 @@ TEST(SolidSpans, HalfSpacesAndNestingCombine) {
     const Span half{{-kInfinity, 1, false}, {5, 2, false}};
     const Span hole{{1, 3, false}, {2, 4, false}};
     const Span clip{{0, 5, false}, {10, 6, false}};
-    std::vector<Span> cut, out;
-    combine_spans(SolidOp::Difference, std::vector<Span>{half}, std::vector<Span>{hole}, kTolerance, cut);
-    combine_spans(SolidOp::Intersection, cut, std::vector<Span>{clip}, kTolerance, out);
+    const std::vector<Span> out =
+        combined(SolidOp::Intersection, combined(SolidOp::Difference, {half}, {hole}), {clip});
     ASSERT_EQ(out.size(), 2u);
     EXPECT_EQ(out[0].enter.surface, 5u);
     EXPECT_EQ(out[0].leave.surface, 3u);
