@@ -14,12 +14,13 @@ struct Crossing {
     bool entering;
 };
 
-// The crossings of `a` and `b` in order along the ray (a's first where they are equal).
-std::vector<Crossing> merged_crossings(std::span<const Span> a, std::span<const Span> b) {
-    std::vector<Crossing> crossings;
-    crossings.reserve(2 * (a.size() + b.size()));
+// The crossings of `a` and `b` in order along the ray (a's first where they are equal), in the
+// thread's scratch (a ray allocates nothing once it has run).
+const std::vector<Crossing>& merged_crossings(std::span<const SolidSpan> a, std::span<const SolidSpan> b) {
+    thread_local std::vector<Crossing> crossings;
+    crossings.clear();
     for (const auto& [spans, from_b] : {std::pair{a, false}, std::pair{b, true}})
-        for (const Span& span : spans) {
+        for (const SolidSpan& span : spans) {
             crossings.push_back({span.enter, from_b, true});
             crossings.push_back({span.leave, from_b, false});
         }
@@ -40,11 +41,11 @@ bool inside(SolidOp op, bool in_a, bool in_b) {
 
 }  // namespace
 
-void combine_spans(SolidOp op, std::span<const Span> a, std::span<const Span> b, Real tolerance,
-                   std::vector<Span>& out) {
-    const std::vector<Crossing> crossings = merged_crossings(a, b);
+void combine_spans(SolidOp op, std::span<const SolidSpan> a, std::span<const SolidSpan> b, Real tolerance,
+                   std::vector<SolidSpan>& out) {
+    const std::vector<Crossing>& crossings = merged_crossings(a, b);
     bool in_a = false, in_b = false, in_result = false;
-    Span open;
+    SolidSpan open;
     // Crossings within `tolerance` of a group's first are one place; the result changes there
     // at most once, and takes its end from the first crossing of `a` in the group, else of `b`.
     for (size_t first = 0; first < crossings.size();) {

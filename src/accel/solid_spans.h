@@ -12,10 +12,9 @@
 #include <vector>
 
 #include "accel/types.h"
+#include "scene/scene.h"
 
 namespace tracer {
-
-enum class SolidOp : uint8_t { Union, Intersection, Difference };
 
 // One end of a span: where along the ray, and the surface there.
 struct SpanEnd {
@@ -26,7 +25,7 @@ struct SpanEnd {
 };
 
 // A stretch of the ray inside a solid.
-struct Span {
+struct SolidSpan {
     SpanEnd enter;
     SpanEnd leave;
 };
@@ -36,7 +35,7 @@ struct Span {
 // and takes the first solid's (`a`'s) end if it has one there: two children's coincident faces
 // make one face, or none, never the speckles of a coin toss, nor a sliver between them. A
 // difference's ends taken from `b` are turned.
-void combine_spans(SolidOp op, std::span<const Span> a, std::span<const Span> b, Real tolerance,
-                   std::vector<Span>& out);
+void combine_spans(SolidOp op, std::span<const SolidSpan> a, std::span<const SolidSpan> b, Real tolerance,
+                   std::vector<SolidSpan>& out);
 
 }  // namespace tracer

@@ -86,6 +86,7 @@ glm::dvec2 World::surface_uv(const Hit& hit, const SurfaceHit& surface, const gl
         }
         case ObjectKind::MeshInstance:
             return meshes_[instances_[object.index].mesh].surface_uv(hit.primitive, hit.u, hit.v);
+        case ObjectKind::Solid: return {0, 0};  // not yet: a solid's patterns map by 3D coordinates
     }
     return {0, 0};
 }

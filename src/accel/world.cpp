@@ -116,7 +116,11 @@ World::World(SceneDescription& scene, const SceneMeshes& meshes, int threads, Re
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
              SceneDescription* releasable)
-    : materials_(scene.materials), lights_(scene.lights), patterns_(scene.patterns), images_(scene.images) {
+    : solids_(scene),
+      materials_(scene.materials),
+      lights_(scene.lights),
+      patterns_(scene.patterns),
+      images_(scene.images) {
     static std::atomic<uint64_t> worlds{0};
     serial_ = ++worlds;
     for (const Material& material : materials_) refracts_ = refracts_ || material.kt != dvec3(0.0);
@@ -146,6 +150,7 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
     // and discs (numbered after every older kind, so that older scenes keep their order).
     add_meshes(scene, meshes, settings, flatten_shared, releasable);
     add_round_shapes(scene, settings);
+    add_solids();
     // Step 3: the top level over every bounded object.
     build_top_level(settings);
 }
@@ -174,6 +179,17 @@ void World::add_round_shapes(const SceneDescription& scene, const SearchSettings
         objects_.push_back({ObjectKind::Disc, index, d.material});
         discs_.push_back({Vec3(d.center), Vec3(d.normal), Real(d.radius)});
         add_bounded(disc_box(d.center, d.normal, d.radius), object, index, ObjectKind::Disc);
+    }
+}
+
+void World::add_solids() {
+    for (uint32_t index = 0; index < solids_.size(); ++index) {
+        const uint32_t object = uint32_t(objects_.size());
+        objects_.push_back({ObjectKind::Solid, index, 0});  // the material is each face's
+        if (solids_.bounded(index))
+            add_bounded(solids_.bounds(index), object, index, ObjectKind::Solid);
+        else
+            unbounded_solids_.push_back({index, object});
     }
 }
 
@@ -283,7 +299,7 @@ void World::build_top_level(const SearchSettings& settings) {
 }
 
 bool World::may_hit(const Ray& ray) const {
-    if (!planes_.empty()) return true;
+    if (!planes_.empty() || !unbounded_solids_.empty()) return true;
     if (!linear_) return line_may_meet_sphere(ray, sphere_center_, sphere_radius2_);
     for (size_t entry = 0; entry < bounded_.size(); ++entry)
         if (may_meet_entry(entry, ray, Interval{})) return true;

@@ -14,6 +14,7 @@
 #include "accel/mesh_accel.h"
 #include "accel/ray_packet.h"
 #include "accel/round_shapes.h"
+#include "accel/solid_objects.h"
 #include "accel/types.h"
 #include "scene/placement.h"
 #include "scene/scene.h"
@@ -21,12 +22,13 @@
 
 namespace tracer {
 
-enum class ObjectKind : uint8_t { Sphere, Plane, MeshInstance, Cone, Disc };
+enum class ObjectKind : uint8_t { Sphere, Plane, MeshInstance, Cone, Disc, Solid };
 
 // What a search found.
 struct Hit {
-    uint32_t object = 0;     // index into World::objects()
-    uint32_t primitive = 0;  // mesh instances: the triangle's slot in its MeshAccel; cones: the ConePart
+    uint32_t object = 0;  // index into World::objects()
+    uint32_t primitive =
+        0;  // mesh instances: the triangle's slot in its MeshAccel; cones: the ConePart; solids: the face
     Real t = 0;
     Real u = 0, v = 0;  // barycentric coordinates of a triangle hit
 };
@@ -44,7 +46,8 @@ struct SurfaceHit {
     Vec3 geometric_normal{0};  // the surface's own unit normal (for spawning rays off it)
     // The object hit, if a ray leaving it along its geometric normal's side cannot meet it
     // again: a sphere or cone (the outward side of a convex solid), a disc or a mesh on an axis
-    // plane (either side); kNoObject for planes (tested beside the top level) and other meshes.
+    // plane (either side); kNoObject for planes (tested beside the top level), other meshes and
+    // solids (CSG).
     uint32_t convex_object = kNoObject;
     bool flat = false;  // convex_object is flat: rays leave it for good on either side
 };
@@ -171,6 +174,7 @@ public:
     const std::vector<Object>& objects() const { return objects_; }
     const std::vector<MeshAccel>& meshes() const { return meshes_; }
     const std::vector<MeshInstance>& instances() const { return instances_; }
+    const SolidObjects& solids() const { return solids_; }
     // The mesh that holds the shapes built placed (flat shapes, unshared mesh blocks), if any.
     std::optional<uint32_t> merged_mesh() const { return merged_mesh_; }
     // The top level: a BVH over the bounded objects, unless they are few (kLinearObjects) or
@@ -190,6 +194,10 @@ private:
         Vec3 normal;
         uint32_t object;  // index into objects_
     };
+    struct UnboundedSolid {  // a solid a half-space leaves open on some axis
+        uint32_t index;      // into solids_
+        uint32_t object;
+    };
     // Bounded::object of the merged mesh: each triangle's object is its hit record's tag. Not
     // kNoObject: a search skips the entry whose object is the one its ray left behind.
     static constexpr uint32_t kObjectOfTriangle = kNoObject - 1;
@@ -198,7 +206,7 @@ private:
         Vec3 center;  // sphere: the sphere; others: a sphere around their box
         Real radius;
         uint32_t object;  // index into objects_, or kObjectOfTriangle
-        uint32_t index;   // into instances_, cones_ or discs_ (a sphere's is not read: the entry is the sphere)
+        uint32_t index;  // into instances_, cones_, discs_ or solids_ (a sphere's is not read: the entry is the sphere)
         ObjectKind kind;
     };
 
@@ -230,7 +238,9 @@ private:
     bool instance_blocks(uint32_t entry, const Ray& ray, Interval range, SearchCounts& counts, Occluder& blocker) const;
     bool occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range, SearchCounts& counts,
                          uint32_t left_behind) const;
+    // The nearest of the planes and the unbounded solids (tested beside the top level).
     bool nearest_plane(const Ray& ray, Interval& range, Hit& hit) const;
+    void add_solids();
     // surface's steps for a sphere and a mesh instance (out.t and out.material already set).
     void sphere_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
     void mesh_surface(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
@@ -250,6 +260,8 @@ private:
     std::optional<uint32_t> merged_mesh_;  // the mesh of the shapes built placed, if any
     std::vector<ConeShape> cones_;
     std::vector<DiscShape> discs_;
+    SolidObjects solids_;
+    std::vector<UnboundedSolid> unbounded_solids_;
     std::vector<Bounded> bounded_;
     size_t extra_entries_ = 0;          // the pieces of long cones beyond the first (cone_piece_boxes)
     uint32_t sphere_count_ = 0;         // the spheres: bounded_'s first entries while the top level is linear

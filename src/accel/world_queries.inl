@@ -57,6 +57,13 @@ inline bool World::instance_blocks(uint32_t entry, const Ray& ray, Interval rang
         hit = {b.object, 0, *t, 0, 0};
         return true;
     }
+    if (b.kind == ObjectKind::Solid) {
+        const auto found = solids_.nearest(b.index, ray, range);
+        if (!found) return false;
+        range.max = found->t;
+        hit = {b.object, found->face, found->t, 0, 0};
+        return true;
+    }
     return hit_instance(b.index, b.object, ray, range, hit, counts);
 }
 
@@ -70,6 +77,7 @@ inline bool World::bounded_blocks(uint32_t entry, const Ray& ray, Interval range
         case ObjectKind::Sphere: blocked = intersect_sphere(ray, b.center, b.radius, range).has_value(); break;
         case ObjectKind::Cone: blocked = intersect_cone(ray, cones_[b.index], range).has_value(); break;
         case ObjectKind::Disc: blocked = intersect_disc(ray, discs_[b.index], range).has_value(); break;
+        case ObjectKind::Solid: blocked = solids_.nearest(b.index, ray, range).has_value(); break;
         case ObjectKind::Plane: break;
     }
     if (blocked) blocker = {entry, {}};
@@ -102,6 +110,13 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
         if (auto t = intersect_plane(ray, p.point, p.normal, range)) {
             range.max = *t;
             hit = {p.object, 0, *t, 0, 0};
+            found = true;
+        }
+    }
+    for (const UnboundedSolid& solid : unbounded_solids_) {
+        if (auto solid_hit = solids_.nearest(solid.index, ray, range)) {
+            range.max = solid_hit->t;
+            hit = {solid.object, solid_hit->face, solid_hit->t, 0, 0};
             found = true;
         }
     }
@@ -268,6 +283,21 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
             break;
         }
         case ObjectKind::MeshInstance: mesh_surface(ray, hit, out); break;
+        case ObjectKind::Solid: {
+            const SolidSurface solid = solids_.surface(ray, hit.t, hit.primitive);
+            if constexpr (kRobust) {
+                out.point = solid.round.point;
+                out.error = solid.round.error;
+            }
+            out.normal = solid.round.normal;
+            out.geometric_normal = solid.round.normal;
+            out.material = solid.material;
+            if (out.normal == Vec3(0)) [[unlikely]] {  // a cone's apex: face the ray
+                out.normal = -normalize_or_zero(ray.direction);
+                out.geometric_normal = out.normal;
+            }
+            break;
+        }
     }
     return out;
 }
@@ -289,6 +319,8 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     }
     for (const PlaneShape& p : planes_)
         if (intersect_plane(ray, p.point, p.normal, range)) return true;
+    for (const UnboundedSolid& solid : unbounded_solids_)
+        if (solids_.nearest(solid.index, ray, range)) return true;
     if (linear_) {
         counts.objects.primitive_tests += sphere_count_;
         for (size_t i = sphere_count_; i < bounded_.size(); ++i) {

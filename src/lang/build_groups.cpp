@@ -60,7 +60,12 @@ void build_plane(SceneAssembly& a, const Block& block, const Fields& fields) {
         const Placement placement(placed);
         plane.point = placement.point(plane.point);
         plane.normal = normalized(placement.normal * plane.normal);
-        place_material(a, ShapeList::Planes, plane.material, placement);
+        const int solid = solid_of(a, block);
+        place_material(a, solid == kNoSolid ? ShapeList::Planes : ShapeList::HalfSpaces, plane.material, placement);
+        if (solid != kNoSolid) {
+            add_solid_part(a, solid, SolidPart::Kind::HalfSpace, a.scene.half_spaces.size());
+            return a.scene.half_spaces.push_back(plane);
+        }
     }
     a.scene.planes.push_back(plane);
 }

@@ -107,6 +107,10 @@ int& material_of(SceneDescription& scene, ShapeList list, size_t index) {
         case ShapeList::Boxes: return scene.boxes[index].material;
         case ShapeList::Cones: return scene.cones[index].material;
         case ShapeList::Discs: return scene.discs[index].material;
+        case ShapeList::SolidSpheres: return scene.solid_spheres[index].material;
+        case ShapeList::SolidBoxes: return scene.solid_boxes[index].material;
+        case ShapeList::SolidCones: return scene.solid_cones[index].material;
+        case ShapeList::HalfSpaces: return scene.half_spaces[index].material;
     }
     return scene.spheres[index].material;
 }
@@ -121,6 +125,10 @@ size_t size_of(const SceneDescription& scene, ShapeList list) {
         case ShapeList::Boxes: return scene.boxes.size();
         case ShapeList::Cones: return scene.cones.size();
         case ShapeList::Discs: return scene.discs.size();
+        case ShapeList::SolidSpheres: return scene.solid_spheres.size();
+        case ShapeList::SolidBoxes: return scene.solid_boxes.size();
+        case ShapeList::SolidCones: return scene.solid_cones.size();
+        case ShapeList::HalfSpaces: return scene.half_spaces.size();
     }
     return 0;
 }

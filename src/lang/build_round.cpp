@@ -75,8 +75,11 @@ void build_sphere(SceneAssembly& a, const Block& block, const Fields& fields) {
     sphere.center = placement.point(sphere.center);
     sphere.radius *= size;
     if (!check_round_reach(a, block, "sphere", {sphere.center}, sphere.radius)) return;
-    place_material(a, ShapeList::Spheres, sphere.material, placement);
-    a.scene.spheres.push_back(sphere);
+    const int solid = block.group ? solid_of(a, block) : kNoSolid;
+    place_material(a, solid == kNoSolid ? ShapeList::Spheres : ShapeList::SolidSpheres, sphere.material, placement);
+    if (solid == kNoSolid) return a.scene.spheres.push_back(sphere);
+    add_solid_part(a, solid, SolidPart::Kind::Sphere, a.scene.solid_spheres.size());
+    a.scene.solid_spheres.push_back(sphere);
 }
 
 // A cylinder is a cone with one radius.
@@ -117,8 +120,16 @@ void build_cone(SceneAssembly& a, const Block& block, const Fields& fields) {
         return (void)a.diagnostics.error(a.file, block.kind_span,
                                          "this " + std::string(what) + " is scaled so small that its ends meet");
     if (!check_round_reach(a, block, what, {cone.base, cone.top}, std::max(cone.base_radius, cone.top_radius))) return;
-    place_material(a, ShapeList::Cones, cone.material, placement);
-    a.scene.cones.push_back(cone);
+    const int solid = block.group ? solid_of(a, block) : kNoSolid;
+    if (solid != kNoSolid && !cone.caps)
+        return (void)a.diagnostics.error(a.file, fields.has("caps") ? fields.value_span("caps") : block.kind_span,
+                                         "a " + std::string(what) +
+                                             " without caps has no inside, and cannot be part of a solid: "
+                                             "remove 'caps false'");
+    place_material(a, solid == kNoSolid ? ShapeList::Cones : ShapeList::SolidCones, cone.material, placement);
+    if (solid == kNoSolid) return a.scene.cones.push_back(cone);
+    add_solid_part(a, solid, SolidPart::Kind::Cone, a.scene.solid_cones.size());
+    a.scene.solid_cones.push_back(cone);
 }
 
 void build_disc(SceneAssembly& a, const Block& block, const Fields& fields) {

@@ -107,6 +107,7 @@ constexpr Builder kBuilders[] = {
 };
 
 void build_block(SceneAssembly& a, const Block& block, const Fields& fields) {
+    if (block.group && !check_solid_part(a, block)) return;
     for (const Builder& builder : kBuilders)
         if (builder.kind == block.kind) return builder.build(a, block, fields);
 }
@@ -299,8 +300,12 @@ void build_flat_shape(SceneAssembly& a, const Block& block, const Fields& fields
                                                  " is not greater than " + format_number(shape.min[axis]));
         }
         if (!build_placed(a, block, fields, shape) || !check_reach(a, block, shape, triangle_mesh(shape))) return;
-        place_material(a, ShapeList::Boxes, shape.material, Placement(shape));
-        a.scene.boxes.push_back(shape);
+        const int solid = block.group ? solid_of(a, block) : kNoSolid;
+        place_material(a, solid == kNoSolid ? ShapeList::Boxes : ShapeList::SolidBoxes, shape.material,
+                       Placement(shape));
+        if (solid == kNoSolid) return a.scene.boxes.push_back(shape);
+        add_solid_part(a, solid, SolidPart::Kind::Box, a.scene.solid_boxes.size());
+        a.scene.solid_boxes.push_back(shape);
     }
 }
 
@@ -324,6 +329,7 @@ void resolve_later_materials(SceneAssembly& a) {
     resolve(scene.spheres), resolve(scene.planes), resolve(scene.meshes);
     resolve(scene.triangles), resolve(scene.quads), resolve(scene.boxes);
     resolve(scene.cones), resolve(scene.discs);
+    resolve(scene.solid_spheres), resolve(scene.solid_boxes), resolve(scene.solid_cones), resolve(scene.half_spaces);
 }
 
 // Warnings where the image cannot be what the author meant (the scene stays valid): nothing to
@@ -332,7 +338,7 @@ void warn_about_the_picture(const SceneAssembly& a) {
     const SceneDescription& scene = a.scene;
     const Location whole = Diagnostics::whole_file(a.file.scene().path());
     const bool flat_shapes = !scene.triangles.empty() || !scene.quads.empty() || !scene.boxes.empty() ||
-                             !scene.cones.empty() || !scene.discs.empty();
+                             !scene.cones.empty() || !scene.discs.empty() || !scene.solids.empty();
     if (scene.spheres.empty() && scene.planes.empty() && scene.meshes.empty() && !flat_shapes) {
         a.diagnostics.report(Severity::Warning, whole,
                              "the scene has no shapes: the image will be the background colour only");
@@ -353,9 +359,11 @@ void warn_about_the_picture(const SceneAssembly& a) {
             return material.kd != dvec3(0.0) || material.ks != dvec3(0.0);
         });
     };
-    if (scene.lights.empty() && (needs_light(scene.spheres) || needs_light(scene.planes) || needs_light(scene.meshes) ||
-                                 needs_light(scene.triangles) || needs_light(scene.quads) || needs_light(scene.boxes) ||
-                                 needs_light(scene.cones) || needs_light(scene.discs)))
+    if (scene.lights.empty() &&
+        (needs_light(scene.spheres) || needs_light(scene.planes) || needs_light(scene.meshes) ||
+         needs_light(scene.triangles) || needs_light(scene.quads) || needs_light(scene.boxes) ||
+         needs_light(scene.cones) || needs_light(scene.discs) || needs_light(scene.solid_spheres) ||
+         needs_light(scene.solid_boxes) || needs_light(scene.solid_cones) || needs_light(scene.half_spaces)))
         a.diagnostics.report(Severity::Warning, whole,
                              "the scene has no light: its diffuse and specular colours (kd, ks) will not show, only "
                              "ka; add one, e.g. light { position (0, 5, 5) }");

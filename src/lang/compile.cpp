@@ -321,8 +321,9 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Stateme
             break;
         case Statement::Kind::Group: {
             step.op = StatementCode::Op::Group;
+            step.word = statement.word;
             bool failed = false;
-            step.body = compile_body(statement.body, "group", &group_spec(), failed);
+            step.body = compile_body(statement.body, statement.word, &group_spec(), failed);
             step.broken = failed;
             compile_scoped(statement.statements, step.steps);
             break;

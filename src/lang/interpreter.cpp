@@ -184,14 +184,20 @@ Interpreter::Flow Interpreter::run_step(const StatementCode& step) {
         case StatementCode::Op::Group: {
             bool failed = false;
             auto group = std::make_shared<Group>();
+            group->kind = step.word;
             group->keyword = at(step.keyword);
             group->placement = std::move(*make_body(*step.body, failed));
             group->outer = current_group_;
             if (failed || step.broken) group->broken = true;
             std::shared_ptr<const Group> outer = std::move(current_group_);
             current_group_ = std::move(group);
+            const size_t blocks_before = blocks_;
             const Flow flow = run_steps(step.steps);
             current_group_ = std::move(outer);
+            if (step.word != "group" && blocks_ == blocks_before && !stopped_ && !failed && !step.broken)
+                diagnostics_.error(sources_, at(step.keyword),
+                                   "this " + step.word + " holds no shapes: write its parts inside, e.g. " + step.word +
+                                       " { box { ... } sphere { ... } }");
             return flow;
         }
         case StatementCode::Op::Include: return run_include(step);

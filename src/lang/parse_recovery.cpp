@@ -12,8 +12,9 @@ namespace tracer {
 namespace {
 
 // The words that begin a statement, and a group's placement keys (written before its statements).
-constexpr std::array<std::string_view, 9> kStatementKeywords{"let", "param",  "for",   "include", "if",
-                                                             "fn",  "return", "group", "while"};
+constexpr std::array<std::string_view, 13> kStatementKeywords{"let",   "param",        "for",       "include", "if",
+                                                              "fn",    "return",       "group",     "while",   "union",
+                                                              "merge", "intersection", "difference"};
 constexpr std::array<std::string_view, 4> kPlacementKeys{"scale", "rotate", "translate", "transform"};
 
 }  // namespace
@@ -22,8 +23,12 @@ bool is_statement_keyword(std::string_view word) {
     return std::find(kStatementKeywords.begin(), kStatementKeywords.end(), word) != kStatementKeywords.end();
 }
 
-bool is_povray_csg(std::string_view word) {
+bool is_solid_keyword(std::string_view word) {
     return word == "union" || word == "merge" || word == "intersection" || word == "difference";
+}
+
+bool is_group_keyword(std::string_view word) {
+    return word == "group" || is_solid_keyword(word);
 }
 
 bool is_placement_key(std::string_view word) {
@@ -55,7 +60,7 @@ bool Parser::starts_statement() {
     if ((word == "let" || word == "param") && at(TokenKind::Identifier, 1) && at(TokenKind::Equals, 2)) return true;
     if (word == "for" && at(TokenKind::Identifier, 1) && at_word("in", 2)) return true;
     if (word == "fn") return at(TokenKind::Identifier, 1) && at(TokenKind::LParen, 2);
-    if (word == "group") return at(TokenKind::LBrace, 1);
+    if (is_group_keyword(word)) return at(TokenKind::LBrace, 1);
     if (word == "if" || word == "return") return true;
     return word == "include" && at(TokenKind::String, 1);
 }
@@ -158,8 +163,7 @@ void Parser::skip_unknown_statement(const Token& word) {
 void Parser::skip_to_next_statement() {
     lexer_.set_quiet(true);
     while (!at(TokenKind::End) && !at(TokenKind::RBrace) &&
-           !(at(TokenKind::Identifier) && (find_block_spec(peek().text) || is_statement_keyword(peek().text) ||
-                                           (is_povray_csg(peek().text) && at(TokenKind::LBrace, 1)))))
+           !(at(TokenKind::Identifier) && (find_block_spec(peek().text) || is_statement_keyword(peek().text))))
         take();
     lexer_.set_quiet(false);
 }

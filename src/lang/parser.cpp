@@ -65,18 +65,18 @@ void Parser::parse_statement(std::vector<Statement>& out) {
     if (word == "fn" && at(TokenKind::Identifier, 1)) return parse_function(out);
     if (word == "if") return parse_if(out);
     if (word == "return") return parse_return(out);
-    if (word == "group" && at(TokenKind::LBrace, 1)) return parse_group(out);
+    if (is_group_keyword(word) && at(TokenKind::LBrace, 1)) return parse_group(out);
     if (!is_statement_keyword(word) && at(TokenKind::LParen, 1)) return parse_call(out);
     if (is_statement_keyword(word)) {  // a statement whose name (or path) is missing or broken
         const Span keyword = take().span;
         if (!at(TokenKind::Error))  // else the lexer has said what is wrong with it
             diagnostics_.error(file_, peek().span,
                                std::string("expected ") +
-                                   (word == "include" ? "a file path in quotes"
-                                    : word == "group" ? "'{'"
-                                                      : "a name") +
+                                   (word == "include"        ? "a file path in quotes"
+                                    : is_group_keyword(word) ? "'{'"
+                                                             : "a name") +
                                    " after '" + std::string(word) + "', found " + describe(peek()));
-        if (word == "for" || word == "fn" || word == "group") return skip_broken_header(keyword);
+        if (word == "for" || word == "fn" || is_group_keyword(word)) return skip_broken_header(keyword);
         // The offending word is part of this statement, not the start of the next.
         if (!at(TokenKind::End) && !at(TokenKind::RBrace) &&
             file_.locate(peek().span.begin).line == file_.locate(keyword.begin).line)
@@ -328,18 +328,21 @@ void Parser::parse_call(std::vector<Statement>& out) {
     });
 }
 
-// group = "group" "{" { placement } { statement } "}" ;   placement = ( "scale" | "rotate" |
-// "translate" | "transform" ) value ;
+// group = ( "group" | solid ) "{" { placement } { statement } "}" ;   placement = ( "scale" |
+// "rotate" | "translate" | "transform" ) value ;   solid = "union" | "merge" | "intersection" |
+// "difference" ;
 void Parser::parse_group(std::vector<Statement>& out) {
     Statement group;
     group.kind = Statement::Kind::Group;
-    group.keyword = take().span;
+    const Token keyword = take();
+    group.keyword = keyword.span;
+    group.word = std::string(keyword.text);
     const Span open_brace = take().span;
     group.body.open_brace = open_brace;
     open_.clear();
     while (at(TokenKind::Identifier) && is_placement_key(peek().text)) {
         open_.clear();
-        open_.push_back({open_brace, "group"});
+        open_.push_back({open_brace, group.word});
         try {
             parse_entry(group.body);
         } catch (const SyntaxError&) {
@@ -348,7 +351,7 @@ void Parser::parse_group(std::vector<Statement>& out) {
         }
     }
     open_.clear();
-    if (!parse_braced_statements(group, group.statements, open_brace, "'group' block")) return;
+    if (!parse_braced_statements(group, group.statements, open_brace, "'" + group.word + "' block")) return;
     group.body.close_brace = group.end_brace;
     out.push_back(std::move(group));
 }
@@ -368,17 +371,6 @@ void Parser::parse_include(std::vector<Statement>& out) {
 void Parser::parse_block(std::vector<Statement>& out) {
     Statement block;
     Token kind = take();
-    // POV-Ray's CSG blocks hold shapes, not keys: read as a body, each shape in them would be
-    // a second error. One message, and the braces skipped whole.
-    if (is_povray_csg(kind.text) && !find_block_spec(kind.text) && at(TokenKind::LBrace)) {
-        diagnostics_.error(file_, kind.span, "unknown block " + in_quotes(kind.text) + povray_hint(kind.text));
-        for (int depth = 0; !at(TokenKind::End);) {
-            const TokenKind taken = take().kind;
-            depth += taken == TokenKind::LBrace ? 1 : taken == TokenKind::RBrace ? -1 : 0;
-            if (depth == 0) break;
-        }
-        return;
-    }
     // A word that is no block, with no body after it (`scael 2`): one message, not "expected
     // '{'" and then "unknown block" for the same word.
     if (!find_block_spec(kind.text) && !at(TokenKind::LBrace) &&

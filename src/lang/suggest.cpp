@@ -114,10 +114,7 @@ bool names_nan_or_infinity(std::string_view word) {
 std::string povray_hint(std::string_view word) {
     // POV-Ray's word, and tracer's way (a row each: the word, then the whole hint).
     static const std::pair<std::string_view, std::string_view> kHints[] = {
-        {"union", "tracer has no CSG yet; to place shapes together, write group { ... } around them"},
-        {"merge", "tracer has no CSG yet; to place shapes together, write group { ... } around them"},
-        {"intersection", "tracer has no CSG yet (no intersection of shapes)"},
-        {"difference", "tracer has no CSG yet (no difference of shapes)"},
+        {"inverse", "a solid's outside is written as a difference: difference { box { ... } sphere { ... } }"},
         {"pigment",
          "a colour is the material's kd, a colour or a pattern: material { kd checker { even 1 odd (1, 0, 0) } }"},
         {"texture",

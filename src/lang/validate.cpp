@@ -62,8 +62,10 @@ std::optional<Fields> Validator::check(const Block& block) {
     Fields fields(*spec);
     if (!check_body(block.body, *spec, block.kind_span, fields)) return std::nullopt;
     if (block.group && (spec->kind == "camera" || spec->kind == "render")) {
-        diagnostics_.error(file_, block.kind_span,
-                           "a " + block.kind + " block is not placed by a group: write it outside the group");
+        const std::string& group = block.group->kind;
+        diagnostics_.error(
+            file_, block.kind_span,
+            "a " + block.kind + " block is not placed by a " + group + ": write it outside the " + group);
         return std::nullopt;
     }
     return fields;

@@ -21,13 +21,17 @@ nlohmann::ordered_json bvh_json(const Bvh& bvh) {
 // The top level: every object, and the BVH over the bounded ones.
 nlohmann::ordered_json objects_json(const World& world) {
     nlohmann::ordered_json top;
-    size_t counts[5] = {0, 0, 0, 0, 0};
+    size_t counts[6] = {0, 0, 0, 0, 0, 0};
     for (const Object& object : world.objects()) ++counts[size_t(object.kind)];
     top["spheres"] = counts[size_t(ObjectKind::Sphere)];
     top["planes"] = counts[size_t(ObjectKind::Plane)];
     top["mesh_instances"] = counts[size_t(ObjectKind::MeshInstance)];
     if (const size_t cones = counts[size_t(ObjectKind::Cone)]) top["cones"] = cones;
     if (const size_t discs = counts[size_t(ObjectKind::Disc)]) top["discs"] = discs;
+    if (const size_t solids = counts[size_t(ObjectKind::Solid)]) {
+        top["solids"] = solids;
+        top["solid_leaves"] = world.solids().leaves();
+    }
     top["bounded_objects"] = world.bounded_objects();
     top["search"] = world.top_level_linear() ? "linear" : "sah";
     top["build_seconds"] = world.top_level_build_seconds();

@@ -5,6 +5,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -196,6 +197,26 @@ struct Box : Placed {
     dvec3 min{0.0}, max{1.0};
 };
 
+// Solid modelling (CSG; docs/guide/solids.md): the union, intersection or difference of closed
+// solids. A union (`merge` in POV-Ray's words) is one solid: the faces of a part inside another
+// part vanish. A difference is its first part minus all the others.
+enum class SolidOp : uint8_t { Union, Intersection, Difference };
+
+// One part of a solid: a closed shape (an entry of one of SceneDescription's solid_* lists, in
+// world coordinates) or another solid (an entry of SceneDescription::solids).
+struct SolidPart {
+    enum class Kind : uint8_t { Sphere, Box, Cone, HalfSpace, Solid };
+    Kind kind = Kind::Sphere;
+    uint32_t index = 0;
+};
+
+struct Solid {
+    SolidOp op = SolidOp::Union;
+    std::vector<SolidPart> parts;  // in the order written: a difference's first part is the one cut
+    bool nested = false;           // a part of another solid (else an object of the world by itself)
+    int line = 0;                  // the line of its keyword, for statistics
+};
+
 // A `param` of the scene and the value it took (from the command line, or its default): one
 // number or a vector's components.
 struct Parameter {
@@ -219,6 +240,13 @@ struct SceneDescription {
     std::vector<Box> boxes;
     std::vector<Cone> cones;
     std::vector<Disc> discs;
+    // Solids (CSG) and their shapes, apart from the shapes above: a plane there is a half-space
+    // (the side its normal points away from), a cone always has caps.
+    std::vector<Solid> solids;
+    std::vector<Sphere> solid_spheres;
+    std::vector<Box> solid_boxes;
+    std::vector<Cone> solid_cones;
+    std::vector<Plane> half_spaces;
     std::vector<Light> lights;
     std::vector<Pattern> patterns;  // of the materials (pattern.h)
     std::vector<ImageFile> images;  // that image patterns read

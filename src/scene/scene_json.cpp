@@ -105,6 +105,47 @@ Json placed_json(const SceneDescription& scene, const Placed& placed, Json own) 
     return own;
 }
 
+// The shapes that may be parts of solids, as entries of their arrays.
+Json sphere_json(const SceneDescription& scene, const Sphere& s) {
+    return {{"center", vec(s.center)}, {"radius", s.radius}, {"material", material_json(scene, s.material)}};
+}
+Json plane_json(const SceneDescription& scene, const Plane& p) {
+    return {{"point", vec(p.point)}, {"normal", vec(p.normal)}, {"material", material_json(scene, p.material)}};
+}
+Json box_json(const SceneDescription& scene, const Box& b) {
+    return placed_json(scene, b, {{"min", vec(b.min)}, {"max", vec(b.max)}});
+}
+Json cone_json(const SceneDescription& scene, const Cone& cone) {
+    return {{"base", vec(cone.base)},        {"top", vec(cone.top)}, {"base_radius", cone.base_radius},
+            {"top_radius", cone.top_radius}, {"caps", cone.caps},    {"material", material_json(scene, cone.material)}};
+}
+
+// A solid: its operation and its parts in order, each a shape (its kind a key: sphere, box,
+// cone, half_space) or the index of another solid of the array (nested: not an object by itself).
+Json solid_json(const SceneDescription& scene, const Solid& solid) {
+    static constexpr const char* kOps[] = {"union", "intersection", "difference"};
+    Json parts = Json::array();
+    for (const SolidPart& part : solid.parts) {
+        switch (part.kind) {
+            case SolidPart::Kind::Sphere:
+                parts.push_back({{"kind", "sphere"}, {"sphere", sphere_json(scene, scene.solid_spheres[part.index])}});
+                break;
+            case SolidPart::Kind::Box:
+                parts.push_back({{"kind", "box"}, {"box", box_json(scene, scene.solid_boxes[part.index])}});
+                break;
+            case SolidPart::Kind::Cone:
+                parts.push_back({{"kind", "cone"}, {"cone", cone_json(scene, scene.solid_cones[part.index])}});
+                break;
+            case SolidPart::Kind::HalfSpace:
+                parts.push_back(
+                    {{"kind", "half_space"}, {"half_space", plane_json(scene, scene.half_spaces[part.index])}});
+                break;
+            case SolidPart::Kind::Solid: parts.push_back({{"kind", "solid"}, {"solid", part.index}}); break;
+        }
+    }
+    return {{"op", kOps[int(solid.op)]}, {"nested", solid.nested}, {"parts", std::move(parts)}};
+}
+
 // The scene's big arrays (one entry per shape), made entry by entry: all at once into the
 // document, or, when `later` is given, left as a placeholder string and written afterwards.
 struct LaterArray {
@@ -166,17 +207,9 @@ Json render_json(const RenderSettings& r) {
 // Every shape and light of the scene as arrays of `out` (later: see add_array).
 void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* meshes, std::vector<LaterArray>* later) {
     add_array(
-        out, "spheres", scene.spheres,
-        [&scene](const Sphere& s) -> Json {
-            return {{"center", vec(s.center)}, {"radius", s.radius}, {"material", material_json(scene, s.material)}};
-        },
-        later);
+        out, "spheres", scene.spheres, [&scene](const Sphere& s) { return sphere_json(scene, s); }, later);
     add_array(
-        out, "planes", scene.planes,
-        [&scene](const Plane& p) -> Json {
-            return {{"point", vec(p.point)}, {"normal", vec(p.normal)}, {"material", material_json(scene, p.material)}};
-        },
-        later);
+        out, "planes", scene.planes, [&scene](const Plane& p) { return plane_json(scene, p); }, later);
     add_array(
         out, "meshes", scene.meshes.size(),
         [&scene, meshes](size_t block) {  // called after scene_json returns: `meshes` by value
@@ -205,23 +238,10 @@ void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* mes
         },
         later);
     add_array(
-        out, "boxes", scene.boxes,
-        [&scene](const Box& b) -> Json {
-            return placed_json(scene, b, {{"min", vec(b.min)}, {"max", vec(b.max)}});
-        },
-        later);
+        out, "boxes", scene.boxes, [&scene](const Box& b) { return box_json(scene, b); }, later);
     if (!scene.cones.empty())  // only then: older readers know no such key
         add_array(
-            out, "cones", scene.cones,
-            [&scene](const Cone& cone) -> Json {
-                return {{"base", vec(cone.base)},
-                        {"top", vec(cone.top)},
-                        {"base_radius", cone.base_radius},
-                        {"top_radius", cone.top_radius},
-                        {"caps", cone.caps},
-                        {"material", material_json(scene, cone.material)}};
-            },
-            later);
+            out, "cones", scene.cones, [&scene](const Cone& cone) { return cone_json(scene, cone); }, later);
     if (!scene.discs.empty())
         add_array(
             out, "discs", scene.discs,
@@ -232,6 +252,9 @@ void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* mes
                         {"material", material_json(scene, d.material)}};
             },
             later);
+    if (!scene.solids.empty())
+        add_array(
+            out, "solids", scene.solids, [&scene](const Solid& solid) { return solid_json(scene, solid); }, later);
     add_array(
         out, "lights", scene.lights,
         [&scene](const Light& l) -> Json {

@@ -106,12 +106,12 @@ struct StatementCode {
         Return,    // return value (`has_value`) from the running function
         Call,      // value (a call) run for the blocks it makes
         Print,     // print(a, b, ...): value, a list of them, written out
-        Group,     // group { body (its placement) steps }
+        Group,     // group { body (its placement) steps }, or a solid's block (word: union, ...)
         Include,   // the file `word` (origin `origin`), compiled in place: steps
     };
     Op op = Op::Block;
     Span keyword;
-    std::string word;  // Block: the kind; Include: the path
+    std::string word;  // Block: the kind; Group: group or a solid's keyword; Include: the path
     std::string name;  // Block: its name; Let, Param, loops, Function: the name bound
     Span name_span;
     uint32_t slot = 0;

@@ -66,8 +66,10 @@ struct Body {
 };
 
 // The placement of a group around a block: its `group { ... }` keys (scale, rotate, translate or
-// a transform), and the group around it, if any. Shared by every block made inside.
+// a transform), and the group around it, if any. Shared by every block made inside. A solid's
+// block (union, merge, intersection, difference) is a group too: what is made inside are its parts.
 struct Group {
+    std::string kind;  // group, union, merge, intersection or difference
     Span keyword;
     Body placement;
     bool broken = false;  // its placement had an error (reported)

@@ -37,7 +37,10 @@ bool is_statement_keyword(std::string_view word);
 // The keys a group's placement is written with (before its contents).
 bool is_placement_key(std::string_view word);
 // POV-Ray's CSG block kinds (union, merge, intersection, difference), which tracer does not have.
-bool is_povray_csg(std::string_view word);
+// union, merge, intersection, difference: the blocks of solid modelling (CSG), statements like a group.
+bool is_solid_keyword(std::string_view word);
+// group, or a solid's keyword: a statement holding statements, its placement first.
+bool is_group_keyword(std::string_view word);
 
 class Parser {
 public:

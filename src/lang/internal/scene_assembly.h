@@ -26,7 +26,23 @@
 namespace tracer {
 
 // The shapes' lists, for the materials of shapes placed before their material's block.
-enum class ShapeList : uint8_t { Spheres, Planes, Meshes, Triangles, Quads, Boxes, Cones, Discs };
+enum class ShapeList : uint8_t {
+    Spheres,
+    Planes,
+    Meshes,
+    Triangles,
+    Quads,
+    Boxes,
+    Cones,
+    Discs,
+    SolidSpheres,
+    SolidBoxes,
+    SolidCones,
+    HalfSpaces
+};
+
+// The solid of a shape made outside every solid (solid_of).
+constexpr int kNoSolid = -1;
 
 struct SceneAssembly {
     // Checks a group's placement against the group table, filling `fields` (the validator's
@@ -70,6 +86,13 @@ struct SceneAssembly {
         Affine to_object;
     };
     std::vector<LaterPlacement> later_placements;
+    // The solid (an index into scene.solids, or kNoSolid: a union that is a group) each solid's
+    // block stands for, by its group (held, as group_steps').
+    struct SolidOfGroup {
+        std::shared_ptr<const Group> group;
+        int index = kNoSolid;
+    };
+    std::map<const Group*, SolidOfGroup> solids;
     bool kept = false;  // the block being built had a span of its kept (in the members above)
 };
 
@@ -118,6 +141,14 @@ bool check_round_reach(SceneAssembly& a, const Block& block, std::string_view wh
                        double radius);
 // False (reported) if a placed flat shape's corner leaves the renderer's range.
 bool check_reach(SceneAssembly& a, const Block& block, const Placed& placed, const TriangleMesh& mesh);
+
+// Solids (build_solids.cpp). The solid a shape made by `block` is a part of (an index into
+// scene.solids), made with the solids around it the first time, or kNoSolid.
+int solid_of(SceneAssembly& a, const Block& block);
+// Makes the shape just added as `index` of the list of `kind` a part of `solid`.
+void add_solid_part(SceneAssembly& a, int solid, SolidPart::Kind kind, size_t index);
+// False (reported) if `block` is made in a solid and cannot be a part of one (a light, a quad).
+bool check_solid_part(SceneAssembly& a, const Block& block);
 
 // The builders, one per kind of block.
 void build_render(SceneAssembly& a, const Block& block, const Fields& fields);

@@ -79,12 +79,12 @@ struct Statement {
         Function,  // fn name(parameters) { statements }
         Return,    // return [value]
         Call,      // value (a call) as a statement: the blocks it makes
-        Group,     // group { body (its placement) statements }
+        Group,     // group { body (its placement) statements }, or union, merge, intersection, difference
         Include,   // include "path"
     };
     Kind kind = Kind::Block;
     Span keyword;         // the block's kind or the statement's keyword
-    std::string word;     // Block: its kind; Include: the path
+    std::string word;     // Block: its kind; Group: its keyword; Include: the path
     std::string name;     // Block: its name (may be empty); Let, Param, For: the name bound
     Span name_span;       // Include: the path's span
     BodyCode body;        // Block

@@ -20,7 +20,7 @@ Vec3 random_point(std::mt19937& random, Real reach) {
 
 // Points of the line at t spaced along [-20, 20], skipping those within 1e-6 of an end.
 template <typename Inside>
-void expect_membership(const Ray& ray, const std::optional<Span>& span, Inside inside, int trial) {
+void expect_membership(const Ray& ray, const std::optional<SolidSpan>& span, Inside inside, int trial) {
     for (Real t = -20; t <= 20; t += Real(0.37)) {
         if (span && (std::abs(t - span->enter.t) < 1e-6 || std::abs(t - span->leave.t) < 1e-6)) continue;
         const bool in_span = span && span->enter.t <= t && t <= span->leave.t;

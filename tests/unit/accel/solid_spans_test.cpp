@@ -18,19 +18,19 @@ namespace {
 constexpr Real kTolerance = 1e-9;
 
 // True if `t` lies inside one of `spans` (an end counts as inside).
-bool inside_spans(const std::vector<Span>& spans, Real t) {
+bool inside_spans(const std::vector<SolidSpan>& spans, Real t) {
     return std::any_of(spans.begin(), spans.end(),
-                       [t](const Span& span) { return span.enter.t <= t && t <= span.leave.t; });
+                       [t](const SolidSpan& span) { return span.enter.t <= t && t <= span.leave.t; });
 }
 
 // Spans with ends on the integers 0..20 (surfaces numbered from `first_surface`), each end
 // nudged by up to a tenth of the tolerance in one case of three.
-std::vector<Span> random_solid(std::mt19937& random, uint32_t first_surface) {
+std::vector<SolidSpan> random_solid(std::mt19937& random, uint32_t first_surface) {
     std::uniform_int_distribution<int> grid(0, 20), nudge(0, 2);
     std::vector<int> ends;
     for (int k = std::uniform_int_distribution<int>(0, 4)(random) * 2; k > 0; --k) ends.push_back(grid(random));
     std::sort(ends.begin(), ends.end());
-    std::vector<Span> spans;
+    std::vector<SolidSpan> spans;
     for (size_t k = 0; k + 1 < ends.size(); k += 2) {
         if (!spans.empty() && spans.back().leave.t >= Real(ends[k])) continue;  // keep them disjoint
         auto end = [&](int at) { return Real(at) + (nudge(random) == 0 ? kTolerance / 10 : 0); };
@@ -41,8 +41,8 @@ std::vector<Span> random_solid(std::mt19937& random, uint32_t first_surface) {
 }
 
 // `a` op `b` as combine_spans gives it.
-std::vector<Span> combined(SolidOp op, const std::vector<Span>& a, const std::vector<Span>& b) {
-    std::vector<Span> out;
+std::vector<SolidSpan> combined(SolidOp op, const std::vector<SolidSpan>& a, const std::vector<SolidSpan>& b) {
+    std::vector<SolidSpan> out;
     combine_spans(op, a, b, kTolerance, out);
     return out;
 }
@@ -54,9 +54,9 @@ bool truth(SolidOp op, bool a, bool b) {
 TEST(SolidSpans, EachOperationHoldsWhatItsTruthTableSays) {
     std::mt19937 random(5);
     for (int trial = 0; trial < 20000; ++trial) {
-        const std::vector<Span> a = random_solid(random, 0), b = random_solid(random, 100);
+        const std::vector<SolidSpan> a = random_solid(random, 0), b = random_solid(random, 100);
         for (const SolidOp op : {SolidOp::Union, SolidOp::Intersection, SolidOp::Difference}) {
-            const std::vector<Span> out = combined(op, a, b);
+            const std::vector<SolidSpan> out = combined(op, a, b);
             for (Real t = -0.5; t <= 20.5; t += 0.5) {
                 if (t == std::floor(t)) continue;  // on the grid: an end may lie there
                 ASSERT_EQ(inside_spans(out, t), truth(op, inside_spans(a, t), inside_spans(b, t)))
@@ -77,9 +77,9 @@ TEST(SolidSpans, EachOperationHoldsWhatItsTruthTableSays) {
 }
 
 TEST(SolidSpans, CoincidentFacesGiveTheFirstSolidsFaceOrNone) {
-    const Span box{{0, 1, false}, {4, 2, false}};
-    const Span cutter{{kTolerance / 3, 11, false}, {2, 12, false}};  // its front face on the box's
-    std::vector<Span> out = combined(SolidOp::Difference, {box}, {cutter});
+    const SolidSpan box{{0, 1, false}, {4, 2, false}};
+    const SolidSpan cutter{{kTolerance / 3, 11, false}, {2, 12, false}};  // its front face on the box's
+    std::vector<SolidSpan> out = combined(SolidOp::Difference, {box}, {cutter});
     ASSERT_EQ(out.size(), 1u);             // no sliver between the two front faces
     EXPECT_EQ(out[0].enter.surface, 12u);  // the cutter's back face, seen from inside it
     EXPECT_TRUE(out[0].enter.turned);
@@ -99,10 +99,10 @@ TEST(SolidSpans, CoincidentFacesGiveTheFirstSolidsFaceOrNone) {
 TEST(SolidSpans, HalfSpacesAndNestingCombine) {
     // A half-space (a plane's inside) reaches -infinity; (a plane's inside) minus a span, then
     // intersected with a span: the ends of the nested result come from each level.
-    const Span half{{-kInfinity, 1, false}, {5, 2, false}};
-    const Span hole{{1, 3, false}, {2, 4, false}};
-    const Span clip{{0, 5, false}, {10, 6, false}};
-    const std::vector<Span> out =
+    const SolidSpan half{{-kInfinity, 1, false}, {5, 2, false}};
+    const SolidSpan hole{{1, 3, false}, {2, 4, false}};
+    const SolidSpan clip{{0, 5, false}, {10, 6, false}};
+    const std::vector<SolidSpan> out =
         combined(SolidOp::Intersection, combined(SolidOp::Difference, {half}, {hole}), {clip});
     ASSERT_EQ(out.size(), 2u);
     EXPECT_EQ(out[0].enter.surface, 5u);

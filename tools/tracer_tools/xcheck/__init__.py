@@ -20,6 +20,11 @@ class ToolError(Exception):
     exit_code = OTHER_FAILURE
 
 
+class PeerCannotExpress(ToolError):
+    """The scene uses what the peer renderer has no way to express (solids for Mitsuba 3): the
+    cross-check skips it, saying why, instead of failing."""
+
+
 class MitsubaMissing(ToolError):
     """Mitsuba 3 (or Dr.Jit) cannot be imported."""
 

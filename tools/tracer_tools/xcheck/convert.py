@@ -14,7 +14,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
-from . import PHONG_PLUGIN, WHITTED_PLUGIN, ToolError, exact_meshes, mitsuba_textures, round_shapes
+from . import PHONG_PLUGIN, WHITTED_PLUGIN, PeerCannotExpress, ToolError, exact_meshes, mitsuba_textures, round_shapes
 
 # Primary rays start this far in front of the eye (the camera's near clip). Secondary rays
 # leave surfaces by Mitsuba's spawn_ray / spawn_ray_to, as tracer's by its spawn rule.
@@ -267,6 +267,11 @@ def to_mitsuba_xml(scene: dict) -> str:
         raise ToolError(
             f"max_depth {render['max_depth']}: the Mitsuba integrator unrolls one level per "
             f"bounce and takes at most {MAX_DEPTH}"
+        )
+    if scene.get("solids"):
+        raise PeerCannotExpress(
+            "the scene has solids (union, merge, intersection, difference), which Mitsuba 3 cannot express "
+            "(it has no CSG); check this scene with tools/crosscheck --with povray"
         )
     if render.get("transparent_shadows") and refracts(scene):
         raise ToolError(

@@ -2,7 +2,8 @@
 xcheck.plugins) or, with --with povray, POV-Ray 3.7 (xcheck.povray), report how far apart the
 images are, and fail above a threshold.
 
-Exit codes: 0 the images agree within the thresholds; 1 they do not; 2 bad command line;
+Exit codes: 0 the images agree within the thresholds (or the peer cannot express the scene:
+skipped, and said so); 1 they do not; 2 bad command line;
 3 tracer rejected the scene (its diagnostics are printed); 4 Mitsuba 3 (or POV-Ray) is missing; 5 another
 failure (a scene the cross-check cannot convert, a file that cannot be written, ...).
 """
@@ -12,12 +13,13 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import pathlib
 import sys
 from typing import TYPE_CHECKING
 
 from tracer_tools import option_types
 
-from . import progress, run_reporting_errors, tracer_cli
+from . import PeerCannotExpress, progress, run_reporting_errors, tracer_cli
 
 if TYPE_CHECKING:
     from .metrics import Comparison
@@ -105,6 +107,16 @@ def failures(comparison: Comparison, args: argparse.Namespace) -> list[str]:
     ]
 
 
+def skipped(args: argparse.Namespace, out: pathlib.Path, reason: str) -> int:
+    """Says why the scene is not checked (and writes it in the report): exit 0, no failure."""
+    print(f"crosscheck: skipped: {reason}", file=sys.stderr)
+    report = {"scene": str(args.scene), "skipped": reason, "failed": [], "output": str(out)}
+    (out / "report.json").write_text(json.dumps(report, indent=2) + "\n")
+    if args.json:
+        print(json.dumps(report, indent=2))
+    return 0
+
+
 def crosscheck(args: argparse.Namespace) -> int:
     """Runs the whole check; returns the exit code."""
     # Step 1: the scene as tracer resolves it, with the requested size and samples. POV-Ray's
@@ -145,8 +157,11 @@ def crosscheck(args: argparse.Namespace) -> int:
             print(f"crosscheck: note: {note}", file=sys.stderr)
     else:
         peer, peer_name = "mitsuba", "Mitsuba 3"
-        with progress.step("crosscheck", f"rendering with {peer_name} ({size})"):
-            peer_image = mitsuba_render.render_scene(scene, out)
+        try:
+            with progress.step("crosscheck", f"rendering with {peer_name} ({size})"):
+                peer_image = mitsuba_render.render_scene(scene, out)
+        except PeerCannotExpress as reason:
+            return skipped(args, out, str(reason))
     with progress.step("crosscheck", "rendering with tracer"):
         tracer_cli.render(args.scene, out / "tracer.exr", extra)
     tracer_image = images.read_exr(out / "tracer.exr")

@@ -26,6 +26,10 @@ each where the two renderers' defaults differ:
   POV-Ray's uv_mapping on meshes, triangles and quads, written as mesh2 with tracer's (u, v)
   (`uv_vectors`), and refused on the other shapes (POV-Ray's own (u, v) of a sphere, a box, a
   cone or a disc are not tracer's).
+- solids (CSG): POV-Ray's merge (tracer's union: no inner faces), intersection and difference,
+  with spheres, boxes (placed by a `matrix`), closed cones and planes (half-spaces, the same
+  side inside) as their parts; a union outside every other solid is no solid in the JSON (its
+  shapes are listed as shapes: POV-Ray's union).
 - shapes: spheres, planes, discs, cones and cylinders as POV-Ray's own (analytic); meshes as
   `mesh2` with tracer's placed corners and normals (xcheck.exact_meshes), each with an
   `inside_vector` (see _mesh2: without one POV-Ray may miss a mesh's farther faces); the flat
@@ -307,6 +311,50 @@ def _flat_triangles(scene: dict) -> list[tuple[np.ndarray, dict, np.ndarray | No
     return out
 
 
+def _solid_part(part: dict) -> str:
+    """One shape of a solid, in POV-Ray's words (its texture after its placement: the JSON's
+    patterns are placed in world coordinates)."""
+    kind = part["kind"]
+    shape = part[kind]
+    material = texture(shape["material"])
+    if kind == "sphere":
+        return f"sphere {{ {_v(shape['center'])}, {float(shape['radius'])!r} {material} }}"
+    if kind == "cone":
+        return (
+            f"cone {{ {_v(shape['base'])}, {float(shape['base_radius'])!r}, {_v(shape['top'])}, "
+            f"{float(shape['top_radius'])!r} {material} }}"
+        )
+    if kind == "half_space":
+        distance = float(np.dot(shape["point"], shape["normal"]))
+        return f"plane {{ {_v(shape['normal'])}, {distance!r} {material} }}"
+    linear, translate = exact_meshes.placement(shape)
+    rows = [*linear.T.ravel(), *translate]  # POV-Ray's matrix maps row vectors: p M
+    matrix = ", ".join(repr(float(x)) for x in rows)
+    return f"box {{ {_v(shape['min'])}, {_v(shape['max'])} matrix <{matrix}> {material} }}"
+
+
+def _solid(solids: list, root: int) -> str:
+    """A solid and the solids nested in it, written without recursion (they may nest deeply)."""
+    words = {"union": "merge", "intersection": "intersection", "difference": "difference"}
+    out: list[str] = []
+    stack: list[tuple[int, int]] = [(root, 0)]
+    out.append(words[solids[root]["op"]] + " {")
+    while stack:
+        index, next_part = stack.pop()
+        parts = solids[index]["parts"]
+        if next_part == len(parts):
+            out.append("}")
+            continue
+        stack.append((index, next_part + 1))
+        part = parts[next_part]
+        if part["kind"] == "solid":
+            stack.append((part["solid"], 0))
+            out.append(words[solids[part["solid"]]["op"]] + " {")
+        else:
+            out.append(_solid_part(part))
+    return "\n".join(out)
+
+
 def to_povray_sdl(scene: dict) -> str:
     """The POV-Ray 3.7 scene text for a scene description (a dict from `tracer --dump-json`)."""
     APPROXIMATED.clear()
@@ -346,6 +394,8 @@ def to_povray_sdl(scene: dict) -> str:
         out.append(_mesh2(corners, normals, mesh["material"], uvs))
     for corners, material, uvs in _flat_triangles(scene):
         out.append(_mesh2(corners, np.zeros_like(corners), material, uvs))
+    solids = scene.get("solids", [])
+    out += [_solid(solids, index) for index, solid in enumerate(solids) if not solid["nested"]]
     return "\n".join(out) + "\n"
 
 

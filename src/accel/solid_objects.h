@@ -1,0 +1,102 @@
+// The scene's solids (CSG, scene.h's Solid) as the world keeps them: each solid that is an
+// object of its own becomes a program over its leaves, in postfix order (a leaf's span, then the
+// operation that combines it with what came before), run along a ray's whole line by
+// solid_spans.h's sweep. Its first span end past the ray's start is the hit; the surface there is
+// its leaf's, seen from outside the solid (a difference's cut face: the cutter's, turned).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "accel/bvh_search.h"
+#include "accel/round_shapes.h"
+#include "accel/solid_spans.h"
+#include "accel/types.h"
+#include "scene/scene.h"
+
+namespace tracer {
+
+// A closed shape of a solid, placed in the world.
+struct SolidLeaf {
+    SolidPart::Kind kind = SolidPart::Kind::Sphere;
+    int material = 0;
+    Bounds bounds;   // infinite on the axes a half-space does not bound
+    Real reach = 0;  // the largest coordinate of its finite corners, for the tolerance of its crossings
+    // A sphere.
+    Vec3 center{0};
+    Real radius = 0;
+    // A cone with caps.
+    ConeShape cone{};
+    // A half-space: the side `normal` points away from.
+    Vec3 point{0}, normal{0};
+    // A box: rays carried into its own coordinates (p -> to_object (p - translate)), its corners
+    // there; in the world its upper faces' unit normals (a lower face's is the opposite) and its
+    // two corners (each on three faces).
+    Mat3 to_object{1};
+    Vec3 translate{0}, lower{0}, upper{0};
+    Vec3 upper_normals[3] = {};
+    Vec3 lower_corner{0}, upper_corner{0};
+};
+
+// A hit on a solid: where, and the face (Hit::primitive: pack_solid_face).
+struct SolidHit {
+    Real t = 0;
+    uint32_t face = 0;
+};
+
+// A face of a solid as one number: its leaf, the part of the leaf (a box's face, a cone's side or
+// cap) and whether it is seen from the leaf's inside.
+inline uint32_t pack_solid_face(const SpanEnd& end) {
+    return end.surface << 4 | uint32_t(end.part) << 1 | uint32_t(end.turned);
+}
+
+// The surface of a solid at a hit: as a round shape's, and its material.
+struct SolidSurface {
+    RoundSurface round;
+    int material = 0;
+};
+
+class SolidObjects {
+public:
+    // The scene's solids that are objects of their own (not nested in another), in order.
+    explicit SolidObjects(const SceneDescription& scene);
+
+    size_t size() const { return objects_.size(); }
+    // The solid's bounds: a difference's are its first part's, an intersection's the overlap of
+    // its parts', a union's around all of them. Infinite on an axis a half-space leaves open.
+    const Bounds& bounds(uint32_t solid) const { return objects_[solid].bounds; }
+    bool bounded(uint32_t solid) const;
+    // The nearest crossing of the solid's surface along `ray` with t inside `range`.
+    std::optional<SolidHit> nearest(uint32_t solid, const Ray& ray, Interval range) const;
+    // The surface where `ray` met `face` at `t`: the point put back on its leaf, with its error
+    // bound, and the normal pointing out of the solid.
+    SolidSurface surface(const Ray& ray, Real t, uint32_t face) const;
+    size_t leaves() const { return leaves_.size(); }
+
+private:
+    struct Step {
+        enum class Kind : uint8_t { Leaf, Combine, Empty };
+        Kind kind = Kind::Leaf;
+        SolidOp op = SolidOp::Union;  // Combine: the operation of the solid whose part just ended
+        uint32_t leaf = 0;            // Leaf: index into leaves_
+    };
+    struct Object {
+        uint32_t first_step = 0, steps = 0;
+        Bounds bounds;
+        Real reach = 0;  // the largest of its leaves'
+    };
+
+    void add_leaves(const SceneDescription& scene);
+    void add_program(const SceneDescription& scene, uint32_t solid, const std::vector<Bounds>& solid_bounds);
+    // The solid's spans along the ray's whole line, in `out` (the thread's scratch).
+    void run(const Object& object, const Ray& ray, Real tolerance, std::vector<SolidSpan>& out) const;
+    std::optional<SolidSpan> leaf_span(uint32_t leaf, const Ray& ray) const;
+
+    std::vector<SolidLeaf> leaves_;
+    std::vector<uint32_t> first_leaf_of_kind_;  // by SolidPart::Kind: where that kind's leaves start
+    std::vector<Step> steps_;
+    std::vector<Object> objects_;
+};
+
+}  // namespace tracer
