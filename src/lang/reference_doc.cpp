@@ -66,6 +66,16 @@ const StatementSpec kStatements[] = {
     {"group", "group { translate ... rotate ... scale ... transform ... statements }",
      "places every block made inside by its placement steps, in the order written (written first; nested groups "
      "compose)"},
+    {"union", "union { placement ... statements }",
+     "a group whose shapes show all their faces (POV-Ray's union); inside another solid, a solid like `merge`"},
+    {"merge", "merge { placement ... statements }",
+     "one solid (CSG) of every closed shape and solid made inside: where they overlap, their inner faces vanish "
+     "(for glass); placed like a group"},
+    {"intersection", "intersection { placement ... statements }",
+     "the solid inside every part made inside (a lens: two spheres); each face keeps its shape's material"},
+    {"difference", "difference { placement ... statements }",
+     "the first part made inside minus all the others (a die: a box minus spheres); a cut face is the cutter's "
+     "surface, with its material"},
     {"include", "include \"file.scn\"",
      "runs another file in place: found beside this file, else in the -I folders and then TRACER_PATH's, in "
      "order; `include \"std/NAME.scn\"` is the standard library built into tracer (below)"},

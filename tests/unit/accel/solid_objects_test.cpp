@@ -1,0 +1,223 @@
+// Solids in the world (CSG) against brute force: random trees of spheres, placed boxes, cones
+// and half-spaces, nested up to three deep, and random rays from inside and outside. The
+// expected hit is the first place along the ray where a point test of the whole tree (inside
+// each leaf, combined by each operation's truth table) changes; the world must find that t, the
+// leaf's material there, and a normal that points out of the solid.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "../../common/sweep.h"
+#include "accel/solid_leaves.h"
+#include "accel/world.h"
+#include "render/spawn.h"
+#include "scene/placement.h"
+
+namespace tracer {
+namespace {
+
+using glm::dvec3;
+
+// A random scene of solids; each leaf its own material (its index), so a hit names its leaf.
+struct RandomSolids {
+    SceneDescription scene;
+    std::mt19937 random;
+    std::uniform_real_distribution<double> unit{0, 1};
+
+    double in(double low, double high) { return low + (high - low) * unit(random); }
+    dvec3 point(double reach) { return {in(-reach, reach), in(-reach, reach), in(-reach, reach)}; }
+    dvec3 direction() {
+        for (;;) {
+            const dvec3 d = point(1);
+            if (glm::length(d) > 0.1 && glm::length(d) < 1) return glm::normalize(d);
+        }
+    }
+    int material() {
+        scene.materials.emplace_back();
+        return int(scene.materials.size()) - 1;
+    }
+
+    SolidPart leaf() {
+        const int kind = int(in(0, 4));
+        if (kind == 0) {
+            scene.solid_spheres.push_back({point(1), in(0.3, 1.2), material()});
+            return {SolidPart::Kind::Sphere, uint32_t(scene.solid_spheres.size() - 1)};
+        }
+        if (kind == 1) {
+            Box box;
+            box.min = point(1);
+            box.max = box.min + dvec3(in(0.3, 1.5), in(0.3, 1.5), in(0.3, 1.5));
+            box.scale = {in(0.5, 1.5), in(0.5, 1.5), in(0.5, 1.5)};
+            box.rotate_axis = direction();
+            box.rotate_degrees = in(0, 360);
+            box.translate = point(0.5);
+            box.material = material();
+            scene.solid_boxes.push_back(box);
+            return {SolidPart::Kind::Box, uint32_t(scene.solid_boxes.size() - 1)};
+        }
+        if (kind == 2) {
+            Cone cone;
+            cone.base = point(1);
+            cone.top = cone.base + in(0.5, 2) * direction();
+            cone.base_radius = in(0, 1) < 0.3 ? 0 : in(0.2, 0.8);
+            cone.top_radius = in(0.2, 0.8);
+            cone.material = material();
+            scene.solid_cones.push_back(cone);
+            return {SolidPart::Kind::Cone, uint32_t(scene.solid_cones.size() - 1)};
+        }
+        scene.half_spaces.push_back({point(0.8), direction(), material()});
+        return {SolidPart::Kind::HalfSpace, uint32_t(scene.half_spaces.size() - 1)};
+    }
+
+    // A solid of 2 to 4 parts, a part nested (to `depth` more levels) one time in three.
+    uint32_t solid(int depth, bool nested) {
+        const uint32_t index = uint32_t(scene.solids.size());
+        scene.solids.push_back({SolidOp(int(in(0, 3))), {}, nested, 0});
+        const int parts = int(in(2, 5));
+        for (int i = 0; i < parts; ++i) {
+            const SolidPart part =
+                depth > 0 && in(0, 1) < 0.33 ? SolidPart{SolidPart::Kind::Solid, solid(depth - 1, true)} : leaf();
+            scene.solids[index].parts.push_back(part);
+        }
+        return index;
+    }
+};
+
+// Brute force: the point tests of the leaves and of the tree.
+struct Truth {
+    const SceneDescription& scene;
+
+    bool inside_leaf(const SolidPart& part, const dvec3& p) const {
+        switch (part.kind) {
+            case SolidPart::Kind::Sphere: {
+                const Sphere& s = scene.solid_spheres[part.index];
+                return glm::length(p - s.center) <= s.radius;
+            }
+            case SolidPart::Kind::Box: {
+                const Box& box = scene.solid_boxes[part.index];
+                const Placement placement(box);
+                const dvec3 own = glm::inverse(placement.linear) * (p - placement.translate);
+                return glm::all(glm::greaterThanEqual(own, box.min)) && glm::all(glm::lessThanEqual(own, box.max));
+            }
+            case SolidPart::Kind::Cone: {
+                const Cone& cone = scene.solid_cones[part.index];
+                const dvec3 axis = cone.top - cone.base;
+                const double length = glm::length(axis);
+                const double h = glm::dot(p - cone.base, axis / length);
+                if (h < 0 || h > length) return false;
+                const double radius = cone.base_radius + (cone.top_radius - cone.base_radius) * h / length;
+                return glm::length(p - cone.base - h * axis / length) <= radius;
+            }
+            case SolidPart::Kind::HalfSpace: {
+                const Plane& plane = scene.half_spaces[part.index];
+                return glm::dot(p - plane.point, plane.normal) <= 0;
+            }
+            case SolidPart::Kind::Solid: return inside(part.index, p);
+        }
+        return false;
+    }
+
+    bool inside(uint32_t solid, const dvec3& p) const {
+        const Solid& s = scene.solids[solid];
+        bool result = inside_leaf(s.parts[0], p);
+        for (size_t i = 1; i < s.parts.size(); ++i) {
+            const bool part = inside_leaf(s.parts[i], p);
+            result = s.op == SolidOp::Union          ? result || part
+                     : s.op == SolidOp::Intersection ? result && part
+                                                     : result && !part;
+        }
+        return result;
+    }
+};
+
+// Every t where the ray's line crosses a leaf's surface, with the leaf's material.
+void crossings(const SceneDescription& scene, const Ray& ray, std::vector<std::pair<double, int>>& out) {
+    auto add = [&](const std::optional<SolidSpan>& span, int material) {
+        if (!span) return;
+        for (double t : {double(span->enter.t), double(span->leave.t)})
+            if (std::isfinite(t)) out.push_back({t, material});
+    };
+    for (const Sphere& s : scene.solid_spheres) add(sphere_span(ray, Vec3(s.center), Real(s.radius), 0), s.material);
+    for (const Box& box : scene.solid_boxes) {
+        const Placement placement(box);
+        const glm::dmat3 to_object = glm::inverse(placement.linear);
+        const Ray own{to_object * (ray.origin - placement.translate), to_object * ray.direction};
+        add(box_span(own, box.min, box.max, 0), box.material);
+    }
+    for (const Cone& c : scene.solid_cones)
+        add(cone_span(ray, make_cone_shape(c.base, c.top, c.base_radius, c.top_radius, true), 0), c.material);
+    for (const Plane& p : scene.half_spaces) add(half_space_span(ray, p.point, p.normal, 0), p.material);
+    std::sort(out.begin(), out.end());
+}
+
+constexpr double kStep = 1e-6;  // either side of a crossing, for the point tests
+
+// The expected hit along `ray`: the first crossing past kStep where the tree's inside changes,
+// with its leaf's material; `ambiguous` if another crossing is too near it to tell.
+std::optional<std::pair<double, int>> expected_hit(const SceneDescription& scene, const Truth& truth, const Ray& ray,
+                                                   bool& ambiguous) {
+    std::vector<std::pair<double, int>> ts;
+    crossings(scene, ray, ts);
+    ambiguous = false;
+    for (size_t i = 0; i < ts.size(); ++i) {
+        const double t = ts[i].first;
+        if (t <= 4 * kStep) continue;
+        if (truth.inside(0, ray.at(t - kStep)) == truth.inside(0, ray.at(t + kStep))) continue;
+        ambiguous =
+            (i > 0 && t - ts[i - 1].first < 4 * kStep) || (i + 1 < ts.size() && ts[i + 1].first - t < 4 * kStep);
+        return ts[i];
+    }
+    return std::nullopt;
+}
+
+TEST(SolidObjects, RandomTreesMatchPointTestsAlongEachRay) {
+    if constexpr (!std::is_same_v<Real, double>) GTEST_SKIP() << "brute force in double only";
+    int checked = 0, hits = 0, spawned = 0;
+    const size_t scenes = sweep(150);
+    for (uint32_t seed = 1; seed <= scenes; ++seed) {
+        RandomSolids made{{}, std::mt19937(seed)};
+        made.solid(2, false);
+        const World world(made.scene);
+        const Truth truth{made.scene};
+        for (int r = 0; r < 200; ++r) {
+            const Ray ray{made.point(2.5), made.direction()};
+            bool ambiguous = false;
+            const auto expected = expected_hit(made.scene, truth, ray, ambiguous);
+            if (ambiguous) continue;
+            ++checked;
+            SearchCounts counts;
+            const auto hit = world.nearest_hit(ray, {0, kInfinity}, counts);
+            ASSERT_EQ(hit.has_value(), expected.has_value()) << "seed " << seed << " ray " << r;
+            if (!hit) continue;
+            ++hits;
+            EXPECT_NEAR(hit->t, expected->first, 1e-7) << "seed " << seed << " ray " << r;
+            const SurfaceHit surface = world.surface(ray, *hit);
+            EXPECT_EQ(surface.material, expected->second) << "seed " << seed << " ray " << r;
+            // The normal points out of the solid.
+            EXPECT_TRUE(truth.inside(0, dvec3(surface.point) - 1e-5 * dvec3(surface.normal)))
+                << "seed " << seed << " ray " << r;
+            EXPECT_FALSE(truth.inside(0, dvec3(surface.point) + 1e-5 * dvec3(surface.normal)))
+                << "seed " << seed << " ray " << r;
+            // A ray spawned off the hit, to either side, meets what brute force meets from there:
+            // not the surface it leaves, and not past a surface it should meet.
+            const dvec3 away = made.direction();
+            const SpawnedRay next = spawn_ray(surface, Vec3(away));
+            const auto next_expected = expected_hit(made.scene, truth, next.ray, ambiguous);
+            if (ambiguous) continue;
+            ++spawned;
+            const auto next_hit = world.nearest_hit(next.ray, next.range, counts);
+            ASSERT_EQ(next_hit.has_value(), next_expected.has_value()) << "seed " << seed << " spawned " << r;
+            if (next_hit) EXPECT_NEAR(next_hit->t, next_expected->first, 1e-7) << "seed " << seed << " spawned " << r;
+        }
+    }
+    EXPECT_GT(checked, int(scenes) * 150);
+    EXPECT_GT(hits, checked / 8);
+    EXPECT_GT(spawned, hits * 9 / 10);
+}
+
+}  // namespace
+}  // namespace tracer
