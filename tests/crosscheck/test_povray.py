@@ -103,3 +103,23 @@ def test_uv_mapping_on_a_mesh_is_povrays_uv_mapping_given_tracers_uv(tmp_path):
     assert "pigment { uv_mapping image_map" in text and "matrix <0.5, 0.0, 0.0," in text
     with pytest.raises(ToolError, match="mapping uv on a shape"):
         povray.texture(material(kd=image))
+
+
+def test_solids_nest_as_povrays_csg_with_one_interior():
+    glass = material(kt=[0.9, 0.9, 0.9], km=[0.1, 0.1, 0.1], ior=1.5)
+    sphere = {"center": [0, 0, 0], "radius": 1, "material": glass}
+    box = {"min": [-1, -1, -1], "max": [1, 1, 1], "translate": [1, 0, 0], "material": glass}
+    solids = [
+        {"op": "difference", "nested": False, "parts": [{"kind": "box", "box": box}, {"kind": "solid", "solid": 1}]},
+        {"op": "union", "nested": True, "parts": [{"kind": "sphere", "sphere": sphere}] * 2},
+    ]
+    text = povray._solid(solids, 0)
+    lines = text.splitlines()
+    assert lines[0] == "difference {" and lines[2] == "merge {" and lines[-1] == "}"
+    assert "matrix <1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0>" in lines[1]
+    # One interior, the whole solid's, just before its closing brace; none on the parts.
+    assert text.count("interior") == 1 and lines[-2] == "interior { ior 1.5 }"
+    water = {**sphere, "material": material(kt=[0.9, 0.9, 0.9], ior=1.33)}
+    solids[1]["parts"] = [{"kind": "sphere", "sphere": water}]
+    with pytest.raises(ToolError, match="different ior"):
+        povray._solid(solids, 0)

@@ -311,12 +311,17 @@ def _flat_triangles(scene: dict) -> list[tuple[np.ndarray, dict, np.ndarray | No
     return out
 
 
-def _solid_part(part: dict) -> str:
+INTERIOR = re.compile(r" interior \{ ior ([^ ]+) \}")
+
+
+def _solid_part(part: dict, iors: set[float]) -> str:
     """One shape of a solid, in POV-Ray's words (its texture after its placement: the JSON's
-    patterns are placed in world coordinates)."""
+    patterns are placed in world coordinates), without an interior: its ior joins `iors`."""
     kind = part["kind"]
     shape = part[kind]
     material = texture(shape["material"])
+    iors.update(float(ior) for ior in INTERIOR.findall(material))
+    material = INTERIOR.sub("", material)
     if kind == "sphere":
         return f"sphere {{ {_v(shape['center'])}, {float(shape['radius'])!r} {material} }}"
     if kind == "cone":
@@ -334,8 +339,13 @@ def _solid_part(part: dict) -> str:
 
 
 def _solid(solids: list, root: int) -> str:
-    """A solid and the solids nested in it, written without recursion (they may nest deeply)."""
+    """A solid and the solids nested in it, written without recursion (they may nest deeply).
+    Its interior (the ior of its parts that transmit) is the solid's: POV-Ray tracks the
+    interiors a ray is in by object, and a ray entering one part of a lens and leaving by
+    another would otherwise refract as if entering the second; tracer's faces each separate
+    their material from air, which is one interior for the whole solid."""
     words = {"union": "merge", "intersection": "intersection", "difference": "difference"}
+    iors: set[float] = set()
     out: list[str] = []
     stack: list[tuple[int, int]] = [(root, 0)]
     out.append(words[solids[root]["op"]] + " {")
@@ -351,7 +361,14 @@ def _solid(solids: list, root: int) -> str:
             stack.append((part["solid"], 0))
             out.append(words[solids[part["solid"]]["op"]] + " {")
         else:
-            out.append(_solid_part(part))
+            out.append(_solid_part(part, iors))
+    if len(iors) > 1:
+        raise ToolError(
+            f"a solid whose parts refract with different ior ({', '.join(map(str, sorted(iors)))}): "
+            "POV-Ray's interior is the whole solid's"
+        )
+    if iors:
+        out.insert(len(out) - 1, f"interior {{ ior {iors.pop()!r} }}")
     return "\n".join(out)
 
 
