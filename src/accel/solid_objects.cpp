@@ -28,20 +28,8 @@ Bounds disc_bounds(const glm::dvec3& center, const glm::dvec3& axis, double radi
     return {Vec3(center - extent), Vec3(center + extent)};
 }
 
-SolidLeaf sphere_leaf(const Sphere& sphere) {
-    SolidLeaf leaf;
-    leaf.kind = SolidPart::Kind::Sphere;
-    leaf.material = sphere.material;
-    leaf.center = Vec3(sphere.center);
-    leaf.radius = Real(sphere.radius);
-    leaf.bounds = {leaf.center - leaf.radius, leaf.center + leaf.radius};
-    return leaf;
-}
-
-SolidLeaf box_leaf(const Box& box) {
-    SolidLeaf leaf;
-    leaf.kind = SolidPart::Kind::Box;
-    leaf.material = box.material;
+SolidBox box_leaf(const Box& box, Bounds& bounds) {
+    SolidBox leaf;
     const Placement placement(box);
     const glm::dmat3 to_object = glm::inverse(placement.linear);
     leaf.to_object = Mat3(to_object);
@@ -55,39 +43,29 @@ SolidLeaf box_leaf(const Box& box) {
     leaf.lower_corner = Vec3(placement.point(box.min));
     leaf.upper_corner = Vec3(placement.point(box.max));
     for (int corner = 0; corner < 8; ++corner)
-        leaf.bounds.extend(Vec3(placement.point({corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
-                                                 corner & 4 ? box.max.z : box.min.z})));
+        bounds.extend(Vec3(placement.point({corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
+                                            corner & 4 ? box.max.z : box.min.z})));
     return leaf;
 }
 
-SolidLeaf cone_leaf(const Cone& cone) {
-    SolidLeaf leaf;
-    leaf.kind = SolidPart::Kind::Cone;
-    leaf.material = cone.material;
-    leaf.cone = make_cone_shape(cone.base, cone.top, cone.base_radius, cone.top_radius, true);
+Bounds cone_bounds(const Cone& cone) {
     const glm::dvec3 axis = glm::normalize(cone.top - cone.base);
-    leaf.bounds = disc_bounds(cone.base, axis, cone.base_radius);
-    leaf.bounds.extend(disc_bounds(cone.top, axis, cone.top_radius));
-    return leaf;
+    Bounds bounds = disc_bounds(cone.base, axis, cone.base_radius);
+    bounds.extend(disc_bounds(cone.top, axis, cone.top_radius));
+    return bounds;
 }
 
-SolidLeaf half_space_leaf(const Plane& plane) {
-    SolidLeaf leaf;
-    leaf.kind = SolidPart::Kind::HalfSpace;
-    leaf.material = plane.material;
-    leaf.point = Vec3(plane.point);
-    leaf.normal = Vec3(plane.normal);
-    leaf.bounds = {Vec3(-kInfinity), Vec3(kInfinity)};
-    // Across an axis, it is bounded on that axis.
+// A half-space is infinite, but bounded on an axis it lies across.
+Bounds half_space_bounds(const Plane& plane) {
+    Bounds bounds{Vec3(-kInfinity), Vec3(kInfinity)};
     for (int axis = 0; axis < 3; ++axis) {
         if (std::abs(plane.normal[axis]) != 1) continue;
         if (plane.normal[axis] > 0)
-            leaf.bounds.upper[axis] = Real(plane.point[axis]);
+            bounds.upper[axis] = Real(plane.point[axis]);
         else
-            leaf.bounds.lower[axis] = Real(plane.point[axis]);
+            bounds.lower[axis] = Real(plane.point[axis]);
     }
-    leaf.reach = std::max({std::abs(leaf.point.x), std::abs(leaf.point.y), std::abs(leaf.point.z)});
-    return leaf;
+    return bounds;
 }
 
 Bounds overlap(const Bounds& a, const Bounds& b) {
@@ -108,7 +86,7 @@ thread_local SpanScratch scratch;
 }  // namespace
 
 SolidObjects::SolidObjects(const SceneDescription& scene) {
-    add_leaves(scene);
+    const std::vector<LeafExtent> extents = add_leaves(scene);
     // Each solid's bounds, from its parts' (a nested solid comes after the solid it is part of).
     std::vector<Bounds> solid_bounds(scene.solids.size());
     for (size_t i = scene.solids.size(); i-- > 0;) {
@@ -118,7 +96,7 @@ SolidObjects::SolidObjects(const SceneDescription& scene) {
         for (const SolidPart& part : solid.parts) {
             const Bounds& of_part = part.kind == SolidPart::Kind::Solid
                                         ? solid_bounds[part.index]
-                                        : leaves_[first_leaf_of_kind_[size_t(part.kind)] + part.index].bounds;
+                                        : extents[first_leaf_of_kind_[size_t(part.kind)] + part.index].bounds;
             if (first)
                 box = of_part;
             else if (solid.op == SolidOp::Union)
@@ -130,26 +108,53 @@ SolidObjects::SolidObjects(const SceneDescription& scene) {
         solid_bounds[i] = box;
     }
     for (uint32_t i = 0; i < scene.solids.size(); ++i)
-        if (!scene.solids[i].nested) add_program(scene, i, solid_bounds);
+        if (!scene.solids[i].nested) add_program(scene, i, solid_bounds, extents);
 }
 
-void SolidObjects::add_leaves(const SceneDescription& scene) {
+std::vector<SolidObjects::LeafExtent> SolidObjects::add_leaves(const SceneDescription& scene) {
+    std::vector<LeafExtent> extents;
     first_leaf_of_kind_.assign(size_t(SolidPart::Kind::Solid) + 1, 0);
-    first_leaf_of_kind_[size_t(SolidPart::Kind::Sphere)] = uint32_t(leaves_.size());
-    for (const Sphere& sphere : scene.solid_spheres) leaves_.push_back(sphere_leaf(sphere));
-    first_leaf_of_kind_[size_t(SolidPart::Kind::Box)] = uint32_t(leaves_.size());
-    for (const Box& box : scene.solid_boxes) leaves_.push_back(box_leaf(box));
-    first_leaf_of_kind_[size_t(SolidPart::Kind::Cone)] = uint32_t(leaves_.size());
-    for (const Cone& cone : scene.solid_cones) leaves_.push_back(cone_leaf(cone));
-    first_leaf_of_kind_[size_t(SolidPart::Kind::HalfSpace)] = uint32_t(leaves_.size());
-    for (const Plane& plane : scene.half_spaces) leaves_.push_back(half_space_leaf(plane));
-    for (SolidLeaf& leaf : leaves_)
-        if (leaf.kind != SolidPart::Kind::HalfSpace) leaf.reach = reach_of(leaf.bounds);
+    auto add = [&](SolidPart::Kind kind, int material, const Bounds& bounds) {
+        kinds_.push_back(uint8_t(kind));
+        materials_.push_back(material);
+        extents.push_back({bounds, reach_of(bounds)});
+        LeafBall& ball = balls_.emplace_back();
+        if (kind != SolidPart::Kind::HalfSpace) {  // around its box, a little larger than its rounding
+            ball.center = bounds.center();
+            ball.radius = glm::length(bounds.upper - bounds.lower) * Real(0.5 + 1e-6);
+        }
+        return &ball;
+    };
+    first_leaf_of_kind_[size_t(SolidPart::Kind::Sphere)] = uint32_t(kinds_.size());
+    for (const Sphere& sphere : scene.solid_spheres) {
+        const Vec3 center(sphere.center);
+        const Real radius(sphere.radius);
+        *add(SolidPart::Kind::Sphere, sphere.material, {center - radius, center + radius}) = {center, radius};
+    }
+    first_leaf_of_kind_[size_t(SolidPart::Kind::Box)] = uint32_t(kinds_.size());
+    for (const Box& box : scene.solid_boxes) {
+        Bounds bounds;
+        boxes_.push_back(box_leaf(box, bounds));
+        add(SolidPart::Kind::Box, box.material, bounds);
+    }
+    first_leaf_of_kind_[size_t(SolidPart::Kind::Cone)] = uint32_t(kinds_.size());
+    for (const Cone& cone : scene.solid_cones) {
+        cones_.push_back(make_cone_shape(cone.base, cone.top, cone.base_radius, cone.top_radius, true));
+        add(SolidPart::Kind::Cone, cone.material, cone_bounds(cone));
+    }
+    first_leaf_of_kind_[size_t(SolidPart::Kind::HalfSpace)] = uint32_t(kinds_.size());
+    for (const Plane& plane : scene.half_spaces) {
+        half_spaces_.push_back({Vec3(plane.point), Vec3(plane.normal)});
+        add(SolidPart::Kind::HalfSpace, plane.material, half_space_bounds(plane));
+        extents.back().reach = std::max({std::abs(plane.point.x), std::abs(plane.point.y), std::abs(plane.point.z)});
+    }
+    return extents;
 }
 
 // The solid's program, walked depth first without recursion (solids may nest 10^4 deep): each
 // leaf, and after each part but a solid's first, the solid's operation.
-void SolidObjects::add_program(const SceneDescription& scene, uint32_t root, const std::vector<Bounds>& solid_bounds) {
+void SolidObjects::add_program(const SceneDescription& scene, uint32_t root, const std::vector<Bounds>& solid_bounds,
+                               const std::vector<LeafExtent>& extents) {
     if (is_empty(solid_bounds[root])) return;  // an intersection of parts apart: nothing
     Object object;
     object.first_step = uint32_t(steps_.size());
@@ -176,9 +181,8 @@ void SolidObjects::add_program(const SceneDescription& scene, uint32_t root, con
             continue;
         }
         const uint32_t leaf = first_leaf_of_kind_[size_t(part.kind)] + part.index;
-        object.reach = std::max(object.reach, leaves_[leaf].reach);
-        steps_.push_back({Step::Kind::Leaf, SolidOp::Union, leaf});
-        if (frame.next >= 1) steps_.push_back({Step::Kind::Combine, solid.op, 0});
+        object.reach = std::max(object.reach, extents[leaf].reach);
+        steps_.push_back({frame.next == 0 ? Step::Kind::Leaf : Step::Kind::CombineLeaf, solid.op, leaf});
     }
     object.steps = uint32_t(steps_.size()) - object.first_step;
     objects_.push_back(object);
@@ -191,52 +195,99 @@ bool SolidObjects::bounded(uint32_t solid) const {
     return true;
 }
 
-std::optional<SolidSpan> SolidObjects::leaf_span(uint32_t index, const Ray& ray) const {
-    const SolidLeaf& leaf = leaves_[index];
-    switch (leaf.kind) {
-        case SolidPart::Kind::Sphere: return sphere_span(ray, leaf.center, leaf.radius, index);
+[[gnu::always_inline]] inline std::optional<SolidSpan> SolidObjects::leaf_span(uint32_t index, const Ray& ray,
+                                                                               Interval clip) const {
+    // Along the ray, the leaf lies within its ball's radius of the ball centre's foot: nothing
+    // to find outside the clip (a pip behind a ray leaving the die), nor if the line passes
+    // outside the ball (most pips).
+    const LeafBall& ball = balls_[index];
+    if (ball.radius < kInfinity) {
+        const Vec3 to_center = ball.center - ray.origin;
+        const Real foot = dot(to_center, ray.direction);
+        if (foot + ball.radius < clip.min || foot - ball.radius > clip.max) return std::nullopt;
+        const Vec3 across = glm::cross(to_center, ray.direction);
+        if (dot(across, across) > ball.radius * ball.radius * Real(1 + 1e-6)) return std::nullopt;
+    }
+    std::optional<SolidSpan> span;
+    switch (kind_of(index)) {
+        case SolidPart::Kind::Sphere: span = sphere_span(ray, ball.center, ball.radius, index); break;
         case SolidPart::Kind::Box: {
-            const Ray own{leaf.to_object * (ray.origin - leaf.translate), leaf.to_object * ray.direction};
-            return box_span(own, leaf.lower, leaf.upper, index);
+            const SolidBox& box = boxes_[of_kind(index)];
+            const Ray own{box.to_object * (ray.origin - box.translate), box.to_object * ray.direction};
+            span = box_span(own, box.lower, box.upper, index);
+            break;
         }
-        case SolidPart::Kind::Cone: return cone_span(ray, leaf.cone, index);
-        case SolidPart::Kind::HalfSpace: return half_space_span(ray, leaf.point, leaf.normal, index);
+        case SolidPart::Kind::Cone: span = cone_span(ray, cones_[of_kind(index)], index); break;
+        case SolidPart::Kind::HalfSpace: {
+            const SolidHalfSpace& half = half_spaces_[of_kind(index)];
+            span = half_space_span(ray, half.point, half.normal, index);
+            break;
+        }
         case SolidPart::Kind::Solid: break;
     }
-    return std::nullopt;
+    if (span && (span->leave.t < clip.min || span->enter.t > clip.max)) return std::nullopt;
+    return span;
 }
 
-void SolidObjects::run(const Object& object, const Ray& ray, Real tolerance, std::vector<SolidSpan>& out) const {
+// CombineLeaf: the list from `start` to the end, op the leaf's span, in place.
+[[gnu::always_inline]] inline void SolidObjects::combine_with_leaf(const Step& step, const Ray& ray, Interval clip,
+                                                                   Real tolerance, uint32_t start,
+                                                                   std::vector<SolidSpan>& out) const {
+    const bool a_empty = start == out.size();
+    if (a_empty && step.op != SolidOp::Union) return;  // nothing to cut from or to overlap
+    // Only where the list lies can a leaf cut or overlap it.
+    if (step.op != SolidOp::Union)
+        clip = {std::max(clip.min, out[start].enter.t - tolerance), std::min(clip.max, out.back().leave.t + tolerance)};
+    const std::optional<SolidSpan> b = leaf_span(step.leaf, ray, clip);
+    if (!b) {
+        if (step.op == SolidOp::Intersection) out.resize(start);
+        return;
+    }
+    if (a_empty) return out.push_back(*b);
+    std::vector<SolidSpan>& combined = scratch.combined;
+    combined.clear();
+    combine_spans(step.op, std::span(out.data() + start, out.size() - start), std::span(&*b, 1), tolerance, combined);
+    out.resize(start);
+    out.insert(out.end(), combined.begin(), combined.end());
+}
+
+void SolidObjects::run(const Object& object, const Ray& ray, Interval clip, Real tolerance,
+                       std::vector<SolidSpan>& out) const {
     std::vector<uint32_t>& starts = scratch.starts;
     std::vector<SolidSpan>& combined = scratch.combined;
     out.clear();
     starts.clear();
     for (uint32_t i = object.first_step; i < object.first_step + object.steps; ++i) {
         const Step& step = steps_[i];
-        if (step.kind != Step::Kind::Combine) {
-            starts.push_back(uint32_t(out.size()));
-            if (step.kind == Step::Kind::Leaf)
-                if (auto span = leaf_span(step.leaf, ray)) out.push_back(*span);
-            continue;
+        switch (step.kind) {
+            case Step::Kind::Leaf:
+                starts.push_back(uint32_t(out.size()));
+                if (auto span = leaf_span(step.leaf, ray, clip)) out.push_back(*span);
+                break;
+            case Step::Kind::Empty: starts.push_back(uint32_t(out.size())); break;
+            case Step::Kind::CombineLeaf: combine_with_leaf(step, ray, clip, tolerance, starts.back(), out); break;
+            case Step::Kind::Combine: {
+                const uint32_t b = starts.back();
+                starts.pop_back();
+                const uint32_t a = starts.back();
+                const bool a_empty = a == b, b_empty = b == out.size();
+                // Nothing to cut from or to overlap; or nothing to add, cut or overlap with.
+                if (a_empty && step.op != SolidOp::Union) {
+                    out.resize(a);
+                    break;
+                }
+                if (b_empty) {
+                    if (step.op == SolidOp::Intersection) out.resize(a);
+                    break;
+                }
+                combined.clear();
+                combine_spans(step.op, std::span(out.data() + a, b - a), std::span(out.data() + b, out.size() - b),
+                              tolerance, combined);
+                out.resize(a);
+                out.insert(out.end(), combined.begin(), combined.end());
+                break;
+            }
         }
-        const uint32_t b = starts.back();
-        starts.pop_back();
-        const uint32_t a = starts.back();
-        const bool a_empty = a == b, b_empty = b == out.size();
-        // Nothing to cut from or to overlap; or nothing to add, cut or overlap with.
-        if (a_empty && step.op != SolidOp::Union) {
-            out.resize(a);
-            continue;
-        }
-        if (b_empty) {
-            if (step.op == SolidOp::Intersection) out.resize(a);
-            continue;
-        }
-        combined.clear();
-        combine_spans(step.op, std::span(out.data() + a, b - a), std::span(out.data() + b, out.size() - b), tolerance,
-                      combined);
-        out.resize(a);
-        out.insert(out.end(), combined.begin(), combined.end());
     }
 }
 
@@ -247,8 +298,8 @@ std::optional<SolidHit> SolidObjects::nearest(uint32_t solid, const Ray& ray, In
     // spawned ray leaves (its t computed from the moved origin may round either way).
     const Real tolerance = gamma(32) * (std::max({o.x, o.y, o.z}) + object.reach);
     std::vector<SolidSpan>& spans = scratch.spans;
-    run(object, ray, tolerance, spans);
     const Real from = std::max(range.min, tolerance);
+    run(object, ray, {from - tolerance, range.max + tolerance}, tolerance, spans);
     for (const SolidSpan& span : spans)
         for (const SpanEnd& end : {span.enter, span.leave}) {
             if (!(end.t < range.max)) return std::nullopt;
@@ -258,10 +309,9 @@ std::optional<SolidHit> SolidObjects::nearest(uint32_t solid, const Ray& ray, In
 }
 
 SolidSurface SolidObjects::surface(const Ray& ray, Real t, uint32_t face) const {
-    const SolidLeaf& leaf = leaves_[face >> 4];
-    const uint32_t part = (face >> 1) & 7;
+    const uint32_t leaf = face >> 4, part = (face >> 1) & 7;
     SolidSurface out;
-    out.material = leaf.material;
+    out.material = materials_[leaf];
     RoundSurface& round = out.round;
     // A point put back on a flat face: projected onto its plane.
     auto on_plane = [&](const Vec3& point, const Vec3& normal) {
@@ -270,24 +320,30 @@ SolidSurface SolidObjects::surface(const Ray& ray, Real t, uint32_t face) const 
         round.error = gamma(8) * (abs_each(round.point) + abs_each(point));
         round.normal = normal;
     };
-    switch (leaf.kind) {
+    switch (kind_of(leaf)) {
         case SolidPart::Kind::Sphere: {
-            const Vec3 from_center = ray.at(t) - leaf.center;
+            const LeafBall& sphere = balls_[leaf];
+            const Vec3 from_center = ray.at(t) - sphere.center;
             const Real length = glm::length(from_center);
             round.normal = length > 0 ? from_center * (1 / length) : Vec3(0, 0, 1);
-            const Vec3 on_sphere = round.normal * leaf.radius;
-            round.point = leaf.center + on_sphere;
-            round.error = gamma(6) * (abs_each(leaf.center) + abs_each(on_sphere));
+            const Vec3 on_sphere = round.normal * sphere.radius;
+            round.point = sphere.center + on_sphere;
+            round.error = gamma(6) * (abs_each(sphere.center) + abs_each(on_sphere));
             break;
         }
-        case SolidPart::Kind::Cone: round = cone_surface(ray, leaf.cone, t, part); break;
+        case SolidPart::Kind::Cone: round = cone_surface(ray, cones_[of_kind(leaf)], t, part); break;
         case SolidPart::Kind::Box: {
+            const SolidBox& box = boxes_[of_kind(leaf)];
             const bool upper = (part & 1) != 0;
-            const Vec3& normal = leaf.upper_normals[part >> 1];
-            on_plane(upper ? leaf.upper_corner : leaf.lower_corner, upper ? normal : -normal);
+            const Vec3& normal = box.upper_normals[part >> 1];
+            on_plane(upper ? box.upper_corner : box.lower_corner, upper ? normal : -normal);
             break;
         }
-        case SolidPart::Kind::HalfSpace: on_plane(leaf.point, leaf.normal); break;
+        case SolidPart::Kind::HalfSpace: {
+            const SolidHalfSpace& half = half_spaces_[of_kind(leaf)];
+            on_plane(half.point, half.normal);
+            break;
+        }
         case SolidPart::Kind::Solid: break;
     }
     if (face & 1) round.normal = -round.normal;

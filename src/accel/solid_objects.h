@@ -17,26 +17,19 @@
 
 namespace tracer {
 
-// A closed shape of a solid, placed in the world.
-struct SolidLeaf {
-    SolidPart::Kind kind = SolidPart::Kind::Sphere;
-    int material = 0;
-    Bounds bounds;   // infinite on the axes a half-space does not bound
-    Real reach = 0;  // the largest coordinate of its finite corners, for the tolerance of its crossings
-    // A sphere.
-    Vec3 center{0};
-    Real radius = 0;
-    // A cone with caps.
-    ConeShape cone{};
-    // A half-space: the side `normal` points away from.
-    Vec3 point{0}, normal{0};
-    // A box: rays carried into its own coordinates (p -> to_object (p - translate)), its corners
-    // there; in the world its upper faces' unit normals (a lower face's is the opposite) and its
-    // two corners (each on three faces).
+// A box of a solid, placed in the world: rays carried into its own coordinates (p -> to_object
+// (p - translate)), its corners there; in the world its upper faces' unit normals (a lower face's
+// is the opposite) and its two corners (each on three faces).
+struct SolidBox {
     Mat3 to_object{1};
     Vec3 translate{0}, lower{0}, upper{0};
     Vec3 upper_normals[3] = {};
     Vec3 lower_corner{0}, upper_corner{0};
+};
+
+// A half-space of a solid: the side `normal` points away from.
+struct SolidHalfSpace {
+    Vec3 point{0}, normal{0};
 };
 
 // A hit on a solid: where, and the face (Hit::primitive: pack_solid_face).
@@ -72,14 +65,17 @@ public:
     // The surface where `ray` met `face` at `t`: the point put back on its leaf, with its error
     // bound, and the normal pointing out of the solid.
     SolidSurface surface(const Ray& ray, Real t, uint32_t face) const;
-    size_t leaves() const { return leaves_.size(); }
+    size_t leaves() const { return kinds_.size(); }
 
 private:
+    // A step of a solid's program, over a stack of span lists: Leaf pushes a leaf's span (a
+    // solid's first part), Empty an empty list (a solid with no parts), CombineLeaf combines the
+    // top list with a leaf's span by `op` (a part after the first), Combine the top two lists.
     struct Step {
-        enum class Kind : uint8_t { Leaf, Combine, Empty };
+        enum class Kind : uint8_t { Leaf, Empty, CombineLeaf, Combine };
         Kind kind = Kind::Leaf;
-        SolidOp op = SolidOp::Union;  // Combine: the operation of the solid whose part just ended
-        uint32_t leaf = 0;            // Leaf: index into leaves_
+        SolidOp op = SolidOp::Union;
+        uint32_t leaf = 0;  // Leaf, CombineLeaf: index into leaves_
     };
     struct Object {
         uint32_t first_step = 0, steps = 0;
@@ -87,13 +83,39 @@ private:
         Real reach = 0;  // the largest of its leaves'
     };
 
-    void add_leaves(const SceneDescription& scene);
-    void add_program(const SceneDescription& scene, uint32_t solid, const std::vector<Bounds>& solid_bounds);
-    // The solid's spans along the ray's whole line, in `out` (the thread's scratch).
-    void run(const Object& object, const Ray& ray, Real tolerance, std::vector<SolidSpan>& out) const;
-    std::optional<SolidSpan> leaf_span(uint32_t leaf, const Ray& ray) const;
+    // Each leaf's bounds and reach (the largest coordinate of its finite corners), while built.
+    struct LeafExtent {
+        Bounds bounds;  // infinite on the axes a half-space does not bound
+        Real reach = 0;
+    };
+    std::vector<LeafExtent> add_leaves(const SceneDescription& scene);
+    void add_program(const SceneDescription& scene, uint32_t solid, const std::vector<Bounds>& solid_bounds,
+                     const std::vector<LeafExtent>& extents);
+    SolidPart::Kind kind_of(uint32_t leaf) const { return SolidPart::Kind(kinds_[leaf]); }
+    // The leaf's index among those of its kind.
+    uint32_t of_kind(uint32_t leaf) const { return leaf - first_leaf_of_kind_[kinds_[leaf]]; }
+    // The solid's spans along the ray within `clip` (the part of the line that matters: a span
+    // outside it changes nothing inside it), in `out` (the thread's scratch).
+    void run(const Object& object, const Ray& ray, Interval clip, Real tolerance, std::vector<SolidSpan>& out) const;
+    // The leaf's span, or none if the ray's line misses it or it lies wholly outside `clip`.
+    std::optional<SolidSpan> leaf_span(uint32_t leaf, const Ray& ray, Interval clip) const;
+    void combine_with_leaf(const Step& step, const Ray& ray, Interval clip, Real tolerance, uint32_t start,
+                           std::vector<SolidSpan>& out) const;
 
-    std::vector<SolidLeaf> leaves_;
+    // A sphere around each leaf (a sphere's is itself; infinite for a half-space): a ray tests it
+    // first, and most leaves of a solid (a die's pips) are rejected from these few bytes.
+    struct LeafBall {
+        Vec3 center{0};
+        Real radius = kInfinity;
+    };
+    // The leaves, numbered spheres first, then boxes, cones and half-spaces (as the scene lists
+    // them): for each its kind, material and ball; the shapes of each kind but spheres.
+    std::vector<uint8_t> kinds_;
+    std::vector<int> materials_;
+    std::vector<LeafBall> balls_;
+    std::vector<SolidBox> boxes_;
+    std::vector<ConeShape> cones_;
+    std::vector<SolidHalfSpace> half_spaces_;
     std::vector<uint32_t> first_leaf_of_kind_;  // by SolidPart::Kind: where that kind's leaves start
     std::vector<Step> steps_;
     std::vector<Object> objects_;
