@@ -87,6 +87,7 @@ thread_local SpanScratch scratch;
 
 SolidObjects::SolidObjects(const SceneDescription& scene) {
     const std::vector<LeafExtent> extents = add_leaves(scene);
+    object_of_leaf_.assign(kinds_.size(), 0);
     // Each solid's bounds, from its parts' (a nested solid comes after the solid it is part of).
     std::vector<Bounds> solid_bounds(scene.solids.size());
     for (size_t i = scene.solids.size(); i-- > 0;) {
@@ -181,11 +182,49 @@ void SolidObjects::add_program(const SceneDescription& scene, uint32_t root, con
             continue;
         }
         const uint32_t leaf = first_leaf_of_kind_[size_t(part.kind)] + part.index;
-        object.reach = std::max(object.reach, extents[leaf].reach);
         steps_.push_back({frame.next == 0 ? Step::Kind::Leaf : Step::Kind::CombineLeaf, solid.op, leaf});
     }
     object.steps = uint32_t(steps_.size()) - object.first_step;
+    make_relative(object, extents);
     objects_.push_back(object);
+}
+
+void SolidObjects::make_relative(Object& object, const std::vector<LeafExtent>& extents) {
+    // Step 1: the middle of the leaves' finite extents (a half-space's: its point).
+    Bounds finite;
+    for (uint32_t i = object.first_step; i < object.first_step + object.steps; ++i) {
+        if (steps_[i].kind == Step::Kind::Empty || steps_[i].kind == Step::Kind::Combine) continue;
+        const uint32_t leaf = steps_[i].leaf;
+        if (kind_of(leaf) == SolidPart::Kind::HalfSpace)
+            finite.extend(half_spaces_[of_kind(leaf)].point);
+        else
+            finite.extend(extents[leaf].bounds);
+    }
+    const Vec3 shift = finite.lower.x <= finite.upper.x ? finite.center() : Vec3(0);
+    object.shift = shift;
+    // Step 2: each leaf moved, and its reach from there.
+    for (uint32_t i = object.first_step; i < object.first_step + object.steps; ++i) {
+        if (steps_[i].kind == Step::Kind::Empty || steps_[i].kind == Step::Kind::Combine) continue;
+        const uint32_t leaf = steps_[i].leaf;
+        object_of_leaf_[leaf] = uint32_t(objects_.size());
+        balls_[leaf].center -= shift;
+        switch (kind_of(leaf)) {
+            case SolidPart::Kind::Box: {
+                SolidBox& box = boxes_[of_kind(leaf)];
+                box.translate -= shift, box.lower_corner -= shift, box.upper_corner -= shift;
+                break;
+            }
+            case SolidPart::Kind::Cone: cones_[of_kind(leaf)].tip -= shift; break;
+            case SolidPart::Kind::HalfSpace: half_spaces_[of_kind(leaf)].point -= shift; break;
+            case SolidPart::Kind::Sphere:
+            case SolidPart::Kind::Solid: break;
+        }
+        const Bounds& box = extents[leaf].bounds;
+        object.reach = std::max(object.reach,
+                                kind_of(leaf) == SolidPart::Kind::HalfSpace
+                                    ? reach_of({half_spaces_[of_kind(leaf)].point, half_spaces_[of_kind(leaf)].point})
+                                    : reach_of({box.lower - shift, box.upper - shift}));
+    }
 }
 
 bool SolidObjects::bounded(uint32_t solid) const {
@@ -291,8 +330,9 @@ void SolidObjects::run(const Object& object, const Ray& ray, Interval clip, Real
     }
 }
 
-std::optional<SolidHit> SolidObjects::nearest(uint32_t solid, const Ray& ray, Interval range) const {
+std::optional<SolidHit> SolidObjects::nearest(uint32_t solid, const Ray& world_ray, Interval range) const {
     const Object& object = objects_[solid];
+    const Ray ray{world_ray.origin - object.shift, world_ray.direction};
     const Vec3 o = abs_each(ray.origin);
     // Crossings closer than this are one place; one this close to the origin is the surface a
     // spawned ray leaves (its t computed from the moved origin may round either way).
@@ -308,8 +348,10 @@ std::optional<SolidHit> SolidObjects::nearest(uint32_t solid, const Ray& ray, In
     return std::nullopt;
 }
 
-SolidSurface SolidObjects::surface(const Ray& ray, Real t, uint32_t face) const {
+SolidSurface SolidObjects::surface(const Ray& world_ray, Real t, uint32_t face) const {
     const uint32_t leaf = face >> 4, part = (face >> 1) & 7;
+    const Vec3& shift = objects_[object_of_leaf_[leaf]].shift;
+    const Ray ray{world_ray.origin - shift, world_ray.direction};
     SolidSurface out;
     out.material = materials_[leaf];
     RoundSurface& round = out.round;
@@ -347,6 +389,9 @@ SolidSurface SolidObjects::surface(const Ray& ray, Real t, uint32_t face) const 
         case SolidPart::Kind::Solid: break;
     }
     if (face & 1) round.normal = -round.normal;
+    // Back in the world: one more rounding of each coordinate.
+    round.point += shift;
+    round.error = (1 + gamma(1)) * round.error + gamma(1) * abs_each(round.point);
     return out;
 }
 

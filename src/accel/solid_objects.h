@@ -77,10 +77,14 @@ private:
         SolidOp op = SolidOp::Union;
         uint32_t leaf = 0;  // Leaf, CombineLeaf: index into leaves_
     };
+    // A solid of the world. Its leaves are kept relative to `shift` (the middle of its finite
+    // parts), and rays carried there: the roundings of a ray's crossings then scale with the
+    // ray's distance from the solid, not from the world's origin (a solid at 10^6 in float).
     struct Object {
         uint32_t first_step = 0, steps = 0;
-        Bounds bounds;
-        Real reach = 0;  // the largest of its leaves'
+        Bounds bounds;  // in the world
+        Vec3 shift{0};
+        Real reach = 0;  // the largest coordinate of its leaves' finite corners, relative to shift
     };
 
     // Each leaf's bounds and reach (the largest coordinate of its finite corners), while built.
@@ -91,6 +95,8 @@ private:
     std::vector<LeafExtent> add_leaves(const SceneDescription& scene);
     void add_program(const SceneDescription& scene, uint32_t solid, const std::vector<Bounds>& solid_bounds,
                      const std::vector<LeafExtent>& extents);
+    // Moves the object's leaves (steps from `first_step`) by -shift, and sets its shift and reach.
+    void make_relative(Object& object, const std::vector<LeafExtent>& extents);
     SolidPart::Kind kind_of(uint32_t leaf) const { return SolidPart::Kind(kinds_[leaf]); }
     // The leaf's index among those of its kind.
     uint32_t of_kind(uint32_t leaf) const { return leaf - first_leaf_of_kind_[kinds_[leaf]]; }
@@ -111,6 +117,7 @@ private:
     // The leaves, numbered spheres first, then boxes, cones and half-spaces (as the scene lists
     // them): for each its kind, material and ball; the shapes of each kind but spheres.
     std::vector<uint8_t> kinds_;
+    std::vector<uint32_t> object_of_leaf_;  // the object whose shift the leaf is relative to
     std::vector<int> materials_;
     std::vector<LeafBall> balls_;
     std::vector<SolidBox> boxes_;
