@@ -53,6 +53,8 @@ std::string trees_cut_note(const RenderStats& stats) {
 std::string scene_counts(const SceneDescription& scene) {
     size_t cylinders = 0;
     for (const Cone& cone : scene.cones) cylinders += cone.base_radius == cone.top_radius;
+    const size_t roots = size_t(
+        std::count_if(scene.solids.begin(), scene.solids.end(), [](const Solid& solid) { return !solid.nested; }));
     // (count, singular, plural, said even when 0)
     struct Count {
         size_t count;
@@ -61,17 +63,12 @@ std::string scene_counts(const SceneDescription& scene) {
         bool always;
     };
     const std::vector<Count> counts = {
-        {scene.spheres.size(), "sphere", "spheres", true},
-        {scene.planes.size(), "plane", "planes", true},
-        {scene.meshes.size(), "mesh", "meshes", true},
-        {scene.triangles.size(), "triangle", "triangles", false},
-        {scene.quads.size(), "quad", "quads", false},
-        {scene.boxes.size(), "box", "boxes", false},
-        {cylinders, "cylinder", "cylinders", false},
-        {scene.cones.size() - cylinders, "cone", "cones", false},
-        {scene.discs.size(), "disc", "discs", false},
-        {scene.lights.size(), "light", "lights", true},
-        {scene.materials.size(), "material", "materials", true},
+        {scene.spheres.size(), "sphere", "spheres", true}, {scene.planes.size(), "plane", "planes", true},
+        {scene.meshes.size(), "mesh", "meshes", true},     {scene.triangles.size(), "triangle", "triangles", false},
+        {scene.quads.size(), "quad", "quads", false},      {scene.boxes.size(), "box", "boxes", false},
+        {cylinders, "cylinder", "cylinders", false},       {scene.cones.size() - cylinders, "cone", "cones", false},
+        {scene.discs.size(), "disc", "discs", false},      {roots, "solid", "solids", false},
+        {scene.lights.size(), "light", "lights", true},    {scene.materials.size(), "material", "materials", true},
     };
     std::string out;
     for (const Count& c : counts) {

@@ -325,6 +325,7 @@ void Compiler::compile_statement(const Statement& statement, std::vector<Stateme
             bool failed = false;
             step.body = compile_body(statement.body, statement.word, &group_spec(), failed);
             step.broken = failed;
+            step.unclosed = statement.broken;
             compile_scoped(statement.statements, step.steps);
             break;
         }

@@ -194,7 +194,8 @@ Interpreter::Flow Interpreter::run_step(const StatementCode& step) {
             const size_t blocks_before = blocks_;
             const Flow flow = run_steps(step.steps);
             current_group_ = std::move(outer);
-            if (step.word != "group" && blocks_ == blocks_before && !stopped_ && !failed && !step.broken)
+            if (step.word != "group" && blocks_ == blocks_before && !stopped_ && !failed && !step.broken &&
+                !step.unclosed)
                 diagnostics_.error(sources_, at(step.keyword),
                                    "this " + step.word + " holds no shapes: write its parts inside, e.g. " + step.word +
                                        " { box { ... } sphere { ... } }");

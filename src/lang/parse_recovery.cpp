@@ -174,6 +174,7 @@ void Parser::skip_rest_of_file() {
     lexer_.set_quiet(true);
     while (!at(TokenKind::End)) take();
     lexer_.set_quiet(false);
+    gave_up_ = true;  // the braces still open close with nothing more said
 }
 
 }  // namespace tracer

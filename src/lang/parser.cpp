@@ -187,6 +187,7 @@ bool Parser::parse_braced_statements(Statement& statement, std::vector<Statement
     parse_statements(out, true);
     --nesting_;
     if (at(TokenKind::End)) {
+        statement.broken = true;  // cut short: a solid's missing parts are not news
         if (!gave_up_) {
             Diagnostic* d = diagnostics_.error(file_, peek().span, "expected '}' at end of file");
             Diagnostics::note(d, file_, open_brace, "to close the " + owner + " opened here");

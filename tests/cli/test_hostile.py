@@ -262,6 +262,36 @@ class Hangs(Hostile):
         )
         self.assertEqual(run("--check", scene, limits=limits).returncode, 0)
 
+    def test_solids_nested_deep_and_wide_and_a_shape_minus_itself(self):
+        # Solids (issue 55): 10^4 nested levels written out are one error at the nesting limit
+        # (the 200 levels cut short say nothing more); 9,000 levels made by recursion, 10^5
+        # parts of one difference and a sphere minus itself render, in bounded time and memory.
+        limits = [] if sanitized() else [(resource.RLIMIT_AS, 1 << 30)]
+        head = CAMERA + "render { width 32 height 24 }\nlight { position (0, 5, 5) }\nmaterial m { kd 1 }\n"
+        sphere = "sphere { center (0, 0, 0) radius 1 material m }\n"
+        cut = "sphere { center (0, 0, 1) radius 0.1 material m }\n"
+        written = self.write("written.scn", head + "difference {\n" * 10_000 + sphere + (cut + "}\n") * 10_000)
+        result = run("--check", written, limits=limits)
+        stderr = self.assertError(result, 1, "statements are nested too deeply (more than 200 levels)")
+        self.assertEqual(stderr.count("error:"), 1, stderr[-800:])
+        recursive = head + (
+            "fn nest(k) { if k == 0 { " + sphere + " } else { difference { nest(k - 1)\n"
+            "  sphere { center (0, 0, 1) radius 0.1 * k / 9000 material m } } } }\nnest(9000)\n"
+        )
+        wide = head + (
+            "difference { box { min (-1, -1, -1) max (1, 1, 1) material m }\n"
+            "  for i in 0..100000 { sphere { center (random(1, i) * 2 - 1, random(2, i) * 2 - 1, 1) radius 0.01 "
+            "material m } }\n}\n"
+        )
+        itself = head + "difference {\n" + sphere + sphere + "}\n"
+        for name, text in {"recursive": recursive, "wide": wide, "itself": itself}.items():
+            with self.subTest(case=name):
+                scene = self.write(f"{name}.scn", text)
+                out = self.tmp / f"{name}.png"
+                result = run(scene, "-o", out, limits=limits)
+                self.assertEqual(result.returncode, 0, result.stderr.decode()[-800:])
+                self.assertTrue(out.is_file())
+
     def test_a_loop_including_a_big_file_compiles_it_once(self):
         # The file's text is held once and compiled once, at the include: each run of it costs
         # only what its statements do (here nothing), in bounded time and memory.

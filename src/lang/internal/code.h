@@ -115,8 +115,9 @@ struct StatementCode {
     std::string name;  // Block: its name; Let, Param, loops, Function: the name bound
     Span name_span;
     uint32_t slot = 0;
-    uint32_t origin = 0;  // Include: the origin its file was compiled with
-    bool broken = false;  // Block: a syntax error was reported inside
+    uint32_t origin = 0;    // Include: the origin its file was compiled with
+    bool broken = false;    // Block: a syntax error was reported inside
+    bool unclosed = false;  // Group: its '}' is missing (reported; its contents were cut short)
     bool has_value = false;
     bool top_level = false;  // Range: outside every other loop (an empty range is warned about)
     ExprCode value, end;

@@ -83,12 +83,13 @@ struct Statement {
         Include,   // include "path"
     };
     Kind kind = Kind::Block;
-    Span keyword;         // the block's kind or the statement's keyword
-    std::string word;     // Block: its kind; Group: its keyword; Include: the path
-    std::string name;     // Block: its name (may be empty); Let, Param, For: the name bound
-    Span name_span;       // Include: the path's span
-    BodyCode body;        // Block
-    bool broken = false;  // Block: a syntax error was reported inside; do not validate further
+    Span keyword;      // the block's kind or the statement's keyword
+    std::string word;  // Block: its kind; Group: its keyword; Include: the path
+    std::string name;  // Block: its name (may be empty); Let, Param, For: the name bound
+    Span name_span;    // Include: the path's span
+    BodyCode body;     // Block
+    bool broken =
+        false;   // Block: a syntax error was reported inside; do not validate further. Group: its '}' is missing
     Expr value;  // Let, Param, Assign, Return, Call: the value; For: the first number or the list; If, While: the
                  // condition
     Expr end;    // For: the end of the range (not included)
