@@ -17,13 +17,12 @@ import datetime
 import pathlib
 import re
 import statistics
-import subprocess
 import tempfile
 from collections.abc import Callable
 
 from tracer_tools import option_types
-from tracer_tools.bench.common import TRACER, git, machine
-from tracer_tools.bench.versus import THREADS, tracer_render_seconds, versus_povray
+from tracer_tools.bench.common import git, machine
+from tracer_tools.bench.versus import THREADS, tracer_render_seconds, tracer_summary_line, versus_povray
 
 LIGHTS = """light {{ position ({x}, {y}, {z}) color 0.7 }}
 light {{ position ({x2}, {y2}, {z2}) color 0.35 }}
@@ -76,13 +75,7 @@ def dice_grid(folder: pathlib.Path, side: int) -> pathlib.Path:
 
 def seconds_per_mray(scene: pathlib.Path, folder: pathlib.Path) -> float:
     """The render time per million rays traced (the summary line's)."""
-    done = subprocess.run(
-        [str(TRACER), str(scene), "-o", str(folder / "tracer.png"), "--threads", str(THREADS)],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    line = done.stderr.strip().splitlines()[-1]
+    line = tracer_summary_line(scene, folder)
     seconds = float(re.search(r", ([0-9.]+) s, ", line).group(1))
     mrays = float(re.search(r", ([0-9.]+) Mrays \(", line).group(1))
     return seconds / mrays

@@ -50,15 +50,20 @@ TARGETS = {
 }
 
 
-def tracer_render_seconds(scene: pathlib.Path, folder: pathlib.Path) -> float:
-    """tracer's render time of the scene (the summary line's: the render loop alone)."""
+def tracer_summary_line(scene: pathlib.Path, folder: pathlib.Path) -> str:
+    """The summary line of a render of the scene (size, time, rays)."""
     done = subprocess.run(
         [str(TRACER), str(scene), "-o", str(folder / "tracer.png"), "--threads", str(THREADS)],
         capture_output=True,
         text=True,
         check=True,
     )
-    return float(re.search(r", ([0-9.]+) s, ", done.stderr.strip().splitlines()[-1]).group(1))
+    return done.stderr.strip().splitlines()[-1]
+
+
+def tracer_render_seconds(scene: pathlib.Path, folder: pathlib.Path) -> float:
+    """tracer's render time of the scene (the summary line's: the render loop alone)."""
+    return float(re.search(r", ([0-9.]+) s, ", tracer_summary_line(scene, folder)).group(1))
 
 
 def versus_povray(scene: pathlib.Path, pairs: int, folder: pathlib.Path) -> dict:
