@@ -213,7 +213,9 @@ TEST(SolidObjects, RandomTreesMatchPointTestsAlongEachRay) {
             ++spawned;
             const auto next_hit = world.nearest_hit(next.ray, next.range, counts);
             ASSERT_EQ(next_hit.has_value(), next_expected.has_value()) << "seed " << seed << " spawned " << r;
-            if (next_hit) EXPECT_NEAR(next_hit->t, next_expected->first, 1e-7) << "seed " << seed << " spawned " << r;
+            if (next_hit) {
+                EXPECT_NEAR(next_hit->t, next_expected->first, 1e-7) << "seed " << seed << " spawned " << r;
+            }
         }
     }
     EXPECT_GT(checked, int(scenes) * 150);
