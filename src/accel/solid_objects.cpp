@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "accel/shape_bounds.h"
 #include "accel/solid_leaves.h"
 #include "scene/placement.h"
 
@@ -20,12 +21,6 @@ Real reach_of(const Bounds& box) {
         for (int axis = 0; axis < 3; ++axis)
             if (std::isfinite(corner[axis])) reach = std::max(reach, std::abs(corner[axis]));
     return reach;
-}
-
-// The box around a disc across the unit `axis` (a cone's cap).
-Bounds disc_bounds(const glm::dvec3& center, const glm::dvec3& axis, double radius) {
-    const glm::dvec3 extent = radius * glm::sqrt(glm::max(glm::dvec3(1.0) - axis * axis, glm::dvec3(0.0)));
-    return {Vec3(center - extent), Vec3(center + extent)};
 }
 
 SolidBox box_leaf(const Box& box, Bounds& bounds) {
@@ -42,16 +37,14 @@ SolidBox box_leaf(const Box& box, Bounds& bounds) {
             Vec3(glm::normalize(glm::dvec3(to_object[0][axis], to_object[1][axis], to_object[2][axis])));
     leaf.lower_corner = Vec3(placement.point(box.min));
     leaf.upper_corner = Vec3(placement.point(box.max));
-    for (int corner = 0; corner < 8; ++corner)
-        bounds.extend(Vec3(placement.point({corner & 1 ? box.max.x : box.min.x, corner & 2 ? box.max.y : box.min.y,
-                                            corner & 4 ? box.max.z : box.min.z})));
+    bounds = placed_box({leaf.lower, leaf.upper}, placement);
     return leaf;
 }
 
 Bounds cone_bounds(const Cone& cone) {
     const glm::dvec3 axis = glm::normalize(cone.top - cone.base);
-    Bounds bounds = disc_bounds(cone.base, axis, cone.base_radius);
-    bounds.extend(disc_bounds(cone.top, axis, cone.top_radius));
+    Bounds bounds = disc_box(cone.base, axis, cone.base_radius);
+    bounds.extend(disc_box(cone.top, axis, cone.top_radius));
     return bounds;
 }
 
@@ -82,6 +75,16 @@ struct SpanScratch {
     std::vector<uint32_t> starts;
 };
 thread_local SpanScratch scratch;
+
+// The list `out` from `start` to `end` replaced by itself `op` `b` (which may lie in `out` past `end`).
+void replace_by_combination(SolidOp op, std::vector<SolidSpan>& out, size_t start, size_t end,
+                            std::span<const SolidSpan> b, Real tolerance) {
+    std::vector<SolidSpan>& combined = scratch.combined;
+    combined.clear();
+    combine_spans(op, std::span(out.data() + start, end - start), b, tolerance, combined);
+    out.resize(start);
+    out.insert(out.end(), combined.begin(), combined.end());
+}
 
 }  // namespace
 
@@ -283,17 +286,12 @@ bool SolidObjects::bounded(uint32_t solid) const {
         return;
     }
     if (a_empty) return out.push_back(*b);
-    std::vector<SolidSpan>& combined = scratch.combined;
-    combined.clear();
-    combine_spans(step.op, std::span(out.data() + start, out.size() - start), std::span(&*b, 1), tolerance, combined);
-    out.resize(start);
-    out.insert(out.end(), combined.begin(), combined.end());
+    replace_by_combination(step.op, out, start, out.size(), std::span(&*b, 1), tolerance);
 }
 
 void SolidObjects::run(const Object& object, const Ray& ray, Interval clip, Real tolerance,
                        std::vector<SolidSpan>& out) const {
     std::vector<uint32_t>& starts = scratch.starts;
-    std::vector<SolidSpan>& combined = scratch.combined;
     out.clear();
     starts.clear();
     for (uint32_t i = object.first_step; i < object.first_step + object.steps; ++i) {
@@ -319,11 +317,7 @@ void SolidObjects::run(const Object& object, const Ray& ray, Interval clip, Real
                     if (step.op == SolidOp::Intersection) out.resize(a);
                     break;
                 }
-                combined.clear();
-                combine_spans(step.op, std::span(out.data() + a, b - a), std::span(out.data() + b, out.size() - b),
-                              tolerance, combined);
-                out.resize(a);
-                out.insert(out.end(), combined.begin(), combined.end());
+                replace_by_combination(step.op, out, a, b, std::span(out.data() + b, out.size() - b), tolerance);
                 break;
             }
         }

@@ -10,6 +10,7 @@
 #include <glm/matrix.hpp>
 
 #include "accel/geometry.h"
+#include "accel/shape_bounds.h"
 #include "scene/flat_shapes.h"
 
 namespace tracer {
@@ -39,34 +40,11 @@ SearchSettings search_settings(const RenderSettings& render, int threads) {
     return settings;
 }
 
-// The box around `box` placed by `placement` (its eight corners placed), grown by gamma(16) of
-// its coordinates' magnitude: more than the few roundings of placing a corner and of carrying a
-// ray into the mesh's coordinates.
-Bounds placed_box(const Bounds& box, const Placement& placement) {
-    Bounds out;
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::dvec3 p{(corner & 1 ? box.upper : box.lower).x, (corner & 2 ? box.upper : box.lower).y,
-                           (corner & 4 ? box.upper : box.lower).z};
-        out.extend(Vec3(placement.point(p)));
-    }
-    const Vec3 pad =
-        gamma(16) * (glm::max(glm::abs(out.lower), glm::abs(out.upper)) + glm::abs(Vec3(placement.translate)));
-    return {out.lower - pad, out.upper + pad};
-}
-
 // Half the diagonal of `box`: a sphere around its center holding it (infinite where the
 // diagonal overflows).
 Real half_diagonal(const Bounds& box) {
     const Real radius = glm::length(box.upper - box.lower) * Real(0.5);
     return std::isfinite(radius) ? radius : kInfinity;
-}
-
-// The box around a disc of `radius` at `center` across the unit `axis`: on each coordinate
-// radius sqrt(1 - axis_i^2), padded for the slack of the tests at the edges.
-Bounds disc_box(const glm::dvec3& center, const glm::dvec3& axis, double radius) {
-    const glm::dvec3 reach = radius * glm::sqrt(glm::max(glm::dvec3(0.0), 1.0 - axis * axis));
-    const glm::dvec3 pad = 1e-6 * radius + double(gamma(64)) * glm::abs(center);
-    return Bounds{Vec3(center - reach - pad), Vec3(center + reach + pad)};
 }
 
 double surface_area(const Bounds& box) {

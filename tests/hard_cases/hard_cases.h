@@ -15,7 +15,9 @@
 
 #include "accel/mesh_accel.h"
 #include "accel/triangle.h"
+#include "accel/world.h"
 #include "io/obj_mesh.h"
+#include "render/spawn.h"
 #include "scene/scene.h"
 
 namespace tracer::hard_cases {
@@ -76,6 +78,25 @@ inline std::vector<AimedRay> aimed_rays(const Vec3& origin, const Vec3& target) 
     }
     return out;
 }
+
+// A1's leak criterion for a closed shape in a world, tallied: rays aimed (every way) from a point
+// inside at a point of its surface must meet it at the target's distance, to 10^-4 and `slack`
+// (a few ulps of the coordinates): a later hit or none is a leak, a sooner one early.
+struct AimedTally {
+    int rays = 0, leaks = 0, early = 0, non_finite = 0;
+
+    void aim(const World& world, const Vec3& inside, const Vec3& target, Real slack) {
+        const Real distance = glm::length(target - inside);
+        for (const AimedRay& aimed : aimed_rays(inside, target)) {
+            ++rays;
+            SearchCounts counts;
+            const auto hit = world.nearest_hit(aimed.ray, kPrimaryRange, counts);
+            leaks += !hit || hit->t > distance * (1 + 1e-4) + slack;
+            early += hit && hit->t < distance * (1 - 1e-4) - slack;
+            non_finite += hit && !std::isfinite(hit->t);
+        }
+    }
+};
 
 // A leak from inside a closed, outward-oriented mesh towards `target`: no hit, or a first hit
 // that enters (n . d < 0) beyond the target (ties at the target are accepted).

@@ -109,31 +109,22 @@ TEST(HardCases, RoundShapesClosedConesLeakNoRay) {
         const Real slack = 4 * ulp(Real(std::max({std::abs(base.x), std::abs(base.y), std::abs(base.z)})));
         std::mt19937 random(1);
         std::uniform_real_distribution<double> unit(0, 1);
-        int rays = 0, leaks = 0, early = 0, non_finite = 0;
+        AimedTally tally;
         for (int kind = 0; kind < 5; ++kind) {
             for (int i = 0; i < 2000; ++i) {
                 const double angle = 2 * M_PI * unit(random);
                 const double h = kind == 0 ? 0 : kind == 1 ? 1 : kind == 2 ? unit(random) : kind == 3 ? 0 : 1;
                 const double rho = kind <= 2 ? radius_at(h) : radius_at(h) * std::sqrt(unit(random));
                 if (rho == 0 && kind <= 2 && h == 1 && c.cone.top_radius == 0) continue;
-                const Vec3 target(surface_point(h, rho, angle));
-                for (const AimedRay& aimed : aimed_rays(inside, target)) {
-                    ++rays;
-                    SearchCounts counts;
-                    const auto hit = world.nearest_hit(aimed.ray, kPrimaryRange, counts);
-                    const Real distance = glm::length(target - inside);
-                    leaks += !hit || hit->t > distance * (1 + 1e-4) + slack;
-                    early += hit && hit->t < distance * (1 - 1e-4) - slack;
-                    non_finite += hit && !std::isfinite(hit->t);
-                }
+                tally.aim(world, inside, Vec3(surface_point(h, rho, angle)), slack);
             }
         }
         const std::string name = std::string("round_") + c.name;
-        report(name + "_aimed_rays", rays);
-        report(name + "_leaks", leaks);
-        EXPECT_EQ(leaks, 0) << c.name;
-        EXPECT_EQ(early, 0) << c.name;
-        EXPECT_EQ(non_finite, 0) << c.name;
+        report(name + "_aimed_rays", tally.rays);
+        report(name + "_leaks", tally.leaks);
+        EXPECT_EQ(tally.leaks, 0) << c.name;
+        EXPECT_EQ(tally.early, 0) << c.name;
+        EXPECT_EQ(tally.non_finite, 0) << c.name;
     }
 }
 

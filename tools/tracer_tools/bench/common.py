@@ -7,6 +7,7 @@ import json
 import os
 import pathlib
 import platform
+import statistics
 import subprocess
 import sys
 from collections.abc import Callable
@@ -65,6 +66,33 @@ def provenance() -> dict:
         "date": datetime.date.today().isoformat(),
         "commit": git("rev-parse", "--short", "HEAD"),
     }
+
+
+def alternated(first: Callable[[], float], second: Callable[[], float], pairs: int) -> dict:
+    """first() and second() alternated `pairs` times (A B A B: a noisy machine's drift falls on
+    both): the median of the per-pair ratios first / second, each side's median, the ratios."""
+    ratios, a, b = [], [], []
+    for _ in range(pairs):
+        a.append(first())
+        b.append(second())
+        ratios.append(a[-1] / b[-1])
+    return {
+        "ratio": statistics.median(ratios),
+        "a": statistics.median(a),
+        "b": statistics.median(b),
+        "ratios": ratios,
+    }
+
+
+def targets_main(name: str, description: str, threads: int) -> argparse.Namespace:
+    """The command line of a benchmark that prints an issue's targets as a table (--pairs N,
+    default 7), and the header its report opens with."""
+    parser = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--pairs", type=option_types.whole_number(1, 1000), default=7)
+    args = parser.parse_args()
+    print(f"# tools/bench {name}: {datetime.date.today()}, {git('rev-parse', '--short', 'HEAD')}")
+    print(f"# machine: {machine()}; {threads} threads; release preset; medians of {args.pairs} alternating pairs\n")
+    return args
 
 
 def report_main(

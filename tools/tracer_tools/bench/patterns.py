@@ -14,8 +14,6 @@
 The report goes to standard output, as committed in docs/bench/bench-patterns.md.
 """
 
-import argparse
-import datetime
 import pathlib
 import re
 import statistics
@@ -25,8 +23,8 @@ import tempfile
 import time
 import zlib
 
-from tracer_tools import ROOT, option_types
-from tracer_tools.bench.common import TRACER, git, machine
+from tracer_tools import ROOT
+from tracer_tools.bench.common import TRACER, alternated, targets_main
 from tracer_tools.bench.versus import THREADS, tracer_render_seconds, versus_povray
 
 CHECKERED_FLOOR = "material matte   { ka 0.1  kd checker { even 1 odd 0.5 }  ks 0  km 0    n 0 }"
@@ -39,17 +37,10 @@ def checkered_task2(folder: pathlib.Path, pairs: int) -> dict:
     assert matte in text, "task2's matte material changed: update the benchmark"
     checkered = folder / "task2_checkered.scn"
     checkered.write_text(text.replace(matte, CHECKERED_FLOOR))
-    ratios, plain_s, checkered_s = [], [], []
-    for _ in range(pairs):
-        plain_s.append(tracer_render_seconds(plain, folder))
-        checkered_s.append(tracer_render_seconds(checkered, folder))
-        ratios.append(checkered_s[-1] / plain_s[-1])
-    return {
-        "ratio": statistics.median(ratios),
-        "plain": statistics.median(plain_s),
-        "checkered": statistics.median(checkered_s),
-        "ratios": ratios,
-    }
+    times = alternated(
+        lambda: tracer_render_seconds(checkered, folder), lambda: tracer_render_seconds(plain, folder), pairs
+    )
+    return {"ratio": times["ratio"], "plain": times["b"], "checkered": times["a"], "ratios": times["ratios"]}
 
 
 def write_png(path: pathlib.Path, size: int) -> None:
@@ -123,11 +114,7 @@ def texture_load(folder: pathlib.Path, pairs: int) -> dict:
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--pairs", type=option_types.whole_number(1, 1000), default=7)
-    args = parser.parse_args()
-    print(f"# tools/bench patterns: {datetime.date.today()}, {git('rev-parse', '--short', 'HEAD')}")
-    print(f"# machine: {machine()}; {THREADS} threads; release preset; medians of {args.pairs} alternating pairs\n")
+    args = targets_main("patterns", __doc__, THREADS)
     with tempfile.TemporaryDirectory() as name:
         folder = pathlib.Path(name)
         floor = checkered_task2(folder, args.pairs)

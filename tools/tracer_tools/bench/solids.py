@@ -12,16 +12,11 @@
 The report goes to standard output, as committed in docs/bench/bench-solids.md.
 """
 
-import argparse
-import datetime
 import pathlib
 import re
-import statistics
 import tempfile
-from collections.abc import Callable
 
-from tracer_tools import option_types
-from tracer_tools.bench.common import git, machine
+from tracer_tools.bench.common import alternated, targets_main
 from tracer_tools.bench.versus import THREADS, tracer_render_seconds, tracer_summary_line, versus_povray
 
 LIGHTS = """light {{ position ({x}, {y}, {z}) color 0.7 }}
@@ -81,27 +76,8 @@ def seconds_per_mray(scene: pathlib.Path, folder: pathlib.Path) -> float:
     return seconds / mrays
 
 
-def alternated(first: Callable[[], float], second: Callable[[], float], pairs: int) -> dict:
-    """first() / second() alternated `pairs` times: the median ratio and each side's median."""
-    ratios, a, b = [], [], []
-    for _ in range(pairs):
-        a.append(first())
-        b.append(second())
-        ratios.append(a[-1] / b[-1])
-    return {
-        "ratio": statistics.median(ratios),
-        "a": statistics.median(a),
-        "b": statistics.median(b),
-        "ratios": ratios,
-    }
-
-
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--pairs", type=option_types.whole_number(1, 1000), default=7)
-    args = parser.parse_args()
-    print(f"# tools/bench solids: {datetime.date.today()}, {git('rev-parse', '--short', 'HEAD')}")
-    print(f"# machine: {machine()}; {THREADS} threads; release preset; medians of {args.pairs} alternating pairs\n")
+    args = targets_main("solids", __doc__, THREADS)
     with tempfile.TemporaryDirectory() as name:
         folder = pathlib.Path(name)
         die, box = one_die(folder)

@@ -23,7 +23,7 @@ import subprocess
 import tempfile
 
 from tracer_tools import ROOT, option_types
-from tracer_tools.bench.common import DOCS, TRACER, TRACER_BENCH, git, machine, run_json
+from tracer_tools.bench.common import DOCS, TRACER, TRACER_BENCH, alternated, git, machine, run_json
 from tracer_tools.nff import nff2scn
 from tracer_tools.spd import steps
 
@@ -71,17 +71,12 @@ def versus_povray(scene: pathlib.Path, pairs: int, folder: pathlib.Path) -> dict
     from tracer_tools.xcheck import povray, tracer_cli
 
     description = tracer_cli.dump_json(scene)
-    ratios, ours, theirs = [], [], []
-    for _ in range(pairs):
-        ours.append(tracer_render_seconds(scene, folder))
-        _, times = povray.render_scene(description, folder)
-        theirs.append(times["trace_seconds"])
-        ratios.append(ours[-1] / theirs[-1])
-    return {
-        "ratio": statistics.median(ratios),
-        "tracer_s": statistics.median(ours),
-        "povray_s": statistics.median(theirs),
-    }
+    times = alternated(
+        lambda: tracer_render_seconds(scene, folder),
+        lambda: povray.render_scene(description, folder)[1]["trace_seconds"],
+        pairs,
+    )
+    return {"ratio": times["ratio"], "tracer_s": times["a"], "povray_s": times["b"]}
 
 
 BUILD_RUNS = 21  # builds per run of the build-only comparison (sub-millisecond builds spread widely)
