@@ -489,6 +489,22 @@ bool MeshAccel::search(const Ray& ray, Interval& range, TraversalCounts& counts,
         return bvh_.closest(ray, range, counts, LeafTest{test_leaf});
 }
 
+void MeshAccel::all_hits(const Ray& ray, Interval range, std::vector<MeshHit>& out, TraversalCounts& counts) const {
+    const LaneTester tester(ray, columns());
+    search<false>(ray, range, counts, [&](uint32_t first, uint32_t count, Interval& r) {
+        for (uint32_t chunk = first; chunk < first + count; chunk += kTriangleLanes) {
+            const int lanes = int(std::min<uint32_t>(kTriangleLanes, first + count - chunk));
+            LaneTester::Candidate candidates[kTriangleLanes];
+            for (unsigned m = tester.candidates(chunk, lanes, r, candidates); m != 0; m &= m - 1) {
+                const int lane = __builtin_ctz(m);
+                TriangleHit hit;
+                if (LaneTester::finish(candidates, lane, r, hit)) out.push_back({chunk + uint32_t(lane), hit});
+            }
+        }
+        return false;  // the range stays whole: every hit is wanted
+    });
+}
+
 [[gnu::always_inline]] inline bool MeshAccel::run_blocks(const LaneTester& tester, TriangleRun run, Interval range) {
     LaneTester::Candidate candidates[kTriangleLanes];
     for (unsigned m = tester.candidates(run.first, int(run.count), range, candidates); m != 0; m &= m - 1) {

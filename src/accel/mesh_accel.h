@@ -91,6 +91,9 @@ public:
     // hit; out[i] and ranges[i] are then its hit and its range shrunk to it.
     unsigned intersect_packet(const Ray* const* rays, int count, Interval* ranges, MeshHit* out,
                               TraversalCounts& counts) const;
+    // Appends to `out` every triangle along the ray inside `range`, in no particular order (the
+    // crossings of a closed mesh that is part of a solid: accel/solid_meshes.h).
+    void all_hits(const Ray& ray, Interval range, std::vector<MeshHit>& out, TraversalCounts& counts) const;
     // True if any triangle lies along the ray inside `range`; `blocker` is then the run of at
     // most kTriangleLanes triangles tested together that holds one.
     bool occluded(const Ray& ray, Interval range, TraversalCounts& counts, TriangleRun& blocker) const;

@@ -9,6 +9,7 @@
 
 #include "accel/shape_bounds.h"
 #include "accel/solid_leaves.h"
+#include "scene/mesh_facts.h"
 #include "scene/placement.h"
 
 namespace tracer {
@@ -71,7 +72,7 @@ bool is_empty(const Bounds& box) {
 
 // The scratch of the spans' sweep, one per thread: a ray allocates nothing once it has run.
 struct SpanScratch {
-    std::vector<SolidSpan> spans, combined;
+    std::vector<SolidSpan> spans, combined, mesh_spans;
     std::vector<uint32_t> starts;
 };
 thread_local SpanScratch scratch;
@@ -88,9 +89,9 @@ void replace_by_combination(SolidOp op, std::vector<SolidSpan>& out, size_t star
 
 }  // namespace
 
-SolidObjects::SolidObjects(const SceneDescription& scene) {
-    const std::vector<LeafExtent> extents = add_leaves(scene);
-    object_of_leaf_.assign(kinds_.size(), 0);
+SolidObjects::SolidObjects(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings) {
+    const std::vector<LeafExtent> extents = add_leaves(scene, meshes);
+    object_of_leaf_.assign(kinds_.size(), kNoObject);
     // Each solid's bounds, from its parts' (a nested solid comes after the solid it is part of).
     std::vector<Bounds> solid_bounds(scene.solids.size());
     for (size_t i = scene.solids.size(); i-- > 0;) {
@@ -113,9 +114,24 @@ SolidObjects::SolidObjects(const SceneDescription& scene) {
     }
     for (uint32_t i = 0; i < scene.solids.size(); ++i)
         if (!scene.solids[i].nested) add_program(scene, i, solid_bounds, extents);
+    build_meshes(scene, meshes, settings);
 }
 
-std::vector<SolidObjects::LeafExtent> SolidObjects::add_leaves(const SceneDescription& scene) {
+void SolidObjects::build_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
+                                const SearchSettings& settings) {
+    meshes_.resize(scene.solid_meshes.size());
+    for (uint32_t i = 0; i < scene.solid_meshes.size(); ++i) {
+        const uint32_t leaf = first_leaf_of_kind_[size_t(SolidPart::Kind::Mesh)] + i;
+        if (object_of_leaf_[leaf] == kNoObject) continue;
+        const Mesh& mesh = scene.solid_meshes[i];
+        MeshPart part{&meshes.files[meshes.file_of_solid_mesh[i]], Placement(mesh), 0, mesh.flat};
+        part.placement.translate -= glm::dvec3(objects_[object_of_leaf_[leaf]].shift);
+        meshes_[i] = std::make_unique<SolidMesh>(SolidMesh{MeshAccel({part}, settings), mesh.flat});
+    }
+}
+
+std::vector<SolidObjects::LeafExtent> SolidObjects::add_leaves(const SceneDescription& scene,
+                                                               const SceneMeshes& meshes) {
     std::vector<LeafExtent> extents;
     first_leaf_of_kind_.assign(size_t(SolidPart::Kind::Solid) + 1, 0);
     auto add = [&](SolidPart::Kind kind, int material, const Bounds& bounds) {
@@ -151,6 +167,12 @@ std::vector<SolidObjects::LeafExtent> SolidObjects::add_leaves(const SceneDescri
         half_spaces_.push_back({Vec3(plane.point), Vec3(plane.normal)});
         add(SolidPart::Kind::HalfSpace, plane.material, half_space_bounds(plane));
         extents.back().reach = std::max({std::abs(plane.point.x), std::abs(plane.point.y), std::abs(plane.point.z)});
+    }
+    first_leaf_of_kind_[size_t(SolidPart::Kind::Mesh)] = uint32_t(kinds_.size());
+    for (size_t i = 0; i < scene.solid_meshes.size(); ++i) {
+        const Mesh& mesh = scene.solid_meshes[i];
+        const MeshFacts facts = mesh_facts(meshes.files[meshes.file_of_solid_mesh[i]], mesh);
+        add(SolidPart::Kind::Mesh, mesh.material, {Vec3(facts.lower), Vec3(facts.upper)});
     }
     return extents;
 }
@@ -220,6 +242,7 @@ void SolidObjects::make_relative(Object& object, const std::vector<LeafExtent>& 
             case SolidPart::Kind::Cone: cones_[of_kind(leaf)].tip -= shift; break;
             case SolidPart::Kind::HalfSpace: half_spaces_[of_kind(leaf)].point -= shift; break;
             case SolidPart::Kind::Sphere:
+            case SolidPart::Kind::Mesh:  // built relative to the shift (build_meshes)
             case SolidPart::Kind::Solid: break;
         }
         const Bounds& box = extents[leaf].bounds;
@@ -237,19 +260,25 @@ bool SolidObjects::bounded(uint32_t solid) const {
     return true;
 }
 
-[[gnu::always_inline]] inline std::optional<SolidSpan> SolidObjects::leaf_span(uint32_t index, const Ray& ray,
-                                                                               Interval clip) const {
+[[gnu::always_inline]] inline bool SolidObjects::ball_misses(uint32_t leaf, const Ray& ray, Interval clip) const {
     // Along the ray, the leaf lies within its ball's radius of the ball centre's foot: nothing
     // to find outside the clip (a pip behind a ray leaving the die), nor if the line passes
     // outside the ball (most pips).
-    const LeafBall& ball = balls_[index];
+    const LeafBall& ball = balls_[leaf];
     if (ball.radius < kInfinity) {
         const Vec3 to_center = ball.center - ray.origin;
         const Real foot = dot(to_center, ray.direction);
-        if (foot + ball.radius < clip.min || foot - ball.radius > clip.max) return std::nullopt;
+        if (foot + ball.radius < clip.min || foot - ball.radius > clip.max) return true;
         const Vec3 across = glm::cross(to_center, ray.direction);
-        if (dot(across, across) > ball.radius * ball.radius * Real(1 + 1e-6)) return std::nullopt;
+        if (dot(across, across) > ball.radius * ball.radius * Real(1 + 1e-6)) return true;
     }
+    return false;
+}
+
+[[gnu::always_inline]] inline std::optional<SolidSpan> SolidObjects::leaf_span(uint32_t index, const Ray& ray,
+                                                                               Interval clip) const {
+    if (ball_misses(index, ray, clip)) return std::nullopt;
+    const LeafBall& ball = balls_[index];
     std::optional<SolidSpan> span;
     switch (kind_of(index)) {
         case SolidPart::Kind::Sphere: span = sphere_span(ray, ball.center, ball.radius, index); break;
@@ -265,10 +294,22 @@ bool SolidObjects::bounded(uint32_t solid) const {
             span = half_space_span(ray, half.point, half.normal, index);
             break;
         }
+        case SolidPart::Kind::Mesh:  // append_mesh_leaf_spans
         case SolidPart::Kind::Solid: break;
     }
     if (span && (span->leave.t < clip.min || span->enter.t > clip.max)) return std::nullopt;
     return span;
+}
+
+void SolidObjects::append_mesh_leaf_spans(uint32_t leaf, const Ray& ray, Interval clip, Real tolerance,
+                                          std::vector<SolidSpan>& out) const {
+    if (ball_misses(leaf, ray, clip)) return;
+    const size_t first = out.size();
+    append_mesh_spans(meshes_[of_kind(leaf)]->accel, ray, clip.max, tolerance, leaf, out);
+    // Those wholly before the clip change nothing in it.
+    size_t kept = first;
+    while (kept < out.size() && out[kept].leave.t < clip.min) ++kept;
+    out.erase(out.begin() + std::ptrdiff_t(first), out.begin() + std::ptrdiff_t(kept));
 }
 
 // CombineLeaf: the list from `start` to the end, op the leaf's span, in place.
@@ -280,6 +321,19 @@ bool SolidObjects::bounded(uint32_t solid) const {
     // Only where the list lies can a leaf cut or overlap it.
     if (step.op != SolidOp::Union)
         clip = {std::max(clip.min, out[start].enter.t - tolerance), std::min(clip.max, out.back().leave.t + tolerance)};
+    if (kind_of(step.leaf) == SolidPart::Kind::Mesh) {
+        std::vector<SolidSpan>& spans = scratch.mesh_spans;
+        spans.clear();
+        append_mesh_leaf_spans(step.leaf, ray, clip, tolerance, spans);
+        if (spans.empty()) {
+            if (step.op == SolidOp::Intersection) out.resize(start);
+        } else if (a_empty) {
+            out.insert(out.end(), spans.begin(), spans.end());
+        } else {
+            replace_by_combination(step.op, out, start, out.size(), spans, tolerance);
+        }
+        return;
+    }
     const std::optional<SolidSpan> b = leaf_span(step.leaf, ray, clip);
     if (!b) {
         if (step.op == SolidOp::Intersection) out.resize(start);
@@ -299,7 +353,10 @@ void SolidObjects::run(const Object& object, const Ray& ray, Interval clip, Real
         switch (step.kind) {
             case Step::Kind::Leaf:
                 starts.push_back(uint32_t(out.size()));
-                if (auto span = leaf_span(step.leaf, ray, clip)) out.push_back(*span);
+                if (kind_of(step.leaf) == SolidPart::Kind::Mesh)
+                    append_mesh_leaf_spans(step.leaf, ray, clip, tolerance, out);
+                else if (auto span = leaf_span(step.leaf, ray, clip))
+                    out.push_back(*span);
                 break;
             case Step::Kind::Empty: starts.push_back(uint32_t(out.size())); break;
             case Step::Kind::CombineLeaf: combine_with_leaf(step, ray, clip, tolerance, starts.back(), out); break;
@@ -324,13 +381,17 @@ void SolidObjects::run(const Object& object, const Ray& ray, Interval clip, Real
     }
 }
 
+Real SolidObjects::tolerance(const Object& object, const Ray& ray) {
+    const Vec3 o = abs_each(ray.origin);
+    return gamma(32) * (std::max({o.x, o.y, o.z}) + object.reach);
+}
+
 std::optional<SolidHit> SolidObjects::nearest(uint32_t solid, const Ray& world_ray, Interval range) const {
     const Object& object = objects_[solid];
     const Ray ray{world_ray.origin - object.shift, world_ray.direction};
-    const Vec3 o = abs_each(ray.origin);
     // Crossings closer than this are one place; one this close to the origin is the surface a
     // spawned ray leaves (its t computed from the moved origin may round either way).
-    const Real tolerance = gamma(32) * (std::max({o.x, o.y, o.z}) + object.reach);
+    const Real tolerance = SolidObjects::tolerance(object, ray);
     std::vector<SolidSpan>& spans = scratch.spans;
     const Real from = std::max(range.min, tolerance);
     run(object, ray, {from - tolerance, range.max + tolerance}, tolerance, spans);
@@ -344,7 +405,8 @@ std::optional<SolidHit> SolidObjects::nearest(uint32_t solid, const Ray& world_r
 
 SolidSurface SolidObjects::surface(const Ray& world_ray, Real t, uint32_t face) const {
     const uint32_t leaf = face >> 4, part = (face >> 1) & 7;
-    const Vec3& shift = objects_[object_of_leaf_[leaf]].shift;
+    const Object& object = objects_[object_of_leaf_[leaf]];
+    const Vec3& shift = object.shift;
     const Ray ray{world_ray.origin - shift, world_ray.direction};
     SolidSurface out;
     out.material = materials_[leaf];
@@ -380,9 +442,17 @@ SolidSurface SolidObjects::surface(const Ray& world_ray, Real t, uint32_t face) 
             on_plane(half.point, half.normal);
             break;
         }
+        case SolidPart::Kind::Mesh: {
+            const MeshSurface on_mesh =
+                mesh_span_end_surface(*meshes_[of_kind(leaf)], ray, t, part == 1, tolerance(object, ray));
+            round = on_mesh.round;
+            out.shading_normal = on_mesh.shading_normal;
+            break;
+        }
         case SolidPart::Kind::Solid: break;
     }
-    if (face & 1) round.normal = -round.normal;
+    if (kind_of(leaf) != SolidPart::Kind::Mesh) out.shading_normal = round.normal;
+    if (face & 1) round.normal = -round.normal, out.shading_normal = -out.shading_normal;
     // Back in the world: one more rounding of each coordinate.
     round.point += shift;
     round.error = (1 + gamma(1)) * round.error + gamma(1) * abs_each(round.point);

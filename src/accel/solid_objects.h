@@ -6,14 +6,18 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "accel/bvh_search.h"
+#include "accel/mesh_accel.h"
 #include "accel/round_shapes.h"
+#include "accel/solid_meshes.h"
 #include "accel/solid_spans.h"
 #include "accel/types.h"
 #include "scene/scene.h"
+#include "scene/triangle_mesh.h"
 
 namespace tracer {
 
@@ -44,16 +48,20 @@ inline uint32_t pack_solid_face(const SpanEnd& end) {
     return end.surface << 4 | uint32_t(end.part) << 1 | uint32_t(end.turned);
 }
 
-// The surface of a solid at a hit: as a round shape's, and its material.
+// The surface of a solid at a hit: as a round shape's, its shading normal (a smooth mesh's
+// interpolated one; else round.normal) and its material.
 struct SolidSurface {
     RoundSurface round;
+    Vec3 shading_normal{0};
     int material = 0;
 };
 
 class SolidObjects {
 public:
-    // The scene's solids that are objects of their own (not nested in another), in order.
-    explicit SolidObjects(const SceneDescription& scene);
+    // The scene's solids that are objects of their own (not nested in another), in order; the
+    // files of their meshes, and how to search those.
+    explicit SolidObjects(const SceneDescription& scene, const SceneMeshes& meshes = {},
+                          const SearchSettings& settings = {});
 
     size_t size() const { return objects_.size(); }
     // The solid's bounds: a difference's are its first part's, an intersection's the overlap of
@@ -92,7 +100,9 @@ private:
         Bounds bounds;  // infinite on the axes a half-space does not bound
         Real reach = 0;
     };
-    std::vector<LeafExtent> add_leaves(const SceneDescription& scene);
+    std::vector<LeafExtent> add_leaves(const SceneDescription& scene, const SceneMeshes& meshes);
+    // The triangles of each mesh leaf some object uses, placed relative to its object's shift.
+    void build_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings);
     void add_program(const SceneDescription& scene, uint32_t solid, const std::vector<Bounds>& solid_bounds,
                      const std::vector<LeafExtent>& extents);
     // Moves the object's leaves (steps from `first_step`) by -shift, and sets its shift and reach.
@@ -103,8 +113,15 @@ private:
     // The solid's spans along the ray within `clip` (the part of the line that matters: a span
     // outside it changes nothing inside it), in `out` (the thread's scratch).
     void run(const Object& object, const Ray& ray, Interval clip, Real tolerance, std::vector<SolidSpan>& out) const;
+    // Crossings closer than this along `ray` (relative to the object's shift) are one place.
+    static Real tolerance(const Object& object, const Ray& ray);
+    // True if the leaf's ball shows it lies off the ray's line or wholly outside `clip`.
+    bool ball_misses(uint32_t leaf, const Ray& ray, Interval clip) const;
     // The leaf's span, or none if the ray's line misses it or it lies wholly outside `clip`.
     std::optional<SolidSpan> leaf_span(uint32_t leaf, const Ray& ray, Interval clip) const;
+    // A mesh leaf's spans (any number) that reach into `clip`, appended to `out`.
+    void append_mesh_leaf_spans(uint32_t leaf, const Ray& ray, Interval clip, Real tolerance,
+                                std::vector<SolidSpan>& out) const;
     void combine_with_leaf(const Step& step, const Ray& ray, Interval clip, Real tolerance, uint32_t start,
                            std::vector<SolidSpan>& out) const;
 
@@ -114,16 +131,18 @@ private:
         Vec3 center{0};
         Real radius = kInfinity;
     };
-    // The leaves, numbered spheres first, then boxes, cones and half-spaces (as the scene lists
-    // them): for each its kind, material and ball; the shapes of each kind but spheres.
+    // The leaves, numbered spheres first, then boxes, cones, half-spaces and meshes (as the scene
+    // lists them): for each its kind, material and ball; the shapes of each kind but spheres.
     std::vector<uint8_t> kinds_;
-    std::vector<uint32_t> object_of_leaf_;  // the object whose shift the leaf is relative to
+    static constexpr uint32_t kNoObject = ~uint32_t(0);
+    std::vector<uint32_t> object_of_leaf_;  // the object whose shift the leaf is relative to, or kNoObject
     std::vector<int> materials_;
     std::vector<LeafBall> balls_;
     std::vector<SolidBox> boxes_;
     std::vector<ConeShape> cones_;
     std::vector<SolidHalfSpace> half_spaces_;
-    std::vector<uint32_t> first_leaf_of_kind_;  // by SolidPart::Kind: where that kind's leaves start
+    std::vector<std::unique_ptr<SolidMesh>> meshes_;  // none for a leaf no object uses
+    std::vector<uint32_t> first_leaf_of_kind_;        // by SolidPart::Kind: where that kind's leaves start
     std::vector<Step> steps_;
     std::vector<Object> objects_;
 };

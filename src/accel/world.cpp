@@ -94,7 +94,7 @@ World::World(SceneDescription& scene, const SceneMeshes& meshes, int threads, Re
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
              SceneDescription* releasable)
-    : solids_(scene),
+    : solids_(scene, meshes, search_settings(scene.render, threads)),
       materials_(scene.materials),
       lights_(scene.lights),
       patterns_(scene.patterns),

@@ -289,7 +289,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
                 out.point = solid.round.point;
                 out.error = solid.round.error;
             }
-            out.normal = solid.round.normal;
+            out.normal = solid.shading_normal;
             out.geometric_normal = solid.round.normal;
             out.material = solid.material;
             if (out.normal == Vec3(0)) [[unlikely]] {  // a cone's apex: face the ray

@@ -11,6 +11,7 @@
 #include "base/input_file.h"
 #include "io/obj_reader.h"
 #include "io/polygon.h"
+#include "scene/mesh_facts.h"
 #include "scene/placement.h"
 
 namespace tracer {
@@ -150,21 +151,52 @@ std::optional<TriangleMesh> mesh_from_obj_text(const std::string& path, std::str
     return out;
 }
 
+// Reports `mesh`, a part of a solid, if its file is not closed: an error naming an edge.
+static bool check_closed(const Mesh& mesh, const TriangleMesh& file, Diagnostics& diagnostics) {
+    const std::optional<UnmatchedEdge> edge = unmatched_edge(file);
+    if (!edge) return true;
+    const std::string name = mesh.path.substr(mesh.path.find_last_of('/') + 1);
+    const std::string between =
+        "the edge between vertices " + std::to_string(edge->from) + " and " + std::to_string(edge->to) + " of " + name;
+    const std::string uses = std::to_string(edge->forward + edge->backward);
+    const std::string problem =
+        edge->forward + edge->backward == 1 ? between + " has a triangle on one side only: the surface has a hole there"
+        : edge->forward == 0 || edge->backward == 0
+            ? between + " has " + uses + " triangles all running along it the same way: some face is turned inside out"
+            : between + " has " + uses + " triangles that do not pair up (" + std::to_string(edge->forward) +
+                  " running one way, " + std::to_string(edge->backward) + " the other)";
+    diagnostics.report(Severity::Error, mesh.named_at,
+                       "a mesh that is part of a solid must be closed, with an inside: " + problem);
+    return false;
+}
+
 std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostics& diagnostics) {
     SceneMeshes meshes;
     std::map<std::string, uint32_t> file_index;  // by normalised absolute path
     bool ok = true;
-    for (const Mesh& mesh : scene.meshes) {
+    // The file of a mesh block, read the first time it is named.
+    auto file_of = [&](const Mesh& mesh) {
         const std::string key = std::filesystem::path(mesh.path).lexically_normal().string();
         auto [known, is_new] = file_index.try_emplace(key, uint32_t(meshes.files.size()));
-        meshes.file_of_block.push_back(known->second);
-        if (!is_new) continue;
+        if (!is_new) return known->second;
         if (auto loaded = load_mesh(mesh, diagnostics)) {
             meshes.files.push_back(std::move(*loaded));
         } else {
             meshes.files.emplace_back();
             ok = false;
         }
+        return known->second;
+    };
+    for (const Mesh& mesh : scene.meshes) meshes.file_of_block.push_back(file_of(mesh));
+    for (const Mesh& mesh : scene.solid_meshes) meshes.file_of_solid_mesh.push_back(file_of(mesh));
+    if (!ok) return std::nullopt;
+    // A part of a solid needs an inside: a closed surface (each file checked once).
+    std::vector<bool> checked(meshes.files.size(), false);
+    for (size_t part = 0; part < scene.solid_meshes.size(); ++part) {
+        const uint32_t file = meshes.file_of_solid_mesh[part];
+        if (checked[file]) continue;
+        checked[file] = true;
+        ok = check_closed(scene.solid_meshes[part], meshes.files[file], diagnostics) && ok;
     }
     if (!ok) return std::nullopt;
     // A pattern mapped by (u, v) on a file without them sees (0, 0) everywhere: one colour.
@@ -183,14 +215,17 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
     for (size_t f = 0; f < meshes.files.size(); ++f)
         for (const glm::dvec3& p : meshes.files[f].positions)
             largest[f] = std::max({largest[f], std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-    for (size_t block = 0; block < scene.meshes.size(); ++block) {
-        const Mesh& mesh = scene.meshes[block];
-        const double reach = Placement(mesh).reach(largest[meshes.file_of_block[block]]);
+    auto check_reach = [&](const Mesh& mesh, uint32_t file) {
+        const double reach = Placement(mesh).reach(largest[file]);
         if (const std::string problem = placed_reach_problem("mesh", reach); !problem.empty()) {
             diagnostics.report(Severity::Error, mesh.named_at, problem);
             ok = false;
         }
-    }
+    };
+    for (size_t block = 0; block < scene.meshes.size(); ++block)
+        check_reach(scene.meshes[block], meshes.file_of_block[block]);
+    for (size_t part = 0; part < scene.solid_meshes.size(); ++part)
+        check_reach(scene.solid_meshes[part], meshes.file_of_solid_mesh[part]);
     if (!ok) return std::nullopt;
     return meshes;
 }

@@ -111,6 +111,7 @@ int& material_of(SceneDescription& scene, ShapeList list, size_t index) {
         case ShapeList::SolidBoxes: return scene.solid_boxes[index].material;
         case ShapeList::SolidCones: return scene.solid_cones[index].material;
         case ShapeList::HalfSpaces: return scene.half_spaces[index].material;
+        case ShapeList::SolidMeshes: return scene.solid_meshes[index].material;
     }
     return scene.spheres[index].material;
 }
@@ -129,6 +130,7 @@ size_t size_of(const SceneDescription& scene, ShapeList list) {
         case ShapeList::SolidBoxes: return scene.solid_boxes.size();
         case ShapeList::SolidCones: return scene.solid_cones.size();
         case ShapeList::HalfSpaces: return scene.half_spaces.size();
+        case ShapeList::SolidMeshes: return scene.solid_meshes.size();
     }
     return 0;
 }

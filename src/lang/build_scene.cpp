@@ -247,8 +247,11 @@ void build_mesh(SceneAssembly& a, const Block& block, const Fields& fields) {
         a.diagnostics.error(a.file, fields.value_span("file"), "cannot read mesh file '" + mesh.path + "': " + problem);
     mesh.flat = fields.text("shading") == "flat";
     if (!build_placed(a, block, fields, mesh)) return;
-    place_material(a, ShapeList::Meshes, mesh.material, Placement(mesh));
-    a.scene.meshes.push_back(mesh);
+    const int solid = block.group ? solid_of(a, block) : kNoSolid;
+    place_material(a, solid == kNoSolid ? ShapeList::Meshes : ShapeList::SolidMeshes, mesh.material, Placement(mesh));
+    if (solid == kNoSolid) return a.scene.meshes.push_back(mesh);
+    add_solid_part(a, solid, SolidPart::Kind::Mesh, a.scene.solid_meshes.size());
+    a.scene.solid_meshes.push_back(mesh);
 }
 
 // Placed, no corner of a flat shape may leave the renderer's range.
@@ -330,6 +333,7 @@ void resolve_later_materials(SceneAssembly& a) {
     resolve(scene.triangles), resolve(scene.quads), resolve(scene.boxes);
     resolve(scene.cones), resolve(scene.discs);
     resolve(scene.solid_spheres), resolve(scene.solid_boxes), resolve(scene.solid_cones), resolve(scene.half_spaces);
+    resolve(scene.solid_meshes);
 }
 
 // Warnings where the image cannot be what the author meant (the scene stays valid): nothing to
@@ -363,7 +367,8 @@ void warn_about_the_picture(const SceneAssembly& a) {
         (needs_light(scene.spheres) || needs_light(scene.planes) || needs_light(scene.meshes) ||
          needs_light(scene.triangles) || needs_light(scene.quads) || needs_light(scene.boxes) ||
          needs_light(scene.cones) || needs_light(scene.discs) || needs_light(scene.solid_spheres) ||
-         needs_light(scene.solid_boxes) || needs_light(scene.solid_cones) || needs_light(scene.half_spaces)))
+         needs_light(scene.solid_boxes) || needs_light(scene.solid_cones) || needs_light(scene.half_spaces) ||
+         needs_light(scene.solid_meshes)))
         a.diagnostics.report(Severity::Warning, whole,
                              "the scene has no light: its diffuse and specular colours (kd, ks) will not show, only "
                              "ka; add one, e.g. light { position (0, 5, 5) }");

@@ -19,7 +19,7 @@ SolidOp solid_op(std::string_view keyword) {
 // The blocks a solid may hold: closed shapes (material blocks define names, wherever written).
 bool can_be_a_part(std::string_view kind) {
     return kind == "sphere" || kind == "box" || kind == "cylinder" || kind == "cone" || kind == "plane" ||
-           kind == "material";
+           kind == "mesh" || kind == "material";
 }
 
 // "a difference", "an intersection".
@@ -72,14 +72,13 @@ bool check_solid_part(SceneAssembly& a, const Block& block) {
     const Group* around = block.group.get();
     while (around->kind == "group") around = around->outer.get();
     const std::string closed =
-        "its parts are closed shapes (sphere, box, cylinder, cone, a plane's half-space) "
+        "its parts are closed shapes (sphere, box, cylinder, cone, a closed mesh, a plane's half-space) "
         "and other solids";
     const std::string named = with_article(around->kind);
     Diagnostic* d = a.diagnostics.error(
         a.file, block.kind_span,
-        block.kind == "light" ? "a light cannot be part of " + named + ": write it outside the " + around->kind
-        : block.kind == "mesh"
-            ? "a mesh cannot be part of " + named + " yet: " + closed
+        block.kind == "light"
+            ? "a light cannot be part of " + named + ": write it outside the " + around->kind
             : "a " + block.kind + " cannot be part of " + named + ", which needs an inside: " + closed);
     Diagnostics::note(d, a.file, around->keyword, "the " + around->kind + " is here");
     return false;

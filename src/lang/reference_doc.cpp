@@ -69,8 +69,9 @@ const StatementSpec kStatements[] = {
     {"union", "union { placement ... statements }",
      "a group whose shapes show all their faces (POV-Ray's union); inside another solid, a solid like `merge`"},
     {"merge", "merge { placement ... statements }",
-     "one solid (CSG) of every closed shape and solid made inside: where they overlap, their inner faces vanish "
-     "(for glass); placed like a group"},
+     "one solid (CSG) of every closed shape (sphere, box, cylinder, cone, closed mesh, plane: the half-space "
+     "behind it) and solid made inside: where they overlap, their inner faces vanish (for glass); placed like a "
+     "group"},
     {"intersection", "intersection { placement ... statements }",
      "the solid inside every part made inside (a lens: two spheres); each face keeps its shape's material"},
     {"difference", "difference { placement ... statements }",

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 
 #include "scene/scene.h"
@@ -19,6 +21,18 @@ struct MeshFacts {
 
 // The facts of `mesh` placed by `placed`, computed in double.
 MeshFacts mesh_facts(const TriangleMesh& mesh, const Placed& placed);
+
+// An edge that keeps a mesh from closing: its vertices as the file numbers them (from 1), and
+// how many triangles run along it from `from` to `to` and back.
+struct UnmatchedEdge {
+    uint32_t from = 0, to = 0;
+    size_t forward = 0, backward = 0;
+};
+
+// The first edge of `mesh` whose triangles do not pair up, each running along it one way with
+// one running the other way (vertices at the same point are one vertex); none if the mesh is
+// closed and consistently oriented: the boundary of a solid, which CSG needs.
+std::optional<UnmatchedEdge> unmatched_edge(const TriangleMesh& mesh);
 
 // "mesh.obj (line 12)": a shape as statistics name it, by its file or kind and its line.
 std::string shape_label(const std::string& kind_or_path, int line);

@@ -203,9 +203,10 @@ struct Box : Placed {
 enum class SolidOp : uint8_t { Union, Intersection, Difference };
 
 // One part of a solid: a closed shape (an entry of one of SceneDescription's solid_* lists, in
-// world coordinates) or another solid (an entry of SceneDescription::solids).
+// world coordinates; a mesh's file checked closed when read) or another solid (an entry of
+// SceneDescription::solids).
 struct SolidPart {
-    enum class Kind : uint8_t { Sphere, Box, Cone, HalfSpace, Solid };
+    enum class Kind : uint8_t { Sphere, Box, Cone, HalfSpace, Mesh, Solid };
     Kind kind = Kind::Sphere;
     uint32_t index = 0;
 };
@@ -247,6 +248,7 @@ struct SceneDescription {
     std::vector<Box> solid_boxes;
     std::vector<Cone> solid_cones;
     std::vector<Plane> half_spaces;
+    std::vector<Mesh> solid_meshes;
     std::vector<Light> lights;
     std::vector<Pattern> patterns;  // of the materials (pattern.h)
     std::vector<ImageFile> images;  // that image patterns read

@@ -121,7 +121,7 @@ Json cone_json(const SceneDescription& scene, const Cone& cone) {
 }
 
 // A solid: its operation and its parts in order, each a shape (its kind a key: sphere, box,
-// cone, half_space) or the index of another solid of the array (nested: not an object by itself).
+// cone, half_space, mesh) or the index of another solid of the array (nested: not an object by itself).
 Json solid_json(const SceneDescription& scene, const Solid& solid) {
     static constexpr const char* kOps[] = {"union", "intersection", "difference"};
     Json parts = Json::array();
@@ -140,6 +140,13 @@ Json solid_json(const SceneDescription& scene, const Solid& solid) {
                 parts.push_back(
                     {{"kind", "half_space"}, {"half_space", plane_json(scene, scene.half_spaces[part.index])}});
                 break;
+            case SolidPart::Kind::Mesh: {
+                const Mesh& m = scene.solid_meshes[part.index];
+                Json entry = placed_json(scene, m, {{"file", m.path}});
+                if (m.flat) entry["shading"] = "flat";
+                parts.push_back({{"kind", "mesh"}, {"mesh", std::move(entry)}});
+                break;
+            }
             case SolidPart::Kind::Solid: parts.push_back({{"kind", "solid"}, {"solid", part.index}}); break;
         }
     }

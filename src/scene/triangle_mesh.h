@@ -25,7 +25,8 @@ struct TriangleMesh {
 // The meshes of a scene: each file read once, however many mesh blocks name it.
 struct SceneMeshes {
     std::vector<TriangleMesh> files;
-    std::vector<uint32_t> file_of_block;  // per SceneDescription::meshes entry: index into files
+    std::vector<uint32_t> file_of_block;            // per SceneDescription::meshes entry: index into files
+    std::vector<uint32_t> file_of_solid_mesh = {};  // per SceneDescription::solid_meshes entry: index into files
 };
 
 }  // namespace tracer

@@ -123,3 +123,21 @@ def test_solids_nest_as_povrays_csg_with_one_interior():
     solids[1]["parts"] = [{"kind": "sphere", "sphere": water}]
     with pytest.raises(ToolError, match="different ior"):
         povray._solid(solids, 0)
+
+
+def test_a_mesh_in_a_solid_is_a_mesh2_with_an_inside_and_the_solids_interior():
+    glass = material(kt=[0.9, 0.9, 0.9], ior=1.5)
+    cube = {"file": str(ROOT / "scenes" / "meshes" / "cube.obj"), "scale": [2, 2, 2], "material": glass}
+    sphere = {"center": [0, 1, 0], "radius": 0.5, "material": glass}
+    solids = [
+        {
+            "op": "difference",
+            "nested": False,
+            "parts": [{"kind": "mesh", "mesh": cube}, {"kind": "sphere", "sphere": sphere}],
+        }
+    ]
+    text = povray._solid(solids, 0)
+    lines = text.splitlines()
+    assert lines[0] == "difference {" and lines[1] == "mesh2 {" and "face_indices { 12," in text
+    # POV-Ray needs the inside_vector to know a mesh's inside; the interior is the solid's alone.
+    assert "  inside_vector <0, 0, 1>" in lines and text.count("interior") == 1 and lines[-2] == "interior { ior 1.5 }"

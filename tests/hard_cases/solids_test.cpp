@@ -1,6 +1,7 @@
 // The hard cases' rules applied to solids (CSG, issue 55), at sizes 1e-4, 1 and 1e6 and at 1e6
 // from the origin: rays aimed from inside at the edges where two parts meet (a lens's rim, a
-// crater's rim in a box) leak through none of them, aimed in float and in double (+-1 ulp); rays
+// crater's rim in a box, also in a box made of 12 triangles, and that mesh's own edges and
+// corners) leak through none of them, aimed in float and in double (+-1 ulp); rays
 // spawned off a solid's surface never meet it again where they cannot (a lens is convex; a ray
 // leaving a box's face outwards cannot meet what is cut out of the box), nor at once where they
 // can (a ray crossing a crater meets its far side a chord away).
@@ -50,13 +51,72 @@ SceneDescription cratered_box(const SolidCase& c) {
     return scene;
 }
 
+// The same with the box a closed mesh of 12 triangles (two across each face).
+struct SolidWorld {
+    SceneDescription scene;
+    SceneMeshes meshes;
+};
+SolidWorld cratered_mesh_box(const SolidCase& c) {
+    SolidWorld out{cratered_box(c), {}};
+    TriangleMesh cube;
+    for (int i = 0; i < 8; ++i) cube.positions.push_back({i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1});
+    const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& f : faces)
+        cube.triangles.push_back({f[0], f[1], f[2]}), cube.triangles.push_back({f[0], f[2], f[3]});
+    out.meshes.files.push_back(cube);
+    out.meshes.file_of_solid_mesh = {0};
+    Mesh mesh;
+    mesh.scale = dvec3(c.size);
+    mesh.translate = c.offset;
+    out.scene.solid_meshes.push_back(mesh);
+    out.scene.solid_boxes.clear();
+    out.scene.solids[0].parts[0] = {SolidPart::Kind::Mesh, 0};
+    return out;
+}
+
+enum class Kind { Lens, Crater, MeshCrater };
+constexpr Kind kKinds[] = {Kind::Lens, Kind::Crater, Kind::MeshCrater};
+const char* name_of(Kind kind) {
+    return kind == Kind::Lens ? "lens_" : kind == Kind::Crater ? "crater_" : "mesh_crater_";
+}
+SolidWorld solid_world(Kind kind, const SolidCase& c) {
+    if (kind == Kind::MeshCrater) return cratered_mesh_box(c);
+    return {kind == Kind::Lens ? lens(c) : cratered_box(c), {}};
+}
+
+// A point on an edge of the cube of side 2 round the origin (or a face's diagonal, the edge
+// between its two triangles), but the top face's diagonal, which the crater cuts.
+dvec3 on_cube_edge(std::mt19937& random) {
+    std::uniform_real_distribution<double> along(-1, 1);
+    std::uniform_int_distribution<int> pick(0, 16);
+    const int which = pick(random);
+    const double s = along(random);
+    if (which < 12) {  // an edge: two coordinates at +-1, the third along it
+        const int axis = which / 4;
+        dvec3 p;
+        p[axis] = s;
+        p[(axis + 1) % 3] = which & 1 ? 1 : -1;
+        p[(axis + 2) % 3] = which & 2 ? 1 : -1;
+        return p;
+    }
+    const int face = which - 12;  // a diagonal from the face's first corner to its third
+    const dvec3 diagonals[5][2] = {{{-1, -1, -1}, {1, 1, -1}},
+                                   {{-1, -1, 1}, {1, 1, 1}},
+                                   {{-1, -1, -1}, {1, -1, 1}},
+                                   {{-1, -1, -1}, {-1, 1, 1}},
+                                   {{1, -1, -1}, {1, 1, 1}}};
+    return diagonals[face][0] + (s + 1) / 2 * (diagonals[face][1] - diagonals[face][0]);
+}
+
 // A1's leak criterion at the rims: from a point inside, rays aimed at 2,000 points of the rim,
 // each seven ways (aimed_rays): every ray meets the surface at the target's distance, to 10^-4
 // and a few ulps of the coordinates.
 TEST(HardCases, SolidsLeakNoRayAimedAtTheEdgesWherePartsMeet) {
     for (const SolidCase& c : solid_cases()) {
-        for (const bool crater : {false, true}) {
-            const World world(crater ? cratered_box(c) : lens(c));
+        for (const Kind kind : kKinds) {
+            const bool crater = kind != Kind::Lens;
+            const SolidWorld made = solid_world(kind, c);
+            const World world(made.scene, made.meshes);
             const Real slack =
                 4 * ulp(Real(std::max({std::abs(c.offset.x), std::abs(c.offset.y), std::abs(c.offset.z), c.size})));
             std::mt19937 random(2);
@@ -72,8 +132,11 @@ TEST(HardCases, SolidsLeakNoRayAimedAtTheEdgesWherePartsMeet) {
                 const dvec3 from =
                     crater ? dvec3(0.9 * std::cos(angle), 0.5, 0.9 * std::sin(angle)) : dvec3(0.1, -0.2, 0.05);
                 tally.aim(world, Vec3(c.offset + c.size * from), target, slack);
+                if (kind == Kind::MeshCrater)  // and at the mesh's own edges and corners
+                    tally.aim(world, Vec3(c.offset + c.size * dvec3(0.1, -0.2, 0.05)),
+                              Vec3(c.offset + c.size * on_cube_edge(random)), slack);
             }
-            const std::string name = "solid_" + std::string(crater ? "crater_" : "lens_") + c.name;
+            const std::string name = "solid_" + std::string(name_of(kind)) + c.name;
             report(name + "_aimed_rays", tally.rays);
             report(name + "_leaks", tally.leaks);
             EXPECT_EQ(tally.leaks, 0) << name;
@@ -90,8 +153,10 @@ TEST(HardCases, SolidsLeakNoRayAimedAtTheEdgesWherePartsMeet) {
 // a chord of at least its radius, or leave by its mouth).
 TEST(HardCases, SolidsRaysLeavingThemNeverMeetThemAgainWhereTheyCannot) {
     for (const SolidCase& c : solid_cases()) {
-        for (const bool crater : {false, true}) {
-            const World world(crater ? cratered_box(c) : lens(c));
+        for (const Kind kind : kKinds) {
+            const bool crater = kind != Kind::Lens;
+            const SolidWorld made = solid_world(kind, c);
+            const World world(made.scene, made.meshes);
             std::mt19937 random(4);
             std::uniform_real_distribution<double> unit(-1, 1);
             int hits = 0, spawned = 0, rehits = 0;
@@ -121,7 +186,7 @@ TEST(HardCases, SolidsRaysLeavingThemNeverMeetThemAgainWhereTheyCannot) {
                     ++spawned;
                 }
             }
-            const std::string name = "solid_" + std::string(crater ? "crater_" : "lens_") + c.name;
+            const std::string name = "solid_" + std::string(name_of(kind)) + c.name;
             report(name + "_spawned", spawned);
             report(name + "_rehits", rehits);
             EXPECT_EQ(hits, 3000) << name;

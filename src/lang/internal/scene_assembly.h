@@ -38,7 +38,8 @@ enum class ShapeList : uint8_t {
     SolidSpheres,
     SolidBoxes,
     SolidCones,
-    HalfSpaces
+    HalfSpaces,
+    SolidMeshes
 };
 
 // The solid of a shape made outside every solid (solid_of).

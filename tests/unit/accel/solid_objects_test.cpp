@@ -1,11 +1,13 @@
-// Solids in the world (CSG) against brute force: random trees of spheres, placed boxes, cones
-// and half-spaces, nested up to three deep, and random rays from inside and outside. The
+// Solids in the world (CSG) against brute force: random trees of spheres, placed boxes, cones,
+// half-spaces and closed meshes (an L-shaped prism: two spans along some lines), nested up to
+// three deep, and random rays from inside and outside. The
 // expected hit is the first place along the ray where a point test of the whole tree (inside
 // each leaf, combined by each operation's truth table) changes; the world must find that t, the
 // leaf's material there, and a normal that points out of the solid.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <random>
 
 #include <glm/geometric.hpp>
@@ -22,10 +24,39 @@ namespace {
 
 using glm::dvec3;
 
+// An L-shaped prism, z from 0 to 1, over the outline (0, 0) (2, 0) (2, 1) (1, 1) (1, 2) (0, 2):
+// a closed mesh that is not convex. Its inside is that of two boxes together (l_arms).
+TriangleMesh l_prism() {
+    TriangleMesh mesh;
+    const double outline[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+    for (double z : {0.0, 1.0})
+        for (const auto& p : outline) mesh.positions.push_back({p[0], p[1], z});
+    for (uint32_t i = 1; i + 1 < 6; ++i) {  // the caps: fans from (0, 0), which sees every corner
+        mesh.triangles.push_back({0, i + 1, i});
+        mesh.triangles.push_back({6, 6 + i, 6 + i + 1});
+    }
+    for (uint32_t i = 0; i < 6; ++i) {  // the sides, facing out of the counter-clockwise outline
+        const uint32_t j = (i + 1) % 6;
+        mesh.triangles.push_back({i, j, 6 + j});
+        mesh.triangles.push_back({i, 6 + j, 6 + i});
+    }
+    return mesh;
+}
+// The two boxes whose union is the L-shaped prism `mesh` (placed as it is).
+std::array<Box, 2> l_arms(const Mesh& mesh) {
+    std::array<Box, 2> arms;
+    for (Box& arm : arms) static_cast<Placed&>(arm) = mesh;
+    arms[0].min = arms[1].min = {0, 0, 0};
+    arms[0].max = {2, 1, 1};
+    arms[1].max = {1, 2, 1};
+    return arms;
+}
+
 // A random scene of solids; each leaf its own material (its index), so a hit names its leaf.
 struct RandomSolids {
     SceneDescription scene;
     std::mt19937 random;
+    SceneMeshes meshes{{l_prism()}, {}, {}};
     std::uniform_real_distribution<double> unit{0, 1};
 
     double in(double low, double high) { return low + (high - low) * unit(random); }
@@ -42,7 +73,18 @@ struct RandomSolids {
     }
 
     SolidPart leaf() {
-        const int kind = int(in(0, 4));
+        const int kind = int(in(0, 5));
+        if (kind == 4) {
+            Mesh mesh;
+            mesh.scale = dvec3(in(0.5, 1.1));
+            mesh.rotate_axis = direction();
+            mesh.rotate_degrees = in(0, 360);
+            mesh.translate = point(1) - mesh.scale;  // around its corner (0, 0, 0)
+            mesh.material = material();
+            scene.solid_meshes.push_back(mesh);
+            meshes.file_of_solid_mesh.push_back(0);
+            return {SolidPart::Kind::Mesh, uint32_t(scene.solid_meshes.size() - 1)};
+        }
         if (kind == 0) {
             scene.solid_spheres.push_back({point(1), in(0.3, 1.2), material()});
             return {SolidPart::Kind::Sphere, uint32_t(scene.solid_spheres.size() - 1)};
@@ -97,12 +139,7 @@ struct Truth {
                 const Sphere& s = scene.solid_spheres[part.index];
                 return glm::length(p - s.center) <= s.radius;
             }
-            case SolidPart::Kind::Box: {
-                const Box& box = scene.solid_boxes[part.index];
-                const Placement placement(box);
-                const dvec3 own = glm::inverse(placement.linear) * (p - placement.translate);
-                return glm::all(glm::greaterThanEqual(own, box.min)) && glm::all(glm::lessThanEqual(own, box.max));
-            }
+            case SolidPart::Kind::Box: return inside_box(scene.solid_boxes[part.index], p);
             case SolidPart::Kind::Cone: {
                 const Cone& cone = scene.solid_cones[part.index];
                 const dvec3 axis = cone.top - cone.base;
@@ -116,9 +153,20 @@ struct Truth {
                 const Plane& plane = scene.half_spaces[part.index];
                 return glm::dot(p - plane.point, plane.normal) <= 0;
             }
+            case SolidPart::Kind::Mesh: {
+                for (const Box& arm : l_arms(scene.solid_meshes[part.index]))
+                    if (inside_box(arm, p)) return true;
+                return false;
+            }
             case SolidPart::Kind::Solid: return inside(part.index, p);
         }
         return false;
+    }
+
+    static bool inside_box(const Box& box, const dvec3& p) {
+        const Placement placement(box);
+        const dvec3 own = glm::inverse(placement.linear) * (p - placement.translate);
+        return glm::all(glm::greaterThanEqual(own, box.min)) && glm::all(glm::lessThanEqual(own, box.max));
     }
 
     bool inside(uint32_t solid, const dvec3& p) const {
@@ -134,21 +182,25 @@ struct Truth {
     }
 };
 
-// Every t where the ray's line crosses a leaf's surface, with the leaf's material.
+// Every t where the ray's line crosses a leaf's surface, with the leaf's material (and for a
+// mesh, where it crosses its two boxes' faces: some are inside it, and change nothing).
 void crossings(const SceneDescription& scene, const Ray& ray, std::vector<std::pair<double, int>>& out) {
     auto add = [&](const std::optional<SolidSpan>& span, int material) {
         if (!span) return;
         for (double t : {double(span->enter.t), double(span->leave.t)})
             if (std::isfinite(t)) out.push_back({t, material});
     };
-    for (const Sphere& s : scene.solid_spheres) add(sphere_span(ray, Vec3(s.center), Real(s.radius), 0), s.material);
-    for (const Box& box : scene.solid_boxes) {
+    auto add_box = [&](const Box& box, int material) {
         const Placement placement(box);
         const glm::dmat3 to_object = glm::inverse(placement.linear);
         const Ray own{Vec3(to_object * (dvec3(ray.origin) - placement.translate)),
                       Vec3(to_object * dvec3(ray.direction))};
-        add(box_span(own, Vec3(box.min), Vec3(box.max), 0), box.material);
-    }
+        add(box_span(own, Vec3(box.min), Vec3(box.max), 0), material);
+    };
+    for (const Sphere& s : scene.solid_spheres) add(sphere_span(ray, Vec3(s.center), Real(s.radius), 0), s.material);
+    for (const Box& box : scene.solid_boxes) add_box(box, box.material);
+    for (const Mesh& mesh : scene.solid_meshes)
+        for (const Box& arm : l_arms(mesh)) add_box(arm, mesh.material);
     for (const Cone& c : scene.solid_cones)
         add(cone_span(ray, make_cone_shape(c.base, c.top, c.base_radius, c.top_radius, true), 0), c.material);
     for (const Plane& p : scene.half_spaces) add(half_space_span(ray, Vec3(p.point), Vec3(p.normal), 0), p.material);
@@ -178,12 +230,12 @@ std::optional<std::pair<double, int>> expected_hit(const SceneDescription& scene
 
 TEST(SolidObjects, RandomTreesMatchPointTestsAlongEachRay) {
     if constexpr (!std::is_same_v<Real, double>) GTEST_SKIP() << "brute force in double only";
-    int checked = 0, hits = 0, spawned = 0;
+    int checked = 0, hits = 0, spawned = 0, mesh_hits = 0;
     const size_t scenes = sweep(150);
     for (uint32_t seed = 1; seed <= scenes; ++seed) {
         RandomSolids made{{}, std::mt19937(seed)};
         made.solid(2, false);
-        const World world(made.scene);
+        const World world(made.scene, made.meshes);
         const Truth truth{made.scene};
         for (int r = 0; r < 200; ++r) {
             const Ray ray{Vec3(made.point(2.5)), Vec3(made.direction())};
@@ -199,6 +251,7 @@ TEST(SolidObjects, RandomTreesMatchPointTestsAlongEachRay) {
             EXPECT_NEAR(hit->t, expected->first, 1e-7) << "seed " << seed << " ray " << r;
             const SurfaceHit surface = world.surface(ray, *hit);
             EXPECT_EQ(surface.material, expected->second) << "seed " << seed << " ray " << r;
+            for (const Mesh& mesh : made.scene.solid_meshes) mesh_hits += mesh.material == expected->second;
             // The normal points out of the solid.
             EXPECT_TRUE(truth.inside(0, dvec3(surface.point) - 1e-5 * dvec3(surface.normal)))
                 << "seed " << seed << " ray " << r;
@@ -221,6 +274,7 @@ TEST(SolidObjects, RandomTreesMatchPointTestsAlongEachRay) {
     EXPECT_GT(checked, int(scenes) * 150);
     EXPECT_GT(hits, checked / 8);
     EXPECT_GT(spawned, hits * 9 / 10);
+    EXPECT_GT(mesh_hits, hits / 20);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "lang/load_scene.h"
+#include "scene/placement.h"
 
 namespace tracer {
 namespace {
@@ -73,6 +74,25 @@ TEST(Solids, PartsArePlacedByTheSolidAndTheGroupsAroundIt) {
     EXPECT_EQ(scene.solid_spheres[0].radius, 2);
     EXPECT_EQ(scene.solid_spheres[1].center, dvec3(1, 10, 2));
     EXPECT_EQ(scene.solid_spheres[1].radius, 1);
+}
+
+TEST(Solids, AMeshIsAPartPlacedByTheSolid) {
+    const std::string cube = std::string(TRACER_SOURCE_DIR) + "/scenes/meshes/cube.obj";
+    const SceneDescription scene = load_ok(
+        "difference { translate (0, 1, 0)\n"
+        "  mesh { file \"" +
+        cube +
+        "\" scale 2 shading flat material { kd 1 } }\n"
+        "  sphere { center (0, 1, 0) radius 0.5 material { kd 1 } }\n"
+        "}\n");
+    EXPECT_TRUE(scene.meshes.empty());
+    ASSERT_EQ(scene.solid_meshes.size(), 1u);
+    ASSERT_EQ(scene.solids.size(), 1u);
+    EXPECT_EQ(scene.solids[0].parts[0].kind, SolidPart::Kind::Mesh);
+    EXPECT_EQ(scene.solids[0].parts[0].index, 0u);
+    const Placement placed(scene.solid_meshes[0]);
+    EXPECT_EQ(placed.point({1, 1, 1}), dvec3(2, 3, 2));
+    EXPECT_TRUE(scene.solid_meshes[0].flat);
 }
 
 TEST(Solids, FunctionsAndLoopsMakeSolids) {

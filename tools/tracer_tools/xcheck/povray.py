@@ -319,6 +319,14 @@ def _solid_part(part: dict, iors: set[float]) -> str:
     patterns are placed in world coordinates), without an interior: its ior joins `iors`."""
     kind = part["kind"]
     shape = part[kind]
+    if kind == "mesh":  # its inside_vector gives POV-Ray its inside
+        linear, translate = exact_meshes.placement(shape)
+        corners, normals, uvs = exact_meshes._triangles(
+            shape["file"], linear, translate, shape.get("shading") != "flat"
+        )
+        text = _mesh2(corners, normals, shape["material"], uvs)
+        iors.update(float(ior) for ior in INTERIOR.findall(text))
+        return INTERIOR.sub("", text)
     material = texture(shape["material"])
     iors.update(float(ior) for ior in INTERIOR.findall(material))
     material = INTERIOR.sub("", material)
