@@ -5,7 +5,9 @@
 2. the die against POV-Ray 3.7's CSG: tracer's render time over POV-Ray's reported trace time,
    alternated (target: at least 3x faster, a ratio <= 0.333);
 3. 10^4 dice in a 100 x 100 grid against 16 (4 x 4), framed alike: the render time per ray
-   traced, alternated (target: at most 2x).
+   traced, alternated (target: at most 2x);
+4. with no target, the cost of a closed mesh in a solid: the Stanford bunny (3,674 triangles)
+   minus a sphere against the bunny alone, and against POV-Ray's trace of the same.
 
     tools/bench solids [--pairs 7]
 
@@ -68,6 +70,22 @@ def dice_grid(folder: pathlib.Path, side: int) -> pathlib.Path:
     return scene
 
 
+BUNNY = pathlib.Path(__file__).resolve().parents[3] / "scenes" / "meshes" / "bunny.obj"
+
+
+def bitten_bunny(folder: pathlib.Path) -> tuple[pathlib.Path, pathlib.Path]:
+    """The bunny minus a sphere, and the bunny alone (as scenes/solids/carved.scn's left one)."""
+    head = "render { width 1200 height 800 }\ncamera { eye (0, 2.4, 5.5) lookat (0, 0.9, 0) fovy 38 }\n"
+    head += LIGHTS.format(x=4, y=9, z=6, x2=-6, y2=5, z2=4)
+    bunny = f'mesh {{ file "{BUNNY}" scale 0.2 rotate {{ axis (0, 1, 0) angle 20 }} material ivory }}'
+    bitten, whole = folder / "bitten.scn", folder / "bunny.scn"
+    bitten.write_text(
+        head + f"difference {{\n  {bunny}\n  sphere {{ center (0.7, 1.4, 0.5) radius 0.55 material ink }}\n}}\n"
+    )
+    whole.write_text(head + bunny + "\n")
+    return bitten, whole
+
+
 def seconds_per_mray(scene: pathlib.Path, folder: pathlib.Path) -> float:
     """The render time per million rays traced (the summary line's)."""
     line = tracer_summary_line(scene, folder)
@@ -102,6 +120,17 @@ def main() -> int:
         grid = alternated(lambda: seconds_per_mray(many, folder), lambda: seconds_per_mray(few, folder), args.pairs)
         print(
             f"| 10^4 dice: time per ray <= 2x that of 16 | {grid['ratio']:.2f}x ({grid['a'] * 1e3:.0f} ns against "
-            f"{grid['b'] * 1e3:.0f} ns a ray) | {'yes' if grid['ratio'] <= 2 else 'no'} |"
+            f"{grid['b'] * 1e3:.0f} ns a ray) | {'yes' if grid['ratio'] <= 2 else 'no'} |",
+            flush=True,
+        )
+        bitten, whole = bitten_bunny(folder)
+        mesh = alternated(
+            lambda: tracer_render_seconds(bitten, folder), lambda: tracer_render_seconds(whole, folder), args.pairs
+        )
+        peer = versus_povray(bitten, args.pairs, folder)
+        print(
+            f"| (no target) the bunny minus a sphere, against the bunny alone and POV-Ray | {mesh['ratio']:.2f}x "
+            f"the bunny ({mesh['a']:.3f} s against {mesh['b']:.3f} s at 1200 x 800); {1 / peer['ratio']:.1f}x "
+            f"faster than POV-Ray's trace ({peer['povray_s']:.3f} s) | - |"
         )
     return 0
