@@ -122,7 +122,7 @@ void SolidObjects::build_meshes(const SceneDescription& scene, const SceneMeshes
     meshes_.resize(scene.solid_meshes.size());
     for (uint32_t i = 0; i < scene.solid_meshes.size(); ++i) {
         const uint32_t leaf = first_leaf_of_kind_[size_t(SolidPart::Kind::Mesh)] + i;
-        if (object_of_leaf_[leaf] == kNoObject) continue;
+        if (object_of_leaf_[leaf] == kNoObject || i >= meshes.file_of_solid_mesh.size()) continue;
         const Mesh& mesh = scene.solid_meshes[i];
         MeshPart part{&meshes.files[meshes.file_of_solid_mesh[i]], Placement(mesh), 0, mesh.flat};
         part.placement.translate -= glm::dvec3(objects_[object_of_leaf_[leaf]].shift);
@@ -171,7 +171,10 @@ std::vector<SolidObjects::LeafExtent> SolidObjects::add_leaves(const SceneDescri
     first_leaf_of_kind_[size_t(SolidPart::Kind::Mesh)] = uint32_t(kinds_.size());
     for (size_t i = 0; i < scene.solid_meshes.size(); ++i) {
         const Mesh& mesh = scene.solid_meshes[i];
-        const MeshFacts facts = mesh_facts(meshes.files[meshes.file_of_solid_mesh[i]], mesh);
+        // Without its file (a caller that read none: the fuzz targets), a mesh is empty.
+        const TriangleMesh none;
+        const bool read = i < meshes.file_of_solid_mesh.size();
+        const MeshFacts facts = mesh_facts(read ? meshes.files[meshes.file_of_solid_mesh[i]] : none, mesh);
         add(SolidPart::Kind::Mesh, mesh.material, {Vec3(facts.lower), Vec3(facts.upper)});
     }
     return extents;
@@ -303,7 +306,7 @@ bool SolidObjects::bounded(uint32_t solid) const {
 
 void SolidObjects::append_mesh_leaf_spans(uint32_t leaf, const Ray& ray, Interval clip, Real tolerance,
                                           std::vector<SolidSpan>& out) const {
-    if (ball_misses(leaf, ray, clip)) return;
+    if (ball_misses(leaf, ray, clip) || !meshes_[of_kind(leaf)]) return;
     const size_t first = out.size();
     append_mesh_spans(meshes_[of_kind(leaf)]->accel, ray, clip.max, tolerance, leaf, out);
     // Those wholly before the clip change nothing in it.

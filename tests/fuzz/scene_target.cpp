@@ -1,5 +1,6 @@
 // Fuzz target: the scene front end (lex, parse, run, validate), its messages, the JSON dump, and
-// a tiny render of what it accepts (mesh blocks left out: their paths would read real files).
+// a tiny render of what it accepts (mesh blocks left out, and meshes in solids left empty: their
+// paths would read real files).
 #include <cstddef>
 #include <cstdint>
 #include <sstream>

@@ -363,3 +363,25 @@ TEST(SolidObjects, AShapeMinusItselfIsEmpty) {
 
 }  // namespace
 }  // namespace tracer
+
+namespace tracer {
+namespace {
+
+// A caller that read no mesh files (the fuzz targets) still gets a world: a mesh part without
+// its file is empty, and the solid is what the other parts make.
+TEST(SolidObjects, AMeshPartWithoutItsFileIsEmpty) {
+    SceneDescription scene;
+    scene.materials.resize(1);
+    scene.solid_meshes.emplace_back();
+    scene.solid_spheres.push_back({{0, 0, 0}, 1, 0});
+    scene.solids.push_back({SolidOp::Union, {{SolidPart::Kind::Mesh, 0}, {SolidPart::Kind::Sphere, 0}}, false, 0});
+    const World world(scene);
+    SearchCounts counts;
+    const auto hit = world.nearest_hit({Vec3(0, 0, 5), Vec3(0, 0, -1)}, {0, kInfinity}, counts);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->t, 4, 1e-6);
+    EXPECT_FALSE(world.nearest_hit({Vec3(3, 0, 5), Vec3(0, 0, -1)}, {0, kInfinity}, counts).has_value());
+}
+
+}  // namespace
+}  // namespace tracer
