@@ -158,7 +158,10 @@ uint32_t Compiler::bind(const std::string& name, Span defined_at, std::string_vi
     }
     const uint32_t slot = level.next_slot++;
     level.most_slots = std::max(level.most_slots, level.next_slot);
-    scope.emplace(name, NameInfo{slot, defined_at, kind == "let"});
+    NameInfo info{slot, defined_at, kind == "let"};
+    info.shape_value = kind == "shape";
+    info.function = kind == "fn";
+    scope.emplace(name, info);
     return slot;
 }
 
@@ -241,6 +244,7 @@ bool Compiler::compile_call_statement(const Statement& statement, StatementCode&
     }
     step.op = StatementCode::Op::Call;
     try {
+        if (statement.shape_value) check_placed_value(statement.value);
         step.value = compile_expression(statement.value);
         if (step.value.op == ExprCode::Op::Builtin)
             fail(statement.value.span, "'" + statement.value.text +
@@ -251,6 +255,31 @@ bool Compiler::compile_call_statement(const Statement& statement, StatementCode&
         return false;
     }
     return true;
+}
+
+// A name alone on its line must name a shape value (let NAME = sphere { ... }); throws
+// CompileError (reported) otherwise.
+void Compiler::check_placed_value(const Expr& name) {
+    for (size_t level = functions_.size(); level-- > 0;)
+        for (size_t s = functions_[level].scopes.size(); s-- > 0;) {
+            const auto found = functions_[level].scopes[s].find(name.text);
+            if (found == functions_[level].scopes[s].end()) continue;
+            if (found->second.shape_value) return;
+            if (found->second.function)
+                fail(name.span,
+                     in_quotes(name.text) + " is a function: call it with its arguments, " + name.text + "(...)");
+            fail(name.span, in_quotes(name.text) +
+                                " is a value, which does nothing alone: a name alone on its line places a shape "
+                                "value, made by 'let NAME = sphere { ... }' (or a group's or a solid's block)");
+        }
+    std::vector<std::string_view> names = names_in_scope();
+    for (const BlockSpec* spec : all_block_specs())
+        if (spec->top_level) names.push_back(spec->kind);
+    const std::string suggestion = did_you_mean(name.text, names);
+    fail(name.span, "undefined name " + in_quotes(name.text) +
+                        (suggestion.empty() ? ": a name alone on its line places a shape value (let " + name.text +
+                                                  " = sphere { ... })"
+                                            : suggestion));
 }
 
 // `expr` compiled, or (its error reported) a broken value, whose uses are not errors too.
@@ -362,7 +391,7 @@ void Compiler::compile_function(const Statement& statement, std::vector<Statemen
     step.keyword = statement.keyword;
     step.name = statement.name;
     step.name_span = statement.name_span;
-    step.slot = bind(statement.name, statement.name_span, "fn");
+    step.slot = bind(statement.name, statement.name_span, statement.shape_value ? "shape" : "fn");
     auto code = std::make_shared<FunctionCode>();
     code->name = statement.name;
     code->name_span = statement.name_span;

@@ -31,6 +31,11 @@ bool is_group_keyword(std::string_view word) {
     return word == "group" || is_solid_keyword(word);
 }
 
+bool makes_things(std::string_view word) {
+    return is_group_keyword(word) ||
+           (find_block_spec(word) && word != "material" && word != "render" && word != "camera");
+}
+
 bool is_placement_key(std::string_view word) {
     return std::find(kPlacementKeys.begin(), kPlacementKeys.end(), word) != kPlacementKeys.end();
 }

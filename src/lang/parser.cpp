@@ -53,9 +53,13 @@ bool Parser::next_statement(std::vector<Statement>& out) {
     return true;
 }
 
-// statement = block | let | param | for | if | function | return | call | group | include ;
+// statement = block | let | shape value | param | for | if | function | return | call | placed value
+//             | group | include ;
 void Parser::parse_statement(std::vector<Statement>& out) {
     const std::string_view word = peek().text;
+    if (word == "let" && at(TokenKind::Identifier, 1) && at(TokenKind::Equals, 2) && at(TokenKind::Identifier, 3) &&
+        at(TokenKind::LBrace, 4) && makes_things(peek(3).text))
+        return parse_shape_value(out);
     if (word == "let" && at(TokenKind::Identifier, 1)) return parse_binding(out, Statement::Kind::Let);
     if (word == "param" && at(TokenKind::Identifier, 1)) return parse_binding(out, Statement::Kind::Param);
     if (word == "for" && at(TokenKind::Identifier, 1)) return parse_loop(out);
@@ -67,6 +71,11 @@ void Parser::parse_statement(std::vector<Statement>& out) {
     if (word == "return") return parse_return(out);
     if (is_group_keyword(word) && at(TokenKind::LBrace, 1)) return parse_group(out);
     if (!is_statement_keyword(word) && at(TokenKind::LParen, 1)) return parse_call(out);
+    if (!is_statement_keyword(word) && !find_block_spec(word) && povray_hint(word).empty() &&
+        !at(TokenKind::LBrace, 1) &&
+        (at(TokenKind::End, 1) || at(TokenKind::RBrace, 1) ||
+         file_.locate(peek(1).span.begin).line != file_.locate(peek().span.begin).line))
+        return parse_placed_value(out);
     if (is_statement_keyword(word)) {  // a statement whose name (or path) is missing or broken
         const Span keyword = take().span;
         if (!at(TokenKind::Error))  // else the lexer has said what is wrong with it
@@ -327,6 +336,34 @@ void Parser::parse_call(std::vector<Statement>& out) {
         if (statement.value.kind != Expr::Kind::Call)
             fail(peek(), "expected a block or a statement; a value alone does nothing, found " + describe(peek()));
     });
+}
+
+// shape value = "let" identifier "=" ( group | block ) ;   (a block that makes things: a shape, a
+// light, a group or a solid, made where its name is placed, from the names as they were here)
+void Parser::parse_shape_value(std::vector<Statement>& out) {
+    Statement function;
+    function.kind = Statement::Kind::Function;
+    function.shape_value = true;
+    function.keyword = take().span;
+    const Token name = take();
+    function.name = std::string(name.text);
+    function.name_span = name.span;
+    take();  // '='
+    parse_statement(function.statements);
+    out.push_back(std::move(function));
+}
+
+// placed value = identifier ;   (alone on its line)
+void Parser::parse_placed_value(std::vector<Statement>& out) {
+    Statement call;
+    call.kind = Statement::Kind::Call;
+    call.shape_value = true;
+    const Token name = take();
+    call.keyword = name.span;
+    call.value.kind = Expr::Kind::Call;
+    call.value.text = std::string(name.text);
+    call.value.span = name.span;
+    out.push_back(std::move(call));
 }
 
 // group = ( "group" | solid ) "{" { placement } { statement } "}" ;   placement = ( "scale" |

@@ -46,6 +46,10 @@ const StatementSpec kStatements[] = {
     {"let", "let NAME = value",
      "names a value: a number, vector, boolean, string, list, `material { ... }`, `transform { ... }` or a "
      "pattern (`checker { ... }`)"},
+    {"", "let NAME = sphere { ... }",
+     "names a shape value: a block that puts something in the scene (a shape, a light, a `group` or a solid: "
+     "`let die = difference { ... }`), made again wherever `NAME` stands alone on a line, placed by the groups "
+     "around it there, from the names as they were where it was written"},
     {"", "NAME = value",
      "gives a name defined before (by `let`, in this function or outside all functions) a new value; `let` "
      "inside braces would make a new name there instead"},

@@ -60,9 +60,11 @@ private:
     struct NameInfo {
         uint32_t slot = 0;
         Span defined_at;
-        bool from_let = false;  // defined by a `let` (not a loop, a parameter or a function)
-        bool read = false;      // some expression reads it
-        bool assigned = false;  // some assignment changes it
+        bool from_let = false;     // defined by a `let` (not a loop, a parameter or a function)
+        bool read = false;         // some expression reads it
+        bool assigned = false;     // some assignment changes it
+        bool shape_value = false;  // defined by `let NAME = sphere { ... }` (a block that makes things)
+        bool function = false;     // defined by `fn`
     };
     using Scope = std::unordered_map<std::string, NameInfo>;
     // The code being compiled at one level: the top level, or a function's body.
@@ -92,6 +94,7 @@ private:
     ExprCode compile_or_broken(const Expr& expr);
     bool is_print(const Expr& call);
     bool compile_call_statement(const Statement& statement, StatementCode& step);
+    void check_placed_value(const Expr& name);
     ExprCode compile_name(const Expr& expr, bool top, bool word_key);
     ExprCode compile_call(const Expr& expr);
     [[noreturn]] void fail(Span span, std::string message);

@@ -20,7 +20,7 @@ struct Body;
 // or a named material block, where it is written.
 struct NameDefinition {
     std::string name;
-    std::string_view kind;  // "let", "param", "for", "fn", "parameter", "material"
+    std::string_view kind;  // "let", "param", "for", "fn", "shape", "parameter", "material"
     Span span;
 };
 // Editors need no more of them than this (a generated scene may define millions).

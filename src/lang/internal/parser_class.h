@@ -41,6 +41,9 @@ bool is_placement_key(std::string_view word);
 bool is_solid_keyword(std::string_view word);
 // group, or a solid's keyword: a statement holding statements, its placement first.
 bool is_group_keyword(std::string_view word);
+// A block kind whose blocks put something in the scene (not material, render, camera), or a
+// group's or solid's keyword: what a shape value may be (let NAME = sphere { ... }).
+bool makes_things(std::string_view word);
 
 class Parser {
 public:
@@ -79,6 +82,10 @@ private:
     void parse_function(std::vector<Statement>& out);
     void parse_return(std::vector<Statement>& out);
     void parse_call(std::vector<Statement>& out);
+    // let NAME = a shape's, a light's, a group's or a solid's block: a shape value.
+    void parse_shape_value(std::vector<Statement>& out);
+    // A name alone on its line: the shape value it names, placed here.
+    void parse_placed_value(std::vector<Statement>& out);
     void parse_group(std::vector<Statement>& out);
     void parse_include(std::vector<Statement>& out);
     // The statements of a body whose '{' (at `open_brace`, opened by `owner`) was just taken, and

@@ -99,6 +99,9 @@ struct Statement {
     std::vector<Statement> otherwise;                      // If: the else branch (an else-if is one If statement in it)
     std::vector<std::pair<std::string, Span>> parameters;  // Function
     Span end_brace;                                        // For, If, Function, Group: the closing '}'
+    // Function: a shape value, `let NAME = sphere { ... }` (a function of no parameters making
+    // that block, placed by its name alone); Call: a name alone, placing a shape value.
+    bool shape_value = false;
 };
 
 struct Program {

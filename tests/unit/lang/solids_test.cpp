@@ -95,6 +95,32 @@ TEST(Solids, AMeshIsAPartPlacedByTheSolid) {
     EXPECT_TRUE(scene.solid_meshes[0].flat);
 }
 
+TEST(Solids, AShapeValueIsMadeWhereItsNameIsPlaced) {
+    const SceneDescription scene = load_ok(
+        "let r = 0.25\n"
+        "let die = difference {\n"
+        "  box { min (-1, -1, -1) max (1, 1, 1) material { kd 1 } }\n"
+        "  sphere { center (0, 0, 1) radius r material { kd 0.1 } }\n"
+        "}\n"
+        "r = 0.5  # the value sees r as it was where it was written\n"
+        "let lamp = group { translate (0, 5, 0) light { position (0, 0, 0) } }\n"
+        "for i in 0..3 {\n"
+        "  group { translate (3 * i, 0, 0)\n"
+        "    die\n"
+        "  }\n"
+        "}\n"
+        "lamp\n");
+    ASSERT_EQ(scene.solids.size(), 3u);
+    ASSERT_EQ(scene.solid_spheres.size(), 3u);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(scene.solids[size_t(i)].op, SolidOp::Difference);
+        EXPECT_EQ(scene.solid_spheres[size_t(i)].center, dvec3(3 * i, 0, 1));
+        EXPECT_EQ(scene.solid_spheres[size_t(i)].radius, 0.25);
+    }
+    ASSERT_EQ(scene.lights.size(), 2u);  // kCamera's and the lamp
+    EXPECT_EQ(scene.lights[1].position, dvec3(0, 5, 0));
+}
+
 TEST(Solids, FunctionsAndLoopsMakeSolids) {
     const SceneDescription scene = load_ok(
         "let ivory = material { kd 0.9 }\n"

@@ -58,6 +58,7 @@ COMPLETION_KIND = {
     "for": types.CompletionItemKind.Variable,
     "parameter": types.CompletionItemKind.Variable,
     "fn": types.CompletionItemKind.Function,
+    "shape": types.CompletionItemKind.Struct,
     "material": types.CompletionItemKind.Reference,
 }
 
