@@ -78,6 +78,25 @@ void build_light(SceneAssembly& a, const Block& block, const Fields& fields) {
     a.scene.lights.push_back({Placement(group).point(fields.triple("position")), fields.triple("color")});
 }
 
+// An area light: its centre and edges placed by the groups around it.
+void build_area_light(SceneAssembly& a, const Block& block, const Fields& fields) {
+    Placed group;
+    if (!add_group_steps(a, block, group)) return;
+    const Placement placement(group);
+    Light light{placement.point(fields.triple("position")), fields.triple("color")};
+    light.edge1 = placement.linear * fields.triple("edge1");
+    light.edge2 = placement.linear * fields.triple("edge2");
+    light.samples1 = int(fields.number("samples1"));
+    light.samples2 = int(fields.number("samples2"));
+    const dvec3 across = glm::cross(light.edge1, light.edge2);
+    if (!(glm::dot(across, across) > 0)) {
+        a.diagnostics.error(a.file, fields.value_span("edge2"),
+                            "an area light's edges must span a rectangle: edge2 is parallel to edge1");
+        return;
+    }
+    a.scene.lights.push_back(light);
+}
+
 // A named material: the next of the scene's materials.
 static void build_named_material(SceneAssembly& a, const Block& block, const Fields& fields) {
     a.material_by_name[block.name] = int(a.scene.materials.size());
@@ -95,6 +114,7 @@ constexpr Builder kBuilders[] = {
     {"render", build_render},
     {"camera", build_camera},
     {"light", build_light},
+    {"area_light", build_area_light},
     {"sphere", build_sphere},
     {"plane", build_plane},
     {"cylinder", build_cone},

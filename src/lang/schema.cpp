@@ -440,6 +440,22 @@ const BlockSpec kLight{
     },
     "light {\n  position (0, 3, -2)\n  color 0.2\n}\n",
 };
+
+const BlockSpec kAreaLight{
+    "area_light", false, true, Occurs::Any,
+    "A rectangle of point lights (soft shadows): `samples1` x `samples2` of them on a grid centred on "
+    "`position`, from corner to corner of the rectangle with edges `edge1` and `edge2` (POV-Ray's area_light), "
+    "each with `color` / (samples1 x samples2) and its own shadow ray. One sample is a point light.",
+    {
+        key("position", ValueType::Vector, "", "The rectangle's centre."),
+        ranged(key("color", ValueType::Triple, "1", "Colour of the whole light, shared by its samples."), 0, kInf),
+        nonzero(key("edge1", ValueType::Vector, "", "One edge of the rectangle.")),
+        nonzero(key("edge2", ValueType::Vector, "", "The other edge (not parallel to edge1).")),
+        ranged(key("samples1", ValueType::Integer, "", "Samples along edge1 (its two ends included)."), 1, 256),
+        ranged(key("samples2", ValueType::Integer, "", "Samples along edge2 (its two ends included)."), 1, 256),
+    },
+    "area_light {\n  position (0, 4, 0)\n  edge1 (1, 0, 0)\n  edge2 (0, 0, 1)\n  samples1 8\n  samples2 8\n}\n",
+};
 // clang-format on
 
 }  // namespace
@@ -451,9 +467,9 @@ const KeySpec* BlockSpec::find_key(std::string_view key_name) const {
 }
 
 const std::vector<const BlockSpec*>& all_block_specs() {
-    static const std::vector<const BlockSpec*> specs{&kCamera,   &kRender,    &kMaterial, &kSphere,   &kPlane, &kMesh,
-                                                     &kTriangle, &kQuad,      &kBox,      &kCylinder, &kCone,  &kDisc,
-                                                     &kRotate,   &kTransform, &kGroup,    &kLight};
+    static const std::vector<const BlockSpec*> specs{
+        &kCamera,   &kRender, &kMaterial, &kSphere, &kPlane,     &kMesh,  &kTriangle, &kQuad,     &kBox,
+        &kCylinder, &kCone,   &kDisc,     &kRotate, &kTransform, &kGroup, &kLight,    &kAreaLight};
     return specs;
 }
 

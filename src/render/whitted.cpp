@@ -70,12 +70,11 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
                           std::span<Occluder> last_blockers, RayCounts& counts) {
     const bool spd_rules = settings.spawn_rules == SpawnRules::Spd;
     const bool through_glass = settings.transparent_shadows && world.refracts();
-    Color sum(0.0);
-    for (size_t l = 0; l < world.lights().size(); ++l) {
-        const Light& light = world.lights()[l];
-        const Vec3 light_offset = Vec3(light.position) - hit.point;
+    // The Phong term of a point light of `color` at `position`, shadowed (light l's blocker cache).
+    auto point_term = [&](const Vec3& position, const Color& color, size_t l) {
+        const Vec3 light_offset = position - hit.point;
         const Real distance = glm::length(light_offset);
-        if (!(distance > 0)) continue;  // a light exactly at the point lights nothing there
+        if (!(distance > 0)) return Color(0.0);  // a light exactly at the point lights nothing there
         const Vec3 to_light = light_offset / distance;
         const Real n_dot_l = glm::dot(normal, to_light);
         const Vec3 reflected_light = 2 * n_dot_l * normal - to_light;  // R = 2(N.L)N - L
@@ -83,8 +82,8 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
         const Color diffuse = kd * double(std::max(Real(0), n_dot_l));
         const Color specular =
             material.ks == Color(0.0) ? Color(0.0) : material.ks * std::pow(double(r_dot_v), material.n);
-        Color term = light.color * (diffuse + specular);
-        if (spd_rules ? !(n_dot_l > 0) : term == Color(0.0)) continue;
+        Color term = color * (diffuse + specular);
+        if (spd_rules ? !(n_dot_l > 0) : term == Color(0.0)) return Color(0.0);
         if (settings.shadows) {
             ++counts.shadow;
             const SpawnedRay shadow = spawn.ray_to(light_offset, distance);
@@ -93,12 +92,24 @@ static Color direct_light(const World& world, const RenderSettings& settings, co
                 // Most shadow rays meet nothing: the any-hit search (the same tests, fewer steps)
                 // says so; only the others are followed through each surface they cross.
                 if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l], left_behind))
-                    term *= light_through(world, shadow, Vec3(light.position), left_behind, counts);
+                    term *= light_through(world, shadow, position, left_behind, counts);
             } else if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l], left_behind)) {
-                continue;
+                return Color(0.0);
             }
         }
-        sum += term;
+        return term;
+    };
+    Color sum(0.0);
+    for (size_t l = 0; l < world.lights().size(); ++l) {
+        const Light& light = world.lights()[l];
+        if (light.samples() == 1) {
+            sum += point_term(Vec3(light.position), light.color, l);
+            continue;
+        }
+        // An area light: each sample a point light with its share of the colour.
+        const Color share = light.color * (1.0 / light.samples());
+        for (int i = 0; i < light.samples1; ++i)
+            for (int j = 0; j < light.samples2; ++j) sum += point_term(Vec3(light.sample(i, j)), share, l);
     }
     return sum;
 }

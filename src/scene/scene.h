@@ -136,9 +136,23 @@ struct Disc {
     int material = 0;
 };
 
+// A light: a point (`light`), or a rectangle of point lights (`area_light`): samples1 x samples2
+// of them on a grid centred on `position`, spanning edge1 and edge2 corner to corner (POV-Ray's
+// area_light), each with color / (samples1 samples2). A point light has no edges and one sample.
 struct Light {
     dvec3 position{0.0};
     dvec3 color{1.0};
+    dvec3 edge1{0.0}, edge2{0.0};
+    int samples1 = 1, samples2 = 1;
+
+    int samples() const { return samples1 * samples2; }
+    // Sample (i, j), 0 <= i < samples1, 0 <= j < samples2: `position` moved along each edge by
+    // i / (samples1 - 1) - 1/2 of it (0 for one sample).
+    dvec3 sample(int i, int j) const {
+        const double a = samples1 > 1 ? double(i) / (samples1 - 1) - 0.5 : 0.0;
+        const double b = samples2 > 1 ? double(j) / (samples2 - 1) - 0.5 : 0.0;
+        return position + a * edge1 + b * edge2;
+    }
 };
 
 // One step of a transform block: scale by per-axis factors (negative ones mirror), rotate by

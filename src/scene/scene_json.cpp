@@ -265,7 +265,13 @@ void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* mes
     add_array(
         out, "lights", scene.lights,
         [&scene](const Light& l) -> Json {
-            return {{"position", vec(l.position)}, {"color", vec(l.color)}};
+            Json entry = {{"position", vec(l.position)}, {"color", vec(l.color)}};
+            if (l.edge1 != dvec3(0.0) || l.edge2 != dvec3(0.0)) {  // an area light
+                entry["edge1"] = vec(l.edge1);
+                entry["edge2"] = vec(l.edge2);
+                entry["samples"] = {l.samples1, l.samples2};
+            }
+            return entry;
         },
         later);
 }

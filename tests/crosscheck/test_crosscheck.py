@@ -137,6 +137,16 @@ def test_cones_agree_in_a_mirror(tracer_bin, tmp_path):
     assert report["over_2"] <= 0.0001 and report["psnr"] > 70, report
 
 
+def test_area_lights_agree_with_mitsuba(tracer_bin, tmp_path):
+    """Two area lights (one placed by a group's rotation): Mitsuba renders each as its samples,
+    point lights with their share of the colour, an independent check of where the samples lie
+    and how they shade."""
+    result = run_tool("crosscheck", HERE / "soft_shadows.scn", "--out", tmp_path, "--json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    report = json.loads(result.stdout)
+    assert report["over_2"] <= 0.0001 and report["psnr"] > 60, report
+
+
 POVRAY_MISSING = "POV-Ray is not installed (Debian's povray; tools/bootstrap --python installs it)"
 
 
@@ -150,6 +160,8 @@ POVRAY_MISSING = "POV-Ray is not installed (Debian's povray; tools/bootstrap --p
         (ROOT / "scenes" / "whitted1980.scn", 0.0),
         (HERE / "patterns_povray.scn", 0.0005),
         (ROOT / "scenes" / "textured_vase.scn", 0.0),
+        (ROOT / "scenes" / "lights" / "lamp.scn", 0.0),
+        (HERE / "soft_shadows.scn", 0.0),
     ],
 )
 def test_povray_agrees(tracer_bin, tmp_path, scene, most_over_2):

@@ -7,6 +7,7 @@ import pytest
 from conftest import ROOT
 
 from tracer_tools.xcheck import ToolError, exact_meshes, povray
+from tracer_tools.xcheck.lights import light_points
 
 
 def material(**keys):
@@ -141,3 +142,14 @@ def test_a_mesh_in_a_solid_is_a_mesh2_with_an_inside_and_the_solids_interior():
     assert lines[0] == "difference {" and lines[1] == "mesh2 {" and "face_indices { 12," in text
     # POV-Ray needs the inside_vector to know a mesh's inside; the interior is the solid's alone.
     assert "  inside_vector <0, 0, 1>" in lines and text.count("interior") == 1 and lines[-2] == "interior { ior 1.5 }"
+
+
+def test_an_area_light_is_written_as_its_samples():
+    """POV-Ray's own area_light shades with the whole light times the fraction of samples
+    unblocked; tracer's samples are point lights each, so the converter writes them so."""
+    light = {"position": [0, 4, 0], "color": [0.8, 0.8, 0.8], "edge1": [2, 0, 0], "edge2": [0, 0, 1], "samples": [3, 2]}
+    points = light_points(light)
+    assert len(points) == 6
+    assert points[0][0] == [-1.0, 4.0, -0.5] and points[0][1] == pytest.approx([0.8 / 6] * 3)
+    assert points[-1][0] == [1.0, 4.0, 0.5]
+    assert light_points({"position": [1, 2, 3], "color": [1, 1, 1]}) == [([1, 2, 3], [1, 1, 1])]

@@ -29,6 +29,7 @@ render { }
 camera { eye (0, 0, 5) lookat (0, 0, 0) }
 material m { }
 light { position (0, 5, 0) }
+area_light { position (0, 5, 0) edge1 (1, 0, 0) edge2 (0, 0, 1) samples1 2 samples2 2 }
 mesh { file ")" TRACER_SOURCE_DIR R"(/scenes/meshes/tetrahedron.obj" material m }
 box { min (0, 0, 0) max (1, 1, 1) material m rotate { } }
 cylinder { base (0, 0, 0) top (0, 1, 0) radius 1 material m }
@@ -74,6 +75,7 @@ std::vector<DefaultRow> rows() {
         {"material", "kt", [=](auto& s) { EXPECT_EQ(s.materials[0].kt, material.kt); }},
         {"material", "ior", [=](auto& s) { EXPECT_EQ(s.materials[0].ior, material.ior); }},
         {"light", "color", [=](auto& s) { EXPECT_EQ(s.lights[0].color, light.color); }},
+        {"area_light", "color", [=](auto& s) { EXPECT_EQ(s.lights[1].color, light.color); }},
         {"mesh", "shading", [=](auto& s) { EXPECT_EQ(s.meshes[0].flat, mesh.flat); }},
         {"cylinder", "caps", [=](auto& s) { EXPECT_EQ(s.cones[0].caps, cone.caps); }},
         {"cone", "caps", [=](auto& s) { EXPECT_EQ(s.cones[1].caps, cone.caps); }},

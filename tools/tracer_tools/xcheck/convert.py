@@ -15,6 +15,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from . import PHONG_PLUGIN, WHITTED_PLUGIN, PeerCannotExpress, ToolError, exact_meshes, mitsuba_textures, round_shapes
+from .lights import light_points
 
 # Primary rays start this far in front of the eye (the camera's near clip). Secondary rays
 # leave surfaces by Mitsuba's spawn_ray / spawn_ray_to, as tracer's by its spawn rule.
@@ -414,12 +415,14 @@ def to_mitsuba_xml(scene: dict) -> str:
         _use_material(out, ids, material)
         out.close("shape")
 
-    # Step 5: point lights; the integrator undoes Mitsuba's 1/r^2 fall-off.
+    # Step 5: point lights (an area light's samples each one); the integrator undoes Mitsuba's
+    # 1/r^2 fall-off.
     for light in scene["lights"]:
-        out.open("emitter", type="point")
-        out.leaf("point", name="position", value=_numbers(light["position"]))
-        out.leaf("rgb", name="intensity", value=_numbers(light["color"]))
-        out.close("emitter")
+        for position, color in light_points(light):
+            out.open("emitter", type="point")
+            out.leaf("point", name="position", value=_numbers(position))
+            out.leaf("rgb", name="intensity", value=_numbers(color))
+            out.close("emitter")
 
     out.close("scene")
     return "\n".join(out.lines) + "\n"
