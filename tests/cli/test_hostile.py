@@ -228,6 +228,8 @@ class Hangs(Hostile):
                 "fn f(n) { return if n == 0 { 0 } else { 1 + f(n - 1) } }\nlet x = f(100000)\n",
                 "calls nest more than 10000 deep (the limit)",
             ),
+            # A shape value placing itself: a recursion that makes no value.
+            "shape_value": ("let loop = group { loop }\nloop\n", "calls nest more than 10000 deep (the limit)"),
             "heavy": ("for i in 0..10000000 {\n" + heavy + "}\n", "the scene runs more than 500000000 operations"),
             # 10^7 iterations of one 10^4-term expression: few statements, much work (it ran for minutes).
             "terms": (
