@@ -42,6 +42,10 @@ public:
     // root's depth is 1).
     template <typename F>
     void for_each_leaf(F f) const;
+    // Calls leaf(box, first, count) for each leaf whose box, and every box above it, `meets`
+    // (a predicate on Bounds); stops as soon as leaf returns false, and returns false then.
+    template <typename Meets, typename Leaf>
+    bool leaves_meeting(Meets meets, Leaf leaf) const;
     // The boxes of the nodes `levels` below the root, and of the leaves above them.
     std::vector<Bounds> cover(int levels) const;
     // Renumbers each leaf's range of the leaf order: [first, first + count) becomes
@@ -157,6 +161,25 @@ void BinaryBvh::for_each_leaf(F f) const {
         pending.push_back({node.index, visit.depth + 1});
         pending.push_back({visit.node + 1, visit.depth + 1});
     }
+}
+
+template <typename Meets, typename Leaf>
+bool BinaryBvh::leaves_meeting(Meets meets, Leaf leaf) const {
+    if (nodes_.empty() || !meets(bounds_of(nodes_[0]))) return true;
+    uint32_t stack[kMaxBvhDepth + 1];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const BvhNode& node = nodes_[stack[--top]];
+        if (node.count > 0) {
+            if (!leaf(bounds_of(node), node.index, node.count)) return false;
+            continue;
+        }
+        const uint32_t left = uint32_t(&node - nodes_.data()) + 1, right = node.index;
+        if (meets(bounds_of(nodes_[right]))) stack[top++] = right;
+        if (meets(bounds_of(nodes_[left]))) stack[top++] = left;
+    }
+    return true;
 }
 
 }  // namespace tracer

@@ -121,6 +121,13 @@ public:
         std::visit([&f](const auto& tree) { tree.for_each_leaf(f); }, tree_);
     }
 
+    // Calls leaf(box, first, count) for each leaf whose box, and every box above it, `meets`
+    // (a predicate on Bounds); stops as soon as leaf returns false, and returns false then.
+    template <typename Meets, typename Leaf>
+    bool leaves_meeting(Meets meets, Leaf leaf) const {
+        return std::visit([&](const auto& tree) { return tree.leaves_meeting(meets, leaf); }, tree_);
+    }
+
     // Nearest hit: `test(i, range)` (or a LeafTest) tests entry i of order() against the ray,
     // shrinking range.max on a hit and returning true. Children are visited nearest first.
     template <typename Test>

@@ -67,6 +67,10 @@ public:
     // root's children are at depth 2).
     template <typename F>
     void for_each_leaf(F f) const;
+    // Calls leaf(box, first, count) for each leaf whose box, and every box above it, `meets`
+    // (a predicate on Bounds); stops as soon as leaf returns false, and returns false then.
+    template <typename Meets, typename Leaf>
+    bool leaves_meeting(Meets meets, Leaf leaf) const;
     // The boxes of the nodes `levels` below the root, and of the leaves above them.
     std::vector<Bounds> cover(int levels) const;
     // Renumbers each leaf's range of the leaf order: [first, first + count) becomes

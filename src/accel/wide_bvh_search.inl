@@ -129,6 +129,27 @@ void WideBvh::for_each_leaf(F f) const {
     }
 }
 
+template <typename Meets, typename Leaf>
+bool WideBvh::leaves_meeting(Meets meets, Leaf leaf) const {
+    if (nodes_.empty()) return true;
+    uint32_t stack[kStackSize];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const WideNode& node = nodes_[stack[--top]];
+        for (int lane = 0; lane < kWide; ++lane) {
+            if (node.count[lane] == 0) continue;
+            const Bounds box = bounds_of(node, lane);
+            if (!meets(box)) continue;
+            if (node.count[lane] == WideNode::kInner)
+                stack[top++] = node.index[lane];
+            else if (!leaf(box, node.index[lane], node.count[lane]))
+                return false;
+        }
+    }
+    return true;
+}
+
 // The child to visit next among those the ray enters: the one that `comes_off_first(its t,
 // every other's)`; the others go on the stack, each below those that come off before it.
 template <typename ComesOffFirst>

@@ -14,6 +14,7 @@
 #include "accel/mesh_accel.h"
 #include "accel/ray_packet.h"
 #include "accel/round_shapes.h"
+#include "accel/shadow_frustum.h"
 #include "accel/solid_objects.h"
 #include "accel/types.h"
 #include "scene/placement.h"
@@ -152,6 +153,16 @@ public:
     // Object `left_behind` is not tested (as for nearest_hit).
     bool occluded(const Ray& ray, Interval range, SearchCounts& counts, Occluder& last,
                   uint32_t left_behind = kNoObject) const;
+    // What may block some shadow ray of `frustum`: the top level's entries whose boxes meet it
+    // (among those of `within`, a frustum holding this one, if given), the planes it crosses
+    // and any unbounded solid; `everything` if they are more than ShadowCandidates holds.
+    void shadow_candidates(const ShadowFrustum& frustum, const ShadowCandidates* within, ShadowCandidates& out) const;
+    // occluded for a ray of a frustum whose candidates these are: the same answer, only they tested.
+    bool occluded_among(const ShadowCandidates& candidates, const Ray& ray, Interval range, SearchCounts& counts,
+                        Occluder& last, uint32_t left_behind) const;
+    // The object that `blocker` names, if it is convex (a sphere, a closed cone, a disc): a shadow
+    // frustum whose four edge rays it blocks is blocked all through. kNoObject for any other.
+    uint32_t convex_blocker(const Occluder& blocker) const;
     // A number no other World of this process has (for caches kept between rays).
     uint64_t serial() const { return serial_; }
     // False only if the ray's line misses a bounding sphere of every bounded object, and there

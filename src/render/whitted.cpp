@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/direct_light.h"
 #include "render/spawn.h"
 #include "scene/pattern.h"
 
@@ -36,82 +37,6 @@ static std::span<Occluder> shadow_cache(const World& world) {
         last.assign(world.lights().size(), Occluder{});
     }
     return last;
-}
-
-// The most surfaces one transparent shadow ray crosses; past them the light counts as blocked.
-constexpr int kMostShadowCrossings = 1024;
-
-// The fraction of a light's colour that reaches the point along `shadow` (transparent shadows):
-// the product of kt over the surfaces crossed, 0 at the first that transmits nothing. Each
-// crossing continues as a ray of its own, from the far side of the surface, counted as a shadow
-// ray. `left_behind`: the object the first ray cannot meet again (object_left_behind).
-static Color light_through(const World& world, SpawnedRay shadow, const Vec3& light, uint32_t left_behind,
-                           RayCounts& counts) {
-    Color through(1.0);
-    for (int crossings = 0; crossings < kMostShadowCrossings; ++crossings) {
-        const auto found = world.nearest_hit(shadow.ray, shadow.range, counts.traversal, left_behind);
-        if (!found) return through;
-        const SurfaceHit hit = world.surface(shadow.ray, *found);
-        through *= world.materials()[size_t(hit.material)].kt;
-        if (through == Color(0.0)) return through;
-        ++counts.shadow;
-        shadow = spawn_ray_to(hit, light);
-        left_behind = object_left_behind(hit, shadow.ray.direction);
-    }
-    return Color(0.0);
-}
-
-// Phong terms of every light that the point sees (no ambient). Under tracer's rules a light
-// whose unshadowed term is exactly zero (a mirror with kd = ks = 0, a back face without
-// specular) adds nothing either way, so it costs no shadow ray; under the SPD's, a shadow ray
-// goes wherever the normal faces the light, and nowhere else.
-static Color direct_light(const World& world, const RenderSettings& settings, const Material& material, const Color& kd,
-                          const SurfaceHit& hit, const SpawnPoint& spawn, const Vec3& normal, const Vec3& to_viewer,
-                          std::span<Occluder> last_blockers, RayCounts& counts) {
-    const bool spd_rules = settings.spawn_rules == SpawnRules::Spd;
-    const bool through_glass = settings.transparent_shadows && world.refracts();
-    // The Phong term of a point light of `color` at `position`, shadowed (light l's blocker cache).
-    auto point_term = [&](const Vec3& position, const Color& color, size_t l) {
-        const Vec3 light_offset = position - hit.point;
-        const Real distance = glm::length(light_offset);
-        if (!(distance > 0)) return Color(0.0);  // a light exactly at the point lights nothing there
-        const Vec3 to_light = light_offset / distance;
-        const Real n_dot_l = glm::dot(normal, to_light);
-        const Vec3 reflected_light = 2 * n_dot_l * normal - to_light;  // R = 2(N.L)N - L
-        const Real r_dot_v = std::max(Real(0), glm::dot(reflected_light, to_viewer));
-        const Color diffuse = kd * double(std::max(Real(0), n_dot_l));
-        const Color specular =
-            material.ks == Color(0.0) ? Color(0.0) : material.ks * std::pow(double(r_dot_v), material.n);
-        Color term = color * (diffuse + specular);
-        if (spd_rules ? !(n_dot_l > 0) : term == Color(0.0)) return Color(0.0);
-        if (settings.shadows) {
-            ++counts.shadow;
-            const SpawnedRay shadow = spawn.ray_to(light_offset, distance);
-            const uint32_t left_behind = object_left_behind(hit, to_light);
-            if (through_glass) {
-                // Most shadow rays meet nothing: the any-hit search (the same tests, fewer steps)
-                // says so; only the others are followed through each surface they cross.
-                if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l], left_behind))
-                    term *= light_through(world, shadow, position, left_behind, counts);
-            } else if (world.occluded(shadow.ray, shadow.range, counts.traversal, last_blockers[l], left_behind)) {
-                return Color(0.0);
-            }
-        }
-        return term;
-    };
-    Color sum(0.0);
-    for (size_t l = 0; l < world.lights().size(); ++l) {
-        const Light& light = world.lights()[l];
-        if (light.samples() == 1) {
-            sum += point_term(Vec3(light.position), light.color, l);
-            continue;
-        }
-        // An area light: each sample a point light with its share of the colour.
-        const Color share = light.color * (1.0 / light.samples());
-        for (int i = 0; i < light.samples1; ++i)
-            for (int j = 0; j < light.samples2; ++j) sum += point_term(Vec3(light.sample(i, j)), share, l);
-    }
-    return sum;
 }
 
 // A patterned material's ka and kd at a hit (scene/pattern.h): its patterns evaluated at the
@@ -252,8 +177,8 @@ template <bool kRefracts>
             Color ka = material.ka, kd = material.kd;
             if (material.patterned()) [[unlikely]]
                 paint(world, material, *found, hit, ka, kd);
-            color += weight * (ka + direct_light(world, settings, material, kd, hit, spawn, normal, to_viewer,
-                                                 last_blockers, counts));
+            const ShadingPoint lit{world, settings, material, kd, hit, spawn, normal, to_viewer};
+            color += weight * (ka + direct_light(lit, last_blockers, counts));
             if (depth == settings.max_depth) break;
 
             // Step 3: the refracted ray, a branch of its own; on total internal reflection, kt joins km.

@@ -1,0 +1,248 @@
+#include "render/area_shadows.h"
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+namespace tracer {
+namespace {
+
+// Where sample k of n lies along an edge, from its middle: k / (n - 1) - 1/2 (0 for one sample),
+// as Light::sample has it.
+inline double sample_step(int k, int n) {
+    return n > 1 ? double(k) / (n - 1) - 0.5 : 0.0;
+}
+
+// What a sample's shadow ray found.
+enum class Seen : uint8_t { Unknown, Lit, Blocked, Through };
+
+// One area light's samples from one hit, their shadow rays classified region by region.
+class SampleGrid {
+public:
+    SampleGrid(const ShadingPoint& point, const Light& light, const Vec3& origin, uint32_t left_behind, Occluder& last,
+               RayCounts& counts)
+        : point_(point),
+          world_(point.world),
+          light_(light),
+          origin_(origin),
+          left_behind_(left_behind),
+          last_(last),
+          counts_(counts),
+          through_glass_(point.settings.transparent_shadows && point.world.refracts()) {
+        thread_local std::vector<Seen> seen;
+        thread_local std::vector<uint32_t> blockers;
+        thread_local std::vector<Color> through;
+        const size_t samples = size_t(light.samples());
+        seen.assign(samples, Seen::Unknown);
+        blockers.assign(samples, kNoObject);
+        if (through_glass_) through.assign(samples, Color(0.0));
+        seen_ = seen.data(), blockers_ = blockers.data(), through_ = through.data();
+        const double n = point.material.n;
+        whole_exponent_ = n >= 1 && n <= kMostSquaredExponent && n == std::floor(n);
+        exponent_ = whole_exponent_ ? unsigned(n) : 0;
+    }
+
+    // Classifies samples [i0, i1] x [j0, j1] (inclusive), `candidates` holding what may block
+    // any of their rays.
+    void classify(int i0, int i1, int j0, int j1, const ShadowCandidates& candidates) {
+        if (candidates.empty()) {
+            for (int i = i0; i <= i1; ++i)
+                for (int j = j0; j <= j1; ++j) mark(i, j, Seen::Lit);
+            return;
+        }
+        if ((i1 - i0 + 1) * (j1 - j0 + 1) <= kSmallestRegion) {
+            for (int i = i0; i <= i1; ++i)
+                for (int j = j0; j <= j1; ++j) test(i, j, candidates);
+            return;
+        }
+        // Step 1: the corners; one convex opaque shape across all four blocks the whole region.
+        const int corner_i[4] = {i0, i1, i1, i0}, corner_j[4] = {j0, j0, j1, j1};
+        for (int k = 0; k < 4; ++k) test(corner_i[k], corner_j[k], candidates);
+        const uint32_t first = blocker(i0, j0);
+        bool one_blocker = first != kNoObject && opaque(first);
+        for (int k = 1; k < 4 && one_blocker; ++k) one_blocker = blocker(corner_i[k], corner_j[k]) == first;
+        if (one_blocker) {
+            for (int i = i0; i <= i1; ++i)
+                for (int j = j0; j <= j1; ++j) mark(i, j, Seen::Blocked);
+            return;
+        }
+        // Step 2: the two halves across the longer side (each pyramid holds its own samples).
+        if (i1 - i0 >= j1 - j0) {
+            const int mid = (i0 + i1) / 2;
+            part(i0, mid, j0, j1, candidates);
+            part(mid + 1, i1, j0, j1, candidates);
+        } else {
+            const int mid = (j0 + j1) / 2;
+            part(i0, i1, j0, mid, candidates);
+            part(i0, i1, mid + 1, j1, candidates);
+        }
+    }
+
+    // Adds the terms of the samples seen (whole or through glass) to `sum`: the sums of
+    // max(0, N.L) and max(0, R.V)^n over the samples lit whole, times the share of the colour,
+    // and each sample seen through glass with its own factor.
+    void add_terms(Color& sum) const {
+        thread_local std::vector<Real> n_dot_l, r_dot_v, steps;
+        const int n1 = light_.samples1, n2 = light_.samples2;
+        n_dot_l.resize(size_t(n2));
+        r_dot_v.resize(size_t(n2));
+        steps.resize(size_t(n2));
+        for (int j = 0; j < n2; ++j) steps[size_t(j)] = Real(sample_step(j, n2));
+        const Vec3 p = point_.hit.point, normal = point_.normal, viewer = point_.to_viewer;
+        const Vec3 e1(light_.edge1), e2(light_.edge2);
+        const Real n_dot_v = glm::dot(normal, viewer);
+        const bool specular = point_.material.ks != Color(0.0);
+        Real diffuse_sum[4] = {0, 0, 0, 0}, specular_sum = 0;
+        Color through_sum(0.0);
+        for (int i = 0; i < n1; ++i) {
+            // Step 1: a row's N.L and R.V = 2 (N.L)(N.V) - L.V, for every sample (vectorised).
+            const Vec3 row = Vec3(light_.position) + Real(sample_step(i, n1)) * e1 - p;
+            for (int j = 0; j < n2; ++j) {
+                const Vec3 offset = row + steps[size_t(j)] * e2;
+                const Real inverse = 1 / std::sqrt(offset.x * offset.x + offset.y * offset.y + offset.z * offset.z);
+                const Real cosine = (normal.x * offset.x + normal.y * offset.y + normal.z * offset.z) * inverse;
+                n_dot_l[size_t(j)] = cosine;
+                r_dot_v[size_t(j)] =
+                    2 * cosine * n_dot_v - (viewer.x * offset.x + viewer.y * offset.y + viewer.z * offset.z) * inverse;
+            }
+            // Step 2: the sums over the row's samples lit whole; those seen through glass apart.
+            const Seen* seen = seen_ + index(i, 0);
+            for (int j = 0; j < n2; ++j) {
+                if (seen[j] == Seen::Blocked) continue;
+                const Real diffuse = std::max(Real(0), n_dot_l[size_t(j)]);
+                const Real shine = specular ? Real(power(double(std::max(Real(0), r_dot_v[size_t(j)])))) : 0;
+                if (seen[j] == Seen::Lit) {
+                    diffuse_sum[j & 3] += diffuse;
+                    specular_sum += shine;
+                } else {
+                    through_sum +=
+                        through_[index(i, j)] * (point_.kd * double(diffuse) + point_.material.ks * double(shine));
+                }
+            }
+        }
+        const double diffuse = double((diffuse_sum[0] + diffuse_sum[1]) + (diffuse_sum[2] + diffuse_sum[3]));
+        const Color lit = point_.kd * diffuse + (specular ? point_.material.ks * double(specular_sum) : Color(0.0));
+        sum += share() * (lit + through_sum);
+    }
+
+private:
+    static constexpr double kMostSquaredExponent = 1024;
+    // Regions of this many samples or fewer have each ray tested.
+    static constexpr int kSmallestRegion = 32;
+
+    // x^n of the material's exponent n, for x >= 0: by squaring when n is a whole number from 1
+    // to kMostSquaredExponent (a relative error of a few ulps: 2 log2(n) roundings), else std::pow.
+    double power(double x) const {
+        if (!whole_exponent_) return std::pow(x, point_.material.n);
+        double result = 1, square = x;
+        for (unsigned n = exponent_; n; n >>= 1, square *= square)
+            if (n & 1) result *= square;
+        return result;
+    }
+
+    size_t index(int i, int j) const { return size_t(i) * size_t(light_.samples2) + size_t(j); }
+    Color share() const { return light_.color * (1.0 / light_.samples()); }
+    uint32_t blocker(int i, int j) const { return blockers_[index(i, j)]; }
+    void mark(int i, int j, Seen seen) {
+        Seen& s = seen_[index(i, j)];
+        if (s == Seen::Unknown) s = seen;
+    }
+    bool opaque(uint32_t object) const {
+        return !through_glass_ || world_.materials()[size_t(world_.objects()[object].material)].kt == Color(0.0);
+    }
+
+    // Classifies the region's samples with the candidates of its own pyramid.
+    void part(int i0, int i1, int j0, int j1, const ShadowCandidates& within) {
+        const glm::dvec3 corners[4] = {light_.sample(i0, j0), light_.sample(i1, j0), light_.sample(i1, j1),
+                                       light_.sample(i0, j1)};
+        ShadowCandidates candidates;
+        world_.shadow_candidates(ShadowFrustum(glm::dvec3(origin_), corners), &within, candidates);
+        classify(i0, i1, j0, j1, candidates);
+    }
+
+    // Traces sample (i, j)'s shadow ray if it has not been, against the candidates.
+    void test(int i, int j, const ShadowCandidates& candidates) {
+        const size_t k = index(i, j);
+        if (seen_[k] != Seen::Unknown) return;
+        const Vec3 position(light_.sample(i, j));
+        const Vec3 light_offset = position - point_.hit.point;
+        const Real distance = glm::length(light_offset);
+        if (!(distance > 0)) {  // a sample exactly at the point lights nothing there
+            seen_[k] = Seen::Blocked;
+            return;
+        }
+        ++counts_.shadow;
+        const SpawnedRay shadow = point_.spawn.ray_to(light_offset, distance);
+        if (!world_.occluded_among(candidates, shadow.ray, shadow.range, counts_.traversal, last_, left_behind_)) {
+            seen_[k] = Seen::Lit;
+            return;
+        }
+        blockers_[k] = world_.convex_blocker(last_);
+        seen_[k] = Seen::Blocked;
+        if (through_glass_) {
+            through_[k] = light_through(world_, shadow, position, left_behind_, counts_);
+            if (through_[k] != Color(0.0)) seen_[k] = Seen::Through;
+        }
+    }
+
+    const ShadingPoint& point_;
+    const World& world_;
+    const Light& light_;
+    Vec3 origin_;
+    uint32_t left_behind_;
+    Occluder& last_;
+    RayCounts& counts_;
+    bool through_glass_;
+    bool whole_exponent_;
+    unsigned exponent_;
+    Seen* seen_;
+    uint32_t* blockers_;
+    Color* through_;
+};
+
+// True if every sample's shadow ray leaves from one side of the surface, the one of the light's
+// corners (by a margin: then the origin and the object left behind are the same for all).
+bool one_side(const ShadingPoint& point, const Light& light, Vec3& some_offset) {
+    const int last_i = light.samples1 - 1, last_j = light.samples2 - 1;
+    const int corner_i[4] = {0, last_i, last_i, 0}, corner_j[4] = {0, 0, last_j, last_j};
+    int sign = 0;
+    for (int k = 0; k < 4; ++k) {
+        const Vec3 offset = Vec3(light.sample(corner_i[k], corner_j[k])) - point.hit.point;
+        const Real side = glm::dot(offset, point.hit.geometric_normal);
+        if (!(std::abs(side) > Real(1e-6) * glm::length(offset))) return false;
+        const int s = side > 0 ? 1 : -1;
+        if (sign != 0 && s != sign) return false;
+        sign = s;
+        some_offset = offset;
+    }
+    return true;
+}
+
+}  // namespace
+
+void add_area_light(const ShadingPoint& point, const Light& light, Occluder& last, Color& sum, RayCounts& counts) {
+    const Color share = light.color * (1.0 / light.samples());
+    Vec3 offset;
+    // Each sample alone: without shadows, under the SPD's rules (their own shadow-ray rule), and
+    // for a point that sees the light on both sides of its surface.
+    if (!point.settings.shadows || point.settings.spawn_rules == SpawnRules::Spd || !one_side(point, light, offset)) {
+        for (int i = 0; i < light.samples1; ++i)
+            for (int j = 0; j < light.samples2; ++j)
+                sum += point_light_term(point, Vec3(light.sample(i, j)), share, last, counts);
+        return;
+    }
+    const Vec3 origin = point.spawn.origin(offset);
+    const uint32_t left_behind = object_left_behind(point.hit, offset);
+    SampleGrid grid(point, light, origin, left_behind, last, counts);
+    const int last_i = light.samples1 - 1, last_j = light.samples2 - 1;
+    const glm::dvec3 corners[4] = {light.sample(0, 0), light.sample(last_i, 0), light.sample(last_i, last_j),
+                                   light.sample(0, last_j)};
+    ShadowCandidates candidates;
+    point.world.shadow_candidates(ShadowFrustum(glm::dvec3(origin), corners), nullptr, candidates);
+    grid.classify(0, last_i, 0, last_j, candidates);
+    grid.add_terms(sum);
+}
+
+}  // namespace tracer

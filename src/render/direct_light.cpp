@@ -1,0 +1,76 @@
+#include "render/direct_light.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "render/area_shadows.h"
+
+namespace tracer {
+
+// The most surfaces one transparent shadow ray crosses; past them the light counts as blocked.
+constexpr int kMostShadowCrossings = 1024;
+
+// Each crossing continues as a ray of its own, from the far side of the surface, counted as a
+// shadow ray; the product of kt over the surfaces crossed, 0 at the first that transmits nothing.
+Color light_through(const World& world, SpawnedRay shadow, const Vec3& light, uint32_t left_behind, RayCounts& counts) {
+    Color through(1.0);
+    for (int crossings = 0; crossings < kMostShadowCrossings; ++crossings) {
+        const auto found = world.nearest_hit(shadow.ray, shadow.range, counts.traversal, left_behind);
+        if (!found) return through;
+        const SurfaceHit hit = world.surface(shadow.ray, *found);
+        through *= world.materials()[size_t(hit.material)].kt;
+        if (through == Color(0.0)) return through;
+        ++counts.shadow;
+        shadow = spawn_ray_to(hit, light);
+        left_behind = object_left_behind(hit, shadow.ray.direction);
+    }
+    return Color(0.0);
+}
+
+// Under tracer's rules a light whose unshadowed term is exactly zero (a mirror with kd = ks = 0,
+// a back face without specular) adds nothing either way, so it costs no shadow ray; under the
+// SPD's, a shadow ray goes wherever the normal faces the light, and nowhere else.
+Color point_light_term(const ShadingPoint& point, const Vec3& position, const Color& color, Occluder& last,
+                       RayCounts& counts) {
+    const RenderSettings& settings = point.settings;
+    const bool spd_rules = settings.spawn_rules == SpawnRules::Spd;
+    const Vec3 light_offset = position - point.hit.point;
+    const Real distance = glm::length(light_offset);
+    if (!(distance > 0)) return Color(0.0);  // a light exactly at the point lights nothing there
+    const Vec3 to_light = light_offset / distance;
+    const Real n_dot_l = glm::dot(point.normal, to_light);
+    Color term = phong_term(point, to_light, n_dot_l, color);
+    if (spd_rules ? !(n_dot_l > 0) : term == Color(0.0)) return Color(0.0);
+    if (settings.shadows) {
+        ++counts.shadow;
+        const SpawnedRay shadow = point.spawn.ray_to(light_offset, distance);
+        const uint32_t left_behind = object_left_behind(point.hit, to_light);
+        const World& world = point.world;
+        if (settings.transparent_shadows && world.refracts()) {
+            // Most shadow rays meet nothing: the any-hit search (the same tests, fewer steps)
+            // says so; only the others are followed through each surface they cross.
+            if (world.occluded(shadow.ray, shadow.range, counts.traversal, last, left_behind))
+                term *= light_through(world, shadow, position, left_behind, counts);
+        } else if (world.occluded(shadow.ray, shadow.range, counts.traversal, last, left_behind)) {
+            return Color(0.0);
+        }
+    }
+    return term;
+}
+
+Color direct_light(const ShadingPoint& point, std::span<Occluder> last_blockers, RayCounts& counts) {
+    Color sum(0.0);
+    const std::vector<Light>& lights = point.world.lights();
+    for (size_t l = 0; l < lights.size(); ++l) {
+        const Light& light = lights[l];
+        if (light.samples() == 1)
+            sum += point_light_term(point, Vec3(light.position), light.color, last_blockers[l], counts);
+        else
+            add_area_light(point, light, last_blockers[l], sum, counts);
+    }
+    return sum;
+}
+
+}  // namespace tracer
