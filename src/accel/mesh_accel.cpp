@@ -533,6 +533,23 @@ bool MeshAccel::blocks(TriangleRun run, const Ray& ray, Interval range) const {
     return run_blocks(LaneTester(ray, columns()), run, range);
 }
 
+bool MeshAccel::leaves_block(const TriangleRun* leaves, int count, const Ray& ray, Interval range,
+                             TraversalCounts& counts, TriangleRun& blocker) const {
+    const LaneTester tester(ray, columns());
+    for (int k = 0; k < count; ++k) {
+        const uint32_t first = leaves[k].first, end = leaves[k].first + leaves[k].count;
+        counts.primitive_tests += leaves[k].count;
+        for (uint32_t start = first; start < end; start += kTriangleLanes) {
+            const TriangleRun run{start, std::min(uint32_t(kTriangleLanes), end - start)};
+            if (run_blocks(tester, run, range)) {
+                blocker = run;
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
 Vec3 MeshAccel::surface_point(uint32_t slot, Real u, Real v, Vec3& error) const {
     const Triangle t = triangle(slot);
     const Real w = 1 - u - v;

@@ -103,6 +103,10 @@ public:
     }
     // True if a triangle of `run` lies along the ray inside `range` (the test occluded makes).
     bool blocks(TriangleRun run, const Ray& ray, Interval range) const;
+    // occluded among the triangles of leaves[0 .. count) alone (runs of any length); `blocker`
+    // is then the run of at most kTriangleLanes triangles tested together that holds one.
+    bool leaves_block(const TriangleRun* leaves, int count, const Ray& ray, Interval range, TraversalCounts& counts,
+                      TriangleRun& blocker) const;
     // The triangle in `slot`, as the mesh places it.
     Triangle triangle(uint32_t slot) const { return columns().triangle(slot); }
 

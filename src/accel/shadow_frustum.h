@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "accel/bvh_search.h"
+#include "accel/mesh_accel.h"
 #include "accel/types.h"
 
 namespace tracer {
@@ -118,15 +119,25 @@ private:
 };
 
 // What may block some ray of a ShadowFrustum: entries of the world's top level and planes
-// (World::shadow_candidates), or everything when they are too many to list.
+// (World::shadow_candidates), or everything when they are too many to list. A mesh built placed
+// may list the leaves of its BVH that meet the frustum, when they are few: then only their
+// triangles are tested.
 struct ShadowCandidates {
     static constexpr int kMostEntries = 32;
+    static constexpr int kMostLeaves = 48;
+    static constexpr uint16_t kWholeMesh = 0xffff;  // leaf_count of an entry searched whole
     bool everything = false;
     int count = 0;
     uint32_t entries[kMostEntries];
     Bounds boxes[kMostEntries];  // around each entry (its leaf's box in a BVH)
-    uint64_t planes = 0;         // bit p: plane p (the first 64; more make `everything`)
-    bool unbounded = false;      // the world's unbounded solids (always listed: they have no box)
+    // An entry's leaves: leaves[leaf_first[i] .. + leaf_count[i]), or kWholeMesh (any entry
+    // not a placed mesh, or one whose leaves are too many).
+    uint16_t leaf_first[kMostEntries], leaf_count[kMostEntries];
+    int leaves_used = 0;
+    TriangleRun leaves[kMostLeaves];
+    Bounds leaf_boxes[kMostLeaves];
+    uint64_t planes = 0;     // bit p: plane p (the first 64; more make `everything`)
+    bool unbounded = false;  // the world's unbounded solids (always listed: they have no box)
 
     bool empty() const { return !everything && count == 0 && planes == 0 && !unbounded; }
 };

@@ -160,9 +160,16 @@ public:
     // occluded for a ray of a frustum whose candidates these are: the same answer, only they tested.
     bool occluded_among(const ShadowCandidates& candidates, const Ray& ray, Interval range, SearchCounts& counts,
                         Occluder& last, uint32_t left_behind) const;
-    // The object that `blocker` names, if it is convex (a sphere, a closed cone, a disc): a shadow
-    // frustum whose four edge rays it blocks is blocked all through. kNoObject for any other.
-    uint32_t convex_blocker(const Occluder& blocker) const;
+    // The shape that `blocker` names, if it is convex (a sphere, a closed cone, a disc): a shadow
+    // frustum whose four edge rays one convex shape blocks is blocked all through. (A mesh's
+    // triangles are convex too, but naming the one of a run that blocks cost as much as it saved,
+    // measured on scenes/lights/window.scn.)
+    struct ConvexBlocker {
+        static constexpr uint32_t kNone = kNoObject;
+        uint32_t object = kNone;  // kNone if not convex
+        int material = -1;
+    };
+    ConvexBlocker convex_blocker(const Occluder& blocker) const;
     // A number no other World of this process has (for caches kept between rays).
     uint64_t serial() const { return serial_; }
     // False only if the ray's line misses a bounding sphere of every bounded object, and there
@@ -247,6 +254,10 @@ private:
     bool hit_instance(uint32_t index, uint32_t object, const Ray& ray, Interval& range, Hit& hit,
                       SearchCounts& counts) const;
     bool instance_blocks(uint32_t entry, const Ray& ray, Interval range, SearchCounts& counts, Occluder& blocker) const;
+    // shadow_candidates' step for out's next entry (`entry`): the leaves of its mesh that meet
+    // the frustum, from `within`'s entry `within_index` if given, or kWholeMesh.
+    void add_mesh_leaves(const ShadowFrustum& frustum, uint32_t entry, const ShadowCandidates* within, int within_index,
+                         ShadowCandidates& out) const;
     bool occluder_blocks(const Occluder& occluder, const Ray& ray, Interval range, SearchCounts& counts,
                          uint32_t left_behind) const;
     // The nearest of the planes and the unbounded solids (tested beside the top level).

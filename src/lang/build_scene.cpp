@@ -72,10 +72,65 @@ int material_index(SceneAssembly& a, const Fields& fields) {
     return SceneAssembly::kLaterMaterial - int(a.later_materials.size() - 1);
 }
 
+// Fading with distance (fade_distance 0: none), as the block says.
+static void read_fading(const Fields& fields, Light& light) {
+    light.fade_distance = fields.number("fade_distance");
+    light.fade_power = fields.number("fade_power");
+}
+
 void build_light(SceneAssembly& a, const Block& block, const Fields& fields) {
     Placed group;
     if (!add_group_steps(a, block, group)) return;
-    a.scene.lights.push_back({Placement(group).point(fields.triple("position")), fields.triple("color")});
+    Light light{Placement(group).point(fields.triple("position")), fields.triple("color")};
+    read_fading(fields, light);
+    a.scene.lights.push_back(light);
+}
+
+// A spotlight: its position and the point it aims at placed by the groups around it.
+static void build_spotlight(SceneAssembly& a, const Block& block, const Fields& fields) {
+    Placed group;
+    if (!add_group_steps(a, block, group)) return;
+    const Placement placement(group);
+    Light light{placement.point(fields.triple("position")), fields.triple("color")};
+    light.kind = Light::Kind::Spot;
+    const dvec3 axis = placement.point(fields.triple("point_at")) - light.position;
+    const double length = glm::length(axis);
+    if (!(length > 0) || !std::isfinite(length)) {
+        a.diagnostics.error(a.file, fields.value_span("point_at"),
+                            "a spotlight must point away from its position: point_at is the position itself");
+        return;
+    }
+    light.direction = axis / length;
+    light.radius = fields.number("radius");
+    light.falloff = fields.number("falloff");
+    light.tightness = fields.number("tightness");
+    if (light.falloff < light.radius) {
+        a.diagnostics.error(a.file, fields.value_span("falloff"),
+                            "a spotlight's falloff (" + format_number(light.falloff) +
+                                " degrees) must be at least its radius (" + format_number(light.radius) +
+                                "): its light fades from the radius out to the falloff");
+        return;
+    }
+    read_fading(fields, light);
+    a.scene.lights.push_back(light);
+}
+
+// A parallel light: its direction turned by the groups around it.
+static void build_parallel_light(SceneAssembly& a, const Block& block, const Fields& fields) {
+    Placed group;
+    if (!add_group_steps(a, block, group)) return;
+    Light light;
+    light.kind = Light::Kind::Parallel;
+    light.color = fields.triple("color");
+    const dvec3 direction = Placement(group).linear * fields.triple("direction");
+    const double length = glm::length(direction);
+    if (!(length > 0) || !std::isfinite(length)) {
+        a.diagnostics.error(a.file, fields.value_span("direction"),
+                            "a parallel light's direction has no length once placed by its groups");
+        return;
+    }
+    light.direction = direction / length;
+    a.scene.lights.push_back(light);
 }
 
 // An area light: its centre and edges placed by the groups around it.
@@ -94,6 +149,7 @@ void build_area_light(SceneAssembly& a, const Block& block, const Fields& fields
                             "an area light's edges must span a rectangle: edge2 is parallel to edge1");
         return;
     }
+    read_fading(fields, light);
     a.scene.lights.push_back(light);
 }
 
@@ -115,6 +171,8 @@ constexpr Builder kBuilders[] = {
     {"camera", build_camera},
     {"light", build_light},
     {"area_light", build_area_light},
+    {"spotlight", build_spotlight},
+    {"parallel_light", build_parallel_light},
     {"sphere", build_sphere},
     {"plane", build_plane},
     {"cylinder", build_cone},

@@ -77,7 +77,7 @@ bool check_solid_part(SceneAssembly& a, const Block& block) {
     const std::string named = with_article(around->kind);
     Diagnostic* d = a.diagnostics.error(
         a.file, block.kind_span,
-        block.kind == "light" || block.kind == "area_light"
+        block.kind.ends_with("light")  // light, area_light, spotlight, parallel_light
             ? "a light cannot be part of " + named + ": write it outside the " + around->kind
             : "a " + block.kind + " cannot be part of " + named + ", which needs an inside: " + closed);
     Diagnostics::note(d, a.file, around->keyword, "the " + around->kind + " is here");

@@ -431,14 +431,51 @@ const BlockSpec kImage = pattern("image",
             {"repeat", "clamp", "mirror"})},
     "planar", "quad {\n  corner (-1, -1, 0)\n  edge1 (2, 0, 0)\n  edge2 (0, 2, 0)\n  material { kd image { file \"../scenes/textures/uv_grid.png\" mapping uv } }\n}\n");
 
+// Fading with distance, shared by the lights that have a position.
+#define FADE_KEYS                                                                                                \
+    ranged(key("fade_distance", ValueType::Number, "0",                                                          \
+               "Fading: the colour times 2 / (1 + (d / fade_distance)^fade_power) at distance d (0: none)."), \
+           0, kInf),                                                                                             \
+        ranged(key("fade_power", ValueType::Number, "2", "Fading's exponent (with fade_distance)."), 0, 1000),
+
 const BlockSpec kLight{
     "light", false, true, Occurs::Any,
     "A point light without fall-off.",
     {
         key("position", ValueType::Vector, "", "Position."),
         ranged(key("color", ValueType::Triple, "1", "Colour; multiplies diffuse and specular."), 0, kInf),
+        FADE_KEYS
     },
     "light {\n  position (0, 3, -2)\n  color 0.2\n}\n",
+};
+
+const BlockSpec kSpotlight{
+    "spotlight", false, true, Occurs::Any,
+    "A point light shining in a cone (POV-Ray's spotlight): full within `radius` degrees of the axis from "
+    "`position` to `point_at`, falling smoothly to nothing at `falloff` degrees, times cos(angle)^`tightness`.",
+    {
+        key("position", ValueType::Vector, "", "Position."),
+        key("point_at", ValueType::Vector, "", "A point on the cone's axis (not the position)."),
+        ranged(key("color", ValueType::Triple, "1", "Colour; multiplies diffuse and specular."), 0, kInf),
+        ranged(key("radius", ValueType::Number, "30", "Half-angle of the full cone, in degrees."), 0, 90),
+        ranged(key("falloff", ValueType::Number, "45",
+                   "Half-angle where the light ends, in degrees (at least radius)."), 0, 90),
+        ranged(key("tightness", ValueType::Number, "0",
+                   "Exponent of cos(angle) over the whole cone (0: none)."), 0, 10000),
+        FADE_KEYS
+    },
+    "spotlight {\n  position (0, 5, 0)\n  point_at (0, 0, 0)\n  radius 15\n  falloff 25\n}\n",
+};
+
+const BlockSpec kParallelLight{
+    "parallel_light", false, true, Occurs::Any,
+    "A light from infinitely far away (the sun): every point is lit along `direction`, the way its light "
+    "travels, and shadowed by anything in the way.",
+    {
+        nonzero(key("direction", ValueType::Vector, "", "The way the light travels (from the light to the scene).")),
+        ranged(key("color", ValueType::Triple, "1", "Colour; multiplies diffuse and specular."), 0, kInf),
+    },
+    "parallel_light {\n  direction (-1, -2, -1)\n  color 0.8\n}\n",
 };
 
 const BlockSpec kAreaLight{
@@ -453,9 +490,11 @@ const BlockSpec kAreaLight{
         nonzero(key("edge2", ValueType::Vector, "", "The other edge (not parallel to edge1).")),
         ranged(key("samples1", ValueType::Integer, "", "Samples along edge1 (its two ends included)."), 1, 256),
         ranged(key("samples2", ValueType::Integer, "", "Samples along edge2 (its two ends included)."), 1, 256),
+        FADE_KEYS
     },
     "area_light {\n  position (0, 4, 0)\n  edge1 (1, 0, 0)\n  edge2 (0, 0, 1)\n  samples1 8\n  samples2 8\n}\n",
 };
+#undef FADE_KEYS
 // clang-format on
 
 }  // namespace
@@ -467,9 +506,10 @@ const KeySpec* BlockSpec::find_key(std::string_view key_name) const {
 }
 
 const std::vector<const BlockSpec*>& all_block_specs() {
-    static const std::vector<const BlockSpec*> specs{
-        &kCamera,   &kRender, &kMaterial, &kSphere, &kPlane,     &kMesh,  &kTriangle, &kQuad,     &kBox,
-        &kCylinder, &kCone,   &kDisc,     &kRotate, &kTransform, &kGroup, &kLight,    &kAreaLight};
+    static const std::vector<const BlockSpec*> specs{&kCamera, &kRender,    &kMaterial,  &kSphere,       &kPlane,
+                                                     &kMesh,   &kTriangle,  &kQuad,      &kBox,          &kCylinder,
+                                                     &kCone,   &kDisc,      &kRotate,    &kTransform,    &kGroup,
+                                                     &kLight,  &kAreaLight, &kSpotlight, &kParallelLight};
     return specs;
 }
 

@@ -127,7 +127,15 @@ std::string povray_hint(std::string_view word) {
         {"uv_mapping", "a pattern follows the surface's (u, v) with mapping uv: checker { mapping uv }"},
         {"finish", "a finish is the material's ka, kd, ks, n, km: material { kd 0.8 ks 0.5 n 30 }"},
         {"interior", "refraction is the material's kt and ior: material { kt 0.9 ior 1.5 }"},
-        {"area_light", "tracer's lights are points (no area lights yet)"},
+        {"area_light",
+         "an area light is a block of its own: area_light { position (0, 5, 0) edge1 (1, 0, 0) edge2 (0, 0, 1) "
+         "samples1 8 samples2 8 }"},
+        {"spotlight", "a spotlight is a block of its own: spotlight { position (0, 5, 0) point_at (0, 0, 0) }"},
+        {"point_at", "a spotlight is a block of its own: spotlight { position (0, 5, 0) point_at (0, 0, 0) }"},
+        {"parallel", "a parallel light is a block of its own: parallel_light { direction (-1, -2, -1) }"},
+        {"looks_like",
+         "lights are not seen by rays; a quad with ka 1 in an area light's rectangle shows the lamp without "
+         "shadowing it"},
         {"light_source", "a light is light { position (x, y, z) color 1 }"},
         {"location", "the camera's position is eye (x, y, z)"},
         {"look_at", "the camera looks at lookat (x, y, z)"},

@@ -36,7 +36,7 @@ public:
         thread_local std::vector<Color> through;
         const size_t samples = size_t(light.samples());
         seen.assign(samples, Seen::Unknown);
-        blockers.assign(samples, kNoObject);
+        blockers.assign(samples, World::ConvexBlocker::kNone);
         if (through_glass_) through.assign(samples, Color(0.0));
         seen_ = seen.data(), blockers_ = blockers.data(), through_ = through.data();
         const double n = point.material.n;
@@ -59,9 +59,9 @@ public:
         }
         // Step 1: the corners; one convex opaque shape across all four blocks the whole region.
         const int corner_i[4] = {i0, i1, i1, i0}, corner_j[4] = {j0, j0, j1, j1};
-        for (int k = 0; k < 4; ++k) test(corner_i[k], corner_j[k], candidates);
+        for (int k = 0; k < 4; ++k) test(corner_i[k], corner_j[k], candidates, true);
         const uint32_t first = blocker(i0, j0);
-        bool one_blocker = first != kNoObject && opaque(first);
+        bool one_blocker = first != World::ConvexBlocker::kNone;
         for (int k = 1; k < 4 && one_blocker; ++k) one_blocker = blocker(corner_i[k], corner_j[k]) == first;
         if (one_blocker) {
             for (int i = i0; i <= i1; ++i)
@@ -84,16 +84,17 @@ public:
     // max(0, N.L) and max(0, R.V)^n over the samples lit whole, times the share of the colour,
     // and each sample seen through glass with its own factor.
     void add_terms(Color& sum) const {
-        thread_local std::vector<Real> n_dot_l, r_dot_v, steps;
+        thread_local std::vector<Real> n_dot_l, r_dot_v, inverse_distance, steps;
         const int n1 = light_.samples1, n2 = light_.samples2;
         n_dot_l.resize(size_t(n2));
         r_dot_v.resize(size_t(n2));
+        inverse_distance.resize(size_t(n2));
         steps.resize(size_t(n2));
         for (int j = 0; j < n2; ++j) steps[size_t(j)] = Real(sample_step(j, n2));
         const Vec3 p = point_.hit.point, normal = point_.normal, viewer = point_.to_viewer;
         const Vec3 e1(light_.edge1), e2(light_.edge2);
         const Real n_dot_v = glm::dot(normal, viewer);
-        const bool specular = point_.material.ks != Color(0.0);
+        const bool specular = point_.material.ks != Color(0.0), fades = light_.fade_distance > 0;
         Real diffuse_sum[4] = {0, 0, 0, 0}, specular_sum = 0;
         Color through_sum(0.0);
         for (int i = 0; i < n1; ++i) {
@@ -104,6 +105,7 @@ public:
                 const Real inverse = 1 / std::sqrt(offset.x * offset.x + offset.y * offset.y + offset.z * offset.z);
                 const Real cosine = (normal.x * offset.x + normal.y * offset.y + normal.z * offset.z) * inverse;
                 n_dot_l[size_t(j)] = cosine;
+                inverse_distance[size_t(j)] = inverse;
                 r_dot_v[size_t(j)] =
                     2 * cosine * n_dot_v - (viewer.x * offset.x + viewer.y * offset.y + viewer.z * offset.z) * inverse;
             }
@@ -111,8 +113,10 @@ public:
             const Seen* seen = seen_ + index(i, 0);
             for (int j = 0; j < n2; ++j) {
                 if (seen[j] == Seen::Blocked) continue;
-                const Real diffuse = std::max(Real(0), n_dot_l[size_t(j)]);
-                const Real shine = specular ? Real(power(double(std::max(Real(0), r_dot_v[size_t(j)])))) : 0;
+                const Real fade =
+                    fades ? Real(light_attenuation(light_, Vec3(0), 1 / inverse_distance[size_t(j)])) : Real(1);
+                const Real diffuse = std::max(Real(0), n_dot_l[size_t(j)]) * fade;
+                const Real shine = specular ? Real(power(double(std::max(Real(0), r_dot_v[size_t(j)])))) * fade : 0;
                 if (seen[j] == Seen::Lit) {
                     diffuse_sum[j & 3] += diffuse;
                     specular_sum += shine;
@@ -149,9 +153,7 @@ private:
         Seen& s = seen_[index(i, j)];
         if (s == Seen::Unknown) s = seen;
     }
-    bool opaque(uint32_t object) const {
-        return !through_glass_ || world_.materials()[size_t(world_.objects()[object].material)].kt == Color(0.0);
-    }
+    bool opaque(int material) const { return !through_glass_ || world_.materials()[size_t(material)].kt == Color(0.0); }
 
     // Classifies the region's samples with the candidates of its own pyramid.
     void part(int i0, int i1, int j0, int j1, const ShadowCandidates& within) {
@@ -162,8 +164,9 @@ private:
         classify(i0, i1, j0, j1, candidates);
     }
 
-    // Traces sample (i, j)'s shadow ray if it has not been, against the candidates.
-    void test(int i, int j, const ShadowCandidates& candidates) {
+    // Traces sample (i, j)'s shadow ray if it has not been, against the candidates; for a
+    // region's `corner`, notes the convex shape that blocks it, if one does.
+    void test(int i, int j, const ShadowCandidates& candidates, bool corner = false) {
         const size_t k = index(i, j);
         if (seen_[k] != Seen::Unknown) return;
         const Vec3 position(light_.sample(i, j));
@@ -179,10 +182,13 @@ private:
             seen_[k] = Seen::Lit;
             return;
         }
-        blockers_[k] = world_.convex_blocker(last_);
+        if (corner) {
+            const World::ConvexBlocker convex = world_.convex_blocker(last_);
+            if (convex.object != World::ConvexBlocker::kNone && opaque(convex.material)) blockers_[k] = convex.object;
+        }
         seen_[k] = Seen::Blocked;
         if (through_glass_) {
-            through_[k] = light_through(world_, shadow, position, left_behind_, counts_);
+            through_[k] = light_through(world_, shadow, &position, left_behind_, counts_);
             if (through_[k] != Color(0.0)) seen_[k] = Seen::Through;
         }
     }
@@ -220,9 +226,29 @@ bool one_side(const ShadingPoint& point, const Light& light, Vec3& some_offset) 
     return true;
 }
 
+// True if no sample of the light adds anything at the point (as each sample's own term would
+// say, with no shadow ray): the light lies wholly behind the shading normal's plane, so every
+// N.L <= 0, and no specular term shows (no ks; or an exponent above 0 with the light wholly on
+// the viewer's side, L.V >= 0, so that R.V = 2 (N.L)(N.V) - L.V <= 0). Decided at the corners,
+// by a margin: the samples lie between them.
+bool lights_nothing(const ShadingPoint& point, const Light& light) {
+    const int last_i = light.samples1 - 1, last_j = light.samples2 - 1;
+    const int corner_i[4] = {0, last_i, last_i, 0}, corner_j[4] = {0, 0, last_j, last_j};
+    const bool specular = point.material.ks != Color(0.0);
+    if (specular && !(point.material.n > 0)) return false;
+    for (int k = 0; k < 4; ++k) {
+        const Vec3 offset = Vec3(light.sample(corner_i[k], corner_j[k])) - point.hit.point;
+        const Real margin = Real(1e-6) * glm::length(offset);
+        if (!(glm::dot(offset, point.normal) < -margin)) return false;
+        if (specular && !(glm::dot(offset, point.to_viewer) > margin)) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 void add_area_light(const ShadingPoint& point, const Light& light, Occluder& last, Color& sum, RayCounts& counts) {
+    if (lights_nothing(point, light)) return;
     const Color share = light.color * (1.0 / light.samples());
     Vec3 offset;
     // Each sample alone: without shadows, under the SPD's rules (their own shadow-ray rule), and
@@ -230,7 +256,7 @@ void add_area_light(const ShadingPoint& point, const Light& light, Occluder& las
     if (!point.settings.shadows || point.settings.spawn_rules == SpawnRules::Spd || !one_side(point, light, offset)) {
         for (int i = 0; i < light.samples1; ++i)
             for (int j = 0; j < light.samples2; ++j)
-                sum += point_light_term(point, Vec3(light.sample(i, j)), share, last, counts);
+                sum += point_light_term(point, light, Vec3(light.sample(i, j)), share, last, counts);
         return;
     }
     const Vec3 origin = point.spawn.origin(offset);

@@ -41,13 +41,21 @@ Color direct_light(const ShadingPoint& point, std::span<Occluder> last_blockers,
     return color * (diffuse + specular);
 }
 
-// The Phong term of a point light of `color` at `position`, shadowed (with the light's blocker
-// cache `last`): 0 if something opaque lies in the way.
-Color point_light_term(const ShadingPoint& point, const Vec3& position, const Color& color, Occluder& last,
-                       RayCounts& counts);
+// The Phong term of `light` (a point, a spotlight, a parallel light, or one sample of an area
+// light: `position`, with `color`), attenuated (light_attenuation) and shadowed (with the
+// light's blocker cache `last`): 0 if something opaque lies in the way.
+Color point_light_term(const ShadingPoint& point, const Light& light, const Vec3& position, const Color& color,
+                       Occluder& last, RayCounts& counts);
+
+// The fraction of a light's colour that reaches a point before shadows, the light `distance`
+// away along the unit `to_light`: a spotlight's cone (POV-Ray's formula: cos^tightness, then a
+// smooth step from the falloff to the radius) times fading, 2 / (1 + (d / fade_distance)^power).
+double light_attenuation(const Light& light, const Vec3& to_light, Real distance);
 
 // The fraction of a light's colour that reaches the point along `shadow` through transmitting
-// surfaces (transparent shadows), `left_behind` the object the first ray cannot meet again.
-Color light_through(const World& world, SpawnedRay shadow, const Vec3& light, uint32_t left_behind, RayCounts& counts);
+// surfaces (transparent shadows), `left_behind` the object the first ray cannot meet again;
+// each further ray heads for `target`, or along the first one's direction if it is null (a
+// parallel light).
+Color light_through(const World& world, SpawnedRay shadow, const Vec3* target, uint32_t left_behind, RayCounts& counts);
 
 }  // namespace tracer

@@ -136,14 +136,26 @@ struct Disc {
     int material = 0;
 };
 
-// A light: a point (`light`), or a rectangle of point lights (`area_light`): samples1 x samples2
-// of them on a grid centred on `position`, spanning edge1 and edge2 corner to corner (POV-Ray's
-// area_light), each with color / (samples1 samples2). A point light has no edges and one sample.
+// A light: a point (`light`), a rectangle of point lights (`area_light`), a spotlight or a
+// parallel light (docs/guide/lights.md). An area light is samples1 x samples2 point lights on a
+// grid centred on `position`, spanning edge1 and edge2 corner to corner (POV-Ray's area_light),
+// each with color / (samples1 samples2); the others have no edges and one sample.
 struct Light {
+    enum class Kind : uint8_t { Point, Spot, Parallel };  // an area light is a Point of many samples
     dvec3 position{0.0};
     dvec3 color{1.0};
     dvec3 edge1{0.0}, edge2{0.0};
     int samples1 = 1, samples2 = 1;
+    Kind kind = Kind::Point;
+    // Spot: the cone's axis, from `position` towards `point_at`; parallel: the way its light
+    // travels. Unit length (0 for the others).
+    dvec3 direction{0.0};
+    // A spotlight (POV-Ray's formula): full inside `radius` degrees of its axis, falling off by
+    // a smooth step to nothing at `falloff` degrees, all of it times cos(angle)^tightness.
+    double radius = 30, falloff = 45, tightness = 0;
+    // Fading with distance d (POV-Ray's): the colour times 2 / (1 + (d / fade_distance)^fade_power);
+    // 0: none (not for parallel lights, which have no position).
+    double fade_distance = 0, fade_power = 2;
 
     int samples() const { return samples1 * samples2; }
     // Sample (i, j), 0 <= i < samples1, 0 <= j < samples2: `position` moved along each edge by
@@ -153,6 +165,8 @@ struct Light {
         const double b = samples2 > 1 ? double(j) / (samples2 - 1) - 0.5 : 0.0;
         return position + a * edge1 + b * edge2;
     }
+    // True if the light's colour depends on where it shines (a spotlight's cone, fading).
+    bool attenuates() const { return kind == Kind::Spot || fade_distance > 0; }
 };
 
 // One step of a transform block: scale by per-axis factors (negative ones mirror), rotate by

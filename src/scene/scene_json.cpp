@@ -265,11 +265,26 @@ void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* mes
     add_array(
         out, "lights", scene.lights,
         [&scene](const Light& l) -> Json {
-            Json entry = {{"position", vec(l.position)}, {"color", vec(l.color)}};
+            Json entry = {{"color", vec(l.color)}};
+            if (l.kind != Light::Kind::Parallel) entry["position"] = vec(l.position);
             if (l.edge1 != dvec3(0.0) || l.edge2 != dvec3(0.0)) {  // an area light
                 entry["edge1"] = vec(l.edge1);
                 entry["edge2"] = vec(l.edge2);
                 entry["samples"] = {l.samples1, l.samples2};
+            }
+            if (l.kind == Light::Kind::Spot) {
+                entry["kind"] = "spot";
+                entry["direction"] = vec(l.direction);
+                entry["radius"] = l.radius;
+                entry["falloff"] = l.falloff;
+                entry["tightness"] = l.tightness;
+            } else if (l.kind == Light::Kind::Parallel) {
+                entry["kind"] = "parallel";
+                entry["direction"] = vec(l.direction);
+            }
+            if (l.fade_distance > 0) {
+                entry["fade_distance"] = l.fade_distance;
+                entry["fade_power"] = l.fade_power;
             }
             return entry;
         },

@@ -162,6 +162,9 @@ POVRAY_MISSING = "POV-Ray is not installed (Debian's povray; tools/bootstrap --p
         (ROOT / "scenes" / "textured_vase.scn", 0.0),
         (ROOT / "scenes" / "lights" / "lamp.scn", 0.0),
         (HERE / "soft_shadows.scn", 0.0),
+        (ROOT / "scenes" / "lights" / "window.scn", 0.05),
+        (ROOT / "scenes" / "lights" / "stage.scn", 0.1),
+        (HERE / "spot_parallel_fade.scn", 0.0),
     ],
 )
 def test_povray_agrees(tracer_bin, tmp_path, scene, most_over_2):
@@ -187,6 +190,15 @@ def test_povray_agrees_on_the_solids_gallery(tracer_bin, tmp_path, name):
     assert result.returncode == 0, result.stdout + result.stderr
     report = json.loads(result.stdout)
     assert report["peer"] == "povray" and report["over_2"] <= 0.1, report
+
+
+def test_mitsuba_skips_spot_and_parallel_lights_saying_why(tracer_bin, tmp_path):
+    """The Phong integrator has point emitters only: a spotlight, a parallel light or fading is
+    skipped with the reason (exit 0), without rendering."""
+    result = run_tool("crosscheck", HERE / "spot_parallel_fade.scn", "--out", tmp_path, "--json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    report = json.loads(result.stdout)
+    assert report.get("skipped") and "point emitters cannot express" in report["skipped"], report
 
 
 def test_mitsuba_skips_solids_saying_why(tracer_bin, tmp_path):

@@ -30,6 +30,8 @@ camera { eye (0, 0, 5) lookat (0, 0, 0) }
 material m { }
 light { position (0, 5, 0) }
 area_light { position (0, 5, 0) edge1 (1, 0, 0) edge2 (0, 0, 1) samples1 2 samples2 2 }
+spotlight { position (0, 5, 0) point_at (0, 0, 0) }
+parallel_light { direction (0, -1, 0) }
 mesh { file ")" TRACER_SOURCE_DIR R"(/scenes/meshes/tetrahedron.obj" material m }
 box { min (0, 0, 0) max (1, 1, 1) material m rotate { } }
 cylinder { base (0, 0, 0) top (0, 1, 0) radius 1 material m }
@@ -76,6 +78,17 @@ std::vector<DefaultRow> rows() {
         {"material", "ior", [=](auto& s) { EXPECT_EQ(s.materials[0].ior, material.ior); }},
         {"light", "color", [=](auto& s) { EXPECT_EQ(s.lights[0].color, light.color); }},
         {"area_light", "color", [=](auto& s) { EXPECT_EQ(s.lights[1].color, light.color); }},
+        {"light", "fade_distance", [=](auto& s) { EXPECT_EQ(s.lights[0].fade_distance, light.fade_distance); }},
+        {"light", "fade_power", [=](auto& s) { EXPECT_EQ(s.lights[0].fade_power, light.fade_power); }},
+        {"area_light", "fade_distance", [=](auto& s) { EXPECT_EQ(s.lights[1].fade_distance, light.fade_distance); }},
+        {"area_light", "fade_power", [=](auto& s) { EXPECT_EQ(s.lights[1].fade_power, light.fade_power); }},
+        {"spotlight", "color", [=](auto& s) { EXPECT_EQ(s.lights[2].color, light.color); }},
+        {"spotlight", "radius", [=](auto& s) { EXPECT_EQ(s.lights[2].radius, light.radius); }},
+        {"spotlight", "falloff", [=](auto& s) { EXPECT_EQ(s.lights[2].falloff, light.falloff); }},
+        {"spotlight", "tightness", [=](auto& s) { EXPECT_EQ(s.lights[2].tightness, light.tightness); }},
+        {"spotlight", "fade_distance", [=](auto& s) { EXPECT_EQ(s.lights[2].fade_distance, light.fade_distance); }},
+        {"spotlight", "fade_power", [=](auto& s) { EXPECT_EQ(s.lights[2].fade_power, light.fade_power); }},
+        {"parallel_light", "color", [=](auto& s) { EXPECT_EQ(s.lights[3].color, light.color); }},
         {"mesh", "shading", [=](auto& s) { EXPECT_EQ(s.meshes[0].flat, mesh.flat); }},
         {"cylinder", "caps", [=](auto& s) { EXPECT_EQ(s.cones[0].caps, cone.caps); }},
         {"cone", "caps", [=](auto& s) { EXPECT_EQ(s.cones[1].caps, cone.caps); }},

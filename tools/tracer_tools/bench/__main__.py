@@ -9,6 +9,10 @@ BENCHMARKS = {
     "language": ("language", "the scene language against POV-Ray's parser (docs/bench/bench-language.md)"),
     "cones": ("cones", "SPD rings and tree, analytic cones against tessellated ones (docs/bench/bench-cones.md)"),
     "patterns": ("patterns", "issue 54's costs: checkered task2, a 4096^2 texture, Whitted against POV-Ray"),
+    "lights": (
+        "lights",
+        "issue 56's costs: soft shadows against a point light and POV-Ray (docs/bench/bench-lights.md)",
+    ),
     "solids": ("solids", "issue 55's costs: a die against a box and POV-Ray, 10^4 dice (docs/bench/bench-solids.md)"),
     "task2": ("task2", "task2 rendered 9 times: median time and Mrays/s (docs/bench/bench-task2.txt)"),
     "bvh": ("bvh", "the four accelerators on the bunny at five sizes, against Embree (docs/bench/performance*)"),

@@ -261,6 +261,10 @@ def _flat_maps(kind: str, shape: dict, scene: dict) -> tuple:
     return None, None
 
 
+# The lights beyond points and their samples, as the converter names them when it skips a scene.
+LIGHT_WORDS = {"spot": "a spotlight", "parallel": "a parallel light"}
+
+
 def to_mitsuba_xml(scene: dict) -> str:
     """The Mitsuba 3 XML text for a scene description (a dict from `tracer --dump-json`)."""
     render, camera = scene["render"], scene["camera"]
@@ -273,6 +277,15 @@ def to_mitsuba_xml(scene: dict) -> str:
         raise PeerCannotExpress(
             "the scene has solids (union, merge, intersection, difference), which Mitsuba 3 cannot express "
             "(it has no CSG); check this scene with tools/crosscheck --with povray"
+        )
+    beyond_points = sorted(
+        {LIGHT_WORDS[light["kind"]] for light in scene["lights"] if "kind" in light}
+        | {"fading" for light in scene["lights"] if "fade_distance" in light}
+    )
+    if beyond_points:
+        raise PeerCannotExpress(
+            f"the scene has {' and '.join(beyond_points)}, which the Phong integrator's point emitters cannot "
+            "express (Mitsuba's own lights are physically based); check this scene with tools/crosscheck --with povray"
         )
     if render.get("transparent_shadows") and refracts(scene):
         raise ToolError(

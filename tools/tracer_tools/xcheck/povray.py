@@ -381,8 +381,46 @@ def _solid(solids: list, root: int) -> str:
     return "\n".join(out)
 
 
-def to_povray_sdl(scene: dict) -> str:
-    """The POV-Ray 3.7 scene text for a scene description (a dict from `tracer --dump-json`)."""
+def _light_source(scene: dict, light: dict, shadowless: str, native_area_lights: bool) -> str:
+    """POV-Ray's light_source blocks for one light: an area light's samples each a point light;
+    a spotlight with POV-Ray's own formula (the same as tracer's); a parallel light from far
+    beyond the scene (POV-Ray's shadows it only by what lies between its position's plane and the
+    point: 10^4 times the camera's distance from the origin is beyond every committed scene);
+    fading with POV-Ray's fade_distance and fade_power (the same formula). With
+    `native_area_lights`, an area light is POV-Ray's area_light of the same grid."""
+    fade = ""
+    if "fade_distance" in light:
+        fade = f" fade_distance {float(light['fade_distance'])!r} fade_power {float(light['fade_power'])!r}"
+    kind = light.get("kind")
+    if kind == "spot":
+        at = np.array(light["position"], dtype=np.float64) + np.array(light["direction"], dtype=np.float64)
+        return (
+            f"light_source {{ {_v(light['position'])} color rgb {_v(light['color'])} spotlight point_at {_v(at)} "
+            f"radius {float(light['radius'])!r} falloff {float(light['falloff'])!r} "
+            f"tightness {float(light['tightness'])!r}{fade}{shadowless} }}"
+        )
+    if kind == "parallel":
+        reach = 1e4 * (1 + float(np.max(np.abs(scene["camera"]["eye"]))))
+        direction = np.array(light["direction"], dtype=np.float64)
+        return (
+            f"light_source {{ {_v(-reach * direction)} color rgb {_v(light['color'])} parallel "
+            f"point_at {_v((1 - reach) * direction)}{shadowless} }}"
+        )
+    if native_area_lights and "samples" in light:
+        n1, n2 = light["samples"]
+        return (
+            f"light_source {{ {_v(light['position'])} color rgb {_v(light['color'])} area_light "
+            f"{_v(light['edge1'])}, {_v(light['edge2'])}, {n1}, {n2}{fade}{shadowless} }}"
+        )
+    return "\n".join(
+        f"light_source {{ {_v(position)} color rgb {_v(color)}{fade}{shadowless} }}"
+        for position, color in light_points(light)
+    )
+
+
+def to_povray_sdl(scene: dict, native_area_lights: bool = False) -> str:
+    """The POV-Ray 3.7 scene text for a scene description (a dict from `tracer --dump-json`);
+    `native_area_lights`: as render_scene's."""
     APPROXIMATED.clear()
     render = scene["render"]
     out = [
@@ -397,11 +435,7 @@ def to_povray_sdl(scene: dict) -> str:
     # An area light as its samples, each a point light: POV-Ray's own area_light shades with the
     # whole light's illumination times the fraction of samples unblocked (measured: 3% darker in
     # a penumbra than the sum of the unblocked samples' shading, tracer's model).
-    out += [
-        f"light_source {{ {_v(position)} color rgb {_v(color)}{shadowless} }}"
-        for light in scene["lights"]
-        for position, color in light_points(light)
-    ]
+    out += [_light_source(scene, light, shadowless, native_area_lights) for light in scene["lights"]]
     for sphere in scene["spheres"]:
         out.append(f"sphere {{ {_v(sphere['center'])}, {float(sphere['radius'])!r} {texture(sphere['material'])} }}")
     for plane in scene["planes"]:
@@ -430,11 +464,17 @@ def to_povray_sdl(scene: dict) -> str:
 
 
 def render_scene(
-    scene: dict, folder: pathlib.Path, threads: int = 2, antialias: tuple[float, int] | None = None
+    scene: dict,
+    folder: pathlib.Path,
+    threads: int = 2,
+    antialias: tuple[float, int] | None = None,
+    native_area_lights: bool = False,
 ) -> tuple[np.ndarray, dict]:
     """Renders the scene with POV-Ray into folder (scene.pov, povray.png); (the image as linear
     floats H x W x 3, POV-Ray's reported {"parse_seconds", "trace_seconds"}). `antialias`
-    (threshold, depth): POV-Ray's adaptive method 2 (+A +AM2 +R, its jitter left on); else none."""
+    (threshold, depth): POV-Ray's adaptive method 2 (+A +AM2 +R, its jitter left on); else none.
+    `native_area_lights`: area lights as POV-Ray's own area_light (for timing: it shades them
+    otherwise), else as their samples."""
     povray = shutil.which("povray")
     if povray is None:
         raise PovrayMissing(
@@ -447,7 +487,7 @@ def render_scene(
         )
     folder = pathlib.Path(folder).resolve()  # POV-Ray runs in it: a relative path would move
     pov = folder / "scene.pov"
-    pov.write_text(to_povray_sdl(scene))
+    pov.write_text(to_povray_sdl(scene, native_area_lights))
     png = folder / "povray.png"
     command = [
         povray, f"+I{pov}", f"+O{png}", f"+W{render['width']}", f"+H{render['height']}",
