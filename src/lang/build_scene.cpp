@@ -72,6 +72,20 @@ int material_index(SceneAssembly& a, const Fields& fields) {
     return SceneAssembly::kLaterMaterial - int(a.later_materials.size() - 1);
 }
 
+void add_light(SceneAssembly& a, const Block& block, const Light& light) {
+    const long long before = a.light_samples;
+    a.light_samples += light.samples();
+    if (a.light_samples > kMostLightSamples) {
+        if (before > kMostLightSamples) return;  // reported at the first light past the bound
+        a.diagnostics.error(a.file, block.kind_span,
+                            "the scene's lights have " + std::to_string(a.light_samples) +
+                                " samples with this one, more than " + std::to_string(kMostLightSamples) +
+                                ": every point shaded would trace a shadow ray to each (fewer samples or lights)");
+        return;
+    }
+    a.scene.lights.push_back(light);
+}
+
 // Fading with distance (fade_distance 0: none), as the block says.
 static void read_fading(const Fields& fields, Light& light) {
     light.fade_distance = fields.number("fade_distance");
@@ -83,7 +97,7 @@ void build_light(SceneAssembly& a, const Block& block, const Fields& fields) {
     if (!add_group_steps(a, block, group)) return;
     Light light{Placement(group).point(fields.triple("position")), fields.triple("color")};
     read_fading(fields, light);
-    a.scene.lights.push_back(light);
+    add_light(a, block, light);
 }
 
 // A spotlight: its position and the point it aims at placed by the groups around it.
@@ -112,7 +126,7 @@ static void build_spotlight(SceneAssembly& a, const Block& block, const Fields& 
         return;
     }
     read_fading(fields, light);
-    a.scene.lights.push_back(light);
+    add_light(a, block, light);
 }
 
 // A parallel light: its direction turned by the groups around it.
@@ -130,7 +144,7 @@ static void build_parallel_light(SceneAssembly& a, const Block& block, const Fie
         return;
     }
     light.direction = direction / length;
-    a.scene.lights.push_back(light);
+    add_light(a, block, light);
 }
 
 // An area light: its centre and edges placed by the groups around it.
@@ -143,6 +157,8 @@ void build_area_light(SceneAssembly& a, const Block& block, const Fields& fields
     light.edge2 = placement.linear * fields.triple("edge2");
     light.samples1 = int(fields.number("samples1"));
     light.samples2 = int(fields.number("samples2"));
+    light.jitter = fields.boolean("jitter");
+    light.adaptive = fields.boolean("adaptive");
     const dvec3 across = glm::cross(light.edge1, light.edge2);
     if (!(glm::dot(across, across) > 0)) {
         a.diagnostics.error(a.file, fields.value_span("edge2"),
@@ -150,7 +166,7 @@ void build_area_light(SceneAssembly& a, const Block& block, const Fields& fields
         return;
     }
     read_fading(fields, light);
-    a.scene.lights.push_back(light);
+    add_light(a, block, light);
 }
 
 // A named material: the next of the scene's materials.

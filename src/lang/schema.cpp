@@ -490,6 +490,10 @@ const BlockSpec kAreaLight{
         nonzero(key("edge2", ValueType::Vector, "", "The other edge (not parallel to edge1).")),
         ranged(key("samples1", ValueType::Integer, "", "Samples along edge1 (its two ends included)."), 1, 256),
         ranged(key("samples2", ValueType::Integer, "", "Samples along edge2 (its two ends included)."), 1, 256),
+        key("jitter", ValueType::Boolean, "false",
+            "Each sample at random in its cell of the rectangle, anew at every point shaded (soft noise for bands)."),
+        key("adaptive", ValueType::Boolean, "false",
+            "Corners first: a part of the grid whose corner samples agree is taken to be as they say."),
         FADE_KEYS
     },
     "area_light {\n  position (0, 4, 0)\n  edge1 (1, 0, 0)\n  edge2 (0, 0, 1)\n  samples1 8\n  samples2 8\n}\n",

@@ -6,14 +6,10 @@
 
 #include <glm/geometric.hpp>
 
+#include "render/light_samples.h"
+
 namespace tracer {
 namespace {
-
-// Where sample k of n lies along an edge, from its middle: k / (n - 1) - 1/2 (0 for one sample),
-// as Light::sample has it.
-inline double sample_step(int k, int n) {
-    return n > 1 ? double(k) / (n - 1) - 0.5 : 0.0;
-}
 
 // What a sample's shadow ray found.
 enum class Seen : uint8_t { Unknown, Lit, Blocked, Through };
@@ -21,11 +17,12 @@ enum class Seen : uint8_t { Unknown, Lit, Blocked, Through };
 // One area light's samples from one hit, their shadow rays classified region by region.
 class SampleGrid {
 public:
-    SampleGrid(const ShadingPoint& point, const Light& light, const Vec3& origin, uint32_t left_behind, Occluder& last,
-               RayCounts& counts)
+    SampleGrid(const ShadingPoint& point, const Light& light, const LightSamples& samples, const Vec3& origin,
+               uint32_t left_behind, Occluder& last, RayCounts& counts)
         : point_(point),
           world_(point.world),
           light_(light),
+          samples_(samples),
           origin_(origin),
           left_behind_(left_behind),
           last_(last),
@@ -34,10 +31,10 @@ public:
         thread_local std::vector<Seen> seen;
         thread_local std::vector<uint32_t> blockers;
         thread_local std::vector<Color> through;
-        const size_t samples = size_t(light.samples());
-        seen.assign(samples, Seen::Unknown);
-        blockers.assign(samples, World::ConvexBlocker::kNone);
-        if (through_glass_) through.assign(samples, Color(0.0));
+        const size_t count = size_t(light.samples());
+        seen.assign(count, Seen::Unknown);
+        blockers.assign(count, World::ConvexBlocker::kNone);
+        if (through_glass_) through.assign(count, Color(0.0));
         seen_ = seen.data(), blockers_ = blockers.data(), through_ = through.data();
         const double n = point.material.n;
         whole_exponent_ = n >= 1 && n <= kMostSquaredExponent && n == std::floor(n);
@@ -52,20 +49,26 @@ public:
                 for (int j = j0; j <= j1; ++j) mark(i, j, Seen::Lit);
             return;
         }
-        if ((i1 - i0 + 1) * (j1 - j0 + 1) <= kSmallestRegion) {
+        if ((i1 - i0 + 1) * (j1 - j0 + 1) <= (light_.adaptive ? kSmallestAdaptiveRegion : kSmallestRegion)) {
             for (int i = i0; i <= i1; ++i)
                 for (int j = j0; j <= j1; ++j) test(i, j, candidates);
             return;
         }
-        // Step 1: the corners; one convex opaque shape across all four blocks the whole region.
+        // Step 1: the corners; one convex opaque shape across all four blocks the whole region
+        // (where they are the hull's corners); adaptive sampling takes a region whose corners lie
+        // at most a quarter of the light apart along each edge to be as they agree (POV-Ray's
+        // `adaptive 2`: its first look is 5 x 5 samples).
         const int corner_i[4] = {i0, i1, i1, i0}, corner_j[4] = {j0, j0, j1, j1};
         for (int k = 0; k < 4; ++k) test(corner_i[k], corner_j[k], candidates, true);
         const uint32_t first = blocker(i0, j0);
-        bool one_blocker = first != World::ConvexBlocker::kNone;
+        bool one_blocker = first != World::ConvexBlocker::kNone && samples_.corners_are_samples();
         for (int k = 1; k < 4 && one_blocker; ++k) one_blocker = blocker(corner_i[k], corner_j[k]) == first;
-        if (one_blocker) {
+        const bool trusted =
+            light_.adaptive && (i1 - i0) * 4 <= light_.samples1 - 1 && (j1 - j0) * 4 <= light_.samples2 - 1;
+        const Seen agreed = trusted ? corners_agree(corner_i, corner_j) : Seen::Unknown;
+        if (one_blocker || agreed != Seen::Unknown) {
             for (int i = i0; i <= i1; ++i)
-                for (int j = j0; j <= j1; ++j) mark(i, j, Seen::Blocked);
+                for (int j = j0; j <= j1; ++j) mark(i, j, one_blocker ? Seen::Blocked : agreed);
             return;
         }
         // Step 2: the two halves across the longer side (each pyramid holds its own samples).
@@ -84,29 +87,30 @@ public:
     // max(0, N.L) and max(0, R.V)^n over the samples lit whole, times the share of the colour,
     // and each sample seen through glass with its own factor.
     void add_terms(Color& sum) const {
-        thread_local std::vector<Real> n_dot_l, r_dot_v, inverse_distance, steps;
+        thread_local std::vector<Real> n_dot_l, r_dot_v, inverse_distance, along1, along2;
         const int n1 = light_.samples1, n2 = light_.samples2;
-        n_dot_l.resize(size_t(n2));
-        r_dot_v.resize(size_t(n2));
-        inverse_distance.resize(size_t(n2));
-        steps.resize(size_t(n2));
-        for (int j = 0; j < n2; ++j) steps[size_t(j)] = Real(sample_step(j, n2));
+        for (auto* row : {&n_dot_l, &r_dot_v, &inverse_distance, &along1, &along2}) row->resize(size_t(n2));
         const Vec3 p = point_.hit.point, normal = point_.normal, viewer = point_.to_viewer;
-        const Vec3 e1(light_.edge1), e2(light_.edge2);
+        const Vec3 e1(light_.edge1), e2(light_.edge2), centre(light_.position);
         const Real n_dot_v = glm::dot(normal, viewer);
         const bool specular = point_.material.ks != Color(0.0), fades = light_.fade_distance > 0;
         Real diffuse_sum[4] = {0, 0, 0, 0}, specular_sum = 0;
         Color through_sum(0.0);
         for (int i = 0; i < n1; ++i) {
             // Step 1: a row's N.L and R.V = 2 (N.L)(N.V) - L.V, for every sample (vectorised).
-            const Vec3 row = Vec3(light_.position) + Real(sample_step(i, n1)) * e1 - p;
+            samples_.row(i, along1.data(), along2.data());
+            const Real* __restrict a = along1.data();
+            const Real* __restrict b = along2.data();
+            Real* __restrict cosines = n_dot_l.data();
+            Real* __restrict shines = r_dot_v.data();
+            Real* __restrict inverses = inverse_distance.data();
             for (int j = 0; j < n2; ++j) {
-                const Vec3 offset = row + steps[size_t(j)] * e2;
+                const Vec3 offset = (centre + a[j] * e1 - p) + b[j] * e2;
                 const Real inverse = 1 / std::sqrt(offset.x * offset.x + offset.y * offset.y + offset.z * offset.z);
                 const Real cosine = (normal.x * offset.x + normal.y * offset.y + normal.z * offset.z) * inverse;
-                n_dot_l[size_t(j)] = cosine;
-                inverse_distance[size_t(j)] = inverse;
-                r_dot_v[size_t(j)] =
+                cosines[j] = cosine;
+                inverses[j] = inverse;
+                shines[j] =
                     2 * cosine * n_dot_v - (viewer.x * offset.x + viewer.y * offset.y + viewer.z * offset.z) * inverse;
             }
             // Step 2: the sums over the row's samples lit whole; those seen through glass apart.
@@ -133,8 +137,18 @@ public:
 
 private:
     static constexpr double kMostSquaredExponent = 1024;
-    // Regions of this many samples or fewer have each ray tested.
+    // Regions of this many samples or fewer have each ray tested (adaptive sampling: fewer).
     static constexpr int kSmallestRegion = 32;
+    static constexpr int kSmallestAdaptiveRegion = 4;
+
+    // What the four corners agree on, all lit or all blocked whole; else Unknown.
+    Seen corners_agree(const int (&corner_i)[4], const int (&corner_j)[4]) const {
+        const Seen first = seen_[index(corner_i[0], corner_j[0])];
+        if (first != Seen::Lit && first != Seen::Blocked) return Seen::Unknown;
+        for (int k = 1; k < 4; ++k)
+            if (seen_[index(corner_i[k], corner_j[k])] != first) return Seen::Unknown;
+        return first;
+    }
 
     // x^n of the material's exponent n, for x >= 0: by squaring when n is a whole number from 1
     // to kMostSquaredExponent (a relative error of a few ulps: 2 log2(n) roundings), else std::pow.
@@ -157,8 +171,8 @@ private:
 
     // Classifies the region's samples with the candidates of its own pyramid.
     void part(int i0, int i1, int j0, int j1, const ShadowCandidates& within) {
-        const glm::dvec3 corners[4] = {light_.sample(i0, j0), light_.sample(i1, j0), light_.sample(i1, j1),
-                                       light_.sample(i0, j1)};
+        glm::dvec3 corners[4];
+        samples_.hull(i0, i1, j0, j1, corners);
         ShadowCandidates candidates;
         world_.shadow_candidates(ShadowFrustum(glm::dvec3(origin_), corners), &within, candidates);
         classify(i0, i1, j0, j1, candidates);
@@ -169,7 +183,7 @@ private:
     void test(int i, int j, const ShadowCandidates& candidates, bool corner = false) {
         const size_t k = index(i, j);
         if (seen_[k] != Seen::Unknown) return;
-        const Vec3 position(light_.sample(i, j));
+        const Vec3 position(samples_.position(i, j));
         const Vec3 light_offset = position - point_.hit.point;
         const Real distance = glm::length(light_offset);
         if (!(distance > 0)) {  // a sample exactly at the point lights nothing there
@@ -196,6 +210,7 @@ private:
     const ShadingPoint& point_;
     const World& world_;
     const Light& light_;
+    const LightSamples& samples_;
     Vec3 origin_;
     uint32_t left_behind_;
     Occluder& last_;
@@ -209,13 +224,11 @@ private:
 };
 
 // True if every sample's shadow ray leaves from one side of the surface, the one of the light's
-// corners (by a margin: then the origin and the object left behind are the same for all).
-bool one_side(const ShadingPoint& point, const Light& light, Vec3& some_offset) {
-    const int last_i = light.samples1 - 1, last_j = light.samples2 - 1;
-    const int corner_i[4] = {0, last_i, last_i, 0}, corner_j[4] = {0, 0, last_j, last_j};
+// hull's `corners` (by a margin: then the origin and the object left behind are the same for all).
+bool one_side(const ShadingPoint& point, const glm::dvec3 (&corners)[4], Vec3& some_offset) {
     int sign = 0;
-    for (int k = 0; k < 4; ++k) {
-        const Vec3 offset = Vec3(light.sample(corner_i[k], corner_j[k])) - point.hit.point;
+    for (const glm::dvec3& corner : corners) {
+        const Vec3 offset = Vec3(corner) - point.hit.point;
         const Real side = glm::dot(offset, point.hit.geometric_normal);
         if (!(std::abs(side) > Real(1e-6) * glm::length(offset))) return false;
         const int s = side > 0 ? 1 : -1;
@@ -229,15 +242,13 @@ bool one_side(const ShadingPoint& point, const Light& light, Vec3& some_offset) 
 // True if no sample of the light adds anything at the point (as each sample's own term would
 // say, with no shadow ray): the light lies wholly behind the shading normal's plane, so every
 // N.L <= 0, and no specular term shows (no ks; or an exponent above 0 with the light wholly on
-// the viewer's side, L.V >= 0, so that R.V = 2 (N.L)(N.V) - L.V <= 0). Decided at the corners,
-// by a margin: the samples lie between them.
-bool lights_nothing(const ShadingPoint& point, const Light& light) {
-    const int last_i = light.samples1 - 1, last_j = light.samples2 - 1;
-    const int corner_i[4] = {0, last_i, last_i, 0}, corner_j[4] = {0, 0, last_j, last_j};
+// the viewer's side, L.V >= 0, so that R.V = 2 (N.L)(N.V) - L.V <= 0). Decided at the hull's
+// `corners`, by a margin: the samples lie between them.
+bool lights_nothing(const ShadingPoint& point, const glm::dvec3 (&corners)[4]) {
     const bool specular = point.material.ks != Color(0.0);
     if (specular && !(point.material.n > 0)) return false;
-    for (int k = 0; k < 4; ++k) {
-        const Vec3 offset = Vec3(light.sample(corner_i[k], corner_j[k])) - point.hit.point;
+    for (const glm::dvec3& corner : corners) {
+        const Vec3 offset = Vec3(corner) - point.hit.point;
         const Real margin = Real(1e-6) * glm::length(offset);
         if (!(glm::dot(offset, point.normal) < -margin)) return false;
         if (specular && !(glm::dot(offset, point.to_viewer) > margin)) return false;
@@ -247,24 +258,26 @@ bool lights_nothing(const ShadingPoint& point, const Light& light) {
 
 }  // namespace
 
-void add_area_light(const ShadingPoint& point, const Light& light, Occluder& last, Color& sum, RayCounts& counts) {
-    if (lights_nothing(point, light)) return;
+void add_area_light(const ShadingPoint& point, const Light& light, size_t light_index, Occluder& last, Color& sum,
+                    RayCounts& counts) {
+    const LightSamples samples(light, light_index, point.hit.point);
+    const int last_i = light.samples1 - 1, last_j = light.samples2 - 1;
+    glm::dvec3 corners[4];
+    samples.hull(0, last_i, 0, last_j, corners);
+    if (lights_nothing(point, corners)) return;
     const Color share = light.color * (1.0 / light.samples());
     Vec3 offset;
     // Each sample alone: without shadows, under the SPD's rules (their own shadow-ray rule), and
     // for a point that sees the light on both sides of its surface.
-    if (!point.settings.shadows || point.settings.spawn_rules == SpawnRules::Spd || !one_side(point, light, offset)) {
-        for (int i = 0; i < light.samples1; ++i)
-            for (int j = 0; j < light.samples2; ++j)
-                sum += point_light_term(point, light, Vec3(light.sample(i, j)), share, last, counts);
+    if (!point.settings.shadows || point.settings.spawn_rules == SpawnRules::Spd || !one_side(point, corners, offset)) {
+        for (int i = 0; i <= last_i; ++i)
+            for (int j = 0; j <= last_j; ++j)
+                sum += point_light_term(point, light, Vec3(samples.position(i, j)), share, last, counts);
         return;
     }
     const Vec3 origin = point.spawn.origin(offset);
     const uint32_t left_behind = object_left_behind(point.hit, offset);
-    SampleGrid grid(point, light, origin, left_behind, last, counts);
-    const int last_i = light.samples1 - 1, last_j = light.samples2 - 1;
-    const glm::dvec3 corners[4] = {light.sample(0, 0), light.sample(last_i, 0), light.sample(last_i, last_j),
-                                   light.sample(0, last_j)};
+    SampleGrid grid(point, light, samples, origin, left_behind, last, counts);
     ShadowCandidates candidates;
     point.world.shadow_candidates(ShadowFrustum(glm::dvec3(origin), corners), nullptr, candidates);
     grid.classify(0, last_i, 0, last_j, candidates);

@@ -13,8 +13,11 @@
 
 namespace tracer {
 
-// Adds to `sum` the Phong terms of `light`'s samples that `point` sees (point_light_term of each,
-// in order i then j), `last` its blocker cache.
-void add_area_light(const ShadingPoint& point, const Light& light, Occluder& last, Color& sum, RayCounts& counts);
+// Adds to `sum` the Phong terms of `light`'s samples (light_samples.h) that `point` sees (each
+// as point_light_term has it), `light_index` its place in the scene, `last` its blocker cache.
+// Adaptive sampling takes a region of the grid to be as its corner samples are where they agree
+// (POV-Ray's corners-then-subdivide); otherwise every sample's answer is its own.
+void add_area_light(const ShadingPoint& point, const Light& light, size_t light_index, Occluder& last, Color& sum,
+                    RayCounts& counts);
 
 }  // namespace tracer

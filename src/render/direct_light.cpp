@@ -95,7 +95,7 @@ Color direct_light(const ShadingPoint& point, std::span<Occluder> last_blockers,
         if (light.samples() == 1)
             sum += point_light_term(point, light, Vec3(light.position), light.color, last_blockers[l], counts);
         else
-            add_area_light(point, light, last_blockers[l], sum, counts);
+            add_area_light(point, light, l, last_blockers[l], sum, counts);
     }
     return sum;
 }

@@ -146,6 +146,10 @@ struct Light {
     dvec3 color{1.0};
     dvec3 edge1{0.0}, edge2{0.0};
     int samples1 = 1, samples2 = 1;
+    // An area light's sampling: each sample moved at random inside its cell of the rectangle, a
+    // seed per shaded point (jitter); corners first, a region taken as its corners say where they
+    // agree (adaptive). Neither: the grid, every sample traced.
+    bool jitter = false, adaptive = false;
     Kind kind = Kind::Point;
     // Spot: the cone's axis, from `position` towards `point_at`; parallel: the way its light
     // travels. Unit length (0 for the others).

@@ -271,6 +271,8 @@ void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* mes
                 entry["edge1"] = vec(l.edge1);
                 entry["edge2"] = vec(l.edge2);
                 entry["samples"] = {l.samples1, l.samples2};
+                if (l.jitter) entry["jitter"] = true;
+                if (l.adaptive) entry["adaptive"] = true;
             }
             if (l.kind == Light::Kind::Spot) {
                 entry["kind"] = "spot";

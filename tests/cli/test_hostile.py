@@ -497,6 +497,20 @@ class Files(Hostile):
 
 
 class NumbersNeverWrongSilently(Hostile):
+    def test_ten_thousand_area_lights_of_64_by_64_are_refused_at_once(self):
+        # 4 x 10^7 samples: every point shaded would trace a shadow ray to each. One error, at the
+        # light that crosses the bound, in well under a second (no render is tried).
+        scene = self.write(
+            "lights.scn",
+            "camera { eye (0, 3, 9) lookat (0, 0, 0) }\nsphere { center (0, 0, 0) radius 1 material { kd 1 } }\n"
+            "for i in 0..10000 {\n  area_light { position (i, 5, 0) edge1 (1, 0, 0) edge2 (0, 0, 1) "
+            "samples1 64 samples2 64 }\n}\n",
+        )
+        result = run(scene, "-o", self.tmp / "lights.png")
+        self.assertError(result, 1, "lights.scn:4:3: error: the scene's lights have 69632 samples", "more than 65536")
+        self.assertEqual(result.stderr.count(b"error:"), 1, result.stderr)
+        self.assertFalse((self.tmp / "lights.png").exists())
+
     def test_ray_weights_above_one_are_refused(self):
         # Two discs of kt 1e30, or 130 of kt 2, multiplied a shadow ray's weight to infinity.
         for key, value in (("kt", "2"), ("km", "1e30"), ("kt", "(0.5, 1.5, 0.5)")):

@@ -58,6 +58,7 @@ struct SceneAssembly {
     SceneDescription scene;
 
     std::map<std::string, int, std::less<>> material_by_name;  // index into scene.materials
+    long long light_samples = 0;  // of the lights built so far (a point light is one), for add_light
     // Material values shared by several shapes, by their body (held, so that no other body can
     // take its address): each made into one material.
     struct SharedMaterial {
@@ -150,6 +151,13 @@ int solid_of(SceneAssembly& a, const Block& block);
 void add_solid_part(SceneAssembly& a, int solid, SolidPart::Kind kind, size_t index);
 // False (reported) if `block` is made in a solid and cannot be a part of one (a light, a quad).
 bool check_solid_part(SceneAssembly& a, const Block& block);
+
+// Every point shaded traces a shadow ray to each sample of each light: their sum is bounded by
+// this (a 256 x 256 area light, or as many point lights), past which a light is refused.
+constexpr long long kMostLightSamples = 65536;
+// Adds `light` to the scene, or reports it at `block` if its samples take the scene's past
+// kMostLightSamples.
+void add_light(SceneAssembly& a, const Block& block, const Light& light);
 
 // The builders, one per kind of block.
 void build_render(SceneAssembly& a, const Block& block, const Fields& fields);

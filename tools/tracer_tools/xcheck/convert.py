@@ -282,6 +282,11 @@ def to_mitsuba_xml(scene: dict) -> str:
         {LIGHT_WORDS[light["kind"]] for light in scene["lights"] if "kind" in light}
         | {"fading" for light in scene["lights"] if "fade_distance" in light}
     )
+    if any(light.get("jitter") or light.get("adaptive") for light in scene["lights"]):
+        raise PeerCannotExpress(
+            "the scene has a jittered or adaptive area light, whose samples are tracer's own (a random place per "
+            "point, or corners trusted): compare its grid instead (leave out jitter and adaptive)"
+        )
     if beyond_points:
         raise PeerCannotExpress(
             f"the scene has {' and '.join(beyond_points)}, which the Phong integrator's point emitters cannot "

@@ -46,7 +46,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import ToolError, exact_meshes, mitsuba_textures
+from . import PeerCannotExpress, ToolError, exact_meshes, mitsuba_textures
 from .lights import light_points
 
 TINY_PIGMENT = 1e-9  # a kd channel of 0 with ka above 0 (see the module's rules)
@@ -408,9 +408,15 @@ def _light_source(scene: dict, light: dict, shadowless: str, native_area_lights:
         )
     if native_area_lights and "samples" in light:
         n1, n2 = light["samples"]
+        sampling = (" jitter" if light.get("jitter") else "") + (" adaptive 2" if light.get("adaptive") else "")
         return (
             f"light_source {{ {_v(light['position'])} color rgb {_v(light['color'])} area_light "
-            f"{_v(light['edge1'])}, {_v(light['edge2'])}, {n1}, {n2}{fade}{shadowless} }}"
+            f"{_v(light['edge1'])}, {_v(light['edge2'])}, {n1}, {n2}{sampling}{fade}{shadowless} }}"
+        )
+    if light.get("jitter") or light.get("adaptive"):
+        raise PeerCannotExpress(
+            "the scene has a jittered or adaptive area light, whose samples are tracer's own (a random place per "
+            "point, or corners trusted): compare its grid instead (leave out jitter and adaptive)"
         )
     return "\n".join(
         f"light_source {{ {_v(position)} color rgb {_v(color)}{fade}{shadowless} }}"

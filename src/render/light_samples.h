@@ -1,0 +1,65 @@
+// Where an area light's samples lie, seen from one shaded point (docs/guide/lights.md): on the
+// grid, corner to corner (Light::sample); or jittered, each at a random place in its cell of
+// the rectangle, the random numbers drawn from the point's coordinates and the light's index,
+// so that an image is the same on any number of threads, tiles, regions or farm workers.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "accel/types.h"
+#include "scene/scene.h"
+
+namespace tracer {
+
+class LightSamples {
+public:
+    // `light_index`: the light's place in the scene's list; `point`: the point shaded. Its
+    // tables are the calling thread's: one LightSamples at a time on a thread.
+    LightSamples(const Light& light, size_t light_index, const Vec3& point);
+
+    // Sample (i, j) (0 <= i < samples1, 0 <= j < samples2): Light::sample(i, j) on the grid,
+    // bit for bit; jittered, centre + a edge1 + b edge2 with a = (i + u) / samples1 - 1/2,
+    // b = (j + v) / samples2 - 1/2, (u, v) sample k = i samples2 + j's draws 2k and 2k + 1.
+    glm::dvec3 position(int i, int j) const {
+        return light_.position + along1(i, j) * light_.edge1 + along2(i, j) * light_.edge2;
+    }
+    // The a and b of sample (i, j).
+    double along1(int i, int j) const { return light_.jitter ? jitter1_[index(i, j)] : grid1_[size_t(i)]; }
+    double along2(int i, int j) const { return light_.jitter ? jitter2_[index(i, j)] : grid2_[size_t(j)]; }
+    // The corners, in order around it, of a quadrilateral holding samples [i0, i1] x [j0, j1]:
+    // the four corner samples on the grid, the cells' outer corners when jittered.
+    void hull(int i0, int i1, int j0, int j1, glm::dvec3 (&corners)[4]) const;
+    // True if hull's corners are the corner samples themselves.
+    bool corners_are_samples() const { return !light_.jitter; }
+    // Row i's a and b, one per j, into along1[0 .. samples2) and along2[0 .. samples2).
+    template <typename T>
+    void row(int i, T* along1, T* along2) const {
+        const int n2 = light_.samples2;
+        if (light_.jitter) {
+            for (int j = 0; j < n2; ++j) along1[j] = T(jitter1_[index(i, j)]), along2[j] = T(jitter2_[index(i, j)]);
+        } else {
+            for (int j = 0; j < n2; ++j) along1[j] = T(grid1_[size_t(i)]), along2[j] = T(grid2_[size_t(j)]);
+        }
+    }
+
+    // Draw `k` (0, 1, 2, ...) of the generator seeded by (x, y, z, light_index), in [0, 1):
+    // h = mix(light_index + G), then h = mix(h ^ bits(c) + G) for c = x, y, z as doubles;
+    // draw k = (mix(h + (k + 1) G) >> 11) 2^-53; mix is splitmix64's finaliser, G = 0x9E3779B97F4A7C15.
+    static uint64_t seed(const glm::dvec3& point, size_t light_index);
+    static double draw(uint64_t seed, uint64_t k);
+
+private:
+    size_t index(int i, int j) const { return size_t(i) * size_t(light_.samples2) + size_t(j); }
+
+    const Light& light_;
+    const double* grid1_;  // the grid's a for each i, b for each j
+    const double* grid2_;
+    const double* jitter1_ = nullptr;  // jittered: a and b for each sample
+    const double* jitter2_ = nullptr;
+};
+
+}  // namespace tracer
