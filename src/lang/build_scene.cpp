@@ -147,6 +147,25 @@ static void build_parallel_light(SceneAssembly& a, const Block& block, const Fie
     add_light(a, block, light);
 }
 
+// False (reported) unless a sphere light's edges have one length and its counts are equal
+// (POV-Ray's orient asks the same): its disc turns to face each point.
+static bool sphere_light_is_round(SceneAssembly& a, const Fields& fields, const Light& light) {
+    const double l1 = glm::length(light.edge1), l2 = glm::length(light.edge2);
+    if (!(std::abs(l1 - l2) <= 1e-9 * std::max(l1, l2))) {
+        a.diagnostics.error(a.file, fields.value_span("edge2"),
+                            "a sphere light's edges must be of one length, its diameter: edge1 is " +
+                                format_number(l1) + " long, edge2 " + format_number(l2) + " (once placed)");
+        return false;
+    }
+    if (light.samples1 != light.samples2) {
+        a.diagnostics.error(a.file, fields.value_span("samples2"),
+                            "a sphere light needs as many samples along each edge: samples1 is " +
+                                std::to_string(light.samples1) + ", samples2 " + std::to_string(light.samples2));
+        return false;
+    }
+    return true;
+}
+
 // An area light: its centre and edges placed by the groups around it.
 void build_area_light(SceneAssembly& a, const Block& block, const Fields& fields) {
     Placed group;
@@ -159,12 +178,17 @@ void build_area_light(SceneAssembly& a, const Block& block, const Fields& fields
     light.samples2 = int(fields.number("samples2"));
     light.jitter = fields.boolean("jitter");
     light.adaptive = fields.boolean("adaptive");
+    const std::string shape = fields.text("shape");
+    light.shape = shape == "disc"     ? Light::Shape::Disc
+                  : shape == "sphere" ? Light::Shape::Sphere
+                                      : Light::Shape::Rectangle;
     const dvec3 across = glm::cross(light.edge1, light.edge2);
     if (!(glm::dot(across, across) > 0)) {
         a.diagnostics.error(a.file, fields.value_span("edge2"),
                             "an area light's edges must span a rectangle: edge2 is parallel to edge1");
         return;
     }
+    if (light.shape == Light::Shape::Sphere && !sphere_light_is_round(a, fields, light)) return;
     read_fading(fields, light);
     add_light(a, block, light);
 }

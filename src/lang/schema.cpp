@@ -490,6 +490,11 @@ const BlockSpec kAreaLight{
         nonzero(key("edge2", ValueType::Vector, "", "The other edge (not parallel to edge1).")),
         ranged(key("samples1", ValueType::Integer, "", "Samples along edge1 (its two ends included)."), 1, 256),
         ranged(key("samples2", ValueType::Integer, "", "Samples along edge2 (its two ends included)."), 1, 256),
+        one_of(key("shape", ValueType::Choice, "rectangle",
+                   "`rectangle`; `disc`, the ellipse inscribed in the rectangle (its samples the grid's, mapped "
+                   "onto it); `sphere`, a ball of diameter |edge1| (edges of one length, as many samples along "
+                   "each), seen from every point as the disc of its outline."),
+               {"rectangle", "disc", "sphere"}),
         key("jitter", ValueType::Boolean, "false",
             "Each sample at random in its cell of the rectangle, anew at every point shaded (soft noise for bands)."),
         key("adaptive", ValueType::Boolean, "false",

@@ -49,7 +49,8 @@ public:
                 for (int j = j0; j <= j1; ++j) mark(i, j, Seen::Lit);
             return;
         }
-        if ((i1 - i0 + 1) * (j1 - j0 + 1) <= (light_.adaptive ? kSmallestAdaptiveRegion : kSmallestRegion)) {
+        if (!samples_.parts_have_hulls() ||
+            (i1 - i0 + 1) * (j1 - j0 + 1) <= (light_.adaptive ? kSmallestAdaptiveRegion : kSmallestRegion)) {
             for (int i = i0; i <= i1; ++i)
                 for (int j = j0; j <= j1; ++j) test(i, j, candidates);
             return;
@@ -91,7 +92,7 @@ public:
         const int n1 = light_.samples1, n2 = light_.samples2;
         for (auto* row : {&n_dot_l, &r_dot_v, &inverse_distance, &along1, &along2}) row->resize(size_t(n2));
         const Vec3 p = point_.hit.point, normal = point_.normal, viewer = point_.to_viewer;
-        const Vec3 e1(light_.edge1), e2(light_.edge2), centre(light_.position);
+        const Vec3 e1(samples_.edge1()), e2(samples_.edge2()), centre(light_.position);
         const Real n_dot_v = glm::dot(normal, viewer);
         const bool specular = point_.material.ks != Color(0.0), fades = light_.fade_distance > 0;
         Real diffuse_sum[4] = {0, 0, 0, 0}, specular_sum = 0;
@@ -124,7 +125,7 @@ public:
                 if (seen[j] == Seen::Lit) {
                     diffuse_sum[j & 3] += diffuse;
                     specular_sum += shine;
-                } else {
+                } else if (seen[j] == Seen::Through) {
                     through_sum +=
                         through_[index(i, j)] * (point_.kd * double(diffuse) + point_.material.ks * double(shine));
                 }

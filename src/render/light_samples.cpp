@@ -1,6 +1,9 @@
 #include "render/light_samples.h"
 
+#include <cmath>
 #include <cstring>
+
+#include <glm/geometric.hpp>
 
 namespace tracer {
 namespace {
@@ -45,25 +48,58 @@ static const double* grid_steps(int n) {
     return steps.data();
 }
 
-LightSamples::LightSamples(const Light& light, size_t light_index, const Vec3& point) : light_(light) {
+void LightSamples::concentric(double x, double y, double& u, double& v) {
+    constexpr double kQuarterPi = 0.78539816339744830962;
+    if (x == 0 && y == 0) {
+        u = v = 0;
+        return;
+    }
+    const bool wide = std::abs(x) > std::abs(y);
+    const double r = wide ? x : y, angle = wide ? kQuarterPi * (y / x) : 2 * kQuarterPi - kQuarterPi * (x / y);
+    u = r * std::cos(angle), v = r * std::sin(angle);
+}
+
+LightSamples::LightSamples(const Light& light, size_t light_index, const Vec3& point)
+    : light_(light), edge1_(light.edge1), edge2_(light.edge2) {
     const int n1 = light.samples1, n2 = light.samples2;
     grid1_ = grid_steps(n1), grid2_ = grid_steps(n2);
-    if (!light.jitter) return;
+    if (light.shape == Light::Shape::Sphere) {
+        // The disc of the outline seen from the point: across the line to it, of the diameter.
+        const glm::dvec3 away = glm::dvec3(point) - light.position;
+        const double distance = glm::length(away);
+        const glm::dvec3 w = distance > 0 ? away / distance : glm::dvec3(0, 0, 1);
+        const glm::dvec3 helper = std::abs(w.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+        const glm::dvec3 u = glm::normalize(glm::cross(helper, w));
+        const double diameter = glm::length(light.edge1);
+        edge1_ = diameter * u, edge2_ = diameter * glm::cross(w, u);
+    }
+    per_sample_ = light.jitter || light.shape != Light::Shape::Rectangle;
+    if (!per_sample_) return;
     // Each thread's tables, kept between points (no allocation per point).
-    thread_local std::vector<double> jitter1, jitter2;
-    const uint64_t h = seed(glm::dvec3(point), light_index);
-    jitter1.resize(size_t(n1) * size_t(n2));
-    jitter2.resize(jitter1.size());
+    thread_local std::vector<double> each1, each2;
+    each1.resize(size_t(n1) * size_t(n2));
+    each2.resize(each1.size());
+    const uint64_t h = light.jitter ? seed(glm::dvec3(point), light_index) : 0;
     for (int i = 0; i < n1; ++i)
         for (int j = 0; j < n2; ++j) {
             const size_t k = index(i, j);
-            jitter1[k] = (i + draw(h, 2 * k)) / n1 - 0.5;
-            jitter2[k] = (j + draw(h, 2 * k + 1)) / n2 - 0.5;
+            double a = grid1_[size_t(i)], b = grid2_[size_t(j)];
+            if (light.jitter) a = (i + draw(h, 2 * k)) / n1 - 0.5, b = (j + draw(h, 2 * k + 1)) / n2 - 0.5;
+            if (light.shape != Light::Shape::Rectangle) {
+                concentric(2 * a, 2 * b, a, b);
+                a *= 0.5, b *= 0.5;
+            }
+            each1[k] = a, each2[k] = b;
         }
-    jitter1_ = jitter1.data(), jitter2_ = jitter2.data();
+    each1_ = each1.data(), each2_ = each2.data();
 }
 
 void LightSamples::hull(int i0, int i1, int j0, int j1, glm::dvec3 (&corners)[4]) const {
+    if (light_.shape != Light::Shape::Rectangle) {  // the square around the disc
+        const glm::dvec3 &c = light_.position, h1 = 0.5 * edge1_, h2 = 0.5 * edge2_;
+        corners[0] = c - h1 - h2, corners[1] = c + h1 - h2, corners[2] = c + h1 + h2, corners[3] = c - h1 + h2;
+        return;
+    }
     if (!light_.jitter) {
         corners[0] = light_.sample(i0, j0), corners[1] = light_.sample(i1, j0);
         corners[2] = light_.sample(i1, j1), corners[3] = light_.sample(i0, j1);

@@ -150,6 +150,11 @@ struct Light {
     // seed per shaded point (jitter); corners first, a region taken as its corners say where they
     // agree (adaptive). Neither: the grid, every sample traced.
     bool jitter = false, adaptive = false;
+    // An area light's shape: the rectangle; the disc (an ellipse) inscribed in it, the square of
+    // samples mapped onto it by Shirley and Chiu's concentric map; or a sphere of diameter |edge1|,
+    // seen from each point as the disc of its outline facing it (POV-Ray's `circular orient`).
+    enum class Shape : uint8_t { Rectangle, Disc, Sphere };
+    Shape shape = Shape::Rectangle;
     Kind kind = Kind::Point;
     // Spot: the cone's axis, from `position` towards `point_at`; parallel: the way its light
     // travels. Unit length (0 for the others).

@@ -211,6 +211,35 @@ Json render_json(const RenderSettings& r) {
     return out;
 }
 
+// A light's entry: its kind's fields only (an area light's edges and samples, a spotlight's cone).
+static Json light_json(const Light& l) {
+    Json entry = {{"color", vec(l.color)}};
+    if (l.kind != Light::Kind::Parallel) entry["position"] = vec(l.position);
+    if (l.edge1 != dvec3(0.0) || l.edge2 != dvec3(0.0)) {  // an area light
+        entry["edge1"] = vec(l.edge1);
+        entry["edge2"] = vec(l.edge2);
+        entry["samples"] = {l.samples1, l.samples2};
+        if (l.shape != Light::Shape::Rectangle) entry["shape"] = l.shape == Light::Shape::Disc ? "disc" : "sphere";
+        if (l.jitter) entry["jitter"] = true;
+        if (l.adaptive) entry["adaptive"] = true;
+    }
+    if (l.kind == Light::Kind::Spot) {
+        entry["kind"] = "spot";
+        entry["direction"] = vec(l.direction);
+        entry["radius"] = l.radius;
+        entry["falloff"] = l.falloff;
+        entry["tightness"] = l.tightness;
+    } else if (l.kind == Light::Kind::Parallel) {
+        entry["kind"] = "parallel";
+        entry["direction"] = vec(l.direction);
+    }
+    if (l.fade_distance > 0) {
+        entry["fade_distance"] = l.fade_distance;
+        entry["fade_power"] = l.fade_power;
+    }
+    return entry;
+}
+
 // Every shape and light of the scene as arrays of `out` (later: see add_array).
 void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* meshes, std::vector<LaterArray>* later) {
     add_array(
@@ -263,34 +292,7 @@ void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* mes
         add_array(
             out, "solids", scene.solids, [&scene](const Solid& solid) { return solid_json(scene, solid); }, later);
     add_array(
-        out, "lights", scene.lights,
-        [&scene](const Light& l) -> Json {
-            Json entry = {{"color", vec(l.color)}};
-            if (l.kind != Light::Kind::Parallel) entry["position"] = vec(l.position);
-            if (l.edge1 != dvec3(0.0) || l.edge2 != dvec3(0.0)) {  // an area light
-                entry["edge1"] = vec(l.edge1);
-                entry["edge2"] = vec(l.edge2);
-                entry["samples"] = {l.samples1, l.samples2};
-                if (l.jitter) entry["jitter"] = true;
-                if (l.adaptive) entry["adaptive"] = true;
-            }
-            if (l.kind == Light::Kind::Spot) {
-                entry["kind"] = "spot";
-                entry["direction"] = vec(l.direction);
-                entry["radius"] = l.radius;
-                entry["falloff"] = l.falloff;
-                entry["tightness"] = l.tightness;
-            } else if (l.kind == Light::Kind::Parallel) {
-                entry["kind"] = "parallel";
-                entry["direction"] = vec(l.direction);
-            }
-            if (l.fade_distance > 0) {
-                entry["fade_distance"] = l.fade_distance;
-                entry["fade_power"] = l.fade_power;
-            }
-            return entry;
-        },
-        later);
+        out, "lights", scene.lights, [](const Light& l) { return light_json(l); }, later);
 }
 
 Json scene_json(const SceneDescription& scene, const SceneMeshes* meshes, std::vector<LaterArray>* later) {

@@ -165,6 +165,7 @@ POVRAY_MISSING = "POV-Ray is not installed (Debian's povray; tools/bootstrap --p
         (ROOT / "scenes" / "lights" / "window.scn", 0.05),
         (ROOT / "scenes" / "lights" / "stage.scn", 0.1),
         (HERE / "spot_parallel_fade.scn", 0.0),
+        (HERE / "disc_light.scn", 0.0),
     ],
 )
 def test_povray_agrees(tracer_bin, tmp_path, scene, most_over_2):
@@ -190,6 +191,15 @@ def test_povray_agrees_on_the_solids_gallery(tracer_bin, tmp_path, name):
     assert result.returncode == 0, result.stdout + result.stderr
     report = json.loads(result.stdout)
     assert report["peer"] == "povray" and report["over_2"] <= 0.1, report
+
+
+def test_a_disc_light_agrees_with_mitsuba_as_its_samples(tracer_bin, tmp_path):
+    """The disc's samples (the concentric map, a second implementation in xcheck/lights.py) as
+    Mitsuba's point emitters: to the level."""
+    result = run_tool("crosscheck", HERE / "disc_light.scn", "--out", tmp_path, "--json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    report = json.loads(result.stdout)
+    assert report["over_2"] <= 0.0001 and report["psnr"] > 60, report
 
 
 def test_mitsuba_skips_spot_and_parallel_lights_saying_why(tracer_bin, tmp_path):

@@ -31,6 +31,18 @@ def test_tiled_render_is_identical_to_tracer_alone(tracer_bin, tmp_path, scene, 
     assert [name for name in os.listdir(tmp_path) if name.startswith(".")] == []  # no temporary files left
 
 
+def test_a_jittered_area_light_is_tiled_into_the_same_image(tracer_bin, tmp_path):
+    """Jitter's random numbers come from each shaded point, not from the worker or the tile."""
+    scene = tmp_path / "window.scn"
+    text = (ROOT / "scenes" / "lights" / "window.scn").read_text()
+    scene.write_text(text.replace("samples1 8 samples2 8 color 0.95", "samples1 5 samples2 5 color 0.95 jitter true"))
+    alone = render(tracer_bin, scene, tmp_path / "alone.exr", "--width", "200")
+    result = farm(scene, "-o", tmp_path / "farm.exr", "--width", 200, "--workers", 2, "--tile", 70, tracer=tracer_bin)
+    assert result.returncode == 0, result.stderr
+    tiled, _ = read_pixels(tmp_path / "farm.exr")
+    assert np.array_equal(tiled, alone)
+
+
 def test_an_srgb_scene_is_tiled_into_the_same_srgb_file(tracer_bin, tmp_path):
     scene = tmp_path / "srgb.scn"
     scene.write_text((SCENES / "task2.scn").read_text().replace("max_depth 4", "max_depth 4 encoding srgb"))

@@ -82,6 +82,7 @@ std::vector<DefaultRow> rows() {
         {"light", "fade_power", [=](auto& s) { EXPECT_EQ(s.lights[0].fade_power, light.fade_power); }},
         {"area_light", "fade_distance", [=](auto& s) { EXPECT_EQ(s.lights[1].fade_distance, light.fade_distance); }},
         {"area_light", "fade_power", [=](auto& s) { EXPECT_EQ(s.lights[1].fade_power, light.fade_power); }},
+        {"area_light", "shape", [=](auto& s) { EXPECT_EQ(s.lights[1].shape, light.shape); }},
         {"area_light", "jitter", [=](auto& s) { EXPECT_EQ(s.lights[1].jitter, light.jitter); }},
         {"area_light", "adaptive", [=](auto& s) { EXPECT_EQ(s.lights[1].adaptive, light.adaptive); }},
         {"spotlight", "color", [=](auto& s) { EXPECT_EQ(s.lights[2].color, light.color); }},

@@ -5,7 +5,11 @@
 // lie more than a quarter of the light apart) and on 16 x 16 traces fewer rays than the grid.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <string>
+
+#include <glm/geometric.hpp>
 
 #include "lang/load_scene.h"
 #include "render/light_samples.h"
@@ -73,6 +77,68 @@ TEST(LightSampling, JitteredSamplesStayInTheirCellsAndTheGridIsLightSample) {
     const double here = jittered.along1(1, 1);
     const LightSamples elsewhere(light, 0, Vec3(0.5, 0, 0.75));
     EXPECT_NE(here, elsewhere.along1(1, 1));
+}
+
+TEST(LightSampling, ADiscLightsSamplesAreTheGridMappedOntoTheDisc) {
+    Light light;
+    light.position = {1, 2, 3}, light.edge1 = {2, 0, 0}, light.edge2 = {0, 0, 4};
+    light.samples1 = 5, light.samples2 = 5;
+    light.shape = Light::Shape::Disc;
+    const LightSamples disc(light, 0, Vec3(0, 0, 0));
+    // Shirley and Chiu: (x, y) with |x| > |y| goes to radius |x| at angle (pi/4)(y/x) (x < 0: the
+    // other side); else radius |y| at pi/2 - (pi/4)(x/y). Sample (4, 2) is (x, y) = (1, 0).
+    EXPECT_NEAR(glm::length(disc.position(4, 2) - dvec3(2, 2, 3)), 0, 1e-15);  // along edge1, half of it
+    EXPECT_NEAR(glm::length(disc.position(2, 2) - dvec3(1, 2, 3)), 0, 1e-15);  // the centre
+    const dvec3 corner = disc.position(4, 4);                                  // (1, 1): radius 1 at 45 degrees
+    const double c = std::sqrt(0.5);
+    EXPECT_NEAR(glm::length(corner - dvec3(1 + c, 2, 3 + 2 * c)), 0, 1e-15);
+    const dvec3 off = disc.position(3, 0);  // (0.5, -1): radius 1 at pi/2 + pi/8, through y = -1
+    const double angle = 3.14159265358979323846 / 2 - 3.14159265358979323846 / 4 * (0.5 / -1);
+    EXPECT_NEAR(glm::length(off - dvec3(1 - std::cos(angle), 2, 3 - 2 * std::sin(angle))), 0, 1e-15);
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) {
+            const dvec3 d = disc.position(i, j) - light.position;
+            EXPECT_LE((d.x / 1) * (d.x / 1) + (d.z / 2) * (d.z / 2), 1 + 1e-12);  // inside the ellipse
+        }
+}
+
+TEST(LightSampling, ASphereLightsSamplesFaceEachPoint) {
+    Light light;
+    light.position = {0, 5, 0}, light.edge1 = {1, 0, 0}, light.edge2 = {0, 1, 0};
+    light.samples1 = 4, light.samples2 = 4;
+    light.shape = Light::Shape::Sphere;
+    for (const Vec3 point : {Vec3(0, 0, 0), Vec3(3, 1, -2), Vec3(0, 9, 0.5)}) {
+        const LightSamples sphere(light, 0, point);
+        const dvec3 towards = glm::normalize(dvec3(point) - light.position);
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) {
+                const dvec3 d = sphere.position(i, j) - light.position;
+                EXPECT_NEAR(glm::dot(d, towards), 0, 1e-12);  // on the outline's disc, across the line
+                EXPECT_LE(glm::length(d), 0.5 + 1e-12);       // within the radius
+            }
+    }
+}
+
+TEST(LightSampling, ADiscLightRendersAsItsSamplesAsPointLights) {
+    const std::string light =
+        "area_light { position (0.5, 4, 0.5) edge1 (2, 0, 0) edge2 (0, 0.5, 2) samples1 5 samples2 4 shape disc "
+        "color 0.9 }\n";
+    Light disc;
+    disc.position = {0.5, 4, 0.5}, disc.edge1 = {2, 0, 0}, disc.edge2 = {0, 0.5, 2};
+    disc.samples1 = 5, disc.samples2 = 4, disc.shape = Light::Shape::Disc;
+    const LightSamples samples(disc, 0, Vec3(0));
+    std::string points;
+    char line[256];
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 4; ++j) {
+            const dvec3 p = samples.position(i, j);
+            std::snprintf(line, sizeof line, "light { position (%.17g, %.17g, %.17g) color %.17g }\n", p.x, p.y, p.z,
+                          0.9 / 20);
+            points += line;
+        }
+    const Image area = render_text(light), separate = render_text(points);
+    ASSERT_EQ(area.rgb.size(), separate.rgb.size());
+    for (size_t k = 0; k < area.rgb.size(); ++k) EXPECT_NEAR(area.rgb[k], separate.rgb[k], 1e-12) << k;
 }
 
 TEST(LightSampling, AJitteredImageIsTheSameOnAnyThreadsAndInAnyWindow) {

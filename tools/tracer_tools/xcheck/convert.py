@@ -282,10 +282,10 @@ def to_mitsuba_xml(scene: dict) -> str:
         {LIGHT_WORDS[light["kind"]] for light in scene["lights"] if "kind" in light}
         | {"fading" for light in scene["lights"] if "fade_distance" in light}
     )
-    if any(light.get("jitter") or light.get("adaptive") for light in scene["lights"]):
+    if any(light.get("jitter") or light.get("adaptive") or light.get("shape") == "sphere" for light in scene["lights"]):
         raise PeerCannotExpress(
-            "the scene has a jittered or adaptive area light, whose samples are tracer's own (a random place per "
-            "point, or corners trusted): compare its grid instead (leave out jitter and adaptive)"
+            "the scene has a jittered, adaptive or sphere area light, whose samples are tracer's own (a random place "
+            "per point, corners trusted, or a disc turned to each point): compare its grid instead"
         )
     if beyond_points:
         raise PeerCannotExpress(

@@ -1,8 +1,12 @@
 """A scene's lights as the point lights they are made of (docs/guide/lights.md), for the
 converters: a point light is itself; an area light is its samples1 x samples2 samples, spanning
-its rectangle corner to corner, each with its share of the colour."""
+its rectangle corner to corner (a disc light: mapped onto the inscribed disc by the concentric
+map), each with its share of the colour. A sphere light's samples turn to face each point: it
+has no fixed points (the converters refuse it)."""
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -14,10 +18,24 @@ def light_points(light: dict) -> list[tuple[list[float], list[float]]]:
     n1, n2 = light["samples"]
     centre, edge1, edge2 = (np.array(light[k], dtype=np.float64) for k in ("position", "edge1", "edge2"))
     share = (np.array(light["color"], dtype=np.float64) * (1.0 / (n1 * n2))).tolist()
+    disc = light.get("shape") == "disc"
     points = []
     for i in range(n1):
         for j in range(n2):
             a = i / (n1 - 1) - 0.5 if n1 > 1 else 0.0
             b = j / (n2 - 1) - 0.5 if n2 > 1 else 0.0
+            if disc:
+                a, b = (0.5 * c for c in concentric(2 * a, 2 * b))
             points.append(((centre + a * edge1 + b * edge2).tolist(), share))
     return points
+
+
+def concentric(x: float, y: float) -> tuple[float, float]:
+    """Shirley and Chiu's concentric map of the square [-1, 1]^2 onto the unit disc."""
+    if x == 0 and y == 0:
+        return 0.0, 0.0
+    if abs(x) > abs(y):
+        r, angle = x, math.pi / 4 * (y / x)
+    else:
+        r, angle = y, math.pi / 2 - math.pi / 4 * (x / y)
+    return r * math.cos(angle), r * math.sin(angle)

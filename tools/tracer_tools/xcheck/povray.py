@@ -409,14 +409,15 @@ def _light_source(scene: dict, light: dict, shadowless: str, native_area_lights:
     if native_area_lights and "samples" in light:
         n1, n2 = light["samples"]
         sampling = (" jitter" if light.get("jitter") else "") + (" adaptive 2" if light.get("adaptive") else "")
+        sampling += {"disc": " circular", "sphere": " circular orient"}.get(light.get("shape"), "")
         return (
             f"light_source {{ {_v(light['position'])} color rgb {_v(light['color'])} area_light "
             f"{_v(light['edge1'])}, {_v(light['edge2'])}, {n1}, {n2}{sampling}{fade}{shadowless} }}"
         )
-    if light.get("jitter") or light.get("adaptive"):
+    if light.get("jitter") or light.get("adaptive") or light.get("shape") == "sphere":
         raise PeerCannotExpress(
-            "the scene has a jittered or adaptive area light, whose samples are tracer's own (a random place per "
-            "point, or corners trusted): compare its grid instead (leave out jitter and adaptive)"
+            "the scene has a jittered, adaptive or sphere area light, whose samples are tracer's own (a random place "
+            "per point, corners trusted, or a disc turned to each point): compare its grid instead"
         )
     return "\n".join(
         f"light_source {{ {_v(position)} color rgb {_v(color)}{fade}{shadowless} }}"

@@ -2,7 +2,7 @@
 
     tools/povray-table [--spd ../shared/spd/nff] [--out build/povray-table]
 
-task2, bunny_room, room and glass from scenes/, and the seven SPD scenes converted by
+task2, bunny_room, room, glass and the lights' gallery from scenes/, and the seven SPD scenes converted by
 tools/nff2scn from --spd (left out, saying so, where it is missing), each rendered by tracer and
 POV-Ray at its own size with opaque shadows (tracer's default) and with transparent ones
 (POV-Ray's own model) where something transmits; the table gives the pixels apart and both trace
@@ -24,7 +24,8 @@ from tracer_tools.scenes import edit
 
 from . import convert, speed_vs_error, tracer_cli
 
-SCENES = ["task2", "bunny_room", "room", "glass", "whitted1980", "textured_vase"]
+SCENES = ["task2", "bunny_room", "room", "glass", "whitted1980", "textured_vase", "lights/lamp", "lights/window"]
+SCENES += ["lights/stage"]
 HEADER = (
     "| scene | shadows | size | over 2 levels | px | over 8 levels | largest | POV-Ray trace s | tracer render s "
     "| written approximately |\n|---|---|---|--:|--:|--:|--:|--:|--:|---|"
@@ -73,7 +74,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"povray_table: no SPD scenes at {args.spd}: left out", file=sys.stderr)
     rows = []
     for name, scn in scenes:
-        slug = name.replace(" ", "_")
+        slug = name.replace(" ", "_").replace("/", "_")
         print(f"povray_table: {name}", file=sys.stderr, flush=True)
         # Each scene's own shadows, then (with glass) the other kind.
         description = tracer_cli.dump_json(scn)
