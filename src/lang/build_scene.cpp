@@ -100,6 +100,19 @@ void build_light(SceneAssembly& a, const Block& block, const Fields& fields) {
     add_light(a, block, light);
 }
 
+// `v` scaled to unit length into `out`; false, reporting `problem` at `key`'s value, if it has
+// no length (or one that is not finite).
+static bool unit_direction(SceneAssembly& a, const Fields& fields, std::string_view key, const dvec3& v,
+                           const std::string& problem, dvec3& out) {
+    const double length = glm::length(v);
+    if (!(length > 0) || !std::isfinite(length)) {
+        a.diagnostics.error(a.file, fields.value_span(key), problem);
+        return false;
+    }
+    out = v / length;
+    return true;
+}
+
 // A spotlight: its position and the point it aims at placed by the groups around it.
 static void build_spotlight(SceneAssembly& a, const Block& block, const Fields& fields) {
     Placed group;
@@ -107,14 +120,10 @@ static void build_spotlight(SceneAssembly& a, const Block& block, const Fields& 
     const Placement placement(group);
     Light light{placement.point(fields.triple("position")), fields.triple("color")};
     light.kind = Light::Kind::Spot;
-    const dvec3 axis = placement.point(fields.triple("point_at")) - light.position;
-    const double length = glm::length(axis);
-    if (!(length > 0) || !std::isfinite(length)) {
-        a.diagnostics.error(a.file, fields.value_span("point_at"),
-                            "a spotlight must point away from its position: point_at is the position itself");
+    if (!unit_direction(a, fields, "point_at", placement.point(fields.triple("point_at")) - light.position,
+                        "a spotlight must point away from its position: point_at is the position itself",
+                        light.direction))
         return;
-    }
-    light.direction = axis / length;
     light.radius = fields.number("radius");
     light.falloff = fields.number("falloff");
     light.tightness = fields.number("tightness");
@@ -136,14 +145,9 @@ static void build_parallel_light(SceneAssembly& a, const Block& block, const Fie
     Light light;
     light.kind = Light::Kind::Parallel;
     light.color = fields.triple("color");
-    const dvec3 direction = Placement(group).linear * fields.triple("direction");
-    const double length = glm::length(direction);
-    if (!(length > 0) || !std::isfinite(length)) {
-        a.diagnostics.error(a.file, fields.value_span("direction"),
-                            "a parallel light's direction has no length once placed by its groups");
+    if (!unit_direction(a, fields, "direction", Placement(group).linear * fields.triple("direction"),
+                        "a parallel light's direction has no length once placed by its groups", light.direction))
         return;
-    }
-    light.direction = direction / length;
     add_light(a, block, light);
 }
 

@@ -5,11 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <memory>
-#include <sstream>
 #include <string>
 
-#include "lang/load_scene.h"
-#include "render/renderer.h"
+#include "../../common/scene_render.h"
 
 namespace tracer {
 namespace {
@@ -22,17 +20,7 @@ render { width 48 height 36 }
 )";
 
 Image render_text(const std::string& lights, int threads = 2) {
-    LoadResult loaded = load_scene_text("lights.scn", kScene + lights);
-    for (const Diagnostic& d : loaded.diagnostics.all()) ADD_FAILURE() << d.message;
-    EXPECT_TRUE(loaded.scene);
-    if (!loaded.scene) return {};
-    const World world(*loaded.scene);
-    RenderOptions options;
-    options.threads = threads;
-    Image image;
-    RenderStats stats;
-    EXPECT_TRUE(render(world, *loaded.scene, options, image, stats));
-    return image;
+    return render_scene_text(kScene + lights, threads);
 }
 
 TEST(AreaLight, OneSampleIsThePointLightAtItsCentreBitForBit) {
@@ -62,18 +50,10 @@ TEST(AreaLight, RendersAsItsSamplesWrittenOutAsPointLights) {
     const Image area = render_text(
         "area_light { position (0.5, 4, 0.5) color 0.9 edge1 (1.5, 0, 0) edge2 (0, 0.5, 1) samples1 3 "
         "samples2 2 }\n");
-    std::ostringstream points;
     Light light;
     light.position = {0.5, 4, 0.5}, light.edge1 = {1.5, 0, 0}, light.edge2 = {0, 0.5, 1};
     light.samples1 = 3, light.samples2 = 2;
-    points.precision(17);
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 2; ++j) {
-            const dvec3 p = light.sample(i, j);
-            points << "light { position (" << p.x << ", " << p.y << ", " << p.z << ") color " << 0.9 * (1.0 / 6)
-                   << " }\n";
-        }
-    const Image separate = render_text(points.str());
+    const Image separate = render_text(samples_as_point_lights(light, 0.9));
     ASSERT_EQ(area.rgb.size(), separate.rgb.size());
     // The same terms in the same order; only the sum over lights may round differently.
     for (size_t k = 0; k < area.rgb.size(); ++k) EXPECT_NEAR(area.rgb[k], separate.rgb[k], 1e-12) << k;

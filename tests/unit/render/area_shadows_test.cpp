@@ -9,25 +9,13 @@
 #include <sstream>
 #include <string>
 
-#include "lang/load_scene.h"
-#include "render/renderer.h"
+#include "../../common/scene_render.h"
 
 namespace tracer {
 namespace {
 
-Image render_text(const std::string& text, RenderStats* stats_out = nullptr) {
-    LoadResult loaded = load_scene_text("area_shadows.scn", text);
-    for (const Diagnostic& d : loaded.diagnostics.all()) ADD_FAILURE() << d.message;
-    EXPECT_TRUE(loaded.scene);
-    if (!loaded.scene) return {};
-    const World world(*loaded.scene);
-    RenderOptions options;
-    options.threads = 2;
-    Image image;
-    RenderStats stats;
-    EXPECT_TRUE(render(world, *loaded.scene, options, image, stats));
-    if (stats_out) *stats_out = stats;
-    return image;
+Image render_text(const std::string& text, RenderStats* stats = nullptr) {
+    return render_scene_text(text, 2, {}, stats);
 }
 
 struct AreaLight {
@@ -49,15 +37,7 @@ std::string as_points(const AreaLight& l) {
     Light light;
     light.position = l.position, light.edge1 = l.edge1, light.edge2 = l.edge2;
     light.samples1 = l.samples1, light.samples2 = l.samples2;
-    std::ostringstream out;
-    out.precision(17);
-    for (int i = 0; i < l.samples1; ++i)
-        for (int j = 0; j < l.samples2; ++j) {
-            const dvec3 p = light.sample(i, j);
-            out << "light { position (" << p.x << ", " << p.y << ", " << p.z << ") color "
-                << l.color * (1.0 / light.samples()) << " }\n";
-        }
-    return out.str();
+    return samples_as_point_lights(light, l.color);
 }
 
 // Random shapes of every kind over a floor: `count` of them (more than 8: a BVH top level).

@@ -5,12 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <sstream>
 #include <string>
 
-#include "lang/load_scene.h"
+#include "../../common/scene_render.h"
 #include "render/direct_light.h"
-#include "render/renderer.h"
 
 namespace tracer {
 namespace {
@@ -18,17 +16,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 Image render_text(const std::string& text) {
-    LoadResult loaded = load_scene_text("lights.scn", text);
-    for (const Diagnostic& d : loaded.diagnostics.all()) ADD_FAILURE() << d.message;
-    EXPECT_TRUE(loaded.scene);
-    if (!loaded.scene) return {};
-    const World world(*loaded.scene);
-    RenderOptions options;
-    options.threads = 2;
-    Image image;
-    RenderStats stats;
-    EXPECT_TRUE(render(world, *loaded.scene, options, image, stats));
-    return image;
+    return render_scene_text(text);
 }
 
 // A spotlight along -y; the unit direction from a point at `degrees` off its axis back to it.
@@ -94,15 +82,7 @@ TEST(LightKinds, AFadedAreaLightIsItsFadedSamples) {
     Light light;
     light.position = {0.5, 4, 0.5}, light.edge1 = {1.5, 0, 0}, light.edge2 = {0, 0.5, 1};
     light.samples1 = 3, light.samples2 = 2;
-    std::ostringstream points;
-    points.precision(17);
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 2; ++j) {
-            const dvec3 p = light.sample(i, j);
-            points << "light { position (" << p.x << ", " << p.y << ", " << p.z << ") color " << 0.9 / 6
-                   << " fade_distance 2 fade_power 1.5 }\n";
-        }
-    const Image separate = render_text(head + points.str());
+    const Image separate = render_text(head + samples_as_point_lights(light, 0.9, " fade_distance 2 fade_power 1.5"));
     ASSERT_EQ(area.rgb.size(), separate.rgb.size());
     for (size_t k = 0; k < area.rgb.size(); ++k) EXPECT_NEAR(area.rgb[k], separate.rgb[k], 1e-12) << k;
 }

@@ -11,9 +11,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "lang/load_scene.h"
+#include "../../common/scene_render.h"
 #include "render/light_samples.h"
-#include "render/renderer.h"
 
 namespace tracer {
 namespace {
@@ -26,20 +25,8 @@ sphere { center (0.2, 1, 0) radius 0.6 material { kd (0.8, 0.3, 0.2) ks 0.5 n 40
 box { min (-2, 0, -1.5) max (-1.2, 1.5, -0.8) material { kd 0.5 } }
 )";
 
-Image render_text(const std::string& lights, int threads = 2, PixelRect crop = {}, RenderStats* stats_out = nullptr) {
-    LoadResult loaded = load_scene_text("sampling.scn", kScene + lights);
-    for (const Diagnostic& d : loaded.diagnostics.all()) ADD_FAILURE() << d.message;
-    EXPECT_TRUE(loaded.scene);
-    if (!loaded.scene) return {};
-    const World world(*loaded.scene);
-    RenderOptions options;
-    options.threads = threads;
-    options.crop = crop;
-    Image image;
-    RenderStats stats;
-    EXPECT_TRUE(render(world, *loaded.scene, options, image, stats));
-    if (stats_out) *stats_out = stats;
-    return image;
+Image render_text(const std::string& lights, int threads = 2, PixelRect crop = {}, RenderStats* stats = nullptr) {
+    return render_scene_text(kScene + lights, threads, crop, stats);
 }
 
 std::string lamp(int n, const std::string& sampling) {

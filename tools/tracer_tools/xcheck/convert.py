@@ -15,7 +15,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from . import PHONG_PLUGIN, WHITTED_PLUGIN, PeerCannotExpress, ToolError, exact_meshes, mitsuba_textures, round_shapes
-from .lights import light_points
+from .lights import light_points, refuse_moving_samples
 
 # Primary rays start this far in front of the eye (the camera's near clip). Secondary rays
 # leave surfaces by Mitsuba's spawn_ray / spawn_ray_to, as tracer's by its spawn rule.
@@ -282,11 +282,8 @@ def to_mitsuba_xml(scene: dict) -> str:
         {LIGHT_WORDS[light["kind"]] for light in scene["lights"] if "kind" in light}
         | {"fading" for light in scene["lights"] if "fade_distance" in light}
     )
-    if any(light.get("jitter") or light.get("adaptive") or light.get("shape") == "sphere" for light in scene["lights"]):
-        raise PeerCannotExpress(
-            "the scene has a jittered, adaptive or sphere area light, whose samples are tracer's own (a random place "
-            "per point, corners trusted, or a disc turned to each point): compare its grid instead"
-        )
+    for light in scene["lights"]:
+        refuse_moving_samples(light)
     if beyond_points:
         raise PeerCannotExpress(
             f"the scene has {' and '.join(beyond_points)}, which the Phong integrator's point emitters cannot "

@@ -10,9 +10,23 @@ import math
 
 import numpy as np
 
+from . import PeerCannotExpress
+
+
+def refuse_moving_samples(light: dict) -> None:
+    """Raises PeerCannotExpress if the light's samples are not fixed points (jittered, adaptive,
+    or a sphere's disc turned to each point): no peer can be given them."""
+    if light.get("jitter") or light.get("adaptive") or light.get("shape") == "sphere":
+        raise PeerCannotExpress(
+            "the scene has a jittered, adaptive or sphere area light, whose samples are tracer's own (a random place "
+            "per point, corners trusted, or a disc turned to each point): compare its grid instead"
+        )
+
 
 def light_points(light: dict) -> list[tuple[list[float], list[float]]]:
-    """The light (an entry of `tracer --dump-json`'s lights) as (position, colour) point lights."""
+    """The light (an entry of `tracer --dump-json`'s lights) as (position, colour) point lights;
+    refuse_moving_samples first."""
+    refuse_moving_samples(light)
     if "samples" not in light:
         return [(light["position"], light["color"])]
     n1, n2 = light["samples"]

@@ -46,7 +46,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import PeerCannotExpress, ToolError, exact_meshes, mitsuba_textures
+from . import ToolError, exact_meshes, mitsuba_textures
 from .lights import light_points
 
 TINY_PIGMENT = 1e-9  # a kd channel of 0 with ka above 0 (see the module's rules)
@@ -413,11 +413,6 @@ def _light_source(scene: dict, light: dict, shadowless: str, native_area_lights:
         return (
             f"light_source {{ {_v(light['position'])} color rgb {_v(light['color'])} area_light "
             f"{_v(light['edge1'])}, {_v(light['edge2'])}, {n1}, {n2}{sampling}{fade}{shadowless} }}"
-        )
-    if light.get("jitter") or light.get("adaptive") or light.get("shape") == "sphere":
-        raise PeerCannotExpress(
-            "the scene has a jittered, adaptive or sphere area light, whose samples are tracer's own (a random place "
-            "per point, corners trusted, or a disc turned to each point): compare its grid instead"
         )
     return "\n".join(
         f"light_source {{ {_v(position)} color rgb {_v(color)}{fade}{shadowless} }}"
