@@ -10,6 +10,7 @@
 
 #include "base/input_file.h"
 #include "base/output_file.h"
+#include "io/native_images.h"
 
 namespace tracer {
 namespace fs = std::filesystem;
@@ -52,6 +53,10 @@ const Codec& codec() {
 }  // namespace
 
 std::optional<std::string> check_output_path(const std::string& path) {
+    if (native_format(path)) {  // PNG and PPM: no module to load
+        if (auto problem = output_path_problem(path)) return "cannot write '" + path + "': " + *problem;
+        return std::nullopt;
+    }
     const Codec& writer = codec();
     if (!writer.problem.empty()) return "cannot write '" + path + "': " + writer.problem;
     bool known = false;
@@ -88,13 +93,19 @@ bool load_images(SceneDescription& scene, Diagnostics& diagnostics) {
 }
 
 std::optional<std::string> write_image(const std::string& path, const Image& image, Encoding encoding) {
-    const Codec& writer = codec();
-    if (!writer.problem.empty()) return "cannot write '" + path + "': " + writer.problem;
-    // The encoded file in memory, then on disk in one atomic write.
+    // The encoded file in memory (PNG and PPM by tracer, the rest by OpenImageIO), then on disk
+    // in one atomic write.
     std::vector<unsigned char> encoded;
-    std::string error;
-    writer.encode(path, image, encoding == Encoding::Srgb, encoded, error);
-    if (!error.empty()) return "cannot write '" + path + "': " + error;
+    const bool srgb = encoding == Encoding::Srgb;
+    if (const auto format = native_format(path)) {
+        if (auto error = encode_native(*format, image, srgb, encoded)) return "cannot write '" + path + "': " + *error;
+    } else {
+        const Codec& writer = codec();
+        if (!writer.problem.empty()) return "cannot write '" + path + "': " + writer.problem;
+        std::string error;
+        writer.encode(path, image, srgb, encoded, error);
+        if (!error.empty()) return "cannot write '" + path + "': " + error;
+    }
     const std::string_view file(reinterpret_cast<const char*>(encoded.data()), encoded.size());
     if (auto problem = write_file_atomically(path, file)) return "cannot write '" + path + "': " + *problem;
     return std::nullopt;

@@ -1,0 +1,87 @@
+#include "io/native_images.h"
+
+#include <png.h>
+
+#include <algorithm>
+#include <csetjmp>
+#include <cstring>
+#include <filesystem>
+
+namespace tracer {
+namespace {
+
+// The 8-bit RGB bytes of the image, row by row from the top.
+std::vector<unsigned char> eight_bit_rows(const Image& image, bool srgb) {
+    std::vector<unsigned char> bytes(image.rgb.size());
+    std::transform(image.rgb.begin(), image.rgb.end(), bytes.begin(),
+                   [srgb](double v) { return to_8bit(srgb ? srgb_encoded(v) : v); });
+    return bytes;
+}
+
+void append_bytes(png_structp png, png_bytep data, png_size_t length) {
+    auto* out = static_cast<std::vector<unsigned char>*>(png_get_io_ptr(png));
+    out->insert(out->end(), data, data + length);
+}
+
+void no_flush(png_structp) {}
+
+// libpng's errors end in longjmp back to encode_png; its message is kept for the caller.
+void on_png_error(png_structp png, png_const_charp message) {
+    auto* error = static_cast<char*>(png_get_error_ptr(png));
+    std::strncpy(error, message ? message : "libpng failed", 255);
+    error[255] = '\0';
+    png_longjmp(png, 1);
+}
+
+void on_png_warning(png_structp, png_const_charp) {}
+
+// The PNG of `rows` (width x height RGB bytes) into `out`; false with `error` set on failure.
+// No C++ object lives across setjmp here: the vectors belong to the caller.
+bool encode_png(const unsigned char* rows, int width, int height, bool srgb, std::vector<unsigned char>* out,
+                char* error) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, error, on_png_error, on_png_warning);
+    if (!png) return false;
+    png_infop info = png_create_info_struct(png);
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, info ? &info : nullptr);
+        return false;
+    }
+    png_set_write_fn(png, out, append_bytes, no_flush);
+    png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (srgb) png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_write_info(png, info);
+    for (int y = 0; y < height; ++y) png_write_row(png, rows + size_t(y) * size_t(width) * 3);
+    png_write_end(png, info);
+    png_destroy_write_struct(&png, &info);
+    return true;
+}
+
+}  // namespace
+
+std::optional<NativeFormat> native_format(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (extension == ".png") return NativeFormat::Png;
+    if (extension == ".ppm") return NativeFormat::Ppm;
+    return std::nullopt;
+}
+
+std::optional<std::string> encode_native(NativeFormat format, const Image& image, bool srgb,
+                                         std::vector<unsigned char>& encoded) {
+    const std::vector<unsigned char> rows = eight_bit_rows(image, srgb);
+    encoded.clear();
+    if (format == NativeFormat::Ppm) {
+        const std::string header =
+            "P6\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n255\n";
+        encoded.assign(header.begin(), header.end());
+        encoded.insert(encoded.end(), rows.begin(), rows.end());
+        return std::nullopt;
+    }
+    char error[256] = "libpng could not start";
+    if (!encode_png(rows.data(), image.width, image.height, srgb, &encoded, error)) return std::string(error);
+    return std::nullopt;
+}
+
+}  // namespace tracer
