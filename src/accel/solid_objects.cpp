@@ -124,7 +124,7 @@ void SolidObjects::build_meshes(const SceneDescription& scene, const SceneMeshes
         const uint32_t leaf = first_leaf_of_kind_[size_t(SolidPart::Kind::Mesh)] + i;
         if (object_of_leaf_[leaf] == kNoObject || i >= meshes.file_of_solid_mesh.size()) continue;
         const Mesh& mesh = scene.solid_meshes[i];
-        MeshPart part{&meshes.files[meshes.file_of_solid_mesh[i]], Placement(mesh), 0, mesh.flat};
+        MeshPart part{meshes.files[meshes.file_of_solid_mesh[i]].get(), Placement(mesh), 0, mesh.flat};
         part.placement.translate -= glm::dvec3(objects_[object_of_leaf_[leaf]].shift);
         meshes_[i] = std::make_unique<SolidMesh>(SolidMesh{MeshAccel({part}, settings), mesh.flat});
     }
@@ -174,7 +174,7 @@ std::vector<SolidObjects::LeafExtent> SolidObjects::add_leaves(const SceneDescri
         // Without its file (a caller that read none: the fuzz targets), a mesh is empty.
         const TriangleMesh none;
         const bool read = i < meshes.file_of_solid_mesh.size();
-        const MeshFacts facts = mesh_facts(read ? meshes.files[meshes.file_of_solid_mesh[i]] : none, mesh);
+        const MeshFacts facts = mesh_facts(read ? *meshes.files[meshes.file_of_solid_mesh[i]] : none, mesh);
         add(SolidPart::Kind::Mesh, mesh.material, {Vec3(facts.lower), Vec3(facts.upper)});
     }
     return extents;

@@ -87,13 +87,16 @@ std::vector<Bounds> cone_piece_boxes(const Cone& cone, const glm::dvec3& axis, i
 }  // namespace
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared)
-    : World(scene, meshes, threads, flatten_shared, nullptr) {}
+    : World(scene, meshes, threads, flatten_shared, nullptr, nullptr) {}
 
 World::World(SceneDescription& scene, const SceneMeshes& meshes, int threads, ReleaseFlatShapes)
-    : World(scene, meshes, threads, false, &scene) {}
+    : World(scene, meshes, threads, false, &scene, nullptr) {}
+
+World::World(SceneDescription& scene, const SceneMeshes& meshes, int threads, ReleaseFlatShapes, MeshBuildCache& reuse)
+    : World(scene, meshes, threads, false, &scene, &reuse) {}
 
 World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
-             SceneDescription* releasable)
+             SceneDescription* releasable, MeshBuildCache* reuse)
     : solids_(scene, meshes, search_settings(scene.render, threads)),
       materials_(scene.materials),
       lights_(scene.lights),
@@ -126,7 +129,7 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
     }
     // Step 2: the meshes, each file built once, and an instance per mesh block; then the cones
     // and discs (numbered after every older kind, so that older scenes keep their order).
-    add_meshes(scene, meshes, settings, flatten_shared, releasable);
+    add_meshes(scene, meshes, settings, flatten_shared, releasable, reuse);
     add_round_shapes(scene, settings);
     add_solids();
     // Step 3: the top level over every bounded object.
@@ -172,7 +175,7 @@ void World::add_solids() {
 }
 
 void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
-                       bool flatten_shared, SceneDescription* releasable) {
+                       bool flatten_shared, SceneDescription* releasable, MeshBuildCache* reuse) {
     std::vector<int> blocks_of_file(meshes.files.size(), 0);
     for (uint32_t file : meshes.file_of_block) ++blocks_of_file[file];
     std::map<std::pair<uint32_t, bool>, uint32_t> shared_mesh;  // (file, flat) -> index into meshes_
@@ -185,14 +188,18 @@ void World::add_meshes(const SceneDescription& scene, const SceneMeshes& meshes,
         const uint32_t index = uint32_t(instances_.size()), object = uint32_t(objects_.size());
         objects_.push_back({ObjectKind::MeshInstance, index, mesh.material});
         MeshInstance instance;
-        if (blocks_of_file[file] == 1 || flatten_shared) {
+        if ((blocks_of_file[file] == 1 || flatten_shared) && !reuse) {
             // Placed in world coordinates, with every other such block, in one mesh.
-            merged.push_back({&meshes.files[file], placement, object, mesh.flat});
+            merged.push_back({meshes.files[file].get(), placement, object, mesh.flat});
             merged_instances.push_back(index);
         } else {
-            // Shared: built once in the file's coordinates; rays are carried there.
+            // Shared (or a frame of an animation): built once in the file's coordinates; rays are
+            // carried there.
             auto [known, is_new] = shared_mesh.try_emplace({file, mesh.flat}, uint32_t(meshes_.size()));
-            if (is_new) meshes_.emplace_back(meshes.files[file], Placement(), settings, mesh.flat);
+            if (is_new && reuse)
+                meshes_.push_back(reuse->get(meshes.files[file], mesh.flat, settings));
+            else if (is_new)
+                meshes_.emplace_back(*meshes.files[file], Placement(), settings, mesh.flat);
             instance.mesh = known->second;
             instance.placed = false;
             instance.to_world = Mat3(placement.linear);

@@ -12,6 +12,7 @@
 
 #include "accel/bvh.h"
 #include "accel/mesh_accel.h"
+#include "accel/mesh_builds.h"
 #include "accel/ray_packet.h"
 #include "accel/round_shapes.h"
 #include "accel/shadow_frustum.h"
@@ -118,6 +119,9 @@ public:
     // are placed, before their BVH is built: a million of them need that memory for the build.
     struct ReleaseFlatShapes {};
     World(SceneDescription& scene, const SceneMeshes& meshes, int threads, ReleaseFlatShapes);
+    // The same for a frame of an animation: every mesh file is built in its own coordinates
+    // through `reuse` (once for all the frames), each block placed as an instance of it.
+    World(SceneDescription& scene, const SceneMeshes& meshes, int threads, ReleaseFlatShapes, MeshBuildCache& reuse);
 
     // The nearest surface along `ray` with t inside `range`, not counting object `left_behind`
     // (object_left_behind: the convex shape the ray leaves, which it cannot meet again).
@@ -190,7 +194,7 @@ public:
     bool refracts() const { return refracts_; }
     const std::vector<Light>& lights() const { return lights_; }
     const std::vector<Object>& objects() const { return objects_; }
-    const std::vector<MeshAccel>& meshes() const { return meshes_; }
+    const MeshList& meshes() const { return meshes_; }
     const std::vector<MeshInstance>& instances() const { return instances_; }
     const SolidObjects& solids() const { return solids_; }
     // The mesh that holds the shapes built placed (flat shapes, unshared mesh blocks), if any.
@@ -242,10 +246,11 @@ private:
     };
 
     World(const SceneDescription& scene, const SceneMeshes& meshes, int threads, bool flatten_shared,
-          SceneDescription* releasable);
-    // `releasable`: the scene (the same object) whose flat shapes are emptied once placed, or null.
+          SceneDescription* releasable, MeshBuildCache* reuse);
+    // `releasable`: the scene (the same object) whose flat shapes are emptied once placed, or null;
+    // `reuse`: where mesh files are built (each block an instance), or null.
     void add_meshes(const SceneDescription& scene, const SceneMeshes& meshes, const SearchSettings& settings,
-                    bool flatten_shared, SceneDescription* releasable);
+                    bool flatten_shared, SceneDescription* releasable, MeshBuildCache* reuse);
     void add_bounded(const Bounds& box, uint32_t object, uint32_t index, ObjectKind kind = ObjectKind::MeshInstance);
     void add_round_shapes(const SceneDescription& scene, const SearchSettings& settings);
     bool hit_bounded(const Bounded& b, const Ray& ray, Interval& range, Hit& hit, SearchCounts& counts) const;
@@ -277,7 +282,7 @@ private:
 
     std::vector<Object> objects_;
     std::vector<PlaneShape> planes_;
-    std::vector<MeshAccel> meshes_;
+    MeshList meshes_;
     std::vector<MeshInstance> instances_;
     std::optional<uint32_t> merged_mesh_;  // the mesh of the shapes built placed, if any
     std::vector<ConeShape> cones_;

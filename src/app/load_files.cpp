@@ -13,10 +13,23 @@ ReportLoad print_diagnostics_to(std::ostream& out) {
     return [&out](const LoadReport& report) { report.diagnostics.print(out); };
 }
 
-std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
-                                                  const std::function<void(SceneDescription&)>& adjust,
-                                                  const ReportLoad& report) {
-    LoadResult loaded = load_scene(input.path, input.arguments, {}, input.standard_input_name);
+namespace {
+
+// The image files of `scene` that `files` holds, given their texels; read ones added to it.
+bool load_images_once(SceneDescription& scene, Diagnostics& diagnostics, FileCache* files) {
+    if (files)
+        for (ImageFile& image : scene.images)
+            if (auto read = files->images.find(image.path); read != files->images.end()) image.texels = read->second;
+    if (!load_images(scene, diagnostics)) return false;
+    if (files)
+        for (const ImageFile& image : scene.images) files->images.emplace(image.path, image.texels);
+    return true;
+}
+
+// load_scene_with_meshes' steps after the scene's text has run (`loaded`).
+std::optional<LoadedScene> finish_loading(LoadResult loaded, const SceneInput& input,
+                                          const std::function<void(SceneDescription&)>& adjust,
+                                          const ReportLoad& report, FileCache* files) {
     std::optional<SceneMeshes> meshes;
     const std::string name = input.path == "-" ? input.standard_input_name : input.path;
     if (loaded.scene) {
@@ -25,8 +38,8 @@ std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
         if (!problem.empty())
             loaded.diagnostics.report(Severity::Error, Diagnostics::whole_file(name),
                                       "with the command line's overrides, " + problem);
-        else if (load_images(*loaded.scene, loaded.diagnostics))
-            meshes = load_meshes(*loaded.scene, loaded.diagnostics);
+        else if (load_images_once(*loaded.scene, loaded.diagnostics, files))
+            meshes = load_meshes(*loaded.scene, loaded.diagnostics, files ? &files->meshes : nullptr);
     }
     LoadReport found{loaded.diagnostics, {}, loaded.unreadable, &loaded.names};
     if (input.path != "-") found.files_read.push_back(input.path);
@@ -41,6 +54,22 @@ std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
     if (report) report(found);
     if (!loaded.scene || !meshes) return std::nullopt;
     return LoadedScene{std::move(*loaded.scene), std::move(*meshes)};
+}
+
+}  // namespace
+
+std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
+                                                  const std::function<void(SceneDescription&)>& adjust,
+                                                  const ReportLoad& report) {
+    return finish_loading(load_scene(input.path, input.arguments, {}, input.standard_input_name), input, adjust, report,
+                          nullptr);
+}
+
+std::optional<LoadedScene> load_frame_with_meshes(SceneProgram& program, const FrameTime& frame,
+                                                  const SceneInput& input,
+                                                  const std::function<void(SceneDescription&)>& adjust,
+                                                  const ReportLoad& report, FileCache& files) {
+    return finish_loading(program.run(frame), input, adjust, report, &files);
 }
 
 }  // namespace tracer

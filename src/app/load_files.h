@@ -4,13 +4,17 @@
 
 #include <functional>
 #include <iosfwd>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "base/diagnostics.h"
+#include "io/obj_mesh.h"
 #include "lang/interpreter.h"
 #include "lang/load_scene.h"
+#include "lang/scene_program.h"
 #include "scene/scene.h"
 #include "scene/triangle_mesh.h"
 
@@ -47,5 +51,18 @@ ReportLoad print_diagnostics_to(std::ostream& out);
 std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
                                                   const std::function<void(SceneDescription&)>& adjust,
                                                   const ReportLoad& report);
+
+// The files an animation reads once for all its frames: meshes and image patterns' texels, by path.
+struct FileCache {
+    MeshFileCache meshes;
+    std::map<std::string, std::shared_ptr<const Texels>> images;
+};
+
+// The same for one frame of an animation: the scene `program` run at `frame`, its mesh and image
+// files read only if no earlier frame read them (`files`).
+std::optional<LoadedScene> load_frame_with_meshes(SceneProgram& program, const FrameTime& frame,
+                                                  const SceneInput& input,
+                                                  const std::function<void(SceneDescription&)>& adjust,
+                                                  const ReportLoad& report, FileCache& files);
 
 }  // namespace tracer

@@ -22,7 +22,9 @@
 #include <new>
 
 #include "app/diagnostics_json.h"
+#include "app/frames.h"
 #include "app/load_files.h"
+#include "app/options.h"
 #include "app/progress.h"
 #include "app/regions.h"
 #include "app/summary.h"
@@ -42,6 +44,10 @@
 #include "scene/scene_json.h"
 
 namespace {
+
+using tracer::Options;
+using tracer::scene_name;
+using tracer::standard_input_name;
 
 enum ExitCode { kOk = 0, kSceneError = 1, kUsageError = 2, kIoError = 3, kInterrupted = 130 };
 
@@ -76,77 +82,9 @@ extern "C" void on_interrupt(int) {
     tracer::exit_leaving_memory_to_a_helper(kInterrupted);
 }
 
-// --adaptive's THRESHOLD[:DEPTH[:CELL]] split at its colons (empty parts kept, to be refused).
-std::vector<std::string> adaptive_parts(const std::string& text) {
-    std::vector<std::string> parts{""};
-    for (char c : text)
-        if (c == ':')
-            parts.emplace_back();
-        else
-            parts.back().push_back(c);
-    return parts;
-}
-
-struct Options {
-    std::string scene;
-    std::string output;
-    int threads = 0;
-    bool quiet = false;
-    bool check = false;
-    bool dump_json = false;
-    bool reference = false;
-    // Overrides of the scene's render block, as written (empty: the scene's), checked by the
-    // scene's own rules (setting_problem).
-    std::string accel;
-    std::string leaf_size;
-    std::string width;
-    std::string height;
-    std::string samples;
-    std::string adaptive;  // THRESHOLD[:DEPTH[:CELL]]
-    std::string max_depth;
-    std::string encoding;                   // --encoding linear|srgb
-    std::vector<std::string> defines;       // -D NAME=VALUE
-    std::vector<std::string> include_dirs;  // -I DIR
-    std::vector<int> region;                // --region X0 Y0 W H (empty: the whole frame)
-    bool region_list = false;               // --region-list: regions read from stdin
-    bool stats = false;
-    std::string stats_json;
-    bool json_diagnostics = false;  // --diagnostics json: one line of JSON per load on stdout
-    std::string stdin_name;         // the name of a scene read from standard input
-    bool language_json = false;
-    bool watch = false;
-};
-
-// The -D NAME=VALUE definitions (checked to have a '=' when parsed).
-tracer::ParameterValues parameter_values(const Options& options) {
-    tracer::ParameterValues out;
-    for (const std::string& define : options.defines) {
-        const size_t equals = define.find('=');
-        out.emplace_back(define.substr(0, equals), define.substr(equals + 1));
-    }
-    return out;
-}
-
-// The folders includes are looked for in: -I's in order, then TRACER_PATH's (':' between them).
-std::vector<std::string> include_folders(const Options& options) {
-    std::vector<std::string> folders = options.include_dirs;
-    const char* path = std::getenv("TRACER_PATH");
-    for (std::string_view rest = path ? path : ""; !rest.empty();) {
-        const size_t colon = rest.find(':');
-        if (const std::string_view folder = rest.substr(0, colon); !folder.empty()) folders.emplace_back(folder);
-        rest = colon == std::string_view::npos ? std::string_view{} : rest.substr(colon + 1);
-    }
-    return folders;
-}
-
-// The name a scene read from standard input goes by (--stdin-name, else <stdin>).
-std::string standard_input_name(const Options& options) {
-    return options.stdin_name.empty() ? std::string(tracer::kStandardInputName) : options.stdin_name;
-}
-
-// The scene's name in messages.
-std::string scene_name(const Options& options) {
-    return options.scene == "-" ? standard_input_name(options) : options.scene;
+// Where the scene comes from, with the command line's -D values and include folders.
+tracer::SceneInput scene_input(const Options& options) {
+    return {options.scene, standard_input_name(options), {parameter_values(options), include_folders(options)}};
 }
 
 // How a load's diagnostics reach the user: as text on stderr, or as one line of JSON on stdout.
@@ -169,41 +107,10 @@ std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code) 
 // The same, handing the diagnostics to `report`.
 std::optional<tracer::LoadedScene> load(const Options& options, int& exit_code, const tracer::ReportLoad& report) {
     bool unreadable = false;
-    tracer::SceneInput input{
-        options.scene, standard_input_name(options), {parameter_values(options), include_folders(options)}};
+    tracer::SceneInput input = scene_input(options);
+    input.arguments.frame = tracer::frame_time(options.frames, options.frames.first);  // one frame, or a still
     auto loaded = tracer::load_scene_with_meshes(
-        input,
-        [&](tracer::SceneDescription& scene) {
-            tracer::RenderSettings& render = scene.render;
-            if (!options.accel.empty()) tracer::accelerator_from_name(options.accel, render.accel);
-            if (!options.encoding.empty()) tracer::encoding_from_name(options.encoding, render.encoding);
-            // Each option's text is the number its check read (setting_problem wrote it back).
-            auto number = [](const std::string& text) { return std::strtod(text.c_str(), nullptr); };
-            auto whole = [&](const std::string& text, int scene_value) {
-                return text.empty() ? scene_value : int(number(text));
-            };
-            render.leaf_size = whole(options.leaf_size, render.leaf_size);
-            render.samples = whole(options.samples, render.samples);
-            if (!options.adaptive.empty()) {
-                // The command line's choice of sampling wins over the scene's samples, unless it
-                // gives --samples too (then render_settings_problem names the clash).
-                const std::vector<std::string> parts = adaptive_parts(options.adaptive);  // checked
-                render.antialias = tracer::Antialias::Adaptive;
-                render.adaptive_threshold = number(parts[0]);
-                if (parts.size() > 1) render.adaptive_depth = int(number(parts[1]));
-                if (parts.size() > 2) render.adaptive_cell = number(parts[2]);
-                if (options.samples.empty()) render.samples = 1;
-            }
-            render.max_depth = whole(options.max_depth, render.max_depth);
-            // One of width and height alone keeps the scene's aspect ratio (as tools/crosscheck).
-            const double aspect = double(render.width) / double(render.height);
-            render.width = whole(options.width, render.width);
-            render.height = whole(options.height, render.height);
-            if (!options.width.empty() && options.height.empty())
-                render.height = std::max(1, int(std::lround(render.width / aspect)));
-            if (!options.height.empty() && options.width.empty())
-                render.width = std::max(1, int(std::lround(render.height * aspect)));
-        },
+        input, [&](tracer::SceneDescription& scene) { apply_overrides(options, scene); },
         [&](const tracer::LoadReport& found) {
             unreadable = found.unreadable;
             if (report) report(found);
@@ -329,6 +236,96 @@ std::string vector_text(const tracer::dvec3& v) {
     return text;
 }
 
+// The frame loop's callbacks for the command line's options; `unreadable` is set when the
+// scene file could not be read.
+tracer::AnimationJob animation_job(const Options& options, bool& unreadable) {
+    tracer::AnimationJob job;
+    job.range = options.frames;
+    job.output = options.output;
+    job.threads = options.threads;
+    job.quiet = options.quiet;
+    if (!options.region.empty())
+        job.crop = {options.region[0], options.region[1], options.region[2], options.region[3]};
+    job.cancel = &g_interrupted;
+    const tracer::ReportLoad report = report_for(options);
+    job.load = [&options, &unreadable, report](tracer::SceneProgram& program, const tracer::FrameTime& time,
+                                               tracer::FileCache& files, bool first) {
+        // The first frame's diagnostics all; a later frame's only if it has errors (its
+        // warnings are the first frame's again, most often).
+        return tracer::load_frame_with_meshes(
+            program, time, scene_input(options),
+            [&options](tracer::SceneDescription& scene) { tracer::apply_overrides(options, scene); },
+            [&, first](const tracer::LoadReport& found) {
+                unreadable = found.unreadable;
+                if (first || found.diagnostics.has_errors()) report(found);
+            },
+            files);
+    };
+    job.output_problem = [&options](const std::string& path,
+                                    const tracer::SceneDescription& scene) -> std::optional<std::string> {
+        Options one = options;
+        one.output = path;
+        if (auto clash = output_clash(one, scene)) return clash;
+        if (!options.region.empty())
+            if (auto problem = tracer::region_problem(options.region, scene.render)) return "--" + *problem;
+        return std::nullopt;
+    };
+    return job;
+}
+
+// --frames N (more than one frame, or --resume): the frames rendered in one process.
+int render_frames(const Options& options) {
+    if (auto problem = tracer::check_output_path(tracer::frame_path(options.output, options.frames.first))) {
+        std::cerr << "tracer: error: " << *problem << '\n';
+        return kIoError;
+    }
+    if (!options.stats_json.empty())
+        if (auto problem = tracer::output_path_problem(options.stats_json)) {
+            std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
+            return kIoError;
+        }
+    tracer::start_threads(options.threads);
+    tracer::SceneProgram program(options.scene, scene_input(options).arguments, standard_input_name(options));
+    bool unreadable = false;
+    const tracer::AnimationJob job = animation_job(options, unreadable);
+    g_rendering = true;  // Ctrl-C now asks the loop to stop: a frame under way is not written
+    nlohmann::ordered_json figures;
+    const tracer::AnimationEnd end = tracer::render_animation(job, program, figures);
+    if (end == tracer::AnimationEnd::Interrupted)
+        exit_interrupted("tracer: interrupted; the frame under way was not written (the frames before it are)\n");
+    if (!options.stats_json.empty())
+        if (auto problem = tracer::write_file_atomically(options.stats_json, json_text(figures) + '\n')) {
+            std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
+            return kIoError;
+        }
+    switch (end) {
+        case tracer::AnimationEnd::Done: return kOk;
+        case tracer::AnimationEnd::SceneError: return unreadable ? kIoError : kSceneError;
+        case tracer::AnimationEnd::UsageError: return kUsageError;
+        default: return kIoError;
+    }
+}
+
+// --check --frames N: the scene run and checked at every frame (its files read once).
+int check_frames(const Options& options) {
+    tracer::SceneProgram program(options.scene, scene_input(options).arguments, standard_input_name(options));
+    bool unreadable = false;
+    const tracer::AnimationJob job = animation_job(options, unreadable);
+    tracer::FileCache files;
+    const tracer::FrameRange& range = options.frames;
+    for (int frame = range.first; frame <= range.last_made(); ++frame) {
+        const tracer::FrameTime time = tracer::frame_time(range, frame);
+        if (!job.load(program, time, files, frame == range.first)) {
+            std::cerr << "tracer: error: frame " << frame << " (clock " << time.clock << ") has errors\n";
+            return unreadable ? kIoError : kSceneError;
+        }
+    }
+    if (!options.json_diagnostics)
+        std::cout << scene_name(options) << ": ok at each of " << range.frames_made() << " frames (" << range.first
+                  << " to " << range.last_made() << ")\n";
+    return kOk;
+}
+
 int check_only(const Options& options) {
     int exit_code = kOk;
     auto loaded = load(options, exit_code);
@@ -344,7 +341,7 @@ int check_only(const Options& options) {
     constexpr size_t kMeshesListed = 20;
     for (size_t block = 0; block < std::min(scene.meshes.size(), kMeshesListed); ++block) {
         const tracer::Mesh& mesh = scene.meshes[block];
-        const auto facts = tracer::mesh_facts(loaded->meshes.files[loaded->meshes.file_of_block[block]], mesh);
+        const auto facts = tracer::mesh_facts(*loaded->meshes.files[loaded->meshes.file_of_block[block]], mesh);
         std::cout << "  mesh " << tracer::shape_label(mesh.path, mesh.line) << ": " << facts.triangles << " triangles, "
                   << facts.vertices << " vertices, placed within " << vector_text(facts.lower) << " to "
                   << vector_text(facts.upper) << '\n';
@@ -389,140 +386,6 @@ int watch(const Options& options) {
         [&](const tracer::SceneDescription& scene) { return output_clash(options, scene); });
 }
 
-// A CLI11 check of an override by the render block's own table (the scene's rules and messages),
-// which leaves the option's text as the value it checked (a transform: CLI11's checks cannot).
-CLI::Validator render_key(const char* key) {
-    return CLI::Validator([key](std::string& text) { return tracer::setting_problem("render", key, text); }, "", key);
-}
-
-// The options that override the scene's render block, each checked by the block's own table.
-void add_render_overrides(CLI::App& app, Options& options) {
-    app.add_option("--accel", options.accel, "Override the scene's mesh accelerator (none, box, median, sah)")
-        ->transform(render_key("accel"));
-    app.add_option("--leaf-size", options.leaf_size, "Override the scene's BVH leaf size")
-        ->transform(render_key("leaf_size"));
-    app.add_option("--width", options.width,
-                   "Override the scene's image width (alone: the height follows the aspect ratio)")
-        ->transform(render_key("width"));
-    app.add_option("--height", options.height,
-                   "Override the scene's image height (alone: the width follows the aspect ratio)")
-        ->transform(render_key("height"));
-    app.add_option("--samples", options.samples, "Override the scene's samples per pixel (N*N: 1, 4, 9, 16, ...)")
-        ->transform(render_key("samples"));
-    app.add_option("--adaptive", options.adaptive,
-                   "Adaptive antialiasing: split cells where their corners differ by THRESHOLD (0..1 per "
-                   "channel), down to DEPTH levels below a pixel, from cells CELL pixels wide (defaults: the "
-                   "scene's, else 3 and 1); replaces --samples")
-        ->type_name("THRESHOLD[:DEPTH[:CELL]]")
-        ->transform(CLI::Validator(
-            [](std::string& text) {
-                std::vector<std::string> parts = adaptive_parts(text);
-                if (parts.size() > 3 || std::any_of(parts.begin(), parts.end(), [](auto& p) { return p.empty(); }))
-                    return std::string("expected THRESHOLD[:DEPTH[:CELL]], e.g. 0.05:3 or 0.05:3:4");
-                const char* keys[] = {"adaptive_threshold", "adaptive_depth", "adaptive_cell"};
-                for (size_t i = 0; i < parts.size(); ++i)
-                    if (std::string problem = tracer::setting_problem("render", keys[i], parts[i]); !problem.empty())
-                        return problem;
-                text = parts[0];  // each part as its check read it
-                for (size_t i = 1; i < parts.size(); ++i) text += ":" + parts[i];
-                return std::string();
-            },
-            "", "adaptive"));
-    app.add_option("--max-depth", options.max_depth, "Override the scene's reflection and refraction depth")
-        ->transform(render_key("max_depth"));
-    app.add_option("--encoding", options.encoding,
-                   "Override how 8-bit images hold the colours: linear (round(255 v), the default) or srgb "
-                   "(the sRGB curve, and a PNG marked sRGB, as viewers expect)")
-        ->transform(render_key("encoding"));
-}
-
-// Every option and flag of the command line, bound to `options`.
-void add_options(CLI::App& app, Options& options) {
-    app.set_version_flag("--version", std::string("tracer ") + TRACER_VERSION);
-    app.add_option("scene", options.scene, "The scene file (.scn), or - for standard input");
-    app.add_option("-o,--output", options.output,
-                   "The image to write; the format follows the extension (.png, .exr, ...)");
-    app.add_option("--threads", options.threads,
-                   "Threads that build the BVHs and render the image (default: every core; oneTBB's)")
-        ->check(CLI::Range(1, 1024));
-    app.add_flag("-q,--quiet", options.quiet, "No progress indicator and no summary line");
-    add_render_overrides(app, options);
-    app.add_option("-D,--define", options.defines,
-                   "Set a parameter of the scene (declared there by 'param NAME = VALUE'): -D radius=0.3, "
-                   "-D colour=(1,0,0); repeatable")
-        ->check(CLI::Validator(
-            [](std::string& text) -> std::string {
-                const size_t equals = text.find('=');
-                return equals == std::string::npos || equals == 0 ? "expected NAME=VALUE, e.g. -D radius=0.3" : "";
-            },
-            "NAME=VALUE"))
-        ->allow_extra_args(false);
-    app.add_option("-I,--include-dir", options.include_dirs,
-                   "Look for an included file here when it is not beside the file that includes it; repeatable, "
-                   "searched in order, then the folders of TRACER_PATH (separated by ':'). include \"std/...\" "
-                   "is the standard library built into tracer")
-        ->allow_extra_args(false);
-    app.add_option("--region", options.region,
-                   "Render only this window of the frame, each pixel as the whole render has it: X0 Y0 W H "
-                   "(left, top, width, height in pixels); EXR records it as the data window")
-        ->expected(4);
-    app.add_flag("--region-list", options.region_list,
-                 "Load the scene once, then render the regions read from standard input, one 'X0 Y0 W H OUTPUT' "
-                 "per line, answering 'done OUTPUT' or 'error OUTPUT: message' on standard output (tools/farm's "
-                 "workers)");
-    app.add_flag("--stats", options.stats, "Print BVH and ray statistics on stderr");
-    app.add_option("--stats-json", options.stats_json, "Write the statistics as JSON to this file");
-    app.add_flag("--check", options.check, "Only check the scene; report every problem found");
-    app.add_flag("--dump-json", options.dump_json, "Print the resolved scene description as JSON on stdout");
-    app.add_flag("--reference", options.reference, "Print the scene language reference (Markdown) on stdout");
-    app.add_flag("--language-json", options.language_json,
-                 "Print the language's blocks, keys, statements and built-ins as JSON on stdout (for editors)");
-    app.add_option_function<std::string>(
-           "--diagnostics", [&options](const std::string& format) { options.json_diagnostics = format == "json"; },
-           "How problems in the scene are reported: text on stderr (default), or json: one line of JSON "
-           "on stdout per load (with --watch, one per event)")
-        ->check(CLI::IsMember({"text", "json"}));
-    app.add_option("--stdin-name", options.stdin_name,
-                   "With the scene '-': the path messages give it; its relative paths start from that folder "
-                   "(editors check unsaved text this way)");
-    app.add_flag("--watch", options.watch,
-                 "Render, then render again whenever the scene, a file it includes or a mesh changes (a quick "
-                 "preview first, then the full image); Ctrl-C stops");
-    app.footer(
-        "Exit codes: 0 success, 1 scene errors, 2 bad command line, 3 cannot read the scene or write "
-        "the image, 130 interrupted.\nExamples:\n  tracer scenes/task2.scn -o out.png\n"
-        "  tracer --check scenes/task2.scn");
-}
-
-// The first way the options given cannot go together (empty: none).
-std::string combination_problem(const Options& options) {
-    if (options.scene.empty()) return "no scene file given";
-    if (options.check && options.dump_json) return "--check and --dump-json cannot be combined";
-    if (options.dump_json && options.json_diagnostics)
-        return "--dump-json writes the scene on stdout; it cannot be combined with --diagnostics json";
-    if (!options.stdin_name.empty() && options.scene != "-")
-        return "--stdin-name names a scene read from standard input; give the scene as '-'";
-    if (options.watch && (options.check || options.dump_json || options.scene == "-" || !options.region.empty() ||
-                          options.region_list || !options.stats_json.empty()))
-        return "--watch renders a scene file to -o again after each change; it cannot be combined with --check, "
-               "--dump-json, --region, --region-list, --stats-json or a scene from standard input";
-    if ((options.check || options.dump_json) && !options.output.empty())
-        return "-o is for rendering; it cannot be combined with --check or --dump-json";
-    if ((options.check || options.dump_json) && (!options.region.empty() || options.region_list))
-        return "--region and --region-list are for rendering; they cannot be combined with --check or "
-               "--dump-json";
-    if (options.check || options.dump_json) return "";
-    if (options.region_list &&
-        (!options.output.empty() || !options.region.empty() || options.stats || !options.stats_json.empty()))
-        return "--region-list takes each output from its input lines; it cannot be combined with -o, "
-               "--region, --stats or --stats-json";
-    if (options.region_list && options.scene == "-")
-        return "--region-list reads its regions from standard input, so the scene cannot come from there too ('-'); "
-               "give the scene's file";
-    if (options.output.empty() && !options.region_list) return "no output image given (-o out.png)";
-    return "";
-}
-
 int run(int argc, char** argv) {
     Options options;
     CLI::App app{"tracer: renders scene files with Whitted ray tracing and Phong shading.", "tracer"};
@@ -549,6 +412,13 @@ int run(int argc, char** argv) {
         return kOk;
     }
     if (const std::string problem = combination_problem(options); !problem.empty()) return usage_error(problem);
+    // Frames, even one (the same image as in the whole run, bit for bit), go through the frame
+    // loop; a look at one frame (--check, --dump-json, --watch, --region-list) is a still at its clock.
+    const bool one_frame = options.frames.frames_made() == 1;
+    if (options.frames.animated() && options.check && !one_frame) return check_frames(options);
+    if (options.frames.animated() && !options.check && !options.dump_json && !options.watch && !options.region_list)
+        return render_frames(options);
+    if (options.frames.animated()) options.output = tracer::frame_path(options.output, options.frames.first);
     if (options.check) return check_only(options);
     if (options.dump_json) return dump_json(options);
     if (options.watch) return watch(options);

@@ -6,6 +6,7 @@
 #include <csetjmp>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 namespace tracer {
 namespace {
@@ -58,6 +59,36 @@ bool encode_png(const unsigned char* rows, int width, int height, bool srgb, std
 }
 
 }  // namespace
+
+bool image_file_is_whole(const std::string& path, int width, int height) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) return false;
+    const auto size = std::filesystem::file_size(path, error);
+    if (error || size == 0) return false;
+    const auto format = native_format(path);
+    if (!format) return true;
+    std::ifstream file(path, std::ios::binary);
+    std::string bytes(std::min<uintmax_t>(size, 64), '\0');
+    if (!file.read(bytes.data(), std::streamsize(bytes.size()))) return false;
+    if (*format == NativeFormat::Ppm) {
+        const std::string header = "P6\n" + std::to_string(width) + " " + std::to_string(height) + "\n255\n";
+        return bytes.compare(0, header.size(), header) == 0 &&
+               size == header.size() + size_t(width) * size_t(height) * 3;
+    }
+    // PNG: the signature, IHDR's width and height (big-endian, bytes 16..23), and IEND last.
+    static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    static constexpr unsigned char kEnd[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+    auto byte = [&](size_t i) { return static_cast<unsigned char>(bytes[i]); };
+    auto big_endian = [&](size_t at) {
+        return uint32_t(byte(at)) << 24 | uint32_t(byte(at + 1)) << 16 | uint32_t(byte(at + 2)) << 8 | byte(at + 3);
+    };
+    if (bytes.size() < 24 + sizeof kEnd || std::memcmp(bytes.data(), kSignature, 8) != 0 ||
+        big_endian(16) != uint32_t(width) || big_endian(20) != uint32_t(height))
+        return false;
+    char end[sizeof kEnd];
+    file.seekg(std::streamoff(size - sizeof kEnd));
+    return file.read(end, sizeof end) && std::memcmp(end, kEnd, sizeof kEnd) == 0;
+}
 
 std::optional<NativeFormat> native_format(const std::string& path) {
     std::string extension = std::filesystem::path(path).extension().string();

@@ -22,4 +22,9 @@ std::optional<NativeFormat> native_format(const std::string& path);
 std::optional<std::string> encode_native(NativeFormat format, const Image& image, bool srgb,
                                          std::vector<unsigned char>& encoded);
 
+// True if the file at `path` is a whole image of `width` x `height` pixels: a PNG whose header
+// says that size and that ends with its IEND chunk, a PPM of that size holding every byte; a file
+// of another format only needs to be there and not empty (a resumed animation keeps such frames).
+bool image_file_is_whole(const std::string& path, int width, int height);
+
 }  // namespace tracer

@@ -170,7 +170,7 @@ static bool check_closed(const Mesh& mesh, const TriangleMesh& file, Diagnostics
     return false;
 }
 
-std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostics& diagnostics) {
+std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostics& diagnostics, MeshFileCache* cache) {
     SceneMeshes meshes;
     std::map<std::string, uint32_t> file_index;  // by normalised absolute path
     bool ok = true;
@@ -179,10 +179,16 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
         const std::string key = std::filesystem::path(mesh.path).lexically_normal().string();
         auto [known, is_new] = file_index.try_emplace(key, uint32_t(meshes.files.size()));
         if (!is_new) return known->second;
-        if (auto loaded = load_mesh(mesh, diagnostics)) {
-            meshes.files.push_back(std::move(*loaded));
+        const SharedMesh* read_before = nullptr;
+        if (cache)
+            if (auto found = cache->find(key); found != cache->end()) read_before = &found->second;
+        if (read_before) {
+            meshes.files.push_back(*read_before);
+        } else if (auto loaded = load_mesh(mesh, diagnostics)) {
+            meshes.files.push_back(share_mesh(std::move(*loaded)));
+            if (cache) cache->emplace(key, meshes.files.back());
         } else {
-            meshes.files.emplace_back();
+            meshes.files.push_back(share_mesh({}));
             ok = false;
         }
         return known->second;
@@ -196,13 +202,13 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
         const uint32_t file = meshes.file_of_solid_mesh[part];
         if (checked[file]) continue;
         checked[file] = true;
-        ok = check_closed(scene.solid_meshes[part], meshes.files[file], diagnostics) && ok;
+        ok = check_closed(scene.solid_meshes[part], *meshes.files[file], diagnostics) && ok;
     }
     if (!ok) return std::nullopt;
     // A pattern mapped by (u, v) on a file without them sees (0, 0) everywhere: one colour.
     for (size_t block = 0; block < scene.meshes.size(); ++block) {
         const Mesh& mesh = scene.meshes[block];
-        if (mesh.material < 0 || !meshes.files[meshes.file_of_block[block]].texcoord_ids.empty()) continue;
+        if (mesh.material < 0 || !meshes.files[meshes.file_of_block[block]]->texcoord_ids.empty()) continue;
         const Material& material = scene.materials[size_t(mesh.material)];
         if (maps_by_uv(scene.patterns, material.ka_pattern) || maps_by_uv(scene.patterns, material.kd_pattern))
             diagnostics.report(Severity::Warning, mesh.named_at,
@@ -213,7 +219,7 @@ std::optional<SceneMeshes> load_meshes(const SceneDescription& scene, Diagnostic
     // placed coordinates (scaled, turned, moved) from its file's largest coordinate.
     std::vector<double> largest(meshes.files.size(), 0.0);
     for (size_t f = 0; f < meshes.files.size(); ++f)
-        for (const glm::dvec3& p : meshes.files[f].positions)
+        for (const glm::dvec3& p : meshes.files[f]->positions)
             largest[f] = std::max({largest[f], std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     auto check_reach = [&](const Mesh& mesh, uint32_t file) {
         const double reach = Placement(mesh).reach(largest[file]);

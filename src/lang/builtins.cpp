@@ -236,6 +236,13 @@ const std::vector<Builtin>& all_builtins() {
 const std::vector<BuiltinConstant>& all_constants() {
     static const std::vector<BuiltinConstant> constants = {
         {"pi", std::numbers::pi, "The ratio of a circle's circumference to its diameter, 3.14159..."},
+        {"clock", 0,
+         "The animation's time at this frame: from the first clock value at frame 0 to the last at the last "
+         "frame (0 to 1 unless `--clock` says otherwise; 0 in a still image)",
+         FrameValue::Clock},
+        {"clock_delta", 0, "How far `clock` moves from one frame to the next (0 in a still image)",
+         FrameValue::ClockDelta},
+        {"frame_number", 0, "The frame's number, from 0 (0 in a still image)", FrameValue::FrameNumber},
     };
     return constants;
 }

@@ -89,6 +89,11 @@ ExprCode Compiler::compile_name(const Expr& expr, bool top, bool word_key) {
     ExprCode node;
     if (resolve(expr.text, functions_.size() - 1, expr.span, node)) return node;
     const BuiltinConstant* builtin = word_key ? nullptr : find_constant(expr.text);
+    if (builtin && builtin->frame_value != FrameValue::None) {
+        node = node_of(ExprCode::Op::FrameValue, expr.span);
+        node.index = uint32_t(builtin->frame_value);
+        return node;
+    }
     if (builtin) {
         node = node_of(ExprCode::Op::Constant, expr.span);
         node.constant = RuntimeValue::number(builtin->value);

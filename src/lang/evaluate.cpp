@@ -45,6 +45,7 @@ RuntimeValue Interpreter::evaluate(const ExprCode& node) {
         case ExprCode::Op::Constant:
             if (node.constant.kind == RuntimeValue::Kind::Broken) throw EvaluationError{};  // reported when compiled
             return node.constant;
+        case ExprCode::Op::FrameValue: return RuntimeValue::number(frame_value(frame_, FrameValue(node.index)));
         case ExprCode::Op::Local:
         case ExprCode::Op::Global: {
             const RuntimeValue& value = node.op == ExprCode::Op::Local ? slot(node.index) : stack_[node.index];

@@ -63,6 +63,7 @@ void Interpreter::out_of_operations(Span span) {
 
 EvaluatedScene Interpreter::run(const SceneArguments& arguments) {
     const ParameterValues& parameters = arguments.parameters;
+    frame_ = arguments.frame;
     compiler_.set_include_dirs(arguments.include_dirs);
     stack_top_ = TRACER_STACK_ADDRESS();
     // Step 1: the command line's parameters, each a value alone.
@@ -109,7 +110,8 @@ EvaluatedScene Interpreter::run(const SceneArguments& arguments) {
             run_steps(steps);
         } catch (const EvaluationStopped&) {
         }
-        steps.clear();
+        if (keep_code_) kept_.push_back(std::move(steps));
+        steps.clear();  // (moved from: valid, now also empty)
     }
     // Step 3: -D names the scene does not declare.
     for (const auto& [name, value] : overrides_) {
@@ -124,6 +126,31 @@ EvaluatedScene Interpreter::run(const SceneArguments& arguments) {
                             "-D " + name + ": the scene has no 'param " + name + "'" + did_you_mean(name, params));
     }
     scene_.names = compiler_.take_definitions();
+    return std::move(scene_);
+}
+
+EvaluatedScene Interpreter::run_again(const FrameTime& frame, BlockSink on_block) {
+    // Everything a run changes, as a new interpreter has it; the code and the -D values stay.
+    scene_ = {};
+    stack_.assign(compiler_.top_level_slots(), RuntimeValue{});
+    frame_base_ = 0;
+    running_ = {};
+    step_failed_ = returned_value_ = stopped_ = false;
+    returned_ = {};
+    making_blocks_ = true;
+    contexts_.clear();
+    current_group_.reset();
+    blocks_ = iterations_run_ = operations_ = list_items_ = call_depth_ = 0;
+    frame_ = frame;
+    on_block_ = std::move(on_block);
+    stack_top_ = TRACER_STACK_ADDRESS();
+    for (const std::vector<StatementCode>& steps : kept_) {
+        if (stopped_) break;
+        try {
+            run_steps(steps);
+        } catch (const EvaluationStopped&) {
+        }
+    }
     return std::move(scene_);
 }
 

@@ -27,6 +27,22 @@ constexpr size_t kMaxOperations = 500'000'000;
 constexpr size_t kMaxListItems = 1'000'000;
 constexpr size_t kMaxCallDepth = 10'000;
 
+// The animation's time at the frame being made: what the built-in names `clock`, `clock_delta`
+// and `frame_number` read (all 0 for a still image).
+struct FrameTime {
+    double clock = 0;        // from the animation's first clock value to its last (0 to 1 by default)
+    double clock_delta = 0;  // the clock's step from one frame to the next
+    int frame_number = 0;    // 0 for the first frame
+};
+enum class FrameValue : uint8_t { None, Clock, ClockDelta, FrameNumber };
+
+// The value of `which` at `frame`.
+inline double frame_value(const FrameTime& frame, FrameValue which) {
+    return which == FrameValue::Clock        ? frame.clock
+           : which == FrameValue::ClockDelta ? frame.clock_delta
+                                             : double(frame.frame_number);
+}
+
 // -D NAME=VALUE from the command line, in order: each must name a `param` of the scene.
 using ParameterValues = std::vector<std::pair<std::string, std::string>>;
 
@@ -35,6 +51,7 @@ using ParameterValues = std::vector<std::pair<std::string, std::string>>;
 struct SceneArguments {
     ParameterValues parameters;
     std::vector<std::string> include_dirs;
+    FrameTime frame;  // the animation's clock at this frame
     SceneArguments(ParameterValues given = {}, std::vector<std::string> folders = {})  // NOLINT: implicit
         : parameters(std::move(given)), include_dirs(std::move(folders)) {}
 };

@@ -253,7 +253,7 @@ void add_shapes(Json& out, const SceneDescription& scene, const SceneMeshes* mes
             Json entry = placed_json(scene, m, {{"file", m.path}});
             if (m.flat) entry["shading"] = "flat";  // only then: the default is implied
             if (meshes && block < meshes->file_of_block.size()) {
-                const MeshFacts facts = mesh_facts(meshes->files[meshes->file_of_block[block]], m);
+                const MeshFacts facts = mesh_facts(*meshes->files[meshes->file_of_block[block]], m);
                 entry["triangles"] = facts.triangles;
                 entry["vertices"] = facts.vertices;
                 entry["bounds"] = {vec(facts.lower), vec(facts.upper)};

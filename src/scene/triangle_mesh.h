@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -22,9 +23,15 @@ struct TriangleMesh {
     std::vector<std::array<uint32_t, 3>> texcoord_ids;  // per triangle: indices into texcoords, or empty
 };
 
+// A mesh file as read, shared (by the frames of an animation, which read each file once).
+using SharedMesh = std::shared_ptr<const TriangleMesh>;
+inline SharedMesh share_mesh(TriangleMesh mesh) {
+    return std::make_shared<const TriangleMesh>(std::move(mesh));
+}
+
 // The meshes of a scene: each file read once, however many mesh blocks name it.
 struct SceneMeshes {
-    std::vector<TriangleMesh> files;
+    std::vector<SharedMesh> files;                  // never null
     std::vector<uint32_t> file_of_block;            // per SceneDescription::meshes entry: index into files
     std::vector<uint32_t> file_of_solid_mesh = {};  // per SceneDescription::solid_meshes entry: index into files
 };

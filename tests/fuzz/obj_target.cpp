@@ -32,7 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     scene.lights.push_back({scene.camera.eye + glm::dvec3(extent, extent, 0), glm::dvec3(1.0)});
     scene.meshes.push_back({});
     SceneMeshes meshes;
-    meshes.files.push_back(std::move(*mesh));
+    meshes.files.push_back(share_mesh(std::move(*mesh)));
     meshes.file_of_block.push_back(0);
     render_small(scene, meshes);
     return 0;

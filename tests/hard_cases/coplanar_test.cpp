@@ -36,7 +36,7 @@ std::vector<double> render_quads(const TriangleMesh& first, const TriangleMesh& 
     scene.camera = {glm::dvec3(t) + glm::dvec3(0, 0, 5), glm::dvec3(t), {0, 1, 0}, 30, 1};
     scene.render.width = scene.render.height = 256;
     SceneMeshes meshes;
-    meshes.files = {first, second};
+    meshes.files = {share_mesh(first), share_mesh(second)};
     meshes.file_of_block = {0, 1};
     const World world(scene, meshes, 1);
     Image image;

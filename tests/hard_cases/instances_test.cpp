@@ -61,7 +61,7 @@ TEST(HardCases, InstancesAtEveryScaleLeakNoRay) {
         variants.push_back({std::string("far ") + text, dvec3(s), dvec3(1e6 * s, -2e6 * s, 3e5 * s)});
     }
     for (const Variant& v : variants) {
-        SceneMeshes meshes_shared{{bunny}, {0, 0}}, meshes_placed{{bunny}, {0}};
+        SceneMeshes meshes_shared{{share_mesh(bunny)}, {0, 0}}, meshes_placed{{share_mesh(bunny)}, {0}};
         const World shared(bunny_blocks(v, true), meshes_shared, 1), placed(bunny_blocks(v, false), meshes_placed, 1);
         ASSERT_FALSE(shared.instances()[0].placed) << v.name;
         ASSERT_TRUE(placed.instances()[0].placed) << v.name;

@@ -23,7 +23,7 @@ BunnyScene bunny_scene(const Vec3& offset, double floor_kd, double bunny_kd, dou
     s.materials[1].kd = dvec3(floor_kd);
     s.materials[2].kd = dvec3(sphere_kd);
     s.materials[2].km = dvec3(sphere_km);
-    out.meshes.files = {load_obj("scenes/meshes/bunny.obj")};
+    out.meshes.files = {share_mesh(load_obj("scenes/meshes/bunny.obj"))};
     Mesh bunny;
     bunny.translate = glm::dvec3(offset);
     s.meshes.push_back(bunny);
@@ -53,7 +53,7 @@ TEST(HardCases, B4_LightsOnSurfaces) {
     const Vec3 l1(0, -0.01, 0), l3(4, 2, 0), l4(0, 5, 5);
     Vec3 l2(1.301895, 0.122622, 2.550061);
     BunnyScene base = bunny_scene(Vec3(0), 0.8, 0.8, 0.8, 0, Vec3(4, 1, 0));
-    l2 = Vec3(base.meshes.files[0].positions[0]);  // OBJ vertex 1, as read
+    l2 = Vec3(base.meshes.files[0]->positions[0]);  // OBJ vertex 1, as read
     base.scene.camera = {{0, 8, 12}, {0, 0, 0}, {0, 1, 0}, 60, 1};
     const PinholeCamera camera(base.scene.camera, 512, 384);
     auto colours = [&](const std::vector<Vec3>& lights, int& non_finite, int& self) {

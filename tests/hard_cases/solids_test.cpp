@@ -63,7 +63,7 @@ SolidWorld cratered_mesh_box(const SolidCase& c) {
     const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& f : faces)
         cube.triangles.push_back({f[0], f[1], f[2]}), cube.triangles.push_back({f[0], f[2], f[3]});
-    out.meshes.files.push_back(cube);
+    out.meshes.files.push_back(share_mesh(cube));
     out.meshes.file_of_solid_mesh = {0};
     Mesh mesh;
     mesh.scale = dvec3(c.size);

@@ -93,7 +93,7 @@ TEST(HardCases, SoupRaysLeavingATriangleNeverMeetItAgain) {
     for (bool instanced : {false, true}) {
         SceneDescription scene = empty_scene();
         SceneMeshes meshes;
-        meshes.files = {soup};
+        meshes.files = {share_mesh(soup)};
         Mesh block;
         if (instanced) {
             block.scale = {1.5, 0.75, 1.25};

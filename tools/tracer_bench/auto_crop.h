@@ -20,7 +20,7 @@ inline PixelRect auto_crop(const SceneDescription& scene, const SceneMeshes& mes
     double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
     for (size_t block = 0; block < scene.meshes.size(); ++block) {
         const Placement placement(scene.meshes[block]);
-        for (const auto& p : meshes.files[meshes.file_of_block[block]].positions) {
+        for (const auto& p : meshes.files[meshes.file_of_block[block]]->positions) {
             Real x, y;
             if (!camera.project(Vec3(placement.point(p)), x, y)) continue;
             x0 = std::min(x0, double(x)), y0 = std::min(y0, double(y));

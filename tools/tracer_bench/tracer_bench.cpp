@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
 
     // Step 4: report.
     size_t triangles = 0;
-    for (uint32_t file : meshes.file_of_block) triangles += meshes.files[file].triangles.size();
+    for (uint32_t file : meshes.file_of_block) triangles += meshes.files[file]->triangles.size();
     const tracer::RayCounts& rays = stats.rays;
     const auto figures = tracer::render_stats_json(*world, scene, stats);  // of the last render
     nlohmann::ordered_json out;

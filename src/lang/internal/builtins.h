@@ -11,6 +11,7 @@
 
 #include "base/source.h"
 #include "lang/internal/runtime_value.h"
+#include "lang/interpreter.h"
 
 namespace tracer {
 
@@ -50,11 +51,13 @@ struct Builtin {
     RuntimeValue (*body)(const BuiltinArguments& args);
 };
 
-// A name with a fixed number (pi): found after the scene's own names, before a word.
+// A name with a number (pi, or one of the animation's clock values, FrameTime's): found after
+// the scene's own names, before a word.
 struct BuiltinConstant {
     std::string_view name;
-    double value;
+    double value;  // a fixed one's
     std::string_view meaning;
+    FrameValue frame_value = FrameValue::None;  // else: the frame's value of that name
 };
 const std::vector<BuiltinConstant>& all_constants();
 // The constant called `name`, or nullptr.

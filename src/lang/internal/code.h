@@ -23,6 +23,7 @@ struct CompiledBody;
 struct ExprCode {
     enum class Op : uint8_t {
         Constant,     // `constant`
+        FrameValue,   // the frame's clock value FrameValue(`index`) (interpreter.h)
         Local,        // slot `index` of the running frame
         Global,       // slot `index` of the top-level frame (a name defined at the top level)
         Capture,      // the running function's captured value `index`

@@ -51,6 +51,11 @@ public:
     Interpreter(Sources& sources, Diagnostics& diagnostics, const InterpretLimits& limits, BlockSink on_block);
 
     EvaluatedScene run(const SceneArguments& arguments);
+    // After run() with `keep_code`: the same code run again for `frame` (nothing compiled
+    // again), its blocks to `on_block`. Compile-time problems were reported by run().
+    EvaluatedScene run_again(const FrameTime& frame, BlockSink on_block);
+    // Whether run() keeps every statement's code for run_again (an animation's frames).
+    void keep_code(bool keep) { keep_code_ = keep; }
     bool single_value(const Expr& expr, PlainValue& out);
 
 private:
@@ -133,6 +138,9 @@ private:
     size_t blocks_ = 0, iterations_run_ = 0, operations_ = 0, list_items_ = 0, call_depth_ = 0;
     bool stopped_ = false;  // a limit was hit: nothing more is run
     InterpretLimits limits_;
+    bool keep_code_ = false;
+    std::vector<std::vector<StatementCode>> kept_;  // every statement's code, with keep_code_
+    FrameTime frame_;                               // the animation's clock at the frame being made
     BlockSink on_block_;
     const char* stack_top_ = nullptr;  // where the native stack began, for the guard in call()
 };

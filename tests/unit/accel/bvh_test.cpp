@@ -199,7 +199,7 @@ TEST(Bvh, SpherePreTestKeepsRaysThatGrazeTheMeshCorners) {
             const MeshAccel brute = accel(square, std::nullopt, 1);
             SceneDescription scene;
             scene.meshes.resize(1);
-            const World world(scene, SceneMeshes{{square}, {0}});
+            const World world(scene, SceneMeshes{{share_mesh(square)}, {0}});
             for (int corner = 0; corner < 4; ++corner) {
                 const Vec3 inward = glm::normalize(
                     Vec3(glm::dvec3(0.5, 0.5, 0) * scale + glm::dvec3(offset) - square.positions[corner]));

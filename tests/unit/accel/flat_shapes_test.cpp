@@ -167,10 +167,10 @@ TEST(FlatShapes, MirroredMeshesKeepTheirNormalsOutwards) {
         block.flat = flat;
         block.steps = {step(TransformStep::Kind::Scale, {-1, 1, 1}), step(TransformStep::Kind::Rotate, {0, 1, 0}, 20)};
         scene.meshes = {block};
-        const World placed(scene, SceneMeshes{{cube}, {0}});
+        const World placed(scene, SceneMeshes{{share_mesh(cube)}, {0}});
         scene.meshes.push_back(block);
         scene.meshes.back().steps.push_back(step(TransformStep::Kind::Translate, {100, 0, 0}));
-        const World instanced(scene, SceneMeshes{{cube}, {0, 0}});
+        const World instanced(scene, SceneMeshes{{share_mesh(cube)}, {0, 0}});
         ASSERT_TRUE(placed.instances()[0].placed);
         ASSERT_FALSE(instanced.instances()[0].placed);
         for (const World* world : {&placed, &instanced}) {

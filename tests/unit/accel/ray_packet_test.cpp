@@ -101,7 +101,7 @@ TEST(RayPackets, WorldPacketsAnswerAsEachRayAlone) {
     scene.spheres.push_back({{-0.2, 0.05, 0.1}, 0.08, 1});
     scene.planes.push_back({{0, -0.05, 0}, {0, 1, 0}, 1});
     SceneMeshes meshes;
-    meshes.files = {bunny(), bunny()};
+    meshes.files = {share_mesh(bunny()), share_mesh(bunny())};
     for (int i = 0; i < 3; ++i) {
         Mesh block;
         block.translate = {0.25 * i - 0.25, 0, -0.1 * i};

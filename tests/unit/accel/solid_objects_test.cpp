@@ -56,7 +56,7 @@ std::array<Box, 2> l_arms(const Mesh& mesh) {
 struct RandomSolids {
     SceneDescription scene;
     std::mt19937 random;
-    SceneMeshes meshes{{l_prism()}, {}, {}};
+    SceneMeshes meshes{{share_mesh(l_prism())}, {}, {}};
     std::uniform_real_distribution<double> unit{0, 1};
 
     double in(double low, double high) { return low + (high - low) * unit(random); }

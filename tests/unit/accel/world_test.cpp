@@ -59,7 +59,7 @@ MixedScene mixed_scene(int spheres, uint32_t seed, Accelerator accel = Accelerat
                                      0.3 * glm::dvec3(unit(random) - 0.5, unit(random) - 0.5, unit(random) - 0.5));
         soup.triangles.push_back({first, first + 1, first + 2});
     }
-    out.meshes.files = {read("bunny.obj"), read("tetrahedron.obj"), soup};
+    out.meshes.files = {share_mesh(read("bunny.obj")), share_mesh(read("tetrahedron.obj")), share_mesh(soup)};
     auto place = [&](uint32_t file, dvec3 scale, double angle) {
         Mesh block;
         block.scale = scale;
@@ -91,7 +91,7 @@ public:
     explicit BruteForce(const MixedScene& mixed) : scene_(mixed.scene) {
         for (size_t block = 0; block < scene_.meshes.size(); ++block) {
             const Placement placement(scene_.meshes[block]);
-            const TriangleMesh& file = mixed.meshes.files[mixed.meshes.file_of_block[block]];
+            const TriangleMesh& file = *mixed.meshes.files[mixed.meshes.file_of_block[block]];
             std::vector<Triangle> placed;
             for (const auto& t : file.triangles)
                 placed.push_back({placement.point(file.positions[t[0]]), placement.point(file.positions[t[1]]),
@@ -284,7 +284,7 @@ TEST(World, InstanceNormalsMatchTheMeshBuiltPlaced) {
     block.rotate_degrees = 70;
     block.translate = {0.5, -0.2, 0.1};
     scene.meshes = {block};
-    const SceneMeshes once{{read("bunny.obj")}, {0}};
+    const SceneMeshes once{{share_mesh(read("bunny.obj"))}, {0}};
     const World placed(scene, once);
     scene.meshes.push_back(block);
     scene.meshes.back().translate.x += 100;  // out of the way
@@ -324,20 +324,20 @@ TEST(World, FlatShadingGivesEachTriangleItsOwnNormal) {
     scene.meshes = {block};
     const Ray towards_the_top_face{{0.5, 5, 0.3}, {0, -1, 0}};
     SearchCounts counts;
-    const auto smooth =
-        nearest_surface(World(scene, SceneMeshes{{cube}, {0}}), towards_the_top_face, {0, kInfinity}, counts);
+    const auto smooth = nearest_surface(World(scene, SceneMeshes{{share_mesh(cube)}, {0}}), towards_the_top_face,
+                                        {0, kInfinity}, counts);
     ASSERT_TRUE(smooth);
     EXPECT_GT(glm::length(smooth->normal - Vec3(0, 1, 0)), 0.1);  // the corners' averages lean outwards
     scene.meshes[0].flat = true;
-    const auto flat =
-        nearest_surface(World(scene, SceneMeshes{{cube}, {0}}), towards_the_top_face, {0, kInfinity}, counts);
+    const auto flat = nearest_surface(World(scene, SceneMeshes{{share_mesh(cube)}, {0}}), towards_the_top_face,
+                                      {0, kInfinity}, counts);
     ASSERT_TRUE(flat);
     EXPECT_EQ(flat->normal, Vec3(0, 1, 0));
     // Instanced: two flat blocks and one smooth block of the same file.
     scene.meshes = {scene.meshes[0], scene.meshes[0], block};
     scene.meshes[1].translate = {10, 0, 0};
     scene.meshes[2].translate = {20, 0, 0};
-    const World both(scene, SceneMeshes{{cube}, {0, 0, 0}});
+    const World both(scene, SceneMeshes{{share_mesh(cube)}, {0, 0, 0}});
     EXPECT_EQ(both.meshes().size(), 2u);
     const auto flat_instance = nearest_surface(both, towards_the_top_face, {0, kInfinity}, counts);
     ASSERT_TRUE(flat_instance);

@@ -186,7 +186,7 @@ TEST(BunnyRoom, BunnyStandsOnTheFloorClearOfEverySphere) {
     ASSERT_TRUE(meshes && meshes->files.size() == 1);
     const Placement placement(loaded.scene->meshes[0]);
     double lowest = kInfinity;
-    for (const auto& file_point : meshes->files[0].positions) {
+    for (const auto& file_point : meshes->files[0]->positions) {
         const glm::dvec3 p = placement.point(file_point);
         lowest = std::min(lowest, p.y);
         for (const Sphere& s : loaded.scene->spheres)
