@@ -189,7 +189,14 @@ int render_to_file(const Options& options) {
             std::cerr << "tracer: error: --" << *problem << '\n';
             return kUsageError;
         }
-    const tracer::World world(loaded->scene, loaded->meshes, options.threads, tracer::World::ReleaseFlatShapes{});
+    // A frame of an animation (a region of one: tools/farm) is built as the frame loop builds it,
+    // each mesh an instance, so that its pixels are the loop's.
+    tracer::MeshBuildCache instanced;
+    const tracer::World world =
+        options.frames.animated()
+            ? tracer::World(loaded->scene, loaded->meshes, options.threads, tracer::World::ReleaseFlatShapes{},
+                            instanced)
+            : tracer::World(loaded->scene, loaded->meshes, options.threads, tracer::World::ReleaseFlatShapes{});
     const auto built_at = std::chrono::steady_clock::now();
     if (options.region_list) return render_regions(options, world, scene);
 
@@ -306,6 +313,8 @@ int render_frames(const Options& options) {
     }
 }
 
+int check_only(const Options& options);
+
 // --check --frames N: the scene run and checked at every frame (its files read once).
 int check_frames(const Options& options) {
     tracer::SceneProgram program(options.scene, scene_input(options).arguments, standard_input_name(options));
@@ -315,15 +324,17 @@ int check_frames(const Options& options) {
     const tracer::FrameRange& range = options.frames;
     for (int frame = range.first; frame <= range.last_made(); ++frame) {
         const tracer::FrameTime time = tracer::frame_time(range, frame);
-        if (!job.load(program, time, files, frame == range.first)) {
+        if (!job.load(program, time, files, false)) {  // errors only: check_only below reports the first
             std::cerr << "tracer: error: frame " << frame << " (clock " << time.clock << ") has errors\n";
             return unreadable ? kIoError : kSceneError;
         }
     }
-    if (!options.json_diagnostics)
-        std::cout << scene_name(options) << ": ok at each of " << range.frames_made() << " frames (" << range.first
-                  << " to " << range.last_made() << ")\n";
-    return kOk;
+    // The first frame's report, as a still's (tools/farm reads its image size), then the frames'.
+    const int code = check_only(options);
+    if (code == kOk && !options.json_diagnostics)
+        std::cout << "  frames: ok at each of " << range.frames_made() << " (" << range.first << " to "
+                  << range.last_made() << ")\n";
+    return code;
 }
 
 int check_only(const Options& options) {

@@ -181,7 +181,8 @@ class Animation(unittest.TestCase):
         self.assertIn("frame 3", check.stderr)
         good = self.run_tracer(self.scene(CLOCK_SCENE, "good.scn"), "--check", "--frames", "6")
         self.assertEqual(good.returncode, 0, good.stderr)
-        self.assertIn("ok at each of 6 frames", good.stdout)
+        self.assertIn("frames: ok at each of 6 (0 to 5)", good.stdout)
+        self.assertIn("image: 2 x 2 pixels", good.stdout)
 
     def start_long_run(self, frames, folder):
         scene = self.scene(MESH_SCENE.replace("width 48 height 36", "width 320 height 240 samples 4"), "long.scn")

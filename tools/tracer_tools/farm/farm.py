@@ -25,7 +25,7 @@ import numpy as np
 
 import tracer_tools
 from tracer_tools import option_types
-from tracer_tools.farm import resume, worker
+from tracer_tools.farm import frames, resume, worker
 from tracer_tools.farm.images import decode_tile, write_atomically
 from tracer_tools.farm.jobs import OVERRIDES, Job, JobError, OutputChecks, check_job, jobs_from_file
 from tracer_tools.farm.progress import Progress
@@ -111,6 +111,7 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         "--timings", type=option_types.output_file, help="write the time split (start-up, tiles, assembly) as JSON here"
     )
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress line")
+    add_frame_options(parser)
     arguments = parser.parse_args(argv)
     if bool(arguments.jobs) == bool(arguments.scene):
         parser.error("give one scene (with -o) or --jobs FILE")
@@ -118,9 +119,34 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         parser.error("no output image given (-o out.png)")
     if arguments.jobs and (arguments.output or arguments.define or any(getattr(arguments, k) for k in OVERRIDES)):
         parser.error("--jobs gives each job's output and settings; -o, -D and overrides are for one scene")
+    animated = arguments.clock is not None or arguments.cyclic or arguments.subset is not None or arguments.resume
+    if arguments.frames is None and (animated or arguments.frames_per_task is not None):
+        parser.error(
+            "--clock, --cyclic, --subset, --resume and --frames-per-task are for an animation: give --frames N"
+        )
+    if arguments.frames is not None and arguments.jobs:
+        parser.error("--frames renders one scene's animation; --jobs lists images")
     if arguments.retries < 0 or arguments.workers < 1 or (arguments.tile is not None and arguments.tile < 1):
         parser.error("--retries must be 0 or more, --workers and --tile 1 or more")
     return arguments
+
+
+def add_frame_options(parser: argparse.ArgumentParser) -> None:
+    """The animation's options: tracer's, and how many frames one task renders."""
+    parser.add_argument(
+        "--frames",
+        type=option_types.whole_number(1, 1_000_000),
+        help="render an animation of N frames (tracer's --frames) into -o's numbered names; frames are the tasks",
+    )
+    parser.add_argument("--clock", type=option_types.free_text, help="FIRST:LAST, as tracer's --clock")
+    parser.add_argument("--cyclic", action="store_true", help="as tracer's --cyclic")
+    parser.add_argument("--subset", type=option_types.free_text, help="FIRST[:LAST], as tracer's --subset")
+    parser.add_argument("--resume", action="store_true", help="keep the frames already there and whole")
+    parser.add_argument(
+        "--frames-per-task",
+        type=option_types.whole_number(1, 1_000_000),
+        help="consecutive frames one task renders (default: about 3 tasks per worker)",
+    )
 
 
 def jobs_of(arguments: argparse.Namespace) -> list[Job]:
@@ -357,8 +383,12 @@ def main(argv: list[str] | None = None) -> int:
     failed = None  # the exit code of a failure
     try:
         jobs = jobs_of(arguments)
-        with ThreadPoolExecutor(1) as pool:
-            run_jobs(arguments, jobs, pool.submit(check, jobs), timings)
+        if arguments.frames is not None:
+            frames.run_animation(arguments, jobs[0], start_cluster, timings, INTERRUPTED)
+            jobs = []  # no tiles are kept for frames: each is written whole
+        else:
+            with ThreadPoolExecutor(1) as pool:
+                run_jobs(arguments, jobs, pool.submit(check, jobs), timings)
     except JobError as error:
         print(str(error) if error.tracers_own else f"farm: error: {error}", file=sys.stderr)
         failed = error.exit_code

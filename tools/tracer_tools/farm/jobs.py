@@ -36,6 +36,7 @@ class Job:
     srgb: bool = False  # 8-bit files sRGB-encoded, as tracer --check reports it (the tiles are; the file says so)
     inputs: list[str] = field(default_factory=list)  # the other files it reads, as tracer --check lists them
     manifest: dict = field(default_factory=dict)  # what its image depends on (resume.identity)
+    animation: list[str] = field(default_factory=list)  # tracer's --frames N [--clock A:B] [--cyclic]
 
     def tracer_arguments(self) -> list[str]:
         """The scene and its overrides as tracer's command line."""
@@ -44,7 +45,7 @@ class Job:
             arguments += ["-D", f"{name}={value}"]
         for key, value in self.overrides.items():
             arguments += ["--" + key.replace("_", "-"), str(value)]
-        return arguments
+        return arguments + self.animation
 
     def is_float(self) -> bool:
         return os.path.splitext(self.output)[1].lower() in FLOAT_FORMATS
@@ -109,10 +110,10 @@ _IMAGE_LINE = re.compile(r"^  image: (\d+) x (\d+) pixels(.*)$", re.MULTILINE)
 _READS_LINE = re.compile(r"^  reads: (.*)$", re.MULTILINE)
 
 
-def check_job(tracer: str, job: Job) -> str:
-    """Checks the job's scene with `tracer --check` (with its overrides) and sets its frame size; raises
-    JobError with tracer's own diagnostics. Returns tracer's warnings (may be empty)."""
-    result = subprocess.run([tracer, "--check", *job.tracer_arguments()], capture_output=True, text=True)
+def check_job(tracer: str, job: Job, extra: tuple[str, ...] = ()) -> str:
+    """Checks the job's scene with `tracer --check` (with its overrides, and `extra` options) and sets its
+    frame size; raises JobError with tracer's own diagnostics. Returns tracer's warnings (may be empty)."""
+    result = subprocess.run([tracer, "--check", *job.tracer_arguments(), *extra], capture_output=True, text=True)
     if result.returncode != 0:
         raise JobError(result.stderr.rstrip(), result.returncode, tracers_own=True)
     size = _IMAGE_LINE.search(result.stdout)

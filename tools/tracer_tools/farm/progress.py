@@ -1,4 +1,4 @@
-"""The farm's progress on stderr: tiles done, tiles per second, time left."""
+"""The farm's progress on stderr: tiles (or frames) done, how many a second, time left."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ import time
 class Progress:
     """One line redrawn in place on a terminal; elsewhere a line at most every few seconds."""
 
-    def __init__(self, tiles: int, quiet: bool = False, every_s: float = 5.0) -> None:
-        self.tiles, self.done, self.quiet, self.every_s = tiles, 0, quiet, every_s
+    def __init__(self, tiles: int, quiet: bool = False, every_s: float = 5.0, unit: str = "tiles") -> None:
+        self.tiles, self.done, self.quiet, self.every_s, self.unit = tiles, 0, quiet, every_s, unit
         self.start = self.shown = time.perf_counter()
         self.terminal = sys.stderr.isatty()
 
@@ -18,10 +18,10 @@ class Progress:
         elapsed = max(time.perf_counter() - self.start, 1e-9)
         rate = self.done / elapsed
         left = (self.tiles - self.done) / rate if rate > 0 else float("inf")
-        return f"farm: {self.done}/{self.tiles} tiles, {rate:.1f} tiles/s, about {left:.0f} s left"
+        return f"farm: {self.done}/{self.tiles} {self.unit}, {rate:.1f} {self.unit}/s, about {left:.0f} s left"
 
-    def tile_done(self) -> None:
-        self.done += 1
+    def tile_done(self, count: int = 1) -> None:
+        self.done += count
         if self.quiet:
             return
         now = time.perf_counter()

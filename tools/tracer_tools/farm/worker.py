@@ -130,3 +130,22 @@ def close_job(key: str, at_once: bool = False) -> int:
         except (OSError, subprocess.TimeoutExpired):
             process.kill()
     return len(processes)
+
+
+def render_frames(command: list[str], first: int, last: int, suffix: str) -> tuple[list[tuple[int, bytes]], float]:
+    """Renders frames `first` to `last` of an animation in one tracer process (`command`: tracer SCENE
+    [options] --frames N ..., without --subset and -o): each frame's number and file bytes, and the
+    seconds it took here."""
+    start = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="tracer-frames-", dir=_scratch_folder()) as folder:
+        pattern = os.path.join(folder, "frame_#######" + suffix)
+        result = subprocess.run(
+            [*command, "--subset", f"{first}:{last}", "-o", pattern], capture_output=True, text=True
+        )
+        if result.returncode != 0:
+            raise RuntimeError(result.stderr.strip() or f"tracer stopped with exit code {result.returncode}")
+        frames = []
+        for frame in range(first, last + 1):
+            with open(os.path.join(folder, f"frame_{frame:07d}{suffix}"), "rb") as file:
+                frames.append((frame, file.read()))
+        return frames, time.perf_counter() - start
