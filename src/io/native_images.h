@@ -22,6 +22,10 @@ std::optional<NativeFormat> native_format(const std::string& path);
 std::optional<std::string> encode_native(NativeFormat format, const Image& image, bool srgb,
                                          std::vector<unsigned char>& encoded);
 
+// True if the fast sRGB byte of `value` (a table of the curve's steps) is the curve's own,
+// to_8bit(srgb_encoded(value)) (for the tests).
+bool srgb_bytes_match_the_curve(double value);
+
 // True if the file at `path` is a whole image of `width` x `height` pixels: a PNG whose header
 // says that size and that ends with its IEND chunk, a PPM of that size holding every byte; a file
 // of another format only needs to be there and not empty (a resumed animation keeps such frames).

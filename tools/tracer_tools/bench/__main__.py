@@ -17,6 +17,10 @@ BENCHMARKS = {
         "soft_shadows",
         "issue 56's speed against error: grid, jitter, adaptive (docs/bench/speed-vs-error-soft-shadows.md)",
     ),
+    "animation": (
+        "animation",
+        "issue 57's targets: start-up, an orbit against POV-Ray, 240 frames, the farm (docs/bench/bench-animation.md)",
+    ),
     "solids": ("solids", "issue 55's costs: a die against a box and POV-Ray, 10^4 dice (docs/bench/bench-solids.md)"),
     "task2": ("task2", "task2 rendered 9 times: median time and Mrays/s (docs/bench/bench-task2.txt)"),
     "bvh": ("bvh", "the four accelerators on the bunny at five sizes, against Embree (docs/bench/performance*)"),
