@@ -134,8 +134,14 @@ std::string frame_path(const std::string& pattern, int frame) {
 }
 
 AnimationEnd render_animation(const AnimationJob& job, SceneProgram& program, nlohmann::ordered_json& figures) {
-    FileCache files;
-    MeshBuildCache builds;
+    AnimationCaches caches;
+    return render_animation(job, program, figures, caches);
+}
+
+AnimationEnd render_animation(const AnimationJob& job, SceneProgram& program, nlohmann::ordered_json& figures,
+                              AnimationCaches& caches) {
+    FileCache& files = caches.files;
+    MeshBuildCache& builds = caches.builds;
     FrameWriter writer;
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
     int rendered = 0, kept = 0;

@@ -66,10 +66,20 @@ struct AnimationJob {
 
 enum class AnimationEnd { Done, SceneError, WriteError, UsageError, Interrupted };
 
+// What the frames of one process share however many runs of them it renders (--frame-list):
+// the mesh and image files read, the meshes' BVHs.
+struct AnimationCaches {
+    FileCache files;
+    MeshBuildCache builds;
+};
+
 // Renders the frames of `job.range` to their files in order, with `program` (the scene, run once
 // per frame); a line per frame on stderr unless quiet; `figures` gets the run's statistics (per
 // frame, and the compilations, mesh files read and BVHs built). Stops at the first frame that
 // fails, with its message on stderr; every frame written before it stays.
 AnimationEnd render_animation(const AnimationJob& job, SceneProgram& program, nlohmann::ordered_json& figures);
+// The same with the caches of earlier runs.
+AnimationEnd render_animation(const AnimationJob& job, SceneProgram& program, nlohmann::ordered_json& figures,
+                              AnimationCaches& caches);
 
 }  // namespace tracer

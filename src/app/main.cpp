@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iostream>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -315,6 +316,52 @@ int render_frames(const Options& options) {
 
 int check_only(const Options& options);
 
+// A --frame-list request "FIRST LAST PATTERN" read into `range` and `pattern`; the problem if it is not one.
+std::optional<std::string> frame_request(const std::string& line, tracer::FrameRange& range, std::string& pattern) {
+    std::istringstream words(line);
+    long long first = -1, last = -1;
+    if (!(words >> first >> last) || first < 0 || last < first || last >= range.count)
+        return "expected 'FIRST LAST PATTERN' with 0 <= FIRST <= LAST < " + std::to_string(range.count);
+    words >> std::ws;
+    std::getline(words, pattern);
+    if (pattern.empty()) return "no output pattern after the frames";
+    if (last > first && !tracer::has_number_field(pattern)) return "the pattern '" + pattern + "' has no number field";
+    range.first = int(first);
+    range.last = int(last);
+    return tracer::check_output_path(tracer::frame_path(pattern, range.first));
+}
+
+// --frames N --frame-list: the scene compiled and its files read once, then the runs of frames
+// read from standard input rendered one after the other (tools/farm's workers).
+int render_frame_list(const Options& options) {
+    tracer::start_threads(options.threads);
+    tracer::SceneProgram program(options.scene, scene_input(options).arguments, standard_input_name(options));
+    bool unreadable = false;
+    tracer::AnimationJob job = animation_job(options, unreadable);
+    tracer::AnimationCaches caches;
+    g_rendering = true;
+    for (std::string line;;) {
+        g_waiting_for_regions = true;  // Ctrl-C between runs: stop at once
+        const bool got = bool(std::getline(std::cin, line));
+        g_waiting_for_regions = false;
+        if (!got) return kOk;
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        if (auto problem = frame_request(line, job.range, job.output)) {
+            std::cout << "error: " << *problem << std::endl;
+            continue;
+        }
+        nlohmann::ordered_json figures;
+        const tracer::AnimationEnd end = tracer::render_animation(job, program, figures, caches);
+        if (end == tracer::AnimationEnd::Interrupted)
+            exit_interrupted("tracer: interrupted; the frame under way was not written (the frames before it are)\n");
+        if (end != tracer::AnimationEnd::Done) {  // said on stderr
+            std::cout << "error " << job.range.first << " " << job.range.last_made() << std::endl;
+            return end == tracer::AnimationEnd::SceneError ? (unreadable ? kIoError : kSceneError) : kIoError;
+        }
+        std::cout << "done " << job.range.first << " " << job.range.last_made() << std::endl;
+    }
+}
+
 // --check --frames N: the scene run and checked at every frame (its files read once).
 int check_frames(const Options& options) {
     tracer::SceneProgram program(options.scene, scene_input(options).arguments, standard_input_name(options));
@@ -426,6 +473,7 @@ int run(int argc, char** argv) {
     // Frames, even one (the same image as in the whole run, bit for bit), go through the frame
     // loop; a look at one frame (--check, --dump-json, --watch, --region-list) is a still at its clock.
     const bool one_frame = options.frames.frames_made() == 1;
+    if (options.frame_list) return render_frame_list(options);
     if (options.frames.animated() && options.check && !one_frame) return check_frames(options);
     if (options.frames.animated() && !options.check && !options.dump_json && !options.watch && !options.region_list)
         return render_frames(options);

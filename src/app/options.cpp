@@ -94,6 +94,10 @@ void add_frame_options(CLI::App& app, Options& options) {
                    "With --frames: only frames FIRST to LAST (both made), the clock as in the whole animation; "
                    "one frame alone may be written to a name without a number field")
         ->type_name("FIRST[:LAST]");
+    app.add_flag("--frame-list", options.frame_list,
+                 "With --frames: load the scene once, then render the runs of frames read from standard input, "
+                 "one 'FIRST LAST PATTERN' per line, answering 'done FIRST LAST' on standard output (tools/farm's "
+                 "workers); a run that fails ends the process, its error on stderr");
     app.add_flag("--resume", options.frames.resume,
                  "With --frames: keep each frame whose file is already there and whole (of the frame's size), "
                  "render the others");
@@ -163,9 +167,10 @@ void add_options(CLI::App& app, Options& options) {
 std::string frames_problem(Options& options) {
     FrameRange& frames = options.frames;
     if (!frames.animated()) {
-        if (!options.clock_range.empty() || frames.cyclic || !options.subset.empty() || frames.resume)
-            return "--clock, --cyclic, --subset and --resume are for an animation: give its number of frames, "
-                   "--frames N";
+        if (!options.clock_range.empty() || frames.cyclic || !options.subset.empty() || frames.resume ||
+            options.frame_list)
+            return "--clock, --cyclic, --subset, --resume and --frame-list are for an animation: give its number "
+                   "of frames, --frames N";
         return "";
     }
     if (!options.clock_range.empty())
@@ -174,6 +179,13 @@ std::string frames_problem(Options& options) {
     if (!options.subset.empty())
         if (auto problem = read_subset(options.subset, frames)) return "--subset " + options.subset + ": " + *problem;
     if (auto problem = frame_range_problem(frames)) return *problem;
+    if (options.frame_list &&
+        (!options.output.empty() || !options.subset.empty() || options.check || options.dump_json || options.watch ||
+         options.region_list || !options.region.empty() || frames.resume || options.scene == "-"))
+        return "--frame-list takes each run of frames and its output from its input lines: it cannot be combined "
+               "with -o, --subset, --resume, --check, --dump-json, --watch, --region or --region-list, or a scene "
+               "from standard input";
+    if (options.frame_list) return "";
     if (frames.frames_made() == 1) return "";
     const std::string many = std::to_string(frames.frames_made()) + " frames";
     if (options.dump_json) return "--dump-json prints the scene at one frame: choose it with --subset F";
@@ -210,7 +222,8 @@ std::string combination_problem(Options& options) {
     if (options.region_list && options.scene == "-")
         return "--region-list reads its regions from standard input, so the scene cannot come from there too ('-'); "
                "give the scene's file";
-    if (options.output.empty() && !options.region_list) return "no output image given (-o out.png)";
+    if (options.output.empty() && !options.region_list && !options.frame_list)
+        return "no output image given (-o out.png)";
     return "";
 }
 

@@ -46,6 +46,7 @@ struct Options {
     FrameRange frames;
     std::string clock_range;
     std::string subset;
+    bool frame_list = false;  // --frame-list: runs of frames read from stdin (tools/farm's workers)
 };
 
 // Every option and flag of the command line, bound to `options`.

@@ -184,6 +184,32 @@ class Animation(unittest.TestCase):
         self.assertIn("frames: ok at each of 6 (0 to 5)", good.stdout)
         self.assertIn("image: 2 x 2 pixels", good.stdout)
 
+    def test_a_frame_list_renders_each_run_asked_for_as_the_whole_run_does(self):
+        scene = self.scene(MESH_SCENE)
+        self.frames(scene, "--frames", "6")
+        requests = (
+            f"0 1 {self.folder}/list_#.png\n"
+            "\n"
+            f"4 4 {self.folder}/four.png\n"
+            "7 7 x.png\n"  # outside the frames: refused, the process goes on
+            f"2 3 {self.folder}/plain.png\n"  # two frames, one name: refused
+            f"5 5 {self.folder}/list_#.png\n"
+        )
+        result = subprocess.run(
+            [TRACER, scene, "--frames", "6", "--frame-list", "-q"], input=requests, capture_output=True, text=True
+        )
+        self.assertEqual(result.returncode, 0, result.stderr)
+        replies = result.stdout.splitlines()
+        self.assertEqual(replies[:2], ["done 0 1", "done 4 4"])
+        self.assertTrue(replies[2].startswith("error: expected 'FIRST LAST PATTERN'"), replies)
+        self.assertIn("no number field", replies[3])
+        self.assertEqual(replies[4], "done 5 5")
+        for frame, name in ((0, "list_0.png"), (1, "list_1.png"), (4, "four.png"), (5, "list_5.png")):
+            self.assertEqual((self.folder / name).read_bytes(), (self.folder / f"f_0{frame}.png").read_bytes())
+        refused = self.run_tracer(scene, "--frames", "6", "--frame-list", "-o", self.folder / "f_#.png")
+        self.assertEqual(refused.returncode, 2)
+        self.assertIn("--frame-list takes each run", refused.stderr)
+
     def start_long_run(self, frames, folder):
         scene = self.scene(MESH_SCENE.replace("width 48 height 36", "width 320 height 240 samples 4"), "long.scn")
         return subprocess.Popen(

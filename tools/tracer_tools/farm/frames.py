@@ -1,13 +1,13 @@
-"""The frames of an animation on the farm: runs of consecutive frames are its tasks, each rendered by
-one tracer process on a worker (`tracer --frames N --subset F:L`, the scene compiled and its meshes
-built once per task), the frames' files sent back and written here atomically, each the file
+"""The frames of an animation on the farm: runs of consecutive frames are its tasks (one frame each
+by default), rendered on each worker by a tracer process that stays (`tracer --frames N
+--frame-list`: the scene compiled and its meshes built once per worker, as the tiles' `--region-list`
+processes load a scene once), the frames' files sent back and written here atomically, each the file
 `tracer --frames N` alone writes, byte for byte. With --resume, frames already there and whole are
 kept, as tracer's own --resume keeps them."""
 
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import re
 import struct
@@ -139,16 +139,19 @@ def run_animation(
     client, cluster = start_cluster(arguments)
     timings["cluster_start_s"] = time.perf_counter() - start
     slots = sum(client.nthreads().values()) or arguments.workers
-    per_task = arguments.frames_per_task or max(1, math.ceil(len(wanted) / (3 * slots)))
-    command = [arguments.worker_tracer or os.path.abspath(arguments.tracer), *job.tracer_arguments(), "--threads", "1"]
-    command.append("-q")
-    suffix = os.path.splitext(job.output)[1]
+    per_task = arguments.frames_per_task or 1
+    tracer = arguments.worker_tracer or os.path.abspath(arguments.tracer)
+    key = job.key(0)
+    frames_job = worker.worker_job(
+        key, [tracer, *job.tracer_arguments(), "--frame-list", "--threads", "1", "-q"], os.path.splitext(job.output)[1]
+    )
     futures = {}
     try:
         start = time.perf_counter()
+        client.run(worker.start_job, frames_job)  # each worker's tracer loads the scene meanwhile
         for task_first, task_last in tasks_of(wanted, per_task):
             future = client.submit(
-                worker.render_frames, command, task_first, task_last, suffix, retries=arguments.retries, pure=False
+                worker.render_frames, frames_job, task_first, task_last, retries=arguments.retries, pure=False
             )
             futures[future] = (task_first, task_last)
         progress = Progress(len(wanted), quiet=arguments.quiet, unit="frames")
@@ -182,8 +185,13 @@ def run_animation(
             frame_work_s=work,
         )
     finally:
+        stopped_early = any(not future.done() for future in futures)
         for future in futures:
             future.cancel()
+        try:
+            client.run(worker.close_job, key, stopped_early)
+        except Exception:  # a worker that is gone has nothing to close
+            pass
         client.close()
         if cluster is not None:
             cluster.close()

@@ -132,20 +132,29 @@ def close_job(key: str, at_once: bool = False) -> int:
     return len(processes)
 
 
-def render_frames(command: list[str], first: int, last: int, suffix: str) -> tuple[list[tuple[int, bytes]], float]:
-    """Renders frames `first` to `last` of an animation in one tracer process (`command`: tracer SCENE
-    [options] --frames N ..., without --subset and -o): each frame's number and file bytes, and the
-    seconds it took here."""
+def render_frames(job: dict, first: int, last: int) -> tuple[list[tuple[int, bytes]], float]:
+    """Renders frames `first` to `last` of an animation with one of this worker's tracer processes of
+    the job (`tracer SCENE [options] --frames N ... --frame-list`: the scene compiled and its meshes
+    built once per process, for every run it is sent): each frame's number and file bytes (the job's
+    tile_suffix is the frames' extension), and the seconds it took here."""
     start = time.perf_counter()
+    process = _take(job)
     with tempfile.TemporaryDirectory(prefix="tracer-frames-", dir=_scratch_folder()) as folder:
-        pattern = os.path.join(folder, "frame_#######" + suffix)
-        result = subprocess.run(
-            [*command, "--subset", f"{first}:{last}", "-o", pattern], capture_output=True, text=True
-        )
-        if result.returncode != 0:
-            raise RuntimeError(result.stderr.strip() or f"tracer stopped with exit code {result.returncode}")
+        pattern = os.path.join(folder, "frame_#######" + job["tile_suffix"])
+        try:
+            process.stdin.write(f"{first} {last} {pattern}\n")
+            process.stdin.flush()
+            reply = process.stdout.readline()
+        except (BrokenPipeError, OSError, ValueError):
+            reply = ""
+        if not reply.startswith("done "):
+            if reply.startswith("error: "):  # a request it refused: the process is still good
+                _give_back(job, process)
+                raise RuntimeError("tracer: " + reply.strip())
+            raise RuntimeError(_diagnostic(process))
+        _give_back(job, process)
         frames = []
         for frame in range(first, last + 1):
-            with open(os.path.join(folder, f"frame_{frame:07d}{suffix}"), "rb") as file:
+            with open(os.path.join(folder, f"frame_{frame:07d}{job['tile_suffix']}"), "rb") as file:
                 frames.append((frame, file.read()))
         return frames, time.perf_counter() - start
