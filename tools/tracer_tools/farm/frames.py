@@ -14,6 +14,7 @@ import struct
 import sys
 import tempfile
 import time
+from concurrent.futures import ThreadPoolExecutor
 from typing import Callable
 
 from tracer_tools.farm import worker
@@ -107,16 +108,19 @@ def write_frame(path: str, data: bytes) -> None:
         raise
 
 
-def check_animation(tracer: str, job: Job, arguments: argparse.Namespace) -> None:
-    """Checks every frame with tracer (raising JobError with its diagnostics) and the output pattern, and
-    gives the job its animation (its tasks' tracer arguments) and frame size."""
+def check_pattern(job: Job, arguments: argparse.Namespace) -> None:
+    """Raises JobError if the output names one file for several frames."""
     if not _NUMBER_FIELD.search(os.path.basename(job.output)) and arguments.subset is None:
         raise JobError(
             f"-o '{job.output}' names one file for {arguments.frames} frames: put a number field in its file "
             "name, e.g. frame_####.png (#### becomes 0000, 0001, ...)",
             2,
         )
-    job.animation = animation_options(arguments)
+
+
+def check_animation(tracer: str, job: Job, arguments: argparse.Namespace) -> None:
+    """Checks every frame with tracer (raising JobError with its diagnostics) and the output, and gives
+    the job its frame size."""
     warnings = check_job(tracer, job, ("--subset", arguments.subset) if arguments.subset is not None else ())
     if warnings:
         sys.stderr.write(warnings)
@@ -126,72 +130,90 @@ def check_animation(tracer: str, job: Job, arguments: argparse.Namespace) -> Non
 def run_animation(
     arguments: argparse.Namespace, job: Job, start_cluster: Callable, timings: dict, interrupted: dict
 ) -> None:
-    """Renders the animation's frames on the cluster, writing each as it comes back."""
+    """Renders the animation's frames on the cluster, writing each as it comes back. The frames are
+    checked while Dask is imported and the cluster starts (half a second of Python's), and the
+    workers' tracer processes load the scene meanwhile; no frame is sent before the check passed."""
+    check_pattern(job, arguments)
+    job.animation = animation_options(arguments)
+    with ThreadPoolExecutor(1) as pool:
+        checking = pool.submit(check_animation, arguments.tracer, job, arguments)
+        start = time.perf_counter()  # Dask is imported here
+        client, cluster = start_cluster(arguments)
+        timings["cluster_start_s"] = time.perf_counter() - start
+        tracer = arguments.worker_tracer or os.path.abspath(arguments.tracer)
+        key = job.key(0)
+        command = [tracer, *job.tracer_arguments(), "--frame-list", "--threads", "1", "-q"]
+        frames_job = worker.worker_job(key, command, os.path.splitext(job.output)[1])
+        futures: dict = {}
+        try:
+            client.run(worker.start_job, frames_job)  # each worker's tracer loads the scene meanwhile
+            checking.result()
+            timings["check_s"] = time.perf_counter() - timings["started"]
+            render_frames(arguments, job, client, frames_job, futures, timings, interrupted)
+        finally:
+            stopped_early = any(not future.done() for future in futures)
+            for future in futures:
+                future.cancel()
+            try:
+                client.run(worker.close_job, key, stopped_early)
+            except Exception:  # a worker that is gone has nothing to close
+                pass
+            client.close()
+            if cluster is not None:
+                cluster.close()
+
+
+def render_frames(
+    arguments: argparse.Namespace,
+    job: Job,
+    client: object,
+    frames_job: dict,
+    futures: dict,
+    timings: dict,
+    interrupted: dict,
+) -> None:
+    """Sends every frame not kept (in tasks of --frames-per-task) and writes each as it comes back."""
     from distributed import as_completed
 
-    check_animation(arguments.tracer, job, arguments)
-    timings["check_s"] = time.perf_counter() - timings["started"]
     first, last = frame_range(arguments)
-    frames = [f for f in range(first, last + 1)]
+    frames = list(range(first, last + 1))
     kept = [f for f in frames if arguments.resume and whole_frame(frame_path(job.output, f), job.width, job.height)]
     wanted = [f for f in frames if f not in set(kept)]
-    start = time.perf_counter()
-    client, cluster = start_cluster(arguments)
-    timings["cluster_start_s"] = time.perf_counter() - start
     slots = sum(client.nthreads().values()) or arguments.workers
     per_task = arguments.frames_per_task or 1
-    tracer = arguments.worker_tracer or os.path.abspath(arguments.tracer)
-    key = job.key(0)
-    frames_job = worker.worker_job(
-        key, [tracer, *job.tracer_arguments(), "--frame-list", "--threads", "1", "-q"], os.path.splitext(job.output)[1]
-    )
-    futures = {}
-    try:
-        start = time.perf_counter()
-        client.run(worker.start_job, frames_job)  # each worker's tracer loads the scene meanwhile
-        for task_first, task_last in tasks_of(wanted, per_task):
-            future = client.submit(
-                worker.render_frames, frames_job, task_first, task_last, retries=arguments.retries, pure=False
-            )
-            futures[future] = (task_first, task_last)
-        progress = Progress(len(wanted), quiet=arguments.quiet, unit="frames")
-        work = 0.0
-        for future in as_completed(list(futures)):
-            task_first, task_last = futures[future]
-            if future.status != "finished":
-                error = future.exception()
-                reason = "the workers running it died" if type(error).__name__ == "KilledWorker" else str(error)
-                raise JobError(f"frames {task_first} to {task_last} failed {arguments.retries + 1} times:\n{reason}", 1)
-            rendered, seconds = future.result()
-            work += seconds
-            for frame, data in rendered:
-                write_frame(frame_path(job.output, frame), data)
-            if interrupted["signal"]:
-                raise KeyboardInterrupt
-            progress.tile_done(len(rendered))
-        progress.finish()
-        if not arguments.quiet:
-            print(
-                f"farm: wrote {len(wanted)} frames ({len(kept)} kept) of {job.width}x{job.height}, "
-                f"{time.perf_counter() - timings['started']:.2f} s",
-                file=sys.stderr,
-            )
-        timings.update(
-            frames=len(wanted),
-            frames_kept=len(kept),
-            tasks=len(futures),
-            workers=slots,
-            frames_s=time.perf_counter() - start,
-            frame_work_s=work,
+    start = time.perf_counter()
+    for task_first, task_last in tasks_of(wanted, per_task):
+        future = client.submit(
+            worker.render_frames, frames_job, task_first, task_last, retries=arguments.retries, pure=False
         )
-    finally:
-        stopped_early = any(not future.done() for future in futures)
-        for future in futures:
-            future.cancel()
-        try:
-            client.run(worker.close_job, key, stopped_early)
-        except Exception:  # a worker that is gone has nothing to close
-            pass
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        futures[future] = (task_first, task_last)
+    progress = Progress(len(wanted), quiet=arguments.quiet, unit="frames")
+    work = 0.0
+    for future in as_completed(list(futures)):
+        task_first, task_last = futures[future]
+        if future.status != "finished":
+            error = future.exception()
+            reason = "the workers running it died" if type(error).__name__ == "KilledWorker" else str(error)
+            raise JobError(f"frames {task_first} to {task_last} failed {arguments.retries + 1} times:\n{reason}", 1)
+        rendered, seconds = future.result()
+        work += seconds
+        for frame, data in rendered:
+            write_frame(frame_path(job.output, frame), data)
+        if interrupted["signal"]:
+            raise KeyboardInterrupt
+        progress.tile_done(len(rendered))
+    progress.finish()
+    if not arguments.quiet:
+        print(
+            f"farm: wrote {len(wanted)} frames ({len(kept)} kept) of {job.width}x{job.height}, "
+            f"{time.perf_counter() - timings['started']:.2f} s",
+            file=sys.stderr,
+        )
+    timings.update(
+        frames=len(wanted),
+        frames_kept=len(kept),
+        tasks=len(futures),
+        workers=slots,
+        frames_s=time.perf_counter() - start,
+        frame_work_s=work,
+    )
