@@ -67,11 +67,15 @@ public:
             return false;
         }
         if (!line_.empty()) std::cerr << line_ << '\n';
+        ++written_;
         return true;
     }
+    // How many frames it wrote.
+    int written() const { return written_; }
 
 private:
     std::thread thread_;
+    int written_ = 0;
     int frame_ = 0;
     std::string line_;
     std::optional<std::string> problem_;
@@ -144,15 +148,17 @@ AnimationEnd render_animation(const AnimationJob& job, SceneProgram& program, nl
     MeshBuildCache& builds = caches.builds;
     FrameWriter writer;
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
-    int rendered = 0, kept = 0;
+    int kept = 0;
+    // The run's figures, once the frame being written is (false if it failed: said by finish).
     auto summarise = [&] {
-        if (!writer.finish()) --rendered;  // the frame written last failed: said by finish
+        const bool written = writer.finish();
         figures["frames"] = frames;
-        figures["frames_rendered"] = rendered;
+        figures["frames_rendered"] = writer.written();
         figures["frames_kept"] = kept;
         figures["scene_compilations"] = program.compilations();
         figures["mesh_files_read"] = files.meshes.size();
         figures["mesh_builds"] = builds.builds();
+        return written;
     };
     const FrameRange& range = job.range;
     for (int frame = range.first; frame <= range.last_made(); ++frame) {
@@ -193,8 +199,7 @@ AnimationEnd render_animation(const AnimationJob& job, SceneProgram& program, nl
         progress.finish();
         if (!complete || (job.cancel && *job.cancel)) return summarise(), AnimationEnd::Interrupted;
         // Step 3: the file, atomically, on the writer's thread once the frame before is written.
-        if (!writer.finish()) return --rendered, summarise(), AnimationEnd::WriteError;
-        ++rendered;
+        if (!writer.finish()) return summarise(), AnimationEnd::WriteError;
         nlohmann::ordered_json figure = {{"frame", frame}, {"clock", time.clock}, {"output", path}};
         figure.update(render_stats_json(world, scene, stats));
         frames.push_back(std::move(figure));
@@ -202,9 +207,7 @@ AnimationEnd render_animation(const AnimationJob& job, SceneProgram& program, nl
             job.quiet ? "" : "frame " + std::to_string(frame) + ": " + render_summary(path, image, scene.render, stats);
         writer.start(frame, path, std::move(image), scene.render.encoding, std::move(line));
     }
-    const int before = rendered;
-    summarise();
-    return rendered == before ? AnimationEnd::Done : AnimationEnd::WriteError;
+    return summarise() ? AnimationEnd::Done : AnimationEnd::WriteError;
 }
 
 }  // namespace tracer

@@ -143,6 +143,22 @@ std::optional<std::string> output_clash(const Options& options, const tracer::Sc
     return std::nullopt;
 }
 
+// False, with the message said, if --stats-json's file could not be written (checked before a render).
+bool stats_json_can_be_written(const Options& options) {
+    if (options.stats_json.empty()) return true;
+    auto problem = tracer::output_path_problem(options.stats_json);
+    if (problem) std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
+    return !problem;
+}
+
+// Writes the figures to --stats-json's file, if one is given; false, with the message said, if it failed.
+bool write_stats_json(const Options& options, const nlohmann::ordered_json& figures) {
+    if (options.stats_json.empty()) return true;
+    auto problem = tracer::write_file_atomically(options.stats_json, json_text(figures) + '\n');
+    if (problem) std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
+    return !problem;
+}
+
 // --region-list: the regions read from stdin, each written where its line says.
 int render_regions(const Options& options, const tracer::World& world, const tracer::SceneDescription& scene) {
     tracer::RenderOptions render_options;
@@ -169,11 +185,7 @@ int render_to_file(const Options& options) {
             std::cerr << "tracer: error: " << *problem << '\n';
             return kIoError;
         }
-    if (!options.stats_json.empty())
-        if (auto problem = tracer::output_path_problem(options.stats_json)) {
-            std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
-            return kIoError;
-        }
+    if (!stats_json_can_be_written(options)) return kIoError;
     int exit_code = kOk;
     const auto start = std::chrono::steady_clock::now();
     tracer::start_threads(options.threads);  // made while the scene loads
@@ -227,11 +239,7 @@ int render_to_file(const Options& options) {
     // build_seconds time each BVH alone).
     figures["load_seconds"] = std::chrono::duration<double>(loaded_at - start).count();
     figures["world_seconds"] = std::chrono::duration<double>(built_at - loaded_at).count();
-    if (!options.stats_json.empty())
-        if (auto problem = tracer::write_file_atomically(options.stats_json, json_text(figures) + '\n')) {
-            std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
-            return kIoError;
-        }
+    if (!write_stats_json(options, figures)) return kIoError;
     if (!options.quiet) std::cerr << tracer::render_summary(options.output, image, scene.render, stats) << '\n';
     // Shown even with --quiet: the image is not what max_depth says.
     if (const std::string note = tracer::trees_cut_note(stats); !note.empty()) std::cerr << note << '\n';
@@ -281,17 +289,13 @@ tracer::AnimationJob animation_job(const Options& options, bool& unreadable) {
     return job;
 }
 
-// --frames N (more than one frame, or --resume): the frames rendered in one process.
+// --frames N: the frames (even one) rendered in one process, in the frame loop.
 int render_frames(const Options& options) {
     if (auto problem = tracer::check_output_path(tracer::frame_path(options.output, options.frames.first))) {
         std::cerr << "tracer: error: " << *problem << '\n';
         return kIoError;
     }
-    if (!options.stats_json.empty())
-        if (auto problem = tracer::output_path_problem(options.stats_json)) {
-            std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
-            return kIoError;
-        }
+    if (!stats_json_can_be_written(options)) return kIoError;
     tracer::start_threads(options.threads);
     tracer::SceneProgram program(options.scene, scene_input(options).arguments, standard_input_name(options));
     bool unreadable = false;
@@ -301,11 +305,7 @@ int render_frames(const Options& options) {
     const tracer::AnimationEnd end = tracer::render_animation(job, program, figures);
     if (end == tracer::AnimationEnd::Interrupted)
         exit_interrupted("tracer: interrupted; the frame under way was not written (the frames before it are)\n");
-    if (!options.stats_json.empty())
-        if (auto problem = tracer::write_file_atomically(options.stats_json, json_text(figures) + '\n')) {
-            std::cerr << "tracer: error: cannot write '" << options.stats_json << "': " << *problem << '\n';
-            return kIoError;
-        }
+    if (!write_stats_json(options, figures)) return kIoError;
     switch (end) {
         case tracer::AnimationEnd::Done: return kOk;
         case tracer::AnimationEnd::SceneError: return unreadable ? kIoError : kSceneError;

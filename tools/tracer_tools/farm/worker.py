@@ -93,18 +93,24 @@ def _scratch_folder() -> str | None:
         return None
 
 
+def _ask(process: subprocess.Popen, request: str) -> str:
+    """Sends one request line to a kept tracer process and returns its reply line ("" if the
+    process is gone: its stderr then says why)."""
+    try:
+        process.stdin.write(request + "\n")
+        process.stdin.flush()
+        return process.stdout.readline()
+    except (BrokenPipeError, OSError, ValueError):
+        return ""
+
+
 def render_tile(job: dict, region_text: str) -> tuple[bytes, float]:
     """Renders one tile ("X0 Y0 W H"): its image file's bytes and the seconds it took here."""
     start = time.perf_counter()
     process = _take(job)
     with tempfile.TemporaryDirectory(prefix="tracer-tile-", dir=_scratch_folder()) as folder:
         path = os.path.join(folder, "tile" + job["tile_suffix"])
-        try:
-            process.stdin.write(f"{region_text} {path}\n")
-            process.stdin.flush()
-            reply = process.stdout.readline()
-        except (BrokenPipeError, OSError, ValueError):
-            reply = ""
+        reply = _ask(process, f"{region_text} {path}")
         if not reply:
             raise RuntimeError(_diagnostic(process))
         _give_back(job, process)
@@ -141,12 +147,7 @@ def render_frames(job: dict, first: int, last: int) -> tuple[list[tuple[int, byt
     process = _take(job)
     with tempfile.TemporaryDirectory(prefix="tracer-frames-", dir=_scratch_folder()) as folder:
         pattern = os.path.join(folder, "frame_#######" + job["tile_suffix"])
-        try:
-            process.stdin.write(f"{first} {last} {pattern}\n")
-            process.stdin.flush()
-            reply = process.stdout.readline()
-        except (BrokenPipeError, OSError, ValueError):
-            reply = ""
+        reply = _ask(process, f"{first} {last} {pattern}")
         if not reply.startswith("done "):
             if reply.startswith("error: "):  # a request it refused: the process is still good
                 _give_back(job, process)
