@@ -133,6 +133,7 @@ Diagnostic* Diagnostics::repeat_of(const Sources& sources, Span span, Severity s
     const auto found = first_at_.find({&sources.file(span), span.begin, span.end, severity});
     if (found == first_at_.end() || found->second.origin == span.origin) return nullptr;
     ++found->second.diagnostic->repeats;
+    if (severity == Severity::Error) ++error_repeats_;
     return found->second.diagnostic;
 }
 
@@ -282,6 +283,9 @@ void Diagnostics::print(std::ostream& out) const {
         out << "error: showing the first " << kMaxErrors << " of " << found
             << " errors; fix these and run again to see the others\n";
     }
+    if (error_repeats_ >= kMostRepeatsCounted)
+        out << "error: the search for errors stopped after " << kMostRepeatsCounted
+            << " repeats of those shown (the counts of repeats above are of those); fix these and run again\n";
 }
 
 }  // namespace tracer

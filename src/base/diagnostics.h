@@ -45,8 +45,11 @@ class Diagnostics {
 public:
     static constexpr int kMaxErrors = 20;        // shown: the first in file order
     static constexpr int kMaxErrorsFound = 200;  // the search stops here: later stages find earlier lines
-    static constexpr int kMaxWarnings = 20;      // more are counted, not kept
-    static constexpr size_t kMaxPrints = 1000;   // a scene's print(...) lines kept; more are counted
+    // The search stops too after this many errors raised again at a place already reported (in
+    // another iteration or call): each costs the run an unwinding, and they only repeat.
+    static constexpr int kMostRepeatsCounted = 10000;
+    static constexpr int kMaxWarnings = 20;     // more are counted, not kept
+    static constexpr size_t kMaxPrints = 1000;  // a scene's print(...) lines kept; more are counted
 
     // A line a scene printed (`print(...)`): where, and the text.
     struct Printed {
@@ -84,8 +87,9 @@ public:
     int error_count() const { return errors_; }
     int warning_count() const { return warnings_; }
     bool has_errors() const { return errors_ > 0; }
-    // True once kMaxErrorsFound errors are kept: callers stop looking for more.
-    bool saturated() const { return errors_ >= kMaxErrorsFound; }
+    // True once kMaxErrorsFound errors are kept, or kMostRepeatsCounted repeats of them counted:
+    // callers stop looking for more.
+    bool saturated() const { return errors_ >= kMaxErrorsFound || error_repeats_ >= kMostRepeatsCounted; }
     const std::deque<Diagnostic>& all() const { return list_; }
 
     // Keeps a line a scene printed, in the order printed (past kMaxPrints, only counted).
@@ -121,6 +125,7 @@ private:
     std::deque<Diagnostic> list_;  // a deque: returned pointers stay valid
     std::map<Place, FirstAt> first_at_;
     int errors_ = 0;
+    int error_repeats_ = 0;
     int warnings_ = 0;
     std::vector<Printed> prints_;
     size_t prints_not_kept_ = 0;

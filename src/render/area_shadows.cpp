@@ -44,6 +44,7 @@ public:
     // Classifies samples [i0, i1] x [j0, j1] (inclusive), `candidates` holding what may block
     // any of their rays.
     void classify(int i0, int i1, int j0, int j1, const ShadowCandidates& candidates) {
+        if (cancelled()) return;  // the image is discarded: the rest of the samples stay unknown (unlit)
         if (candidates.empty()) {
             for (int i = i0; i <= i1; ++i)
                 for (int j = j0; j <= j1; ++j) mark(i, j, Seen::Lit);
@@ -184,6 +185,10 @@ private:
     void test(int i, int j, const ShadowCandidates& candidates, bool corner = false) {
         const size_t k = index(i, j);
         if (seen_[k] != Seen::Unknown) return;
+        if (cancelled()) {  // the image is discarded: the rest of the samples are not traced
+            seen_[k] = Seen::Blocked;
+            return;
+        }
         const Vec3 position(samples_.position(i, j));
         const Vec3 light_offset = position - point_.hit.point;
         const Real distance = glm::length(light_offset);
@@ -208,6 +213,13 @@ private:
         }
     }
 
+    // True once the render is cancelled, looked at before every sample's shadow ray (a light's
+    // 65,536 shadow rays, each through up to thousands of glass surfaces, may take minutes).
+    bool cancelled() {
+        if (!cancelled_ && point_.cancel) cancelled_ = point_.cancel->load(std::memory_order_relaxed);
+        return cancelled_;
+    }
+
     const ShadingPoint& point_;
     const World& world_;
     const Light& light_;
@@ -222,6 +234,7 @@ private:
     Seen* seen_;
     uint32_t* blockers_;
     Color* through_;
+    bool cancelled_ = false;
 };
 
 // True if every sample's shadow ray leaves from one side of the surface, the one of the light's
@@ -271,9 +284,11 @@ void add_area_light(const ShadingPoint& point, const Light& light, size_t light_
     // Each sample alone: without shadows, under the SPD's rules (their own shadow-ray rule), and
     // for a point that sees the light on both sides of its surface.
     if (!point.settings.shadows || point.settings.spawn_rules == SpawnRules::Spd || !one_side(point, corners, offset)) {
-        for (int i = 0; i <= last_i; ++i)
+        for (int i = 0; i <= last_i; ++i) {
+            if (point.cancel && point.cancel->load(std::memory_order_relaxed)) return;  // the image is discarded
             for (int j = 0; j <= last_j; ++j)
                 sum += point_light_term(point, light, Vec3(samples.position(i, j)), share, last, counts);
+        }
         return;
     }
     const Vec3 origin = point.spawn.origin(offset);
