@@ -49,6 +49,7 @@ nlohmann::json load_report_json(const std::string& scene, const LoadReport& repo
             {"prints_not_kept", report.diagnostics.prints_not_kept()},
             {"text", text.str()},
             {"files_read", report.files_read},
+            {"unreadable", report.unreadable},
             {"names", std::move(names)}};
 }
 

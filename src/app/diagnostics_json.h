@@ -13,7 +13,8 @@ namespace tracer {
 nlohmann::json diagnostic_json(const Diagnostic& diagnostic);
 
 // A whole load: {"scene", "ok", "errors", "warnings", "diagnostics": [...] in the terminal's
-// order, "text": what the terminal shows, "files_read": [...], "names": the names the scene
+// order, "text": what the terminal shows, "files_read": [...], "unreadable": whether the scene
+// file itself could not be read, "names": the names the scene
 // defines, each with its kind, path, line and column}.
 nlohmann::json load_report_json(const std::string& scene, const LoadReport& report);
 

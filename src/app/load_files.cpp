@@ -31,7 +31,8 @@ std::optional<LoadedScene> finish_loading(LoadResult loaded, const SceneInput& i
                                           const std::function<void(SceneDescription&)>& adjust,
                                           const ReportLoad& report, FileCache* files) {
     std::optional<SceneMeshes> meshes;
-    const std::string name = input.path == "-" ? input.standard_input_name : input.path;
+    const std::string name = input.path == "-" && !input.text ? input.standard_input_name : input.path;
+    const bool from_file = input.path != "-" && !input.text;  // a file the load read
     if (loaded.scene) {
         if (adjust) adjust(*loaded.scene);
         const std::string problem = render_settings_problem(loaded.scene->render);
@@ -42,14 +43,14 @@ std::optional<LoadedScene> finish_loading(LoadResult loaded, const SceneInput& i
             meshes = load_meshes(*loaded.scene, loaded.diagnostics, files ? &files->meshes : nullptr);
     }
     LoadReport found{loaded.diagnostics, {}, loaded.unreadable, &loaded.names};
-    if (input.path != "-") found.files_read.push_back(input.path);
+    if (from_file) found.files_read.push_back(input.path);
     for (const std::string& path : loaded.included_paths)
         if (!is_library_path(path)) found.files_read.push_back(path);  // not a file: part of tracer
     if (loaded.scene)
         for (const Mesh& mesh : loaded.scene->meshes) found.files_read.push_back(mesh.path);
     if (loaded.scene)
         for (const ImageFile& image : loaded.scene->images) found.files_read.push_back(image.path);
-    std::sort(found.files_read.begin() + (input.path != "-"), found.files_read.end());  // each once
+    std::sort(found.files_read.begin() + from_file, found.files_read.end());  // each once
     found.files_read.erase(std::unique(found.files_read.begin(), found.files_read.end()), found.files_read.end());
     if (report) report(found);
     if (!loaded.scene || !meshes) return std::nullopt;
@@ -61,8 +62,9 @@ std::optional<LoadedScene> finish_loading(LoadResult loaded, const SceneInput& i
 std::optional<LoadedScene> load_scene_with_meshes(const SceneInput& input,
                                                   const std::function<void(SceneDescription&)>& adjust,
                                                   const ReportLoad& report) {
-    return finish_loading(load_scene(input.path, input.arguments, {}, input.standard_input_name), input, adjust, report,
-                          nullptr);
+    LoadResult loaded = input.text ? load_scene_text(input.path, *input.text, false, input.arguments)
+                                   : load_scene(input.path, input.arguments, {}, input.standard_input_name);
+    return finish_loading(std::move(loaded), input, adjust, report, nullptr);
 }
 
 std::optional<LoadedScene> load_frame_with_meshes(SceneProgram& program, const FrameTime& frame,

@@ -31,6 +31,9 @@ struct SceneInput {
     // For "-": the name messages give it; relative paths start from its folder.
     std::string standard_input_name = std::string(kStandardInputName);
     SceneArguments arguments;  // -D values and include folders
+    // The scene's text, when it is held in memory (the Python module's loads): `path` then only
+    // names it in messages and anchors relative paths, and is not read.
+    std::optional<std::string> text;
 };
 
 // What a load found besides the scene: every diagnostic, and every file it read (the scene, the

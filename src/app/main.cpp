@@ -85,7 +85,7 @@ extern "C" void on_interrupt(int) {
 
 // Where the scene comes from, with the command line's -D values and include folders.
 tracer::SceneInput scene_input(const Options& options) {
-    return {options.scene, standard_input_name(options), {parameter_values(options), include_folders(options)}};
+    return {options.scene, standard_input_name(options), {parameter_values(options), include_folders(options)}, {}};
 }
 
 // How a load's diagnostics reach the user: as text on stderr, or as one line of JSON on stdout.

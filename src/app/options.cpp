@@ -21,10 +21,24 @@ std::vector<std::string> adaptive_parts(const std::string& text) {
     return parts;
 }
 
+// --adaptive's check: each part of THRESHOLD[:DEPTH[:CELL]] by the render block's own rules.
+std::string adaptive_problem(std::string& text) {
+    std::vector<std::string> parts = adaptive_parts(text);
+    if (parts.size() > 3 || std::any_of(parts.begin(), parts.end(), [](auto& p) { return p.empty(); }))
+        return std::string("expected THRESHOLD[:DEPTH[:CELL]], e.g. 0.05:3 or 0.05:3:4");
+    const char* keys[] = {"adaptive_threshold", "adaptive_depth", "adaptive_cell"};
+    for (size_t i = 0; i < parts.size(); ++i)
+        if (std::string problem = tracer::setting_problem("render", keys[i], parts[i]); !problem.empty())
+            return problem;
+    text = parts[0];  // each part as its check read it
+    for (size_t i = 1; i < parts.size(); ++i) text += ":" + parts[i];
+    return std::string();
+}
+
 // A CLI11 check of an override by the render block's own table (the scene's rules and messages),
 // which leaves the option's text as the value it checked (a transform: CLI11's checks cannot).
 CLI::Validator render_key(const char* key) {
-    return CLI::Validator([key](std::string& text) { return tracer::setting_problem("render", key, text); }, "", key);
+    return CLI::Validator([key](std::string& text) { return override_problem(key, text); }, "", key);
 }
 
 // The options that override the scene's render block, each checked by the block's own table.
@@ -46,20 +60,7 @@ void add_render_overrides(CLI::App& app, Options& options) {
                    "channel), down to DEPTH levels below a pixel, from cells CELL pixels wide (defaults: the "
                    "scene's, else 3 and 1); replaces --samples")
         ->type_name("THRESHOLD[:DEPTH[:CELL]]")
-        ->transform(CLI::Validator(
-            [](std::string& text) {
-                std::vector<std::string> parts = adaptive_parts(text);
-                if (parts.size() > 3 || std::any_of(parts.begin(), parts.end(), [](auto& p) { return p.empty(); }))
-                    return std::string("expected THRESHOLD[:DEPTH[:CELL]], e.g. 0.05:3 or 0.05:3:4");
-                const char* keys[] = {"adaptive_threshold", "adaptive_depth", "adaptive_cell"};
-                for (size_t i = 0; i < parts.size(); ++i)
-                    if (std::string problem = tracer::setting_problem("render", keys[i], parts[i]); !problem.empty())
-                        return problem;
-                text = parts[0];  // each part as its check read it
-                for (size_t i = 1; i < parts.size(); ++i) text += ":" + parts[i];
-                return std::string();
-            },
-            "", "adaptive"));
+        ->transform(render_key("adaptive"));
     app.add_option("--max-depth", options.max_depth, "Override the scene's reflection and refraction depth")
         ->transform(render_key("max_depth"));
     app.add_option("--encoding", options.encoding,
@@ -225,6 +226,22 @@ std::string combination_problem(Options& options) {
     if (options.output.empty() && !options.region_list && !options.frame_list)
         return "no output image given (-o out.png)";
     return "";
+}
+
+std::string override_problem(const std::string& key, std::string& text) {
+    return key == "adaptive" ? adaptive_problem(text) : setting_problem("render", key, text);
+}
+
+std::string* override_field(Options& options, const std::string& key) {
+    // The overrides: each option's name, without its dashes, and its field.
+    const std::pair<const char*, std::string Options::*> fields[] = {
+        {"accel", &Options::accel},         {"leaf_size", &Options::leaf_size}, {"width", &Options::width},
+        {"height", &Options::height},       {"samples", &Options::samples},     {"adaptive", &Options::adaptive},
+        {"max_depth", &Options::max_depth}, {"encoding", &Options::encoding},
+    };
+    for (const auto& [name, field] : fields)
+        if (key == name) return &(options.*field);
+    return nullptr;
 }
 
 void apply_overrides(const Options& options, SceneDescription& scene) {

@@ -54,6 +54,12 @@ void add_options(CLI::App& app, Options& options);
 // The first way the options given cannot go together (empty: none); reads the frame options
 // into options.frames.
 std::string combination_problem(Options& options);
+// Why `text` for the render override `key` (a --KEY of the command line without its dashes,
+// underscores for dashes: width, max_depth, adaptive, ...) is refused, or empty: the scene's own
+// rules; the text is left as the value checked.
+std::string override_problem(const std::string& key, std::string& text);
+// The field of `options` that holds the render override `key`, or nullptr if there is none.
+std::string* override_field(Options& options, const std::string& key);
 // The command line's overrides of the scene's render block, applied to `scene`.
 void apply_overrides(const Options& options, SceneDescription& scene);
 

@@ -31,10 +31,15 @@ const Codec& codec() {
     static std::once_flag once;
     std::call_once(once, [] {
         // Next to the executable (tracer, the tests and the benchmarks are built into one
-        // folder), else where the build put it.
+        // folder), else next to the shared object holding this code (the Python package's
+        // extension, installed beside it), else where the build put it.
         std::error_code ignored;
         const fs::path beside = fs::read_symlink("/proc/self/exe", ignored).parent_path() / "libtracer_oiio.so";
         void* module = dlopen(beside.c_str(), RTLD_NOW | RTLD_LOCAL);
+        Dl_info holder{};
+        if (!module && dladdr(reinterpret_cast<void*>(&codec), &holder) && holder.dli_fname)
+            module =
+                dlopen((fs::path(holder.dli_fname).parent_path() / "libtracer_oiio.so").c_str(), RTLD_NOW | RTLD_LOCAL);
         if (!module) module = dlopen(TRACER_MODULE_DIR "/libtracer_oiio.so", RTLD_NOW | RTLD_LOCAL);
         if (!module) {
             const char* why = dlerror();

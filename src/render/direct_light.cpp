@@ -91,6 +91,10 @@ Color direct_light(const ShadingPoint& point, std::span<Occluder> last_blockers,
     Color sum(0.0);
     const std::vector<Light>& lights = point.world.lights();
     for (size_t l = 0; l < lights.size(); ++l) {
+        // Up to kMostLightSamples point lights: every 64th looks at the cancel flag (the image is
+        // then discarded), so that a cancelled render does not shade on for seconds.
+        if ((l & 63) == 63 && point.cancel && point.cancel->load(std::memory_order_relaxed)) [[unlikely]]
+            break;
         const Light& light = lights[l];
         if (light.samples() == 1)
             sum += point_light_term(point, light, Vec3(light.position), light.color, last_blockers[l], counts);

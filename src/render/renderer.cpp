@@ -34,10 +34,23 @@ static Color shade_pixel(const World& world, const PinholeCamera& camera, const 
     return grid == 1 ? sum : sum * (1.0 / double(grid * grid));
 }
 
+// Where finished pixels go: the image's doubles, or the caller's floats (RenderOptions::float_pixels).
+struct PixelStore {
+    double* doubles;
+    float* floats;
+    // Pixel `index` (of its red value) set to `c`.
+    void put(size_t index, const Color& c) const {
+        if (floats)
+            floats[index] = float(c.r), floats[index + 1] = float(c.g), floats[index + 2] = float(c.b);
+        else
+            doubles[index] = c.r, doubles[index + 1] = c.g, doubles[index + 2] = c.b;
+    }
+};
+
 // Rows first .. first + rows - 1 of `area` (rows at most kTileRows), one sample a pixel, in
 // tiles of kTileRows x kTileColumns rays traced together (trace_packet).
 static void trace_tiles(const World& world, const PinholeCamera& camera, const RenderSettings& settings,
-                        const PixelRect& area, int first, int rows, Image& image, RayCounts& counts,
+                        const PixelRect& area, int first, int rows, const PixelStore& store, RayCounts& counts,
                         const std::atomic<bool>* cancel) {
     // The rows' rays are made before any is traced (see render's worker).
     thread_local std::vector<Ray> row_rays[kTileRows];
@@ -60,8 +73,7 @@ static void trace_tiles(const World& world, const PinholeCamera& camera, const R
         n = 0;
         for (int r = 0; r < rows; ++r)
             for (int c = 0; c < columns; ++c) {
-                double* out = &image.rgb[(size_t(first + r) * size_t(area.width) + size_t(x + c)) * 3];
-                out[0] = colors[n].r, out[1] = colors[n].g, out[2] = colors[n].b;
+                store.put((size_t(first + r) * size_t(area.width) + size_t(x + c)) * 3, colors[n]);
                 ++n;
             }
     }
@@ -69,7 +81,8 @@ static void trace_tiles(const World& world, const PinholeCamera& camera, const R
 
 // The pixels to render (the crop, kept inside the frame; no crop: the frame), with `image`
 // sized and placed for just them.
-static PixelRect image_of_crop(const RenderSettings& settings, const PixelRect& crop, Image& image) {
+static PixelRect image_of_crop(const RenderSettings& settings, const PixelRect& crop, const float* float_pixels,
+                               Image& image) {
     PixelRect area = crop.width > 0 ? crop : PixelRect{0, 0, settings.width, settings.height};
     area.x0 = std::clamp(area.x0, 0, settings.width);
     area.y0 = std::clamp(area.y0, 0, settings.height);
@@ -81,7 +94,7 @@ static PixelRect image_of_crop(const RenderSettings& settings, const PixelRect& 
     image.y0 = area.y0;
     image.frame_width = settings.width;
     image.frame_height = settings.height;
-    image.rgb.resize(size_t(area.width) * size_t(area.height) * 3);
+    image.rgb.resize(float_pixels ? 0 : size_t(area.width) * size_t(area.height) * 3);
     return area;
 }
 
@@ -115,7 +128,8 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
     const int grid = int(std::lround(std::sqrt(double(settings.samples))));
 
     // Step 1: the pixels to render, and an image of just them.
-    const PixelRect area = image_of_crop(settings, options.crop, image);
+    const PixelRect area = image_of_crop(settings, options.crop, options.float_pixels, image);
+    const PixelStore store{image.rgb.data(), options.float_pixels};
 
     // Step 2: rows handed to the threads one at a time (adaptive: in bands, whose rows share
     // their edges' samples). The time is the render loop's (as embree_bench's): it leaves out
@@ -139,24 +153,27 @@ bool render(const World& world, const SceneDescription& scene, const RenderOptio
         RayCounts counts;
         std::vector<Vec3> directions(size_t(area.width));
         std::vector<Ray> rays(size_t(area.width));  // made before any is traced (trace_row)
+        std::vector<double> float_row(store.floats ? size_t(area.width) * 3 : 0);  // a row before it is floats
         std::optional<AdaptivePixels> corners;
         if (adaptive) corners.emplace(world, camera, settings, cancel, area.x0, area.y0, area.width, area.height);
         for (int first; (first = next_row.fetch_add(band) - band_offset) < area.height;) {
             if (tiles) {
                 const int rows = std::min(band, area.height - first);
-                trace_tiles(world, camera, settings, area, first, rows, image, counts, cancel);
+                trace_tiles(world, camera, settings, area, first, rows, store, counts, cancel);
                 const int done = rows_done.fetch_add(rows) + rows;
                 if (index == 0 && options.progress) options.progress(double(done) / area.height);
                 continue;
             }
             for (int row = std::max(first, 0); row < std::min(first + band, area.height); ++row) {
                 if (cancel && cancel->load()) break;
-                double* out = image.rgb.data() + size_t(row) * size_t(area.width) * 3;
+                const size_t row_start = size_t(row) * size_t(area.width) * 3;
+                double* out = store.floats ? float_row.data() : store.doubles + row_start;
                 if (adaptive)
                     corners->row(area.y0 + row, out, counts);
                 else
                     trace_row(world, camera, settings, area, area.y0 + row, grid, directions, rays, out, counts,
                               cancel);
+                if (store.floats) std::copy(float_row.begin(), float_row.end(), store.floats + row_start);
                 const int done = rows_done.fetch_add(1) + 1;
                 if (index == 0 && options.progress) options.progress(double(done) / area.height);
             }

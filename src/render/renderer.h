@@ -27,6 +27,10 @@ struct RenderOptions {
     std::function<void(double)> progress;
     // When set to true, workers stop within a few hundred rays and render() returns false.
     const std::atomic<bool>* cancel = nullptr;
+    // When set, the pixels go here as floats (the crop's width x height x 3, row 0 at the top)
+    // and the image holds no pixels of its own: the Python module's arrays, with no image of
+    // doubles beside them.
+    float* float_pixels = nullptr;
 };
 
 struct RenderStats {

@@ -140,7 +140,8 @@ struct TreeBudget {
 // km of the mirrors passed so far. This keeps any max_depth off the call stack and stops as
 // soon as a surface reflects nothing. Refracted rays are further paths (Branch) of their own.
 // Compiled twice: without refraction (kRefracts false) it is the single-path loop alone.
-// Every secondary ray counts towards kMostRaysPerTree; every hit looks at `cancel`.
+// Every secondary ray counts towards kMostRaysPerTree; every 256th looks at `cancel`, as do
+// the lights of a hit (direct_light).
 // `first_hit`: the primary ray's nearest hit, if already searched for (trace_packet), else null.
 template <bool kRefracts>
 [[gnu::noinline]] static Color trace_surfaces(const World& world, const RenderSettings& settings, Ray ray,
@@ -165,10 +166,6 @@ template <bool kRefracts>
                 break;
             }
             if (depth == 0) ++counts.primary_hits;
-            // Cancelled: nothing more is shaded (a hit's lights may take up to kMostLightSamples
-            // shadow rays, and a packet of primary rays is shaded hit after hit).
-            if (cancel && cancel->load(std::memory_order_relaxed)) [[unlikely]]
-                return color;
             // Built in place: through a std::optional the record was copied by wide loads of
             // narrower stores just made, which stall (docs/bench/code-figures.md).
             const SurfaceHit hit = world.surface(ray, *found);
