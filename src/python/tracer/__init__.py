@@ -13,13 +13,15 @@ See docs/guide/python.md.
 
 from __future__ import annotations
 
-import json
 import os
-from typing import TYPE_CHECKING
 
 from . import _tracer
 
-if TYPE_CHECKING:  # NumPy is imported when a render returns, not with tracer
+# Annotations only (type checkers take the name TYPE_CHECKING as true): `import tracer` imports
+# neither typing nor NumPy (the first render does), nor json (the first load does): 50 ms of
+# imports on a busy machine, more than all of tracer's own.
+TYPE_CHECKING = False
+if TYPE_CHECKING:
     import numpy
     from numpy.typing import ArrayLike
 
@@ -92,7 +94,7 @@ class Scene:
     def description(self) -> dict:
         """The resolved scene as plain data: what `tracer --dump-json` prints."""
         if self._description is None:
-            self._description = json.loads(_tracer.describe(self._handle))
+            self._description = _json(_tracer.describe(self._handle))
         return self._description
 
     def render(
@@ -134,7 +136,7 @@ class Scene:
         if region is not None and len(area) != 4:
             raise ValueError("region must be (x0, y0, width, height)")
         pixels, stats = _tracer.render(self._handle, overrides, threads, area)
-        return (pixels, json.loads(stats)) if return_stats else pixels
+        return (pixels, _json(stats)) if return_stats else pixels
 
     def _repr_png_(self) -> bytes:
         """A notebook's view of the scene: a preview at most 400 pixels wide, sRGB."""
@@ -144,6 +146,13 @@ class Scene:
 
     def __repr__(self) -> str:
         return f"tracer.Scene({self.name!r})"
+
+
+def _json(text: str) -> object:
+    """`text` read as JSON (json imported on first use)."""
+    import json
+
+    return json.loads(text)
 
 
 def _whole(value: object, what: str) -> int:
@@ -187,7 +196,7 @@ def _arguments(defines: dict | None, include: list | tuple) -> tuple[list, list]
 def _loaded(path: str, text: str | None, defines: dict | None, include: list | tuple) -> Scene:
     pairs, folders = _arguments(defines, include)
     handle, report_text = _tracer.load(path, text, pairs, folders)
-    report = json.loads(report_text)
+    report = _json(report_text)
     if handle is None:
         raise SceneError(report)
     return Scene(handle, report)

@@ -22,6 +22,10 @@ BENCHMARKS = {
         "issue 57's targets: start-up, an orbit against POV-Ray, 240 frames, the farm (docs/bench/bench-animation.md)",
     ),
     "solids": ("solids", "issue 55's costs: a die against a box and POV-Ray, 10^4 dice (docs/bench/bench-solids.md)"),
+    "python": (
+        "python_module",
+        "issue 58's targets: import time, a render against the command line's, memory (docs/bench/bench-python.md)",
+    ),
     "task2": ("task2", "task2 rendered 9 times: median time and Mrays/s (docs/bench/bench-task2.txt)"),
     "bvh": ("bvh", "the four accelerators on the bunny at five sizes, against Embree (docs/bench/performance*)"),
     "many": ("many", "many spheres and bunny instances, against Embree (docs/bench/many-objects*)"),
