@@ -24,7 +24,7 @@ struct ShadingPoint {
     const SpawnPoint& spawn;
     const Vec3& normal;  // the shading normal, turned to face the incoming ray
     const Vec3& to_viewer;
-    const std::atomic<bool>* cancel;  // the render's (or null): an area light's samples look at it
+    const std::atomic<bool>* cancel;  // the render's (or null): the lights' loops look at it
 };
 
 // The Phong terms of every light that the point sees (no ambient), each shadowed by the

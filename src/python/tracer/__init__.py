@@ -29,9 +29,6 @@ __all__ = ["Diagnostic", "Picture", "Scene", "SceneError", "load", "loads", "sho
 
 version: str = _tracer.version
 
-# The render settings a render may override: each the command line's --KEY (underscores for dashes).
-_SETTINGS = ("width", "height", "samples", "adaptive", "max_depth", "accel", "leaf_size", "encoding")
-
 
 class Diagnostic:
     """One error, warning or note, where the command line would print it.
