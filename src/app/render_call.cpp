@@ -8,15 +8,32 @@
 
 #include "app/options.h"
 #include "app/regions.h"
+#include "io/native_images.h"
 #include "lang/validate.h"
 #include "render/render_stats.h"
 
 namespace tracer {
 
-RenderCall::RenderCall(std::shared_ptr<const LoadedScene> loaded,
+std::shared_ptr<const World> WorldCache::world_for(const SceneDescription& scene, const SceneMeshes& meshes,
+                                                   int threads) {
+    const std::lock_guard lock(guard_);  // a second render waits for the first one's build
+    if (!world_ || accel_ != scene.render.accel || leaf_size_ != scene.render.leaf_size) {
+        world_.reset();  // the old world's memory back before the new one's build
+        world_ = std::make_shared<const World>(scene, meshes, threads);
+        accel_ = scene.render.accel;
+        leaf_size_ = scene.render.leaf_size;
+    }
+    return world_;
+}
+
+RenderCall::RenderCall(std::shared_ptr<const LoadedScene> loaded, std::shared_ptr<WorldCache> worlds,
                        const std::vector<std::pair<std::string, std::string>>& overrides, int threads,
-                       const std::vector<int>& region)
-    : loaded_(std::move(loaded)), scene_(loaded_->scene), threads_(threads) {
+                       const std::vector<int>& region, std::optional<Encoding> eight_bit)
+    : loaded_(std::move(loaded)),
+      worlds_(std::move(worlds)),
+      scene_(loaded_->scene),
+      threads_(threads),
+      eight_bit_(eight_bit) {
     // Step 1: the overrides, each checked as the command line checks its option.
     Options options;
     for (const auto& [key, value] : overrides) {
@@ -40,8 +57,9 @@ RenderCall::RenderCall(std::shared_ptr<const LoadedScene> loaded,
     }
 }
 
-float* RenderCall::allocate() {
-    pixels_ = new float[size_t(area_.width) * size_t(area_.height) * 3];
+void* RenderCall::allocate() {
+    const size_t values = size_t(area_.width) * size_t(area_.height) * 3;
+    pixels_ = eight_bit_ ? static_cast<void*>(new unsigned char[values]) : static_cast<void*>(new float[values]);
     return pixels_;
 }
 
@@ -56,17 +74,20 @@ bool RenderCall::run(const std::function<bool()>& keep_going) {
         try {
             // The world the command line builds (it releases the flat shapes' lists as it goes;
             // the scene here stays whole for the next render).
-            const World world(scene_, loaded_->meshes, threads_);
+            const std::shared_ptr<const World> world = worlds_->world_for(scene_, loaded_->meshes, threads_);
             RenderOptions options;
             options.threads = threads_;
             options.crop = area_;
             options.cancel = &cancel;
-            options.float_pixels = pixels_;
+            if (!eight_bit_) options.float_pixels = static_cast<float*>(pixels_);
             Image image;
             RenderStats stats;
-            if (render(world, scene_, options, image, stats))
-                stats_json_ = render_stats_json(world, scene_, stats)
+            if (render(*world, scene_, options, image, stats)) {
+                if (eight_bit_)
+                    eight_bit_rows(image, *eight_bit_ == Encoding::Srgb, static_cast<unsigned char*>(pixels_));
+                stats_json_ = render_stats_json(*world, scene_, stats)
                                   .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+            }
         } catch (...) {
             failure = std::current_exception();
         }

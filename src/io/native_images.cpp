@@ -64,15 +64,19 @@ bool srgb_bytes_match_the_curve(double value) {
     return srgb_byte(value) == to_8bit(srgb_encoded(value));
 }
 
+void eight_bit_rows(const Image& image, bool srgb, unsigned char* out) {
+    if (srgb)
+        std::transform(image.rgb.begin(), image.rgb.end(), out, srgb_byte);
+    else
+        std::transform(image.rgb.begin(), image.rgb.end(), out, to_8bit);
+}
+
 namespace {
 
 // The 8-bit RGB bytes of the image, row by row from the top.
 std::vector<unsigned char> eight_bit_rows(const Image& image, bool srgb) {
     std::vector<unsigned char> bytes(image.rgb.size());
-    if (srgb)
-        std::transform(image.rgb.begin(), image.rgb.end(), bytes.begin(), srgb_byte);
-    else
-        std::transform(image.rgb.begin(), image.rgb.end(), bytes.begin(), to_8bit);
+    eight_bit_rows(image, srgb, bytes.data());
     return bytes;
 }
 

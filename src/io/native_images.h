@@ -22,6 +22,10 @@ std::optional<NativeFormat> native_format(const std::string& path);
 std::optional<std::string> encode_native(NativeFormat format, const Image& image, bool srgb,
                                          std::vector<unsigned char>& encoded);
 
+// The image's 8-bit RGB bytes as encode_native writes them (row by row from the top) into `out`
+// (image.rgb.size() bytes).
+void eight_bit_rows(const Image& image, bool srgb, unsigned char* out);
+
 // True if the fast sRGB byte of `value` (a table of the curve's steps) is the curve's own,
 // to_8bit(srgb_encoded(value)) (for the tests).
 bool srgb_bytes_match_the_curve(double value);

@@ -28,11 +28,14 @@ using namespace nb::literals;
 namespace {
 
 using Pixels = nb::ndarray<nb::numpy, float, nb::shape<-1, -1, 3>, nb::c_contig>;
+using Bytes = nb::ndarray<nb::numpy, uint8_t, nb::shape<-1, -1, 3>, nb::c_contig>;
 using PixelsIn = nb::ndarray<const float, nb::shape<-1, -1, 3>, nb::c_contig, nb::device::cpu>;
 
-// A scene loaded with its meshes and image files, shared by every render made of it.
+// A scene loaded with its meshes and image files, shared by every render made of it, and the
+// world last built of it (the next render with the same accelerator settings reuses it).
 struct Scene {
     std::shared_ptr<const tracer::LoadedScene> loaded;
+    std::shared_ptr<tracer::WorldCache> worlds = std::make_shared<tracer::WorldCache>();
 };
 
 // Loads a scene from `path`, or from `text` (then `path` only names it), with -D `defines` and
@@ -60,26 +63,52 @@ std::string describe(const Scene& scene) {
     return out.str();
 }
 
+// The encoding named `name` ("linear" or "srgb"), or ValueError.
+tracer::Encoding encoding_of(const std::string& name) {
+    tracer::Encoding encoding = tracer::Encoding::Linear;
+    if (!tracer::encoding_from_name(name, encoding))
+        throw std::invalid_argument("encoding must be 'linear' or 'srgb', not '" + name + "'");
+    return encoding;
+}
+
 // Renders `scene` with the command line's `overrides` (KEY, TEXT pairs: width, samples, ...),
 // `threads` and `region` (x0, y0, width, height; empty: the frame); returns (pixels as a float32
-// array of shape (height, width, 3) that owns them, the statistics as JSON text). Ctrl-C raises
-// KeyboardInterrupt within tracer::kSignalLook; a bad setting raises ValueError.
-nb::tuple render(const Scene& scene, const std::vector<std::pair<std::string, std::string>>& overrides, int threads,
-                 const std::vector<int>& region) {
-    tracer::RenderCall call(scene.loaded, overrides, threads, region);  // throws std::invalid_argument
-    float* pixels = call.allocate();                                    // throws std::bad_alloc
-    nb::capsule owner(pixels, [](void* p) noexcept { delete[] static_cast<float*>(p); });
-    bool interrupted = false;
+// array of shape (height, width, 3) that owns them, or with `encoding` ("linear", "srgb") a uint8
+// array of an 8-bit file's bytes; the statistics as JSON text), or None if `stop` (None or a
+// callable asked every tracer::kSignalLook) returned true. Ctrl-C raises KeyboardInterrupt within
+// kSignalLook, as does what `stop` raises; a bad setting ValueError.
+nb::object render(const Scene& scene, const std::vector<std::pair<std::string, std::string>>& overrides, int threads,
+                  const std::vector<int>& region, nb::object stop, std::optional<std::string> encoding) {
+    std::optional<tracer::Encoding> eight_bit;
+    if (encoding) eight_bit = encoding_of(*encoding);
+    tracer::RenderCall call(scene.loaded, scene.worlds, overrides, threads, region, eight_bit);  // invalid_argument
+    void* pixels = call.allocate();                                                              // std::bad_alloc
+    void (*free_bytes)(void*) noexcept = [](void* p) noexcept { delete[] static_cast<unsigned char*>(p); };
+    void (*free_floats)(void*) noexcept = [](void* p) noexcept { delete[] static_cast<float*>(p); };
+    nb::capsule owner(pixels, eight_bit ? free_bytes : free_floats);
+    bool raised = false;  // a Python exception is set: a signal handler's or stop's
+    bool finished = false;
     {
         nb::gil_scoped_release unlocked;
-        interrupted = !call.run([] {
+        finished = call.run([&] {
             nb::gil_scoped_acquire locked;
-            return PyErr_CheckSignals() == 0;  // false: a signal handler raised (KeyboardInterrupt)
+            if (PyErr_CheckSignals() != 0) {  // a signal handler raised (KeyboardInterrupt)
+                raised = true;
+                return false;
+            }
+            if (stop.is_none()) return true;
+            PyObject* answer = PyObject_CallNoArgs(stop.ptr());
+            const int truth = answer ? PyObject_IsTrue(answer) : -1;
+            Py_XDECREF(answer);
+            if (truth < 0) raised = true;
+            return truth == 0;
         });
     }
-    if (interrupted) throw nb::python_error();
+    if (raised) throw nb::python_error();
+    if (!finished) return nb::none();
     const size_t shape[3] = {size_t(call.height()), size_t(call.width()), 3};
-    return nb::make_tuple(Pixels(pixels, 3, shape, owner), call.stats_json());
+    if (eight_bit) return nb::make_tuple(Bytes(static_cast<uint8_t*>(pixels), 3, shape, owner), call.stats_json());
+    return nb::make_tuple(Pixels(static_cast<float*>(pixels), 3, shape, owner), call.stats_json());
 }
 
 // `pixels` (float32, height x width x 3, linear) as a tracer image.
@@ -89,14 +118,6 @@ tracer::Image image_of(const PixelsIn& pixels) {
     image.height = image.frame_height = int(pixels.shape(0));
     image.rgb.assign(pixels.data(), pixels.data() + pixels.size());
     return image;
-}
-
-// The encoding named `name` ("linear" or "srgb"), or ValueError.
-tracer::Encoding encoding_of(const std::string& name) {
-    tracer::Encoding encoding = tracer::Encoding::Linear;
-    if (!tracer::encoding_from_name(name, encoding))
-        throw std::invalid_argument("encoding must be 'linear' or 'srgb', not '" + name + "'");
-    return encoding;
 }
 
 // Writes `pixels` to `path` as the command line would (the format by the extension, 8-bit
@@ -136,8 +157,9 @@ NB_MODULE(_tracer, m) {
     m.def("load", &load, "path"_a, "text"_a.none(), "defines"_a, "include"_a,
           "Loads a scene from path (or from text, named path); returns (Scene or None, report JSON).");
     m.def("describe", &describe, "scene"_a, "The resolved scene description as JSON text (tracer --dump-json).");
-    m.def("render", &render, "scene"_a, "overrides"_a, "threads"_a, "region"_a,
-          "Renders the scene; returns (float32 pixels of shape (height, width, 3), statistics JSON).");
+    m.def("render", &render, "scene"_a, "overrides"_a, "threads"_a, "region"_a, "stop"_a.none(), "encoding"_a.none(),
+          "Renders the scene; returns (float32 pixels of shape (height, width, 3), or uint8 ones with "
+          "an encoding, statistics JSON), or None if stop() said so.");
     m.def("write_image", &write_image, "path"_a, "pixels"_a, "encoding"_a,
           "Writes pixels to path as the command line writes images (atomically).");
     m.def("png_bytes", &png_bytes, "pixels"_a, "encoding"_a, "The pixels as an 8-bit PNG file's bytes.");

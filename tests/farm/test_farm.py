@@ -16,15 +16,17 @@ from conftest import ROOT, SCENES, farm, read_pixels, render
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
+@pytest.mark.parametrize("engine", ["module", "process"])
 @pytest.mark.parametrize("extension", [".png", ".exr"])
 @pytest.mark.parametrize("scene", ["task2", "bunny_room", "many_spheres"])
-def test_tiled_render_is_identical_to_tracer_alone(tracer_bin, tmp_path, scene, extension):
+def test_tiled_render_is_identical_to_tracer_alone(tracer_bin, tmp_path, scene, extension, engine):
     alone = render(tracer_bin, SCENES / f"{scene}.scn", tmp_path / f"alone{extension}", "--width", "600")
     output = tmp_path / f"farm{extension}"
-    result = farm(
-        SCENES / f"{scene}.scn", "-o", output, "--width", 600, "--workers", 2, "--tile", 90, tracer=tracer_bin
-    )
+    timings = tmp_path / "timings.json"
+    arguments = ["--width", 600, "--workers", 2, "--tile", 90, "--engine", engine, "--timings", timings]
+    result = farm(SCENES / f"{scene}.scn", "-o", output, *arguments, tracer=tracer_bin)
     assert result.returncode == 0, result.stderr
+    assert json.loads(timings.read_text())["engine"] == engine
     tiled, spec = read_pixels(output)
     assert tiled.dtype == alone.dtype and tiled.shape == alone.shape and tiled.shape[1] == 600
     assert np.array_equal(tiled, alone)
@@ -43,11 +45,13 @@ def test_a_jittered_area_light_is_tiled_into_the_same_image(tracer_bin, tmp_path
     assert np.array_equal(tiled, alone)
 
 
-def test_an_srgb_scene_is_tiled_into_the_same_srgb_file(tracer_bin, tmp_path):
+@pytest.mark.parametrize("engine", ["module", "process"])
+def test_an_srgb_scene_is_tiled_into_the_same_srgb_file(tracer_bin, tmp_path, engine):
     scene = tmp_path / "srgb.scn"
     scene.write_text((SCENES / "task2.scn").read_text().replace("max_depth 4", "max_depth 4 encoding srgb"))
     alone = render(tracer_bin, scene, tmp_path / "alone.png", "--width", "300")
-    result = farm(scene, "-o", tmp_path / "farm.png", "--width", 300, "--workers", 2, "--tile", 90, tracer=tracer_bin)
+    arguments = ["--width", 300, "--workers", 2, "--tile", 90, "--engine", engine]
+    result = farm(scene, "-o", tmp_path / "farm.png", *arguments, tracer=tracer_bin)
     assert result.returncode == 0, result.stderr
     tiled, _ = read_pixels(tmp_path / "farm.png")
     assert np.array_equal(tiled, alone)
@@ -131,6 +135,20 @@ def test_a_tile_that_keeps_failing_fails_the_job_with_tracers_diagnostic(tracer_
     assert not output.exists() and os.listdir(tmp_path) == ["state"]
 
 
+def test_the_module_engine_needs_the_package_beside_tracer(tmp_path):
+    fake = tmp_path / "bin" / "tracer"  # an executable with no python/ folder beside it
+    fake.parent.mkdir()
+    fake.write_text("#!/bin/sh\nexit 1\n")
+    fake.chmod(0o755)
+    result = farm(SCENES / "task2.scn", "-o", tmp_path / "out.png", "--engine", "module", tracer=fake)
+    assert result.returncode == 3, result.stderr
+    assert result.stderr == (
+        f"farm: error: --engine module: no tracer package built in '{fake.parent / 'python'}' "
+        "(build it: tools/bootstrap --python)\n"
+    )
+    assert not (tmp_path / "out.png").exists()
+
+
 def test_scene_error_is_reported_once_before_any_tile(tmp_path, tracer_bin):
     scene = tmp_path / "broken.scn"
     scene.write_text((SCENES / "task2.scn").read_text().replace("radius", "radios", 1))
@@ -164,7 +182,7 @@ def wait_until(condition, failure, process=None, seconds=120):
 
 def start_long_farm(output, tracer_bin, *extra):
     """A farm of many small tiles taking a few seconds, and its process (once tracer processes run, for a
-    local cluster)."""
+    local cluster of the process engine; at once for the module engine's)."""
     command = [
         sys.executable,
         "-m",
@@ -183,13 +201,13 @@ def start_long_farm(output, tracer_bin, *extra):
         "-q",
         *extra,
     ]
-    if not extra:
+    if "--address" not in extra:
         command += ["--workers", "2"]
     process = subprocess.Popen(
         command, env={**os.environ, "PYTHONPATH": str(ROOT / "tools")}, cwd=ROOT, stderr=subprocess.PIPE, text=True
     )
     root = psutil.Process(process.pid)
-    if not extra:
+    if extra == ("--engine", "process"):
         wait_until(lambda: region_list_processes(root), "the farm started no worker", process)
     return process, root
 
@@ -197,7 +215,7 @@ def start_long_farm(output, tracer_bin, *extra):
 def test_killed_tracer_mid_tile_still_gives_the_identical_image(tracer_bin, tmp_path):
     alone = render(tracer_bin, SCENES / "bunny_room.scn", tmp_path / "alone.png", "--width", 600, "--samples", 36)
     output = tmp_path / "farm.png"
-    process, root = start_long_farm(output, tracer_bin)
+    process, root = start_long_farm(output, tracer_bin, "--engine", "process")
     region_list_processes(root)[0].kill()  # a local worker's tracer process, loading or rendering
     assert not output.exists()  # killed mid-job
     _, errors = process.communicate(timeout=300)
@@ -245,10 +263,14 @@ def test_cluster_by_address_survives_a_killed_dask_worker(tracer_bin, tmp_path, 
     assert np.array_equal(read_pixels(output)[0], alone)
 
 
-def test_interrupted_farm_writes_nothing_and_leaves_no_tracer(tracer_bin, tmp_path):
+@pytest.mark.parametrize("engine", ["module", "process"])
+def test_interrupted_farm_writes_nothing_and_leaves_no_tracer(tracer_bin, tmp_path, engine):
     output = tmp_path / "farm.png"
-    process, root = start_long_farm(output, tracer_bin)
+    process, root = start_long_farm(output, tracer_bin, "--engine", engine)
+    kept = tmp_path / ".farm.png.farm"
+    wait_until(lambda: kept.is_dir() and len(os.listdir(kept)) > 1, "no tile was kept", process)
     workers = region_list_processes(root)
+    assert bool(workers) == (engine == "process")
     process.send_signal(signal.SIGINT)
     _, errors = process.communicate(timeout=120)
     assert process.returncode == 130, errors

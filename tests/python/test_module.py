@@ -51,6 +51,77 @@ def test_array_equals_the_command_lines_exr_bit_for_bit(tmp_path, scene, setting
     assert numpy.array_equal(pixels.view(numpy.uint32), expected.view(numpy.uint32))
 
 
+@pytest.mark.parametrize(
+    "scene, settings, options",
+    [
+        ("scenes/bunny_room.scn", {"width": 600, "encoding": "linear"}, ["--width", "600"]),
+        ("scenes/task2.scn", {"region": (100, 50, 64, 48), "encoding": "srgb"}, ["--region", "100", "50", "64", "48"]),
+    ],
+)
+def test_eight_bit_pixels_equal_the_command_lines_png(tmp_path, scene, settings, options):
+    pixels = tracer.load(ROOT / scene).render(**settings)
+    out = tmp_path / "cli.png"
+    encoding = ["--encoding", settings["encoding"]]
+    subprocess.run([TRACER, scene, "-o", str(out), "--quiet", *encoding, *options], check=True, cwd=ROOT)
+    image = oiio.ImageInput.open(str(out))
+    expected = image.read_image(format=oiio.UINT8)
+    image.close()
+    assert pixels.dtype == numpy.uint8 and pixels.shape == expected.shape
+    assert numpy.array_equal(pixels, expected)
+    with pytest.raises(ValueError, match="encoding"):
+        tracer.load(ROOT / scene).render(width=8, encoding="gamma")
+
+
+def test_the_world_is_built_once_and_again_when_its_settings_change():
+    scene = tracer.load(ROOT / "scenes/bunny_room.scn")
+
+    def mesh_stats(**settings):
+        return scene.render(width=40, threads=1, return_stats=True, **settings)[1]["meshes"][0]
+
+    first = mesh_stats()
+    assert mesh_stats(samples=4) == first  # the same world: its build's own figures, time and all
+    other = mesh_stats(leaf_size=1)
+    assert other["leaf_size_max"] == 1 and first["leaf_size_max"] > 1
+    assert mesh_stats(leaf_size=1, samples=4) == other
+    assert mesh_stats()["leaf_size_max"] == first["leaf_size_max"]  # rebuilt with the scene's own
+
+
+def test_a_stop_function_stops_a_render_and_the_scene_stays_usable():
+    scene = tracer.load(ROOT / "scenes/task2.scn")
+    stop = threading.Event()
+    timer = threading.Timer(0.3, stop.set)
+    timer.start()
+    with pytest.raises(tracer.RenderStopped):
+        scene.render(width=8192, samples=64, threads=1, stop=stop.is_set)  # hours if not stopped
+    timer.join()
+
+    def refuses():
+        raise LookupError("stop's own error")
+
+    with pytest.raises(LookupError, match="stop's own error"):
+        scene.render(width=8192, samples=64, threads=1, stop=refuses)
+    with pytest.raises(TypeError, match="stop"):
+        scene.render(width=8, stop=True)
+    calls = []
+    pixels = scene.render(width=60, stop=lambda: calls.append(1) and False)
+    assert pixels.shape == (40, 60, 3)
+
+
+def test_two_threads_render_one_scene_at_once():
+    scene = tracer.load(ROOT / "scenes/bunny_room.scn")
+    together = [None, None]
+
+    def run(i):
+        together[i] = scene.render(width=160, threads=1, region=(0, 40 * i, 160, 40))
+
+    workers = [threading.Thread(target=run, args=(i,)) for i in range(2)]
+    for worker in workers:
+        worker.start()
+    for worker in workers:
+        worker.join()
+    assert numpy.array_equal(numpy.concatenate(together), scene.render(width=160, region=(0, 0, 160, 80)))
+
+
 def test_description_is_dump_json():
     expected = json.loads(
         subprocess.run(

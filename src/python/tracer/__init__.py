@@ -7,8 +7,8 @@
 
 A scene with errors raises SceneError, which carries every diagnostic as data and prints as the
 command line does. Rendering releases the GIL (other threads run; two scenes may render at once)
-and stops with KeyboardInterrupt on Ctrl-C. NumPy is imported only when a render returns.
-See docs/guide/python.md.
+and stops with KeyboardInterrupt on Ctrl-C, or RenderStopped when its `stop` function says so.
+NumPy is imported only when a render returns. See docs/guide/python.md.
 """
 
 from __future__ import annotations
@@ -22,10 +22,23 @@ from . import _tracer
 # imports on a busy machine, more than all of tracer's own.
 TYPE_CHECKING = False
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     import numpy
     from numpy.typing import ArrayLike
 
-__all__ = ["Diagnostic", "Picture", "Scene", "SceneError", "load", "loads", "show", "version", "write_image"]
+__all__ = [
+    "Diagnostic",
+    "Picture",
+    "RenderStopped",
+    "Scene",
+    "SceneError",
+    "load",
+    "loads",
+    "show",
+    "version",
+    "write_image",
+]
 
 version: str = _tracer.version
 
@@ -76,6 +89,10 @@ class SceneError(Exception):
         return [d for d in self.diagnostics if d.severity == "error"]
 
 
+class RenderStopped(Exception):
+    """A render that its `stop` function stopped before the end (no image)."""
+
+
 class Scene:
     """A loaded scene with its meshes and image files: render it as often as you like, with any
     settings, from any thread."""
@@ -106,6 +123,8 @@ class Scene:
         leaf_size: int | None = None,
         threads: int = 0,
         region: tuple[int, int, int, int] | None = None,
+        stop: Callable[[], bool] | None = None,
+        encoding: str | None = None,
         return_stats: bool = False,
     ) -> numpy.ndarray | tuple[numpy.ndarray, dict]:
         """Renders the scene into a float32 NumPy array of shape (height, width, 3), linear RGB,
@@ -114,8 +133,16 @@ class Scene:
         The settings override the scene's render block as the command line's options do (one of
         width and height alone keeps the aspect ratio; adaptive is THRESHOLD, (THRESHOLD, DEPTH)
         or (THRESHOLD, DEPTH, CELL)); threads 0 uses every core; region (x0, y0, width, height)
-        renders that window of the frame alone. With return_stats, returns (pixels, statistics),
-        the statistics as `tracer --stats-json` writes them. A bad setting raises ValueError.
+        renders that window of the frame alone. With `encoding` ("linear" or "srgb") the pixels
+        are the uint8 bytes an 8-bit file of the command line holds (rounded from the renderer's
+        doubles: rounding the float32 array instead is one level off in about one value in
+        100,000), else linear float32. `stop`, if given, is called every 20 ms while the
+        render runs (on the calling thread, holding the GIL): when it returns true the render stops
+        and RenderStopped is raised (`stop=event.is_set` stops it from another thread; Ctrl-C
+        raises KeyboardInterrupt as ever). The world (the meshes' BVHs) is built on the first
+        render and kept for the next ones with the same accel and leaf_size. With return_stats,
+        returns (pixels, statistics), the statistics as `tracer --stats-json` writes them. A bad
+        setting raises ValueError.
         """
         given = dict(
             width=width,
@@ -132,7 +159,12 @@ class Scene:
         area = [] if region is None else [_whole(v, "region") for v in region]
         if region is not None and len(area) != 4:
             raise ValueError("region must be (x0, y0, width, height)")
-        pixels, stats = _tracer.render(self._handle, overrides, threads, area)
+        if stop is not None and not callable(stop):
+            raise TypeError("stop must be a function of no arguments (e.g. a threading.Event's is_set)")
+        rendered = _tracer.render(self._handle, overrides, threads, area, stop, encoding)
+        if rendered is None:
+            raise RenderStopped("the render was stopped by its stop function")
+        pixels, stats = rendered
         return (pixels, _json(stats)) if return_stats else pixels
 
     def _repr_png_(self) -> bytes:

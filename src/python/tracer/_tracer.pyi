@@ -20,9 +20,9 @@ def load(path: str, text: str | None, defines: Sequence[tuple[str, str]], includ
 def describe(scene: Scene) -> str:
     """The resolved scene description as JSON text (tracer --dump-json)."""
 
-def render(scene: Scene, overrides: Sequence[tuple[str, str]], threads: int, region: Sequence[int]) -> tuple:
+def render(scene: Scene, overrides: Sequence[tuple[str, str]], threads: int, region: Sequence[int], stop: object | None, encoding: str | None) -> object:
     """
-    Renders the scene; returns (float32 pixels of shape (height, width, 3), statistics JSON).
+    Renders the scene; returns (float32 pixels of shape (height, width, 3), or uint8 ones with an encoding, statistics JSON), or None if stop() said so.
     """
 
 def write_image(path: str, pixels: Annotated[NDArray[numpy.float32], dict(shape=(None, None, 3), order='C', device='cpu', writable=False)], encoding: str) -> None:

@@ -108,6 +108,14 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         "--worker-tracer", type=option_types.free_text, help="tracer's path on the workers (default: --tracer's)"
     )
     parser.add_argument(
+        "--engine",
+        choices=("auto", "module", "process"),
+        default="auto",
+        help="how workers render: 'module' in their own process with the tracer package beside --tracer\n"
+        "(its python/ folder), 'process' with tracer processes; 'auto' (default): module on a local\n"
+        "cluster when that package is built, else process",
+    )
+    parser.add_argument(
         "--timings", type=option_types.output_file, help="write the time split (start-up, tiles, assembly) as JSON here"
     )
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress line")
@@ -165,16 +173,50 @@ def jobs_of(arguments: argparse.Namespace) -> list[Job]:
     return [Job(os.path.abspath(arguments.scene), os.path.abspath(arguments.output), defines, overrides)]
 
 
-def check_jobs(tracer: str, jobs: list[Job]) -> None:
+def package_beside(tracer: str) -> str | None:
+    """The tracer package built beside the executable `tracer` (its build's python/ folder), imported
+    (that folder first on the module path): the extension's file, or None if it is not built there."""
+    folder = os.path.join(os.path.dirname(os.path.abspath(tracer)), "python")
+    if not os.path.isfile(os.path.join(folder, "tracer", "__init__.py")):
+        return None
+    if folder not in sys.path:
+        sys.path.insert(0, folder)
+    try:
+        import tracer as package
+    except ImportError:
+        return None
+    extension = package._tracer.__file__
+    return extension if os.path.dirname(os.path.dirname(os.path.abspath(extension))) == folder else None
+
+
+def choose_engine(arguments: argparse.Namespace) -> tuple[str, str]:
+    """How the workers render ("module" or "process", by --engine) and the file that renders (the
+    package's extension, or the tracer executable)."""
+    if arguments.engine == "process" or (arguments.engine == "auto" and arguments.address):
+        return "process", arguments.tracer
+    extension = package_beside(arguments.tracer)
+    if extension is not None:
+        return "module", extension
+    if arguments.engine == "module":
+        folder = os.path.join(os.path.dirname(os.path.abspath(arguments.tracer)), "python")
+        raise JobError(
+            f"--engine module: no tracer package built in '{folder}' (build it: tools/bootstrap --python)", 3
+        )
+    return "process", arguments.tracer
+
+
+def check_jobs(tracer: str, jobs: list[Job], engine: str = "process", renderer: str | None = None) -> None:
     """Checks every job's scene with tracer and its output path (each scene error is reported once, by
-    the JobError raised, before any tile is sent); prints tracer's warnings."""
+    the JobError raised, before any tile is sent); prints tracer's warnings. `engine` and `renderer`
+    (choose_engine's) go into each job's manifest."""
     if not os.access(tracer, os.X_OK):
         raise JobError(f"no tracer executable at '{tracer}' (build it: tools/bootstrap)", 3)
     # Each distinct scene (tracer's arguments) is checked and its inputs hashed once; each output
     # folder and format checked once: 10^5 jobs of one scene plan in seconds.
     checked = {}  # tracer's arguments -> (the checked job, the inputs' digests)
     outputs = OutputChecks()
-    tracer_digest = resume.file_digest(tracer)
+    renderer = renderer or tracer
+    tracer_digest = resume.file_digest(renderer)
     for job in jobs:
         key = tuple(job.tracer_arguments())
         if key in checked:
@@ -190,7 +232,7 @@ def check_jobs(tracer: str, jobs: list[Job]) -> None:
                 raise JobError(f"cannot read '{error.filename}': {error.strerror}", 3) from error
             checked[key] = job, inputs
         outputs.check(job)
-        job.manifest = resume.identity(tracer, job, inputs, tracer_digest)
+        job.manifest = resume.identity(renderer, job, inputs, tracer_digest, engine)
 
 
 def start_cluster(arguments: argparse.Namespace) -> tuple[Client, LocalCluster | None]:
@@ -245,7 +287,23 @@ def tile_failure(job: Job, region: Region, error: BaseException, retries: int) -
     return f"tile {region.text()} of {job.scene} failed {tries}; the last time:\n{reason}"
 
 
-def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, timings: dict) -> None:
+def worker_job_of(arguments: argparse.Namespace, engine: str, job: Job, key: str) -> dict:
+    """What the workers are sent of `job` for the engine chosen."""
+    if engine == "module":
+        settings = {name: str(value) for name, value in job.overrides.items()}
+        encoding = None if job.is_float() else "srgb" if job.srgb else "linear"
+        return worker.module_job(key, job.scene, job.defines, {**settings, "encoding": encoding})
+    worker_tracer = arguments.worker_tracer or os.path.abspath(arguments.tracer)
+    return worker.worker_job(
+        key,
+        [worker_tracer, *job.tracer_arguments(), "--region-list", "--threads", "1", "-q"],
+        ".exr" if job.is_float() else ".ppm",
+    )
+
+
+def run_jobs(
+    arguments: argparse.Namespace, jobs: list[Job], checking: Future, timings: dict, engine: str = "process"
+) -> None:
     """Starts the cluster and the workers' tracer processes of the first job while the jobs are checked
     (`checking`: no tile is sent before every scene passed), sends every tile of every job, pastes them as
     they come back and writes each finished image."""
@@ -256,16 +314,8 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
     if arguments.address:
         send_worker_module(client)
     timings["cluster_start_s"] = time.perf_counter() - start
-    worker_tracer = arguments.worker_tracer or os.path.abspath(arguments.tracer)
     keys = [job.key(index) for index, job in enumerate(jobs)]
-    worker_jobs = [
-        worker.worker_job(
-            keys[index],
-            [worker_tracer, *job.tracer_arguments(), "--region-list", "--threads", "1", "-q"],
-            ".exr" if job.is_float() else ".ppm",
-        )
-        for index, job in enumerate(jobs)
-    ]
+    worker_jobs = [worker_job_of(arguments, engine, job, keys[index]) for index, job in enumerate(jobs)]
     pending = {}
     try:
         client.run(worker.start_job, worker_jobs[0])  # the first scene loads on the workers meanwhile
@@ -282,7 +332,7 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
             tile, kept = stores[index].resume(arguments.tile, tile_size_for(job.width, job.height, slots))
             regions = split(job.width, job.height, tile)
             worker_job = worker_jobs[index]
-            suffix = worker_job["tile_suffix"]
+            suffix = worker_job.get("tile_suffix")  # None: the pixels as an array, not a file
             canvases.append(Canvas(job.width, job.height, np.float32 if job.is_float() else np.uint8, len(regions)))
             for region in regions:
                 if region in kept:
@@ -316,10 +366,10 @@ def run_jobs(arguments: argparse.Namespace, jobs: list[Job], checking: Future, t
                 raise JobError(tile_failure(jobs[index], region, future.exception(), arguments.retries), 1)
             data, seconds = future.result()
             work += seconds
-            transferred += len(data)
+            transferred += data.nbytes if suffix is None else len(data)
             moment = time.perf_counter()
             canvas = canvases[index]
-            pixels = decode_tile(data, suffix, canvas.pixels.dtype)
+            pixels = data if suffix is None else decode_tile(data, suffix, canvas.pixels.dtype)
             canvas.paste(region, pixels)
             assembly += time.perf_counter() - moment
             if INTERRUPTED["signal"]:  # an interrupt that a callback swallowed: stop at this tile
@@ -375,20 +425,25 @@ def main(argv: list[str] | None = None) -> int:
     start = time.perf_counter()
     timings: dict = {"started": start}
 
+    engine, renderer = "process", arguments.tracer
+
     def check(jobs: list[Job]) -> None:
-        check_jobs(arguments.tracer, jobs)
+        check_jobs(arguments.tracer, jobs, engine, renderer)
         timings["check_s"] = time.perf_counter() - start
 
     jobs: list[Job] = []
     failed = None  # the exit code of a failure
     try:
         jobs = jobs_of(arguments)
+        if arguments.frames is None:  # an animation's frames are rendered by tracer processes
+            engine, renderer = choose_engine(arguments)
+        timings["engine"] = engine
         if arguments.frames is not None:
             frames.run_animation(arguments, jobs[0], start_cluster, timings, INTERRUPTED)
             jobs = []  # no tiles are kept for frames: each is written whole
         else:
             with ThreadPoolExecutor(1) as pool:
-                run_jobs(arguments, jobs, pool.submit(check, jobs), timings)
+                run_jobs(arguments, jobs, pool.submit(check, jobs), timings, engine)
     except JobError as error:
         print(str(error) if error.tracers_own else f"farm: error: {error}", file=sys.stderr)
         failed = error.exit_code
@@ -413,7 +468,8 @@ def main(argv: list[str] | None = None) -> int:
     if arguments.timings:
         with open(arguments.timings, "w", encoding="utf-8") as file:
             figures = {key: value for key, value in timings.items() if key != "started"}
-            json.dump({key: round(value, 4) for key, value in figures.items()}, file, indent=2)
+            rounded = {key: round(value, 4) if isinstance(value, float) else value for key, value in figures.items()}
+            json.dump(rounded, file, indent=2)
     return 0
 
 

@@ -63,13 +63,21 @@ def input_digests(job: Job) -> dict[str, str]:
     return {os.path.abspath(path): file_digest(path) for path in [job.scene, *job.inputs]}
 
 
-def identity(tracer: str, job: Job, inputs: dict[str, str] | None = None, tracer_digest: str | None = None) -> dict:
-    """What the job's image depends on, as the manifest records it (the tile size aside); `inputs`
-    and `tracer_digest`: input_digests(job) and file_digest(tracer), when already known (jobs of
-    one scene share them)."""
+def identity(
+    tracer: str,
+    job: Job,
+    inputs: dict[str, str] | None = None,
+    tracer_digest: str | None = None,
+    engine: str = "process",
+) -> dict:
+    """What the job's image depends on, as the manifest records it (the tile size aside): `tracer` is
+    the file that renders (the executable, or the package's extension for the module engine);
+    `inputs` and `tracer_digest`: input_digests(job) and
+    file_digest(tracer), when already known (jobs of one scene share them)."""
     return {
         "version": VERSION,
         "tracer": file_digest(tracer) if tracer_digest is None else tracer_digest,
+        "engine": engine,
         "arguments": job.tracer_arguments(),
         "frame": [job.width, job.height],
         "float": job.is_float(),

@@ -1,7 +1,10 @@
-"""What runs on the workers: tracer processes (one per job and worker thread) that load the scene once
-and render the job's tiles one after another (`tracer --region-list`), each tile returned as the bytes
-of its image file. Standard library and Dask only: tools/farm uploads this file to a cluster's
-workers, which need Dask and the tracer executable, not this folder."""
+"""What runs on the workers, by the job's engine. "process": tracer processes (one per job and worker
+thread) that load the scene once and render the job's tiles one after another (`tracer
+--region-list`), each tile returned as the bytes of its image file. "module": the scene loaded once per
+worker process by the tracer package (tracer.load) and each tile rendered in the worker's own thread
+into an array (float32, or the bytes of an 8-bit file), returned as it is. Standard library, Dask
+and the tracer package only: tools/farm uploads this file to a cluster's workers, which need Dask
+and the tracer executable (or the package), not this folder."""
 
 from __future__ import annotations
 
@@ -15,11 +18,17 @@ import types
 
 
 def worker_job(key: str, command: list[str], tile_suffix: str) -> dict:
-    """How a worker runs tracer for one job: `key` names one job of one farm run, `command` loads its
-    scene (tracer SCENE [overrides] --region-list ...), tiles come back as `tile_suffix` files (".ppm"
-    for 8-bit outputs: raw bytes, quick to read; ".exr" for float ones; both lossless). Plain data:
-    the workers need no module of this folder to read it."""
-    return {"key": key, "command": list(command), "tile_suffix": tile_suffix}
+    """How a worker runs tracer processes for one job: `key` names one job of one farm run, `command`
+    loads its scene (tracer SCENE [overrides] --region-list ...), tiles come back as `tile_suffix`
+    files (".ppm" for 8-bit outputs: raw bytes, quick to read; ".exr" for float ones; both lossless).
+    Plain data: the workers need no module of this folder to read it."""
+    return {"key": key, "engine": "process", "command": list(command), "tile_suffix": tile_suffix}
+
+
+def module_job(key: str, scene: str, defines: dict, settings: dict) -> dict:
+    """How a worker renders one job with the tracer package: `scene` loaded with `defines` (-D), each
+    tile rendered with `settings` (Scene.render's keywords: samples, width, ..., encoding)."""
+    return {"key": key, "engine": "module", "scene": scene, "defines": dict(defines), "settings": dict(settings)}
 
 
 def _processes() -> types.ModuleType:
@@ -29,6 +38,8 @@ def _processes() -> types.ModuleType:
     if holder is None:
         holder = types.ModuleType("_tracer_farm_processes")
         holder.every, holder.idle = {}, {}
+        holder.scenes = {}  # the module engine's: key -> {"lock", "scene", "stopped": its renders' stop}
+        holder.closed = set()  # the keys of jobs closed here
         holder.lock = threading.Lock()
         sys.modules["_tracer_farm_processes"] = holder
     return holder
@@ -65,13 +76,47 @@ def _give_back(job: dict, process: subprocess.Popen) -> None:
         holder.idle.setdefault(job["key"], []).append(process)
 
 
+def _scene(job: dict) -> tuple[object, threading.Event]:
+    """The module engine's scene of the job, loaded on first use by one thread (the others wait), and
+    the event that stops its renders."""
+    holder = _processes()
+    with holder.lock:
+        if job["key"] in holder.closed:
+            raise RuntimeError("the job was closed on this worker")
+        entry = holder.scenes.setdefault(
+            job["key"], {"lock": threading.Lock(), "scene": None, "stopped": threading.Event()}
+        )
+    with entry["lock"]:
+        if entry["scene"] is None:
+            import tracer
+
+            try:
+                entry["scene"] = tracer.load(job["scene"], defines=job["defines"])
+            except tracer.SceneError as error:
+                raise RuntimeError(str(error)) from None
+        return entry["scene"], entry["stopped"]
+
+
 def start_job(job: dict, dask_worker: object = None) -> int:
     """Starts one tracer process per thread of this worker (Dask's client.run gives the worker) ahead of
-    the job's tiles, so that loading the scene overlaps the farm's own start. How many it started."""
+    the job's tiles, so that loading the scene overlaps the farm's own start; with the module engine,
+    one thread that loads the scene. How many it started."""
+    if job["engine"] == "module":
+        threading.Thread(target=_load_quietly, args=(job,), daemon=True).start()
+        return 1
     count = dask_worker.state.nthreads if dask_worker is not None else 1
     for _ in range(count):
         _give_back(job, _start(job))
     return count
+
+
+def _load_quietly(job: dict) -> None:
+    """_scene, ahead of the tiles: a failure is the first tile's to report (it loads again)."""
+    try:
+        _scene(job)
+    except Exception:
+        with _processes().lock:
+            _processes().scenes.pop(job["key"], None)
 
 
 def _diagnostic(process: subprocess.Popen) -> str:
@@ -104,9 +149,15 @@ def _ask(process: subprocess.Popen, request: str) -> str:
         return ""
 
 
-def render_tile(job: dict, region_text: str) -> tuple[bytes, float]:
-    """Renders one tile ("X0 Y0 W H"): its image file's bytes and the seconds it took here."""
+def render_tile(job: dict, region_text: str) -> tuple[object, float]:
+    """Renders one tile ("X0 Y0 W H"): its image file's bytes (the module engine: its pixels, height x
+    width x 3) and the seconds it took here."""
     start = time.perf_counter()
+    if job["engine"] == "module":
+        scene, stopped = _scene(job)
+        region = tuple(int(field) for field in region_text.split())
+        pixels = scene.render(region=region, threads=1, stop=stopped.is_set, **job["settings"])
+        return pixels, time.perf_counter() - start
     process = _take(job)
     with tempfile.TemporaryDirectory(prefix="tracer-tile-", dir=_scratch_folder()) as folder:
         path = os.path.join(folder, "tile" + job["tile_suffix"])
@@ -122,11 +173,16 @@ def render_tile(job: dict, region_text: str) -> tuple[bytes, float]:
 
 def close_job(key: str, at_once: bool = False) -> int:
     """Ends this worker's tracer processes of a job: their input closes and they exit, or with `at_once`
-    they are stopped in the middle of a tile (tracer writes nothing then). How many there were."""
+    they are stopped in the middle of a tile (tracer writes nothing then); the module engine's scene is
+    let go (and with `at_once` its renders stopped). How many processes (or scenes) there were."""
     holder = _processes()
     with holder.lock:
         processes = holder.every.pop(key, [])
         holder.idle.pop(key, None)
+        scene = holder.scenes.pop(key, None)
+        holder.closed.add(key)
+    if scene is not None and at_once:
+        scene["stopped"].set()  # renders under way stop within 20 ms (RenderStopped)
     for process in processes:
         try:
             if at_once:
@@ -135,7 +191,7 @@ def close_job(key: str, at_once: bool = False) -> int:
             process.wait(timeout=30)
         except (OSError, subprocess.TimeoutExpired):
             process.kill()
-    return len(processes)
+    return len(processes) + (scene is not None)
 
 
 def render_frames(job: dict, first: int, last: int) -> tuple[list[tuple[int, bytes]], float]:
