@@ -173,10 +173,15 @@ def jobs_of(arguments: argparse.Namespace) -> list[Job]:
     return [Job(os.path.abspath(arguments.scene), os.path.abspath(arguments.output), defines, overrides)]
 
 
+def package_folder(tracer: str) -> str:
+    """Where the build of the executable `tracer` puts the tracer package: its python/ folder."""
+    return os.path.join(os.path.dirname(os.path.abspath(tracer)), "python")
+
+
 def package_beside(tracer: str) -> str | None:
-    """The tracer package built beside the executable `tracer` (its build's python/ folder), imported
-    (that folder first on the module path): the extension's file, or None if it is not built there."""
-    folder = os.path.join(os.path.dirname(os.path.abspath(tracer)), "python")
+    """The tracer package built beside the executable `tracer` (package_folder), imported (that
+    folder first on the module path): the extension's file, or None if it is not built there."""
+    folder = package_folder(tracer)
     if not os.path.isfile(os.path.join(folder, "tracer", "__init__.py")):
         return None
     if folder not in sys.path:
@@ -198,7 +203,7 @@ def choose_engine(arguments: argparse.Namespace) -> tuple[str, str]:
     if extension is not None:
         return "module", extension
     if arguments.engine == "module":
-        folder = os.path.join(os.path.dirname(os.path.abspath(arguments.tracer)), "python")
+        folder = package_folder(arguments.tracer)
         raise JobError(
             f"--engine module: no tracer package built in '{folder}' (build it: tools/bootstrap --python)", 3
         )

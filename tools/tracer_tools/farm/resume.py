@@ -72,8 +72,8 @@ def identity(
 ) -> dict:
     """What the job's image depends on, as the manifest records it (the tile size aside): `tracer` is
     the file that renders (the executable, or the package's extension for the module engine);
-    `inputs` and `tracer_digest`: input_digests(job) and
-    file_digest(tracer), when already known (jobs of one scene share them)."""
+    `inputs` and `tracer_digest`: input_digests(job) and file_digest(tracer), when already known
+    (jobs of one scene share them)."""
     return {
         "version": VERSION,
         "tracer": file_digest(tracer) if tracer_digest is None else tracer_digest,
