@@ -360,3 +360,29 @@ def test_a_scene_mitsuba_cannot_take_exits_5_before_rendering(tracer_bin, tmp_pa
     assert result.returncode == 5
     assert "max_depth 65" in result.stderr and "at most 64" in result.stderr
     assert not (tmp_path / "out" / "tracer.exr").exists()
+
+
+@pytest.mark.parametrize("extra", [["--width", "120"], ["--width", "90", "--samples", "4", "--max-depth", "2"]])
+def test_in_process_pixels_equal_the_executables_exr(tracer_bin, tmp_path, extra):
+    from tracer_tools import package
+    from tracer_tools.xcheck import tracer_cli
+
+    if package.imported_beside(tracer_bin) is None:
+        pytest.skip(f"no tracer package built beside {tracer_bin} (tools/bootstrap --python builds it)")
+    scene = ROOT / "scenes" / "task2.scn"
+    pixels, stats = tracer_cli.render_pixels(scene, extra)
+    tracer_cli.render(scene, tmp_path / "cli.exr", extra)
+    assert pixels.dtype == np.float32 and np.array_equal(pixels, read_exr(tmp_path / "cli.exr"))
+    assert stats["rays"]["primary"] == pixels.shape[0] * pixels.shape[1] * stats["samples"]
+
+
+def test_options_the_package_lacks_leave_the_render_to_the_executable():
+    from tracer_tools.xcheck import tracer_cli
+
+    assert tracer_cli.package_call(["--samples", "4", "-D", "r=0.5", "--threads", "2"]) == (
+        {"samples": "4"},
+        {"r": "0.5"},
+        2,
+    )
+    assert tracer_cli.package_call(["--encoding", "srgb"]) is None
+    assert tracer_cli.package_call(["--width"]) is None

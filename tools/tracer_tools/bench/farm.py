@@ -147,6 +147,38 @@ def per_tile_cost(tiles: list[int], sweeps: int, folder: str) -> dict:
     return result
 
 
+def fixed_cost(calls: int = 200, rounds: int = 5) -> dict:
+    """Step 3b: each engine's fixed cost of one task on a worker, render work aside: 1 x 1-pixel tiles at
+    1 sample rendered by the worker's own code in this process (no Dask), engines alternating by round;
+    per engine the median over rounds of the median call."""
+    from tracer_tools.farm import worker
+    from tracer_tools.package import imported_beside
+
+    if imported_beside(TRACER) is None:
+        raise SystemExit(f"bench farm: no tracer package beside {TRACER}: run tools/bootstrap --python")
+    jobs = {
+        "process": worker.worker_job(
+            "bench-process", [TRACER, SCENE, "--samples", "1", "--region-list", "--threads", "1", "-q"], ".ppm"
+        ),
+        "module": worker.module_job("bench-module", SCENE, {}, {"samples": "1", "encoding": "linear"}),
+    }
+    medians = {engine: [] for engine in ENGINES}
+    for job in jobs.values():
+        worker.start_job(job)
+        worker.render_tile(job, "0 0 1 1")  # the scene loaded (or the process started) before timing
+    for round_index in range(rounds):
+        for engine in ENGINES if round_index % 2 == 0 else ENGINES[::-1]:
+            times = []
+            for _ in range(calls):
+                start = time.perf_counter()
+                worker.render_tile(jobs[engine], "0 0 1 1")
+                times.append(time.perf_counter() - start)
+            medians[engine].append(statistics.median(times))
+    for job in jobs.values():
+        worker.close_job(job["key"])
+    return {engine: statistics.median(found) for engine, found in medians.items()}
+
+
 def scheduler_cost(tasks: int = 400, rounds: int = 5) -> float:
     """Step 3a: seconds per task of Dask's scheduling alone (no-op tasks on tools/farm's local cluster)."""
     import logging
@@ -262,6 +294,24 @@ def report(data: dict) -> str:
         "",
         f"Dask's scheduling, per task (no-op tasks on the local cluster): {1e3 * data['per_task_s']:.2f} ms.",
         "",
+    ]
+    if "fixed_per_task_s" in data:
+        fixed = data["fixed_per_task_s"]
+        whole = {engine: fixed[engine] + data["per_task_s"] for engine in ENGINES}
+        lines += [
+            "## A task's fixed cost (1 x 1-pixel tiles at 1 sample: render work aside)",
+            "",
+            "The workers' own code called in one process, engines alternating (medians of 5 rounds):",
+            "",
+            "| | process | module | module / process |",
+            "|---|---|---|---|",
+            f"| on the worker (ms) | {1e3 * fixed['process']:.3f} | {1e3 * fixed['module']:.3f} | "
+            f"{fixed['module'] / fixed['process']:.2f}x |",
+            f"| with Dask's scheduling (ms) | {1e3 * whole['process']:.3f} | {1e3 * whole['module']:.3f} | "
+            f"{whole['module'] / whole['process']:.2f}x |",
+            "",
+        ]
+    lines += [
         "## Predicted for N single-core workers (16 tiles per worker, the module engine)",
         "",
         "The 10-second image above, and one of 60 times its work (a 10-minute render on these 2 cores).",
@@ -302,6 +352,7 @@ def main() -> int:
         sweeps = 1 if arguments.quick else arguments.sweeps
         cost = per_tile_cost([400, 100, 40] if arguments.quick else [400, 200, 100, 60, 40], sweeps, folder)
     per_task_s = scheduler_cost()
+    fixed = fixed_cost(50 if arguments.quick else 200)
     data = {
         "date": datetime.date.today().isoformat(),
         "machine": machine,
@@ -309,6 +360,7 @@ def main() -> int:
         "overhead": measured,
         "per_tile": cost,
         "per_task_s": per_task_s,
+        "fixed_per_task_s": fixed,
         "prediction": predict(measured["module"], cost["module"], per_task_s),
     }
     with open(data_path, "w") as file:

@@ -21,7 +21,7 @@ import numpy as np
 
 from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import DOCS, provenance
-from tracer_tools.xcheck import images, metrics, tracer_cli
+from tracer_tools.xcheck import metrics, tracer_cli
 
 SCENES = ("lamp", "window")
 VARIANTS = [("grid", n) for n in (4, 8, 12, 16)] + [("jitter", n) for n in (4, 8, 16)]
@@ -40,15 +40,14 @@ def with_light(scene: pathlib.Path, folder: pathlib.Path, mode: str, n: int) -> 
     return out
 
 
-def measure(scene: pathlib.Path, folder: pathlib.Path, runs: int) -> tuple[np.ndarray, float, int]:
+def measure(scene: pathlib.Path, runs: int) -> tuple[np.ndarray, float, int]:
     """The image (linear floats), the median render time and the shadow rays of the scene."""
-    exr = folder / (scene.stem + ".exr")
     times, shadow = [], 0
     for _ in range(runs):
-        stats = tracer_cli.render(scene, exr, ["--width", str(WIDTH), "--threads", "2"])
+        image, stats = tracer_cli.render_pixels(scene, ["--width", str(WIDTH), "--threads", "2"])
         times.append(stats["render_seconds"])
         shadow = stats["rays"]["shadow"]
-    return images.read_exr(exr), statistics.median(times), shadow
+    return image, statistics.median(times), shadow
 
 
 def front(rows: list[dict]) -> None:
@@ -125,10 +124,10 @@ def main() -> int:
         folder = pathlib.Path(name)
         for scene_name in SCENES:
             scene = ROOT / "scenes" / "lights" / f"{scene_name}.scn"
-            reference, references[scene_name], _ = measure(with_light(scene, folder, "grid", REFERENCE), folder, 1)
+            reference, references[scene_name], _ = measure(with_light(scene, folder, "grid", REFERENCE), 1)
             rows = []
             for mode, n in VARIANTS:
-                image, seconds, shadow = measure(with_light(scene, folder, mode, n), folder, args.runs)
+                image, seconds, shadow = measure(with_light(scene, folder, mode, n), args.runs)
                 c = metrics.compare(reference, image)
                 rows.append(
                     {"mode": mode, "n": n, "seconds": seconds, "shadow": shadow, "rmse": c.rmse, "over_2": c.over_2}

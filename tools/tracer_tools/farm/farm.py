@@ -30,6 +30,7 @@ from tracer_tools.farm.images import decode_tile, write_atomically
 from tracer_tools.farm.jobs import OVERRIDES, Job, JobError, OutputChecks, check_job, jobs_from_file
 from tracer_tools.farm.progress import Progress
 from tracer_tools.farm.tiles import Canvas, Region, split, tile_size_for
+from tracer_tools.package import folder_beside, imported_beside
 
 if TYPE_CHECKING:
     from distributed import Client, LocalCluster
@@ -173,37 +174,16 @@ def jobs_of(arguments: argparse.Namespace) -> list[Job]:
     return [Job(os.path.abspath(arguments.scene), os.path.abspath(arguments.output), defines, overrides)]
 
 
-def package_folder(tracer: str) -> str:
-    """Where the build of the executable `tracer` puts the tracer package: its python/ folder."""
-    return os.path.join(os.path.dirname(os.path.abspath(tracer)), "python")
-
-
-def package_beside(tracer: str) -> str | None:
-    """The tracer package built beside the executable `tracer` (package_folder), imported (that
-    folder first on the module path): the extension's file, or None if it is not built there."""
-    folder = package_folder(tracer)
-    if not os.path.isfile(os.path.join(folder, "tracer", "__init__.py")):
-        return None
-    if folder not in sys.path:
-        sys.path.insert(0, folder)
-    try:
-        import tracer as package
-    except ImportError:
-        return None
-    extension = package._tracer.__file__
-    return extension if os.path.dirname(os.path.dirname(os.path.abspath(extension))) == folder else None
-
-
 def choose_engine(arguments: argparse.Namespace) -> tuple[str, str]:
     """How the workers render ("module" or "process", by --engine) and the file that renders (the
     package's extension, or the tracer executable)."""
     if arguments.engine == "process" or (arguments.engine == "auto" and arguments.address):
         return "process", arguments.tracer
-    extension = package_beside(arguments.tracer)
-    if extension is not None:
-        return "module", extension
+    package = imported_beside(arguments.tracer)
+    if package is not None:
+        return "module", os.path.abspath(package._tracer.__file__)
     if arguments.engine == "module":
-        folder = package_folder(arguments.tracer)
+        folder = folder_beside(arguments.tracer)
         raise JobError(
             f"--engine module: no tracer package built in '{folder}' (build it: tools/bootstrap --python)", 3
         )

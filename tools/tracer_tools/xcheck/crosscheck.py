@@ -163,8 +163,8 @@ def crosscheck(args: argparse.Namespace) -> int:
         except PeerCannotExpress as reason:
             return skipped(args, out, str(reason))
     with progress.step("crosscheck", "rendering with tracer"):
-        tracer_cli.render(args.scene, out / "tracer.exr", extra)
-    tracer_image = images.read_exr(out / "tracer.exr")
+        tracer_image = tracer_cli.render_pixels(args.scene, extra)[0]
+    images.write_exr(out / "tracer.exr", tracer_image)
 
     # Step 3: compare, write the pictures, report.
     with progress.step("crosscheck", "comparing (FLIP) and writing the pictures"):

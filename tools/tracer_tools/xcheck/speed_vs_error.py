@@ -80,7 +80,6 @@ def pareto_front(rows: list[dict], error_key: str) -> None:
 def measure_scene(name: str, repeats: int, work: pathlib.Path) -> dict:
     """Reference and every variant for one scene; a dict for the JSON file."""
     from . import (
-        images,
         metrics,
         mitsuba_render,  # first: it says clearly when Mitsuba is missing
     )
@@ -92,12 +91,11 @@ def measure_scene(name: str, repeats: int, work: pathlib.Path) -> dict:
     reference = mitsuba_render.render_scene(scene, work / name)
     rows = []
     for variant in default_variants(scene):
-        image_path = work / name / "tracer.exr"
         seconds = []
         while len(seconds) < repeats and sum(seconds) < SLOW_SECONDS:  # slow variants run fewer times
-            stats = tracer_cli.render(path, image_path, variant.tracer_args())
+            image, stats = tracer_cli.render_pixels(path, variant.tracer_args())
             seconds.append(stats["render_seconds"] + sum(m["build_seconds"] for m in stats.get("meshes", [])))
-        comparison = metrics.compare(reference, images.read_exr(image_path))
+        comparison = metrics.compare(reference, image)
         rows.append(
             {
                 "variant": variant.label,

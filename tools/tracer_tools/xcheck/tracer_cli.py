@@ -1,4 +1,5 @@
-"""Runs the tracer executable: the resolved scene as JSON, and renders to float images."""
+"""Runs tracer: the resolved scene as JSON (the executable), and renders to float images (in process
+with the tracer package built beside the executable when it is there, else the executable)."""
 
 from __future__ import annotations
 
@@ -6,11 +7,29 @@ import json
 import os
 import pathlib
 import subprocess
+import sys
+import tempfile
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, package
 
 from . import ToolError
+
+if TYPE_CHECKING:
+    import numpy as np
+
+# tracer's options that the package's Scene.render takes as settings, by their keyword (the
+# option's text is passed as it is: the package reads it as the command line does).
+RENDER_SETTINGS = {
+    "--width": "width",
+    "--height": "height",
+    "--samples": "samples",
+    "--adaptive": "adaptive",
+    "--max-depth": "max_depth",
+    "--accel": "accel",
+    "--leaf-size": "leaf_size",
+}
 
 
 class SceneError(ToolError):
@@ -61,3 +80,48 @@ def render(scene_path: str | pathlib.Path, output: str | pathlib.Path, extra_arg
     stats = json.loads(stats_path.read_text())
     stats_path.unlink()
     return stats
+
+
+def package_call(extra_args: Sequence[str]) -> tuple[dict, dict, int] | None:
+    """tracer's options `extra_args` as the package's (render settings, defines, threads); None
+    when one of them has no equivalent there (the executable renders then)."""
+    settings, defines, threads = {}, {}, 0
+    args = list(extra_args)
+    while args:
+        flag, value = args.pop(0), args.pop(0) if args else None
+        if value is None:
+            return None
+        if flag in RENDER_SETTINGS:
+            settings[RENDER_SETTINGS[flag]] = value
+        elif flag in ("-D", "--define") and "=" in value:
+            name, text = value.split("=", 1)
+            defines[name] = text
+        elif flag == "--threads" and value.isdigit():
+            threads = int(value)
+        else:
+            return None
+    return settings, defines, threads
+
+
+def render_pixels(scene_path: str | pathlib.Path, extra_args: Sequence[str] = ()) -> tuple[np.ndarray, dict]:
+    """tracer's image of the scene as linear float32 (height, width, 3) and its statistics (as
+    render's): in process with the tracer package beside executable() when it is built and takes
+    every option (no process, no file), else by the executable through an EXR."""
+    tracer = package.imported_beside(executable())
+    call = package_call(extra_args)
+    if tracer is not None and call is not None:
+        settings, defines, threads = call
+        try:
+            scene = tracer.load(scene_path, defines=defines)
+            return scene.render(**settings, threads=threads, return_stats=True)
+        except tracer.SceneError as error:
+            print(error, file=sys.stderr)
+            raise SceneError(f"tracer could not load {scene_path}") from None
+        except ValueError as error:
+            raise SceneError(f"tracer could not render {scene_path}: {error}") from None
+    from . import images
+
+    with tempfile.TemporaryDirectory(prefix="tracer-render-") as folder:
+        exr = pathlib.Path(folder) / "tracer.exr"
+        stats = render(scene_path, exr, extra_args)
+        return images.read_exr(exr), stats
