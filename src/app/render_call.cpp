@@ -26,15 +26,13 @@ std::shared_ptr<const World> WorldCache::world_for(const SceneDescription& scene
     return world_;
 }
 
-RenderCall::RenderCall(std::shared_ptr<const LoadedScene> loaded, std::shared_ptr<WorldCache> worlds,
-                       const std::vector<std::pair<std::string, std::string>>& overrides, int threads,
-                       const std::vector<int>& region, std::optional<Encoding> eight_bit)
-    : loaded_(std::move(loaded)),
-      worlds_(std::move(worlds)),
-      scene_(loaded_->scene),
-      threads_(threads),
-      eight_bit_(eight_bit) {
-    // Step 1: the overrides, each checked as the command line checks its option.
+std::shared_ptr<const SceneDescription> WorldCache::scene_for(const SceneDescription& loaded,
+                                                              const RenderOverrides& overrides) {
+    {
+        const std::lock_guard lock(guard_);
+        if (scene_ && overrides_ == overrides) return scene_;
+    }
+    // Each override checked as the command line checks its option, then applied to a copy.
     Options options;
     for (const auto& [key, value] : overrides) {
         std::string* field = override_field(options, key);
@@ -44,16 +42,29 @@ RenderCall::RenderCall(std::shared_ptr<const LoadedScene> loaded, std::shared_pt
             throw std::invalid_argument(key + ": " + problem);
         *field = text;
     }
-    apply_overrides(options, scene_);
-    if (const std::string problem = render_settings_problem(scene_.render); !problem.empty())
+    auto scene = std::make_shared<SceneDescription>(loaded);
+    apply_overrides(options, *scene);
+    if (const std::string problem = render_settings_problem(scene->render); !problem.empty())
         throw std::invalid_argument(problem);
+    const std::lock_guard lock(guard_);
+    scene_ = scene;
+    overrides_ = overrides;
+    return scene_;
+}
+
+RenderCall::RenderCall(std::shared_ptr<const LoadedScene> loaded, std::shared_ptr<WorldCache> worlds,
+                       const RenderOverrides& overrides, int threads, const std::vector<int>& region,
+                       std::optional<Encoding> eight_bit)
+    : loaded_(std::move(loaded)), worlds_(std::move(worlds)), threads_(threads), eight_bit_(eight_bit) {
+    // Step 1: the scene with the overrides (the last render's, when they are the same).
+    scene_ = worlds_->scene_for(loaded_->scene, overrides);
     // Step 2: the pixels asked for.
     if (threads < 0) throw std::invalid_argument("threads must be 0 (every core) or more");
     if (!region.empty()) {
-        if (auto problem = region_problem(region, scene_.render)) throw std::invalid_argument(*problem);
+        if (auto problem = region_problem(region, scene_->render)) throw std::invalid_argument(*problem);
         area_ = {region[0], region[1], region[2], region[3]};
     } else {
-        area_ = {0, 0, scene_.render.width, scene_.render.height};
+        area_ = {0, 0, scene_->render.width, scene_->render.height};
     }
 }
 
@@ -74,7 +85,7 @@ bool RenderCall::run(const std::function<bool()>& keep_going) {
         try {
             // The world the command line builds (it releases the flat shapes' lists as it goes;
             // the scene here stays whole for the next render).
-            const std::shared_ptr<const World> world = worlds_->world_for(scene_, loaded_->meshes, threads_);
+            const std::shared_ptr<const World> world = worlds_->world_for(*scene_, loaded_->meshes, threads_);
             RenderOptions options;
             options.threads = threads_;
             options.crop = area_;
@@ -82,10 +93,10 @@ bool RenderCall::run(const std::function<bool()>& keep_going) {
             if (!eight_bit_) options.float_pixels = static_cast<float*>(pixels_);
             Image image;
             RenderStats stats;
-            if (render(*world, scene_, options, image, stats)) {
+            if (render(*world, *scene_, options, image, stats)) {
                 if (eight_bit_)
                     eight_bit_rows(image, *eight_bit_ == Encoding::Srgb, static_cast<unsigned char*>(pixels_));
-                stats_json_ = render_stats_json(*world, scene_, stats)
+                stats_json_ = render_stats_json(*world, *scene_, stats)
                                   .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
             }
         } catch (...) {

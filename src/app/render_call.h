@@ -21,16 +21,25 @@ namespace tracer {
 // How often a render under way asks its caller whether to go on.
 constexpr std::chrono::milliseconds kSignalLook{20};
 
+using RenderOverrides = std::vector<std::pair<std::string, std::string>>;
+
 // The world last built of one loaded scene, kept for its next renders with the same
-// accelerator settings (a farm's tiles, a notebook's re-renders build it once); thread-safe.
+// accelerator settings (a farm's tiles, a notebook's re-renders build it once), and the scene
+// with the last overrides applied (a tile's render copies no description); thread-safe.
 class WorldCache {
 public:
+    // `loaded` with `overrides` (checked, as the command line's options) applied, copied from
+    // `loaded` only when they differ from the last call's.
+    std::shared_ptr<const SceneDescription> scene_for(const SceneDescription& loaded,
+                                                      const RenderOverrides& overrides);
     // The world of `scene` (the loaded scene with a render's overrides) and `meshes`, built on
     // `threads` threads unless the last one built has the same accelerator and leaf size.
     std::shared_ptr<const World> world_for(const SceneDescription& scene, const SceneMeshes& meshes, int threads);
 
 private:
     std::mutex guard_;
+    std::shared_ptr<const SceneDescription> scene_;
+    RenderOverrides overrides_;
     std::shared_ptr<const World> world_;
     Accelerator accel_ = Accelerator::Sah;
     int leaf_size_ = 0;
@@ -45,7 +54,7 @@ public:
     // from the renderer's doubles, as the command line's files are). std::invalid_argument says
     // why not.
     RenderCall(std::shared_ptr<const LoadedScene> loaded, std::shared_ptr<WorldCache> worlds,
-               const std::vector<std::pair<std::string, std::string>>& overrides, int threads,
+               const RenderOverrides& overrides, int threads,
                const std::vector<int>& region, std::optional<Encoding> eight_bit = std::nullopt);
 
     int width() const { return area_.width; }
@@ -63,7 +72,7 @@ public:
 private:
     std::shared_ptr<const LoadedScene> loaded_;
     std::shared_ptr<WorldCache> worlds_;
-    SceneDescription scene_;
+    std::shared_ptr<const SceneDescription> scene_;
     int threads_;
     PixelRect area_;
     std::optional<Encoding> eight_bit_;

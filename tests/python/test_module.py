@@ -86,6 +86,19 @@ def test_the_world_is_built_once_and_again_when_its_settings_change():
     assert mesh_stats()["leaf_size_max"] == first["leaf_size_max"]  # rebuilt with the scene's own
 
 
+def test_settings_that_come_and_go_between_renders_apply_to_each_alone():
+    # The scene with a render's settings is kept for the next render with the same ones: a
+    # render with other settings, or with none, must not see the last one's.
+    scene = tracer.loads(SMALL)
+    plain = scene.render(threads=1)
+    wide, _ = scene.render(width=80, samples=4, threads=1), scene.render(width=20, threads=1)
+    assert numpy.array_equal(scene.render(threads=1), plain) and plain.shape == (30, 40, 3)
+    assert numpy.array_equal(scene.render(width=80, samples=4, threads=1), wide) and wide.shape == (60, 80, 3)
+    with pytest.raises(ValueError):
+        scene.render(width=0)
+    assert numpy.array_equal(scene.render(threads=1), plain)
+
+
 def test_a_stop_function_stops_a_render_and_the_scene_stays_usable():
     scene = tracer.load(ROOT / "scenes/task2.scn")
     stop = threading.Event()
