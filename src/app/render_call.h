@@ -30,8 +30,7 @@ class WorldCache {
 public:
     // `loaded` with `overrides` (checked, as the command line's options) applied, copied from
     // `loaded` only when they differ from the last call's.
-    std::shared_ptr<const SceneDescription> scene_for(const SceneDescription& loaded,
-                                                      const RenderOverrides& overrides);
+    std::shared_ptr<const SceneDescription> scene_for(const SceneDescription& loaded, const RenderOverrides& overrides);
     // The world of `scene` (the loaded scene with a render's overrides) and `meshes`, built on
     // `threads` threads unless the last one built has the same accelerator and leaf size.
     std::shared_ptr<const World> world_for(const SceneDescription& scene, const SceneMeshes& meshes, int threads);
@@ -54,8 +53,8 @@ public:
     // from the renderer's doubles, as the command line's files are). std::invalid_argument says
     // why not.
     RenderCall(std::shared_ptr<const LoadedScene> loaded, std::shared_ptr<WorldCache> worlds,
-               const RenderOverrides& overrides, int threads,
-               const std::vector<int>& region, std::optional<Encoding> eight_bit = std::nullopt);
+               const RenderOverrides& overrides, int threads, const std::vector<int>& region,
+               std::optional<Encoding> eight_bit = std::nullopt);
 
     int width() const { return area_.width; }
     int height() const { return area_.height; }

@@ -25,7 +25,9 @@ print(tracer.__file__)
 
 def run(command, cwd=None):
     result = subprocess.run(command, cwd=cwd, capture_output=True, text=True)
-    assert result.returncode == 0, f"{' '.join(map(str, command))} failed:\n{result.stdout[-4000:]}{result.stderr[-4000:]}"
+    assert (
+        result.returncode == 0
+    ), f"{' '.join(map(str, command))} failed:\n{result.stdout[-4000:]}{result.stderr[-4000:]}"
     return result.stdout
 
 
@@ -36,7 +38,9 @@ def test_pip_install_from_a_fresh_clone_renders_as_the_command_line(tmp_path):
     run(["git", "clone", "--quiet", str(ROOT), str(clone)])
     run(["python3", "-m", "venv", str(venv)])
     run([venv / "bin" / "pip", "install", "--quiet", "--disable-pip-version-check", "."], cwd=clone)
-    where = run([venv / "bin" / "python", "-c", RENDER, ROOT / "scenes" / "task2.scn", tmp_path / "px.npy"], cwd=tmp_path)
+    where = run(
+        [venv / "bin" / "python", "-c", RENDER, ROOT / "scenes" / "task2.scn", tmp_path / "px.npy"], cwd=tmp_path
+    )
     assert str(venv) in where  # the installed package, not the checkout's build
     ours = numpy.load(tmp_path / "px.npy")
     out = tmp_path / "cli.exr"
