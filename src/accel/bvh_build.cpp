@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 
-#include <oneapi/tbb/task_arena.h>
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
@@ -17,7 +16,6 @@ namespace tracer {
 
 using bvh_build::FloatBounds;
 using bvh_build::Range;
-using bvh_build::run_both;
 
 namespace {
 
@@ -373,7 +371,7 @@ void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, i
     const bool parallel = thread_count(threads) > 1 && n >= 2 * BvhBuilder::kTaskFrom;
     auto run = [&](const auto& build_tree) {
         if (!parallel) return build_tree();
-        thread_arena(thread_count(threads)).execute(build_tree);
+        run_on_threads(threads, build_tree);
     };
     const int lanes = std::max(leaf_lanes, 1);
     NodeArray slots;  // the binary tree, unless Sah's wide one is built directly

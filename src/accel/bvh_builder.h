@@ -8,11 +8,11 @@
 #include <limits>
 #include <vector>
 
-#include <oneapi/tbb/parallel_invoke.h>
 #include <glm/common.hpp>
 #include <glm/vec3.hpp>
 
 #include "accel/bvh.h"
+#include "base/parallel.h"
 
 namespace tracer {
 
@@ -28,13 +28,6 @@ struct BvhBuildRef {
 static_assert(sizeof(BvhBuildRef) == 32);
 
 namespace bvh_build {
-
-// Runs `first` and `second`, in parallel where a thread of the build's arena is free (oneTBB's
-// work stealing); returns when both are done.
-template <typename First, typename Second>
-void run_both(const First& first, const Second& second) {
-    tbb::parallel_invoke(first, second);
-}
 
 struct FloatBounds {
     glm::vec3 lower{std::numeric_limits<float>::infinity()};

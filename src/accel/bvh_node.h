@@ -14,6 +14,7 @@
 
 #include "accel/types.h"
 #include "base/large_array.h"
+#include "base/portable.h"
 
 namespace tracer {
 
@@ -126,15 +127,15 @@ struct TraversalRay {
 // a positive one; NaN and the infinity past a huge x stay).
 inline float round_down(Real x) {
     const float nearest = float(x);
-    const uint32_t bits = std::bit_cast<uint32_t>(nearest);
+    const uint32_t bits = tracer::bit_cast<uint32_t>(nearest);
     const uint32_t wrong_way = 0u - uint32_t(Real(nearest) > x);  // all ones, or zero
-    return std::bit_cast<float>(bits + ((2 * (bits >> 31) - 1) & wrong_way));
+    return tracer::bit_cast<float>(bits + ((2 * (bits >> 31) - 1) & wrong_way));
 }
 inline float round_up(Real x) {
     const float nearest = float(x);
-    const uint32_t bits = std::bit_cast<uint32_t>(nearest);
+    const uint32_t bits = tracer::bit_cast<uint32_t>(nearest);
     const uint32_t wrong_way = 0u - uint32_t(Real(nearest) < x);
-    return std::bit_cast<float>(bits + ((1 - 2 * (bits >> 31)) & wrong_way));
+    return tracer::bit_cast<float>(bits + ((1 - 2 * (bits >> 31)) & wrong_way));
 }
 
 // Entry distance of the ray into the node's box, or +infinity if it misses within

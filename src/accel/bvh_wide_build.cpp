@@ -7,7 +7,6 @@
 namespace tracer {
 
 using bvh_build::Range;
-using bvh_build::run_both;
 
 namespace {
 

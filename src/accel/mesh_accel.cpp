@@ -14,6 +14,7 @@
 
 #include "accel/ray_packet.h"
 #include "base/parallel.h"
+#include "base/portable.h"
 
 namespace tracer {
 
@@ -294,7 +295,7 @@ void MeshAccel::store_hit_records(const PlacedTriangles& mesh, const std::vector
 // The next Real above a finite positive x (std::nextafter without the library call).
 static Real next_up(Real x) {
     using Bits = std::conditional_t<sizeof(Real) == 8, uint64_t, uint32_t>;
-    return std::bit_cast<Real>(std::bit_cast<Bits>(x) + 1);
+    return tracer::bit_cast<Real>(tracer::bit_cast<Bits>(x) + 1);
 }
 
 // The t at which the ray meets the triangle's plane, worked out in double: for a float build,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "base/image.h"
+#include "io/eight_bit.h"
 
 namespace tracer {
 
@@ -21,14 +22,6 @@ std::optional<NativeFormat> native_format(const std::string& path);
 // the encoder failed.
 std::optional<std::string> encode_native(NativeFormat format, const Image& image, bool srgb,
                                          std::vector<unsigned char>& encoded);
-
-// The image's 8-bit RGB bytes as encode_native writes them (row by row from the top) into `out`
-// (image.rgb.size() bytes).
-void eight_bit_rows(const Image& image, bool srgb, unsigned char* out);
-
-// True if the fast sRGB byte of `value` (a table of the curve's steps) is the curve's own,
-// to_8bit(srgb_encoded(value)) (for the tests).
-bool srgb_bytes_match_the_curve(double value);
 
 // True if the file at `path` is a whole image of `width` x `height` pixels: a PNG whose header
 // says that size and that ends with its IEND chunk, a PPM of that size holding every byte; a file

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "base/portable.h"
 #include "scene/scene.h"
 
 namespace tracer {
@@ -108,7 +109,7 @@ private:
                 const Token& token = tokens_[i];
                 double value = 0;
                 const char* end = token.text.data() + token.text.size();
-                auto [stop, status] = std::from_chars(token.text.data(), end, value);
+                auto [stop, status] = parse_double(token.text.data(), end, value);
                 if (status != std::errc() || stop != end || !std::isfinite(value))
                     error(token.span, "coordinate " + in_quotes(token.text) + " is not a finite number");
                 else if (std::abs(value) > kLargestMagnitude)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "base/portable.h"
+
 namespace tracer {
 
 static bool is_ident_start(char c) {
@@ -217,7 +219,7 @@ Token Lexer::lex_number(uint32_t begin) {
         return token;
     }
     std::string_view digits_text = token.text;
-    auto [end, status] = std::from_chars(digits_text.data(), digits_text.data() + digits_text.size(), token.number);
+    auto [end, status] = parse_double(digits_text.data(), digits_text.data() + digits_text.size(), token.number);
     if (status == std::errc::result_out_of_range && !overflows(digits_text)) {
         token.number = 0;  // underflow: tiny numbers round to zero, as everywhere else
     } else if (status != std::errc() || end != digits_text.data() + digits_text.size() ||

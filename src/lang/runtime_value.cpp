@@ -4,6 +4,8 @@
 #include <charconv>
 #include <string>
 
+#include "base/portable.h"
+
 namespace tracer {
 
 ListObject::~ListObject() = default;
@@ -53,7 +55,7 @@ void append_text(const RuntimeValue& value, bool quoted, std::string& out) {
     if (out.size() > kMaxStringBytes) return;
     auto number = [&](double x) {
         char text[32];
-        const auto end = std::to_chars(text, text + sizeof text, x == 0 ? 0.0 : x).ptr;  // -0 as 0
+        const auto end = shortest_chars(text, text + sizeof text, x == 0 ? 0.0 : x).ptr;  // -0 as 0
         out.append(text, end);
     };
     switch (value.kind) {
@@ -117,7 +119,9 @@ bool equal_values(const RuntimeValue& a, const RuntimeValue& b) {
     switch (a.kind) {
         case RuntimeValue::Kind::Number:
         case RuntimeValue::Kind::Bool: return a.x[0] == b.x[0];
-        case RuntimeValue::Kind::Vector: return std::ranges::equal(a.components(), b.components());
+        case RuntimeValue::Kind::Vector:
+            return std::equal(a.components().begin(), a.components().end(), b.components().begin(),
+                              b.components().end());
         case RuntimeValue::Kind::String: return a.text() == b.text();
         default: return a.object == b.object;
     }

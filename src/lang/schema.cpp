@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "base/portable.h"
 #include "scene/noise.h"
 #include "scene/scene.h"
 
@@ -549,7 +550,7 @@ std::string format_number(double value) {
     // Whole numbers below 1e15 in plain digits; everything else in the shortest exact form.
     auto result = std::floor(value) == value && std::fabs(value) < 1e15
                       ? std::to_chars(buffer, buffer + sizeof buffer, (long long)value)
-                      : std::to_chars(buffer, buffer + sizeof buffer, value);
+                      : shortest_chars(buffer, buffer + sizeof buffer, value);
     return std::string(buffer, result.ptr);
 }
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The source layout's one rule: a stage includes only the stages below it.
 
-    base  <  scene  <  lang, io, accel  <  render  <  app  <  python
+    base  <  scene  <  lang, io, accel  <  render  <  app  <  python, web
 
 lang, io and accel are siblings and include none of each other; render sits on accel (the
 renderer and its acceleration structures know nothing of the language or of files). A stage's
@@ -22,6 +22,7 @@ ALLOWED = {
     "render": {"base", "scene", "accel", "render"},
     "app": {"base", "scene", "lang", "io", "accel", "render", "app"},
     "python": {"base", "scene", "lang", "io", "accel", "render", "app", "python"},
+    "web": {"base", "scene", "lang", "io", "accel", "render", "app", "web"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/([a-z_]+/)?')
 

@@ -1,0 +1,89 @@
+"""The playground (tools/playground) in Debian's headless Chromium, driven by Selenium: the site is
+built once per run (the WebAssembly module and the page), served on 127.0.0.1, and each test opens
+it in a fresh browser. Skipped, with the reason, where emscripten, Node.js, Chromium or its driver
+is missing."""
+
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import threading
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+
+from tracer_tools.playground import site  # noqa: E402
+
+CHROMIUM = shutil.which("chromium")
+CHROMEDRIVER = shutil.which("chromedriver")
+
+
+def pytest_collection_modifyitems(items):
+    missing = site.missing_tools()
+    if not (CHROMIUM and CHROMEDRIVER):
+        missing.append("Debian's chromium and chromium-driver")
+    if missing:
+        skip = pytest.mark.skip(
+            reason="the playground's tests need " + ", ".join(missing) + " (tools/bootstrap --python installs them)"
+        )
+        for item in items:
+            item.add_marker(skip)
+
+
+@pytest.fixture(scope="session")
+def tracer_bin():
+    from tracer_tools.xcheck import ToolError, tracer_cli
+
+    try:
+        return tracer_cli.executable()  # $TRACER_BIN, else build/release/tracer
+    except ToolError as error:
+        pytest.fail(str(error))
+
+
+@pytest.fixture(scope="session")
+def site_url(tmp_path_factory):
+    """The site built (tools/playground build) into a fresh folder and served on a port the system chose."""
+    folder = tmp_path_factory.mktemp("site")
+    environment = dict(os.environ, PYTHONPATH=str(ROOT / "tools"))
+    built = subprocess.run(
+        [sys.executable, "-m", "tracer_tools", "playground", "build", "--out", str(folder), "-q"],
+        env=environment,
+        capture_output=True,
+        text=True,
+    )
+    assert built.returncode == 0, built.stderr
+    import functools
+    import http.server
+
+    handler = functools.partial(site.SiteHandler, directory=str(folder))
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    yield f"http://127.0.0.1:{server.server_address[1]}/"
+    server.shutdown()
+    server.server_close()
+
+
+@pytest.fixture
+def browser():
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for argument in (
+        "--headless=new",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-dev-shm-usage",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--no-first-run",
+    ):
+        options.add_argument(argument)
+    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+    driver.set_script_timeout(60)
+    yield driver
+    driver.quit()
