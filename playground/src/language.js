@@ -7,7 +7,6 @@ import { StreamLanguage } from "@codemirror/language";
 import { tags } from "@lezer/highlight";
 import grammar from "../../grammar/vscode/syntaxes/tracer.tmLanguage.json";
 
-
 // One thing the editor can complete and explain: label, kind, one-line detail, Markdown text.
 function entry(label, kind, detail, documentation) {
   return { label, kind, detail, documentation };
@@ -26,7 +25,12 @@ export class Language {
       const text = `\`${statement.syntax}\`: ${statement.meaning}`;
       this.words.set(
         statement.keyword,
-        entry(statement.keyword, "statement", statement.syntax, previous ? `${previous.documentation}\n\n${text}` : text),
+        entry(
+          statement.keyword,
+          "statement",
+          statement.syntax,
+          previous ? `${previous.documentation}\n\n${text}` : text,
+        ),
       );
     }
     for (const word of tables.words)
@@ -45,7 +49,12 @@ export class Language {
   blockEntry(kind) {
     const block = this.blocks.get(kind);
     const keys = block.keys.map((key) => `- \`${key.name}\`: ${key.meaning}`).join("\n");
-    return entry(kind, "block", block.summary, `\`${kind}${block.named ? " NAME" : ""} { ... }\`: ${block.summary}\n\n${keys}`);
+    return entry(
+      kind,
+      "block",
+      block.summary,
+      `\`${kind}${block.named ? " NAME" : ""} { ... }\`: ${block.summary}\n\n${keys}`,
+    );
   }
 
   keyEntry(kind, name) {
@@ -119,7 +128,7 @@ function wordsBefore(text, offset, most = 3) {
 function openBraces(text, offset) {
   const stack = [];
   BRACE_OR_SKIPPED.lastIndex = 0;
-  for (let match; (match = BRACE_OR_SKIPPED.exec(text)) && match.index < offset; ) {
+  for (let match; (match = BRACE_OR_SKIPPED.exec(text)) && match.index < offset;) {
     if (match[0] === "{") stack.push({ offset: match.index, words: wordsBefore(text, match.index) });
     else if (match[0] === "}") stack.pop();
   }
@@ -130,7 +139,7 @@ function wordAt(text, offset) {
   const pattern = /[A-Za-z_][A-Za-z0-9_]*/g;
   const start = Math.max(0, offset - 100);
   pattern.lastIndex = start;
-  for (let match; (match = pattern.exec(text)) && match.index <= offset; )
+  for (let match; (match = pattern.exec(text)) && match.index <= offset;)
     if (match.index + match[0].length >= offset) return { word: match[0], start: match.index };
   return null;
 }
@@ -192,4 +201,3 @@ export const sceneLanguage = StreamLanguage.define({
   tokenTable: Object.fromEntries(RULES.map((rule) => [rule.tokenName, rule.tag])),
   languageData: { commentTokens: { line: "#" } },
 });
-

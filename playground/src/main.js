@@ -33,7 +33,6 @@ let scenePath = DEFAULT_SCENE; // the file the text stands for: relative paths s
 let jobs = 0; // the last render job's id
 let editedAt = 0; // when the job's edit was made (for the edit-to-preview time)
 let renderTimer = 0;
-let worker = null;
 let lastJob = null;
 
 // The editor: the language's highlighting, completion and hover, tracer's diagnostics in place.
@@ -56,7 +55,14 @@ const view = new EditorView({
       autocompletion({ override: [complete] }),
       hoverTooltip(hover),
       lintGutter(),
-      keymap.of([...closeBracketsKeymap, ...defaultKeymap, ...searchKeymap, ...historyKeymap, ...completionKeymap, indentWithTab]),
+      keymap.of([
+        ...closeBracketsKeymap,
+        ...defaultKeymap,
+        ...searchKeymap,
+        ...historyKeymap,
+        ...completionKeymap,
+        indentWithTab,
+      ]),
       EditorView.updateListener.of((update) => {
         if (update.docChanged) scheduleRender();
       }),
@@ -74,13 +80,27 @@ function complete(context) {
   if (!found.entries.length || (found.from === context.pos && !context.explicit)) return null;
   return {
     from: found.from,
-    options: found.entries.map((e) => ({ label: e.label, type: completionType(e.kind), detail: e.detail, info: e.documentation })),
+    options: found.entries.map((e) => ({
+      label: e.label,
+      type: completionType(e.kind),
+      detail: e.detail,
+      info: e.documentation,
+    })),
     validFor: /^\w*$/,
   };
 }
 
 function completionType(kind) {
-  return { block: "class", key: "property", statement: "keyword", word: "keyword", function: "function", constant: "constant" }[kind] ?? "variable";
+  return (
+    {
+      block: "class",
+      key: "property",
+      statement: "keyword",
+      word: "keyword",
+      function: "function",
+      constant: "constant",
+    }[kind] ?? "variable"
+  );
 }
 
 function hover(editor, pos) {
@@ -117,83 +137,165 @@ function showReport(report) {
     .filter((d) => d.path === scenePath && (d.severity === "error" || d.severity === "warning"))
     .map((d) => {
       const from = d.line > 0 ? offsetOf(doc, d.line, d.column) : 0;
-      return { from, to: Math.min(from + Math.max(d.length || 1, 1), doc.length), severity: d.severity, message: d.message };
+      return {
+        from,
+        to: Math.min(from + Math.max(d.length || 1, 1), doc.length),
+        severity: d.severity,
+        message: d.message,
+      };
     });
   view.dispatch(setDiagnostics(view.state, placed));
   diagnosticsPanel.textContent = report.text || "";
 }
 
-// Draws a frame's pixels: a preview scaled up to the frame's size, the whole image as it is.
-function drawImage(message) {
-  const image = new ImageData(message.pixels, message.width, message.height);
+// The renderers: Web Workers, each with its own module, sharing each frame's bands. As many as
+// the processor has cores (at most 4), or ?workers=N.
+const WORKERS = Math.max(
+  1,
+  Math.min(
+    16,
+    Number(new URLSearchParams(location.search).get("workers")) || Math.min(navigator.hardwareConcurrency || 2, 4),
+  ),
+);
+const STUCK_MS = 1000; // a worker silent this long on a stale job is replaced (a scene's long load)
+const renderers = []; // {worker, busy: job id or 0, heard: when it last posted}
+const frames = new Map(); // `${job}:${final}` -> the frame being put together from its bands
+
+// The frame a band or a share belongs to, made on its first news.
+function frameOf(message) {
+  const key = `${message.id}:${message.final}`;
+  if (!frames.has(key)) {
+    if (frames.size > 8) frames.delete(frames.keys().next().value);
+    frames.set(key, { pixels: new Uint8ClampedArray(message.width * message.height * 4), bands: 0, shares: [] });
+  }
+  return frames.get(key);
+}
+
+function sizeCanvas(width, height) {
+  if (canvas.width !== width || canvas.height !== height) {
+    canvas.width = width;
+    canvas.height = height;
+  }
+}
+
+// A band's rows: kept in its frame; the whole image's drawn at once, a preview's when complete
+// (scaled up to the whole image's size).
+function onBand(message) {
+  const frame = frameOf(message);
+  frame.pixels.set(message.pixels, message.y * message.width * 4);
+  frame.bands += 1;
+  sizeCanvas(message.frame_width, message.frame_height);
   if (message.final) {
-    canvas.width = message.width;
-    canvas.height = message.height;
-    canvas.getContext("2d").putImageData(image, 0, 0);
-  } else {
+    canvas.getContext("2d").putImageData(new ImageData(message.pixels, message.width, message.rows), 0, message.y);
+    frameOf({ ...message, final: false }).overtaken = true; // its preview, if late, is not drawn over it
+  } else if (frame.bands === message.bands && !frame.overtaken) {
     const small = new OffscreenCanvas(message.width, message.height);
-    small.getContext("2d").putImageData(image, 0, 0);
+    small.getContext("2d").putImageData(new ImageData(frame.pixels, message.width, message.height), 0, 0);
     const context = canvas.getContext("2d");
     context.imageSmoothingEnabled = true;
     context.drawImage(small, 0, 0, canvas.width, canvas.height);
+    finished(message, { milliseconds: 0, rays: 0 });
   }
-  drawn.push({ id: message.id, final: message.final, width: message.width, height: message.height });
+  progress.value = message.final ? 0.2 + (0.8 * frame.bands) / message.bands : (0.2 * frame.bands) / message.bands;
+}
+
+// A worker's share of a frame done: the frame is when every worker's is.
+function onShare(message) {
+  if (!message.final) return;
+  const frame = frameOf(message);
+  frame.shares.push(message);
+  if (frame.shares.length < WORKERS) return;
+  const startedAt = Math.min(...frame.shares.map((s) => s.startedAt));
+  const endedAt = Math.max(...frame.shares.map((s) => s.endedAt));
+  const rays = frame.shares.reduce((sum, s) => sum + s.rays, 0);
+  finished(message, { milliseconds: endedAt - startedAt, rays });
+}
+
+// A frame on screen: recorded (for the tests and benchmarks), the status line and buttons set.
+function finished(message, { milliseconds, rays }) {
+  drawn.push({
+    id: message.id,
+    final: message.final,
+    width: message.width,
+    height: message.height,
+    at: performance.now(),
+    milliseconds,
+  });
   canvas.dataset.version = String(Number(canvas.dataset.version) + 1);
   canvas.dataset.final = String(message.final);
   canvas.dataset.job = String(message.id);
+  document.getElementById("download").disabled = !message.final;
+  if (message.final) {
+    progress.value = 1;
+    const threads = WORKERS === 1 ? "1 worker" : `${WORKERS} workers`;
+    statusLine.textContent = `${message.width}x${message.height} in ${(milliseconds / 1000).toFixed(2)} s (${(rays / 1e6).toFixed(2)} M rays, ${threads})`;
+  } else {
+    statusLine.textContent = `preview ${Math.round(performance.now() - editedAt)} ms after the edit; rendering…`;
+  }
 }
 
-function onWorkerMessage(event) {
-  const message = event.data;
+function onWorkerMessage(renderer, message) {
+  renderer.heard = performance.now();
   if (message.type === "ready") {
-    language = new Language(message.language);
-    fillGallery(message.scenes);
-    statusLine.textContent = "ready";
-    if (lastJob) worker.postMessage(lastJob);
+    if (!language) {
+      language = new Language(message.language);
+      fillGallery(message.scenes);
+      statusLine.textContent = "ready";
+    }
     return;
   }
+  if (message.type === "file") return; // fetchSceneText's
   if (message.id !== undefined && message.id !== jobs) return; // an older job's news
   if (message.type === "report") {
+    if (!message.report.ok) renderer.busy = 0;
+    if (message.part !== 0) return;
     showReport(message.report);
     if (!message.report.ok) {
       statusLine.textContent = `${message.report.errors} error${message.report.errors === 1 ? "" : "s"}: the last good image stays`;
       progress.value = 0;
     }
-  } else if (message.type === "progress") {
-    progress.value = message.final ? 0.25 + 0.75 * message.fraction : 0.25 * message.fraction;
-  } else if (message.type === "image") {
-    if (message.final) {
-      canvas.width = message.width;
-      canvas.height = message.height;
-    } else if (canvas.dataset.size !== `${message.width * 4}x${message.height * 4}`) {
-      canvas.width = message.width * 4; // the preview is a quarter of the frame
-      canvas.height = message.height * 4;
-    }
-    drawImage(message);
-    canvas.dataset.size = `${canvas.width}x${canvas.height}`;
-    const seconds = (message.milliseconds / 1000).toFixed(2);
-    statusLine.textContent = message.final
-      ? `${message.width}x${message.height} in ${seconds} s (${(message.rays / 1e6).toFixed(2)} M rays)`
-      : `preview ${Math.round(performance.now() - editedAt)} ms after the edit; rendering ${canvas.width}x${canvas.height}…`;
-    if (!message.final) canvas.dataset.previewMs = String(Math.round(performance.now() - editedAt));
-    document.getElementById("download").disabled = !message.final;
-    if (message.final) progress.value = 1;
+  } else if (message.type === "band") {
+    onBand(message);
+  } else if (message.type === "share") {
+    if (message.final) renderer.busy = 0;
+    onShare(message);
   } else if (message.type === "failed") {
     diagnosticsPanel.textContent = `tracer stopped: ${message.message}`;
     statusLine.textContent = "the render failed: tracer restarted";
-    startWorker(); // a module that failed may be broken: a fresh one
+    restart(renderer); // a module that failed may be broken: a fresh one
   }
 }
 
-function startWorker() {
-  if (worker) worker.terminate();
-  worker = new Worker("worker.js");
-  worker.onmessage = onWorkerMessage;
-  worker.onerror = (event) => {
+// A fresh worker in the place of `renderer`'s (after a failure, or when stuck on a stale job).
+function restart(renderer) {
+  if (renderer.worker) renderer.worker.terminate();
+  renderer.worker = new Worker("worker.js");
+  renderer.busy = 0;
+  renderer.heard = performance.now();
+  renderer.worker.onmessage = (event) => onWorkerMessage(renderer, event.data);
+  renderer.worker.onerror = (event) => {
     event.preventDefault();
     diagnosticsPanel.textContent = `tracer stopped: ${event.message}`;
-    startWorker();
+    restart(renderer);
   };
+}
+
+function startWorkers() {
+  for (let part = 0; part < WORKERS; part++) {
+    const renderer = { worker: null, busy: 0, heard: 0 };
+    restart(renderer);
+    renderers.push(renderer);
+  }
+}
+
+// Sends the job to every worker, each its part; a worker silent too long on an older job (a
+// scene whose load runs long) is replaced first.
+function postJob(job) {
+  renderers.forEach((renderer, part) => {
+    if (renderer.busy && performance.now() - renderer.heard > STUCK_MS) restart(renderer);
+    renderer.busy = job.id;
+    renderer.worker.postMessage({ ...job, part, parts: WORKERS });
+  });
 }
 
 function scheduleRender() {
@@ -202,7 +304,7 @@ function scheduleRender() {
   renderTimer = setTimeout(() => {
     const text = view.state.doc.toString();
     lastJob = { type: "render", id: ++jobs, path: scenePath, text };
-    worker.postMessage(lastJob);
+    postJob(lastJob);
     editedAt = performance.now() - EDIT_PAUSE_MS;
     progress.value = 0;
   }, EDIT_PAUSE_MS);
@@ -236,10 +338,11 @@ function fetchSceneText(path) {
   return new Promise((resolve) => {
     const listener = (event) => {
       if (event.data.type === "file" && event.data.path === path) {
-        worker.removeEventListener("message", listener);
+        renderers[0].worker.removeEventListener("message", listener);
         resolve(event.data.text);
       }
     };
+    const { worker } = renderers[0];
     worker.addEventListener("message", listener);
     worker.postMessage({ type: "read", path });
   });
@@ -260,14 +363,18 @@ document.getElementById("download").addEventListener("click", () => {
   canvas.toBlob((blob) => {
     const link = document.createElement("a");
     link.href = URL.createObjectURL(blob);
-    link.download = scenePath.split("/").pop().replace(/\.scn$/, "") + ".png";
+    link.download =
+      scenePath
+        .split("/")
+        .pop()
+        .replace(/\.scn$/, "") + ".png";
     link.click();
     setTimeout(() => URL.revokeObjectURL(link.href), 1000);
   }, "image/png");
 });
 
 async function begin() {
-  startWorker();
+  startWorkers();
   const shared = await readShareLink(location.hash);
   if (shared) setText(shared.text, shared.path);
   else setText(await fetchSceneText(DEFAULT_SCENE), DEFAULT_SCENE);

@@ -1,17 +1,21 @@
-// The playground's renderer, in a Web Worker of its own so that typing never waits for it: tracer's
-// WebAssembly module (tracer.js, built from src/web/playground.cpp) loads the scene's text, then
-// renders a preview at a quarter of its size and the full image, a band of rows at a time. Between
-// two bands it reads its messages, so a newer edit drops the render under way at once.
+// One of the playground's renderers, each a Web Worker with its own copy of tracer's WebAssembly
+// module (tracer.js, built from src/web/playground.cpp), so that typing never waits for them and
+// the page needs no shared memory (no cross-origin isolation: any static host serves it). Each
+// loads the scene's text, then renders its share of a preview at a quarter of the size and of
+// the whole image: the bands of rows whose number is its part, modulo the number of parts.
+// Between two bands it reads its messages, so that a newer edit drops the render under way.
 /* global importScripts, createTracer */
 importScripts("tracer.js");
 
 const PREVIEW_DIVISOR = 4;
-const BAND_MS = 25; // a band's target time: how soon a newer edit is seen
+const BAND_PIXELS = 4096; // a band's size: how soon a newer edit is seen, and how often the page is told
 
 let tracer = null; // the module, once instantiated
 let playground = null;
 let latest = 0; // the newest job's id: an older job stops at its next band
 let queued = null; // the newest job not yet started
+let running = null;
+const reads = []; // files asked for before the module was ready
 
 // Every file under `folder` of the module's file system, by path.
 function filesUnder(folder) {
@@ -25,7 +29,8 @@ function filesUnder(folder) {
   return found;
 }
 
-// The gallery's pictures decoded by the browser and handed to tracer (it has no image library).
+// The gallery's pictures decoded by the browser, without colour conversion, and handed to tracer
+// (it has no image library in the browser).
 async function providePictures(paths) {
   for (const path of paths.filter((p) => /\.(png|jpe?g)$/i.test(p))) {
     const bitmap = await createImageBitmap(new Blob([tracer.FS.readFile(path)]), {
@@ -49,53 +54,47 @@ function yieldToMessages() {
   });
 }
 
-// Renders the frame started, band by band; false if a newer job arrived first.
-async function renderFrame(job, frame, final) {
-  let rows = 4;
+// The rows of each band of a frame `width` pixels wide.
+function bandRows(width) {
+  return Math.max(1, Math.min(16, Math.round(BAND_PIXELS / width)));
+}
+
+// Renders this worker's bands of the frame started, posting each; false if a newer job arrived.
+async function renderShare(job, frame, final) {
+  const rows = bandRows(frame.width);
+  const bands = Math.ceil(frame.height / rows);
+  const startedAt = performance.timeOrigin + performance.now();
   let rays = 0;
-  const started = performance.now();
-  for (let y = 0; y < frame.height; ) {
-    const bandStarted = performance.now();
-    const done = playground.renderRows(y, rows);
+  for (let band = job.part; band < bands; band += job.parts) {
+    const y = band * rows;
+    const count = Math.min(rows, frame.height - y);
+    const done = playground.renderRows(y, count);
     if (done < 0) throw new Error("the render failed (out of memory?)");
     rays += done;
-    y += rows;
-    const took = performance.now() - bandStarted;
-    rows = Math.max(1, Math.min(256, Math.round((rows * BAND_MS) / Math.max(took, 1))));
-    postMessage({ type: "progress", id: job.id, final, fraction: Math.min(y / frame.height, 1) });
+    const all = playground.pixels(); // a view into the module's memory
+    const pixels = new Uint8ClampedArray(all.subarray(y * frame.width * 4, (y + count) * frame.width * 4));
+    postMessage({ type: "band", id: job.id, final, y, rows: count, bands, ...frame, pixels }, [pixels.buffer]);
     await yieldToMessages();
     if (latest !== job.id) return false;
   }
-  const pixels = new Uint8ClampedArray(playground.pixels()); // a copy: the module's memory may move
-  postMessage(
-    {
-      type: "image",
-      id: job.id,
-      final,
-      width: frame.width,
-      height: frame.height,
-      pixels,
-      milliseconds: performance.now() - started,
-      rays,
-    },
-    [pixels.buffer],
-  );
+  const endedAt = performance.timeOrigin + performance.now();
+  postMessage({ type: "share", id: job.id, final, part: job.part, ...frame, startedAt, endedAt, rays });
   return true;
 }
 
-// One job: the scene loaded (its diagnostics posted), a preview, then the whole image.
+// One job: the scene loaded (its diagnostics posted), this worker's share of a preview, then of
+// the whole image.
 async function run(job) {
-  const loadStarted = performance.now();
   const report = JSON.parse(playground.load(job.path, job.text));
-  postMessage({ type: "report", id: job.id, report, milliseconds: performance.now() - loadStarted });
+  postMessage({ type: "report", id: job.id, part: job.part, report });
   if (!report.ok) return;
-  for (const divisor of job.preview === false ? [1] : [PREVIEW_DIVISOR, 1]) {
+  for (const divisor of [PREVIEW_DIVISOR, 1]) {
     const frame = JSON.parse(playground.start(divisor));
     if (frame.error) {
       postMessage({ type: "failed", id: job.id, message: frame.error });
       return;
     }
-    if (!(await renderFrame(job, frame, divisor === 1))) return;
+    if (!(await renderShare(job, frame, divisor === 1))) return;
   }
 }
 
@@ -108,25 +107,14 @@ async function drain() {
       await run(job);
     } catch (error) {
       postMessage({ type: "failed", id: job.id, message: String(error && error.message ? error.message : error) });
-      playground = new tracer.Playground(); // a fresh start after a failure
+      return; // the page starts a fresh worker: a module that failed may be broken
     }
   }
 }
 
-let running = null;
-onmessage = (event) => {
-  const message = event.data;
-  if (message.type === "render") {
-    latest = message.id;
-    queued = message;
-    if (tracer && !running) running = drain().finally(() => (running = null));
-  } else if (message.type === "read") {
-    if (tracer) readFile(message.path);
-    else reads.push(message.path);
-  }
-};
-
-const reads = []; // files asked for before the module was ready
+function startDraining() {
+  if (tracer && !running) running = drain().finally(() => (running = null));
+}
 
 // Posts the text of the file at `path` of the module's file system ("" if there is none).
 function readFile(path) {
@@ -139,6 +127,18 @@ function readFile(path) {
   postMessage({ type: "file", path, text });
 }
 
+onmessage = (event) => {
+  const message = event.data;
+  if (message.type === "render") {
+    latest = message.id;
+    queued = message;
+    startDraining();
+  } else if (message.type === "read") {
+    if (tracer) readFile(message.path);
+    else reads.push(message.path);
+  }
+};
+
 createTracer().then(async (module) => {
   tracer = module;
   playground = new tracer.Playground();
@@ -150,5 +150,5 @@ createTracer().then(async (module) => {
     language: JSON.parse(tracer.language()),
   });
   for (const path of reads.splice(0)) readFile(path);
-  if (queued && !running) running = drain().finally(() => (running = null));
+  startDraining();
 });

@@ -51,7 +51,8 @@ public:
     }
 
     // Starts a frame of the loaded scene at 1/`divisor` of its size (a preview: one sample a
-    // pixel), building the world on the first frame; {"width", "height"} or {"error"} as JSON.
+    // pixel), building the world on the first frame; {"width", "height", "frame_width",
+    // "frame_height" (the whole image's)} or {"error"} as JSON.
     std::string start(int divisor) {
         if (!loaded_) return text_of({{"error", "no scene is loaded"}});
         try {
@@ -66,7 +67,10 @@ public:
             }
             if (!world_) world_ = std::make_unique<tracer::World>(loaded_->scene, loaded_->meshes, 1);
             rgba_.assign(size_t(render.width) * size_t(render.height) * 4, 255);
-            return text_of({{"width", render.width}, {"height", render.height}});
+            return text_of({{"width", render.width},
+                            {"height", render.height},
+                            {"frame_width", loaded_->scene.render.width},
+                            {"frame_height", loaded_->scene.render.height}});
         } catch (const std::exception& error) {
             world_.reset();
             return text_of({{"error", error.what()}});

@@ -26,6 +26,10 @@ BENCHMARKS = {
         "python_module",
         "issue 58's targets: import time, a render against the command line's, memory (docs/bench/bench-python.md)",
     ),
+    "playground": (
+        "playground",
+        "issue 59's targets: the browser's render, edit to preview, first image, size (docs/bench/bench-playground.md)",
+    ),
     "task2": ("task2", "task2 rendered 9 times: median time and Mrays/s (docs/bench/bench-task2.txt)"),
     "bvh": ("bvh", "the four accelerators on the bunny at five sizes, against Embree (docs/bench/performance*)"),
     "many": ("many", "many spheres and bunny instances, against Embree (docs/bench/many-objects*)"),
