@@ -72,7 +72,14 @@ const view = new EditorView({
 
 // What the page drew (job id, final or preview, size), and the editor: for the browser tests.
 const drawn = [];
-window.tracerPlayground = { view, drawn, jobs: () => jobs, jobText: () => lastJob && lastJob.text };
+let restarts = 0; // workers replaced (stuck on an older job, or failed)
+window.tracerPlayground = {
+  view,
+  drawn,
+  jobs: () => jobs,
+  jobText: () => lastJob && lastJob.text,
+  restarts: () => restarts,
+};
 
 function complete(context) {
   if (!language) return null;
@@ -157,8 +164,9 @@ const WORKERS = Math.max(
     Number(new URLSearchParams(location.search).get("workers")) || Math.min(navigator.hardwareConcurrency || 2, 4),
   ),
 );
-const STUCK_MS = 1000; // a worker silent this long on a stale job is replaced (a scene's long load)
-const renderers = []; // {worker, busy: job id or 0, heard: when it last posted}
+const STUCK_MS = 1000; // a worker still on an older job this long after a newer one is replaced
+// Each renderer: its worker, the job it is on (0: none), when the newest job was sent to it.
+const renderers = [];
 const frames = new Map(); // `${job}:${final}` -> the frame being put together from its bands
 
 // The frame a band or a share belongs to, made on its first news.
@@ -235,7 +243,7 @@ function finished(message, { milliseconds, rays }) {
 }
 
 function onWorkerMessage(renderer, message) {
-  renderer.heard = performance.now();
+  if (message.id !== undefined && renderer.busy) renderer.busy = Math.max(renderer.busy, message.id);
   if (message.type === "ready") {
     if (!language) {
       language = new Language(message.language);
@@ -247,7 +255,7 @@ function onWorkerMessage(renderer, message) {
   if (message.type === "file") return; // fetchSceneText's
   if (message.id !== undefined && message.id !== jobs) return; // an older job's news
   if (message.type === "report") {
-    if (!message.report.ok) renderer.busy = 0;
+    if (!message.report.ok && message.id === jobs) renderer.busy = 0;
     if (message.part !== 0) return;
     showReport(message.report);
     if (!message.report.ok) {
@@ -257,21 +265,23 @@ function onWorkerMessage(renderer, message) {
   } else if (message.type === "band") {
     onBand(message);
   } else if (message.type === "share") {
-    if (message.final) renderer.busy = 0;
+    if (message.final && message.id === jobs) renderer.busy = 0;
     onShare(message);
   } else if (message.type === "failed") {
     diagnosticsPanel.textContent = `tracer stopped: ${message.message}`;
     statusLine.textContent = "the render failed: tracer restarted";
-    restart(renderer); // a module that failed may be broken: a fresh one
+    restart(renderer); // a module that failed may be broken: a fresh one (for the next edit)
   }
 }
 
 // A fresh worker in the place of `renderer`'s (after a failure, or when stuck on a stale job).
 function restart(renderer) {
-  if (renderer.worker) renderer.worker.terminate();
+  if (renderer.worker) {
+    renderer.worker.terminate();
+    restarts += 1;
+  }
   renderer.worker = new Worker("worker.js");
   renderer.busy = 0;
-  renderer.heard = performance.now();
   renderer.worker.onmessage = (event) => onWorkerMessage(renderer, event.data);
   renderer.worker.onerror = (event) => {
     event.preventDefault();
@@ -282,21 +292,34 @@ function restart(renderer) {
 
 function startWorkers() {
   for (let part = 0; part < WORKERS; part++) {
-    const renderer = { worker: null, busy: 0, heard: 0 };
+    const renderer = { worker: null, busy: 0, sentAt: 0 };
     restart(renderer);
     renderers.push(renderer);
   }
 }
 
-// Sends the job to every worker, each its part; a worker silent too long on an older job (a
-// scene whose load runs long) is replaced first.
+// Sends the job to every worker, each its part.
 function postJob(job) {
-  renderers.forEach((renderer, part) => {
-    if (renderer.busy && performance.now() - renderer.heard > STUCK_MS) restart(renderer);
-    renderer.busy = job.id;
-    renderer.worker.postMessage({ ...job, part, parts: WORKERS });
-  });
+  renderers.forEach((renderer, part) => send(renderer, part, job));
 }
+
+function send(renderer, part, job) {
+  if (!renderer.busy) renderer.busy = job.id; // idle: on it at once; busy: on it at its next band
+  renderer.sentAt = performance.now();
+  renderer.worker.postMessage({ ...job, part, parts: WORKERS });
+}
+
+// A worker still on an older job STUCK_MS after the newest was sent (a scene whose load or band
+// runs long: the worker reads its messages only between bands) is replaced by a fresh one, which
+// starts on the newest job; never one already on the newest, however long its load.
+setInterval(() => {
+  renderers.forEach((renderer, part) => {
+    if (renderer.busy && renderer.busy < jobs && performance.now() - renderer.sentAt > STUCK_MS) {
+      restart(renderer);
+      send(renderer, part, lastJob);
+    }
+  });
+}, 250);
 
 function scheduleRender() {
   editedAt = editedAt || performance.now();

@@ -85,6 +85,7 @@ async function renderShare(job, frame, final) {
 // One job: the scene loaded (its diagnostics posted), this worker's share of a preview, then of
 // the whole image.
 async function run(job) {
+  postMessage({ type: "started", id: job.id }); // the page knows this worker has left its older job
   const report = JSON.parse(playground.load(job.path, job.text));
   postMessage({ type: "report", id: job.id, part: job.part, report });
   if (!report.ok) return;

@@ -177,3 +177,17 @@ def test_an_edit_during_a_long_render_drops_it(site_url, browser):
     assert state["job"] > long_job
     frames = browser.execute_script("return window.tracerPlayground.drawn")
     assert not any(f["id"] == long_job and f["final"] for f in frames), frames
+
+
+def test_a_scene_that_runs_long_does_not_hold_up_the_next_edit(site_url, browser):
+    """A load that runs for many seconds (a loop near the language's operation limit) is left
+    behind: the worker is replaced and the next edit renders."""
+    open_page(browser, site_url)
+    slow = "let x = 0\nfor i in 0..899 { for j in 0..9999 { x = x + sqrt(j) * sqrt(i) + sqrt(j + 1) * sqrt(i + 2) } }\n"
+    set_text(browser, slow + SMALL.format(colour="0.3"))  # 9 million iterations: seconds to run
+    WebDriverWait(browser, WAIT).until(lambda b: page_state(b)["sent"])
+    stuck = page_state(browser)["jobs"]
+    set_text(browser, SMALL.format(colour="(0.1, 0.9, 0.9)"))
+    state = wait_for_final_of_latest(browser)
+    assert state["job"] > stuck and state["diagnostics"] == ""
+    assert browser.execute_script("return window.tracerPlayground.restarts()") >= 1  # left behind, not waited for
