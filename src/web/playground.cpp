@@ -52,7 +52,7 @@ public:
 
     // Starts a frame of the loaded scene at 1/`divisor` of its size (a preview: one sample a
     // pixel), building the world on the first frame; {"width", "height", "frame_width",
-    // "frame_height" (the whole image's)} or {"error"} as JSON.
+    // "frame_height" (the whole image's), "samples" (a pixel's)} or {"error"} as JSON.
     std::string start(int divisor) {
         if (!loaded_) return text_of({{"error", "no scene is loaded"}});
         try {
@@ -70,7 +70,8 @@ public:
             return text_of({{"width", render.width},
                             {"height", render.height},
                             {"frame_width", loaded_->scene.render.width},
-                            {"frame_height", loaded_->scene.render.height}});
+                            {"frame_height", loaded_->scene.render.height},
+                            {"samples", render.samples}});
         } catch (const std::exception& error) {
             world_.reset();
             return text_of({{"error", error.what()}});
