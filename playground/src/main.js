@@ -72,6 +72,7 @@ const view = new EditorView({
 
 // What the page drew (job id, final or preview, size), and the editor: for the browser tests.
 const drawn = [];
+const firstPaints = []; // {id, at}: when each job's first pixels were on screen
 let restarts = 0; // workers replaced (stuck on an older job, or failed)
 window.tracerPlayground = {
   view,
@@ -79,6 +80,7 @@ window.tracerPlayground = {
   jobs: () => jobs,
   jobText: () => lastJob && lastJob.text,
   restarts: () => restarts,
+  firstPaints,
 };
 
 function complete(context) {
@@ -195,8 +197,10 @@ function onBand(message) {
   sizeCanvas(message.frame_width, message.frame_height);
   if (message.final) {
     canvas.getContext("2d").putImageData(new ImageData(message.pixels, message.width, message.rows), 0, message.y);
+    painted(message.id);
     frameOf({ ...message, final: false }).overtaken = true; // its preview, if late, is not drawn over it
   } else if (frame.bands === message.bands && !frame.overtaken) {
+    painted(message.id);
     const small = new OffscreenCanvas(message.width, message.height);
     small.getContext("2d").putImageData(new ImageData(frame.pixels, message.width, message.height), 0, 0);
     const context = canvas.getContext("2d");
@@ -205,6 +209,12 @@ function onBand(message) {
     finished(message, { milliseconds: 0, rays: 0 });
   }
   progress.value = message.final ? 0.2 + (0.8 * frame.bands) / message.bands : (0.2 * frame.bands) / message.bands;
+}
+
+// The first time a job's pixels reach the screen (its preview, or the whole image's first band
+// when that comes first), recorded for the tests and benchmarks.
+function painted(id) {
+  if (!firstPaints.some((p) => p.id === id)) firstPaints.push({ id, at: performance.now() });
 }
 
 // A worker's share of a frame done: the frame is when every worker's is.

@@ -3,6 +3,8 @@ built once per run (the WebAssembly module and the page), served on 127.0.0.1, a
 it in a fresh browser. Skipped, with the reason, where emscripten, Node.js, Chromium or its driver
 is missing."""
 
+import functools
+import http.server
 import os
 import pathlib
 import shutil
@@ -44,8 +46,8 @@ def tracer_bin():
 
 
 @pytest.fixture(scope="session")
-def site_url(tmp_path_factory):
-    """The site built (tools/playground build) into a fresh folder and served on a port the system chose."""
+def site_folder(tmp_path_factory):
+    """The site, built (tools/playground build) into a fresh folder."""
     folder = tmp_path_factory.mktemp("site")
     environment = dict(os.environ, PYTHONPATH=str(ROOT / "tools"))
     built = subprocess.run(
@@ -55,15 +57,36 @@ def site_url(tmp_path_factory):
         text=True,
     )
     assert built.returncode == 0, built.stderr
-    import functools
-    import http.server
+    return folder
 
-    handler = functools.partial(site.SiteHandler, directory=str(folder))
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    yield f"http://127.0.0.1:{server.server_address[1]}/"
-    server.shutdown()
-    server.server_close()
+
+class Server:
+    """The site served on 127.0.0.1, on a port the system chose, until stopped."""
+
+    def __init__(self, folder):
+        handler = functools.partial(site.SiteHandler, directory=str(folder))
+        self.server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+        threading.Thread(target=self.server.serve_forever, daemon=True).start()
+        self.url = f"http://127.0.0.1:{self.server.server_address[1]}/"
+
+    def stop(self):
+        self.server.shutdown()
+        self.server.server_close()
+
+
+@pytest.fixture(scope="session")
+def site_url(site_folder):
+    server = Server(site_folder)
+    yield server.url
+    server.stop()
+
+
+@pytest.fixture
+def own_server(site_folder):
+    """A server of the site for one test alone (which may stop it)."""
+    server = Server(site_folder)
+    yield server
+    server.stop()
 
 
 @pytest.fixture

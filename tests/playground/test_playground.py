@@ -191,3 +191,27 @@ def test_a_scene_that_runs_long_does_not_hold_up_the_next_edit(site_url, browser
     state = wait_for_final_of_latest(browser)
     assert state["job"] > stuck and state["diagnostics"] == ""
     assert browser.execute_script("return window.tracerPlayground.restarts()") >= 1  # left behind, not waited for
+
+
+def test_the_page_works_offline_once_loaded(own_server, browser):
+    """After one visit the service worker holds every file: with the server gone, the page loads
+    again and renders."""
+    open_page(browser, own_server.url)
+    cached = browser.execute_async_script(
+        "const done = arguments[arguments.length - 1];"
+        "navigator.serviceWorker.ready.then(async () => {"
+        "  for (let i = 0; i < 600; i++) {"
+        "    const names = await caches.keys();"
+        "    const keys = names.length ? await (await caches.open(names[0])).keys() : [];"
+        "    if (keys.length >= 8) return done(keys.map((r) => r.url.split('/').pop()));"
+        "    await new Promise((r) => setTimeout(r, 100));"
+        "  }"
+        "  done(null);"
+        "});"
+    )
+    assert cached and {"tracer.wasm", "tracer.data", "app.js", "worker.js"} <= set(cached), cached
+    own_server.stop()  # no network from here on: only the browser's cache
+    browser.refresh()
+    WebDriverWait(browser, WAIT).until(lambda b: b.execute_script("return !!window.tracerPlayground"))
+    set_text(browser, SMALL.format(colour="(0.5, 0.2, 0.8)"))
+    assert wait_for_final_of_latest(browser)["diagnostics"] == ""
