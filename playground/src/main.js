@@ -175,7 +175,7 @@ const frames = new Map(); // `${job}:${final}` -> the frame being put together f
 function frameOf(message) {
   const key = `${message.id}:${message.final}`;
   if (!frames.has(key)) {
-    if (frames.size > 8) frames.delete(frames.keys().next().value);
+    for (const older of [...frames.keys()]) if (Number(older.split(":")[0]) < message.id) frames.delete(older); // a big frame is 256 MB
     frames.set(key, { pixels: new Uint8ClampedArray(message.width * message.height * 4), bands: 0, shares: [] });
   }
   return frames.get(key);
