@@ -215,3 +215,53 @@ def test_the_page_works_offline_once_loaded(own_server, browser):
     WebDriverWait(browser, WAIT).until(lambda b: b.execute_script("return !!window.tracerPlayground"))
     set_text(browser, SMALL.format(colour="(0.5, 0.2, 0.8)"))
     assert wait_for_final_of_latest(browser)["diagnostics"] == ""
+
+
+def test_completion_and_hover_come_from_tracers_tables(site_url, browser, tracer_bin):
+    """Typing in a block offers its keys; the top level offers the blocks; hovering a key shows its
+    meaning: the same tables as `tracer --language-json` (the language server's)."""
+    import json
+
+    from selenium.webdriver.common.action_chains import ActionChains
+
+    tables = json.loads(subprocess.run([tracer_bin, "--language-json"], capture_output=True, check=True).stdout)
+    sphere = next(block for block in tables["blocks"] if block["kind"] == "sphere")
+    open_page(browser, site_url)
+    set_text(browser, SMALL.format(colour="0.5") + "\n")
+    editor = browser.find_element(By.CSS_SELECTOR, ".cm-content")
+
+    def offered():
+        return browser.execute_script(
+            "return [...document.querySelectorAll('.cm-tooltip-autocomplete li')].map(li => li.textContent)"
+        )
+
+    # At the top level, after "sph": the sphere block.
+    browser.execute_script(
+        "const v = window.tracerPlayground.view; v.focus(); v.dispatch({selection: {anchor: v.state.doc.length}});"
+    )
+    editor.send_keys("sph")
+    WebDriverWait(browser, WAIT).until(lambda b: any(o.startswith("sphere") for o in offered()))
+    # Inside a sphere block, after "ra": its key radius, and no top-level block.
+    editor.send_keys(Keys.ESCAPE, Keys.BACKSPACE * 3, "sphere { ra")
+    WebDriverWait(browser, WAIT).until(lambda b: any(o.startswith("radius") for o in offered()))
+    assert not any(o.startswith("camera") for o in offered())
+    editor.send_keys(Keys.ESCAPE)
+    # Hover over the word radius on line 3: the key's meaning from the table.
+    word = browser.execute_script(
+        "const v = window.tracerPlayground.view; const line = v.state.doc.line(3);"
+        "const at = line.from + line.text.indexOf('radius') + 2; const r = v.coordsAtPos(at);"
+        "return [r.left, (r.top + r.bottom) / 2];"
+    )
+    body = browser.find_element(By.TAG_NAME, "body")
+    ActionChains(browser).move_to_element_with_offset(body, 0, 0).perform()
+    origin = browser.execute_script(
+        "const r = document.body.getBoundingClientRect(); return [r.left + r.width / 2, r.top + r.height / 2];"
+    )
+    ActionChains(browser).move_to_element_with_offset(
+        body, int(word[0] - origin[0]), int(word[1] - origin[1])
+    ).perform()
+    radius = next(key for key in sphere["keys"] if key["name"] == "radius")
+    WebDriverWait(browser, WAIT).until(
+        lambda b: radius["meaning"]
+        in b.execute_script("const t = document.querySelector('.cm-tooltip-hover'); return t ? t.textContent : ''")
+    )

@@ -33,6 +33,34 @@ class PlaygroundError(Exception):
     """What stops a build or a server, said in one line."""
 
 
+# How Debian's Chromium runs headless here: no sandbox (root), no GPU, and no connections of its
+# own (a closed network refuses them, many at a time).
+CHROMIUM_ARGUMENTS = (
+    "--headless=new",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-dev-shm-usage",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--no-first-run",
+)
+
+
+def chromium(script_timeout: float) -> object:
+    """Debian's Chromium, headless, driven by Selenium through chromium-driver (the tests' and the
+    benchmark's browser)."""
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    options = webdriver.ChromeOptions()
+    options.binary_location = shutil.which("chromium")
+    for argument in CHROMIUM_ARGUMENTS:
+        options.add_argument(argument)
+    driver = webdriver.Chrome(service=Service(shutil.which("chromedriver")), options=options)
+    driver.set_script_timeout(script_timeout)
+    return driver
+
+
 def missing_tools() -> list[str]:
     """The programs a build needs that this machine lacks, each with what provides it."""
     wanted = {"emcmake": "Debian's emscripten", "node": "Node.js", "npm": "npm"}
