@@ -38,7 +38,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 from tracer_tools.bench.common import TRACER, git, machine
 from tracer_tools.playground import site
 
@@ -123,7 +123,7 @@ def site_size(folder: Path) -> tuple[int, int]:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--pairs", type=int, default=5)
+    parser.add_argument("--pairs", type=option_types.whole_number(1, 1000), default=5)
     parser.add_argument("--skip-gallery", action="store_true", help="leave out target 5 (the longest)")
     args = parser.parse_args()
     print(f"# tools/bench playground: {time.strftime('%Y-%m-%d')}, {git('rev-parse', '--short', 'HEAD')}")

@@ -18,7 +18,7 @@ import shutil
 import subprocess
 import sys
 
-from tracer_tools import ROOT
+from tracer_tools import ROOT, option_types
 
 MODULE_DIR = ROOT / "build" / "web"
 SITE_DIR = MODULE_DIR / "site"
@@ -167,11 +167,23 @@ def main() -> int:
     parser = argparse.ArgumentParser(prog="tools/playground", description=__doc__.split("\n\n")[0])
     commands = parser.add_subparsers(dest="command", required=True)
     building = commands.add_parser("build", help="build the site")
-    building.add_argument("--out", default=str(SITE_DIR), help="the site's folder (default build/web/site)")
+    building.add_argument(
+        "--out",
+        type=option_types.output_folder,
+        default=str(SITE_DIR),
+        help="the site's folder (default build/web/site)",
+    )
     building.add_argument("-q", "--quiet", action="store_true", help="print only errors")
     serving = commands.add_parser("serve", help="serve the site on 127.0.0.1")
-    serving.add_argument("--port", type=int, default=8000, help="the port (0: any free one; default 8000)")
-    serving.add_argument("--folder", default=str(SITE_DIR), help="the site's folder (default build/web/site)")
+    serving.add_argument(
+        "--port", type=option_types.port, default=8000, help="the port (0: any free one; default 8000)"
+    )
+    serving.add_argument(
+        "--folder",
+        type=option_types.output_path,
+        default=str(SITE_DIR),
+        help="the site's folder (default build/web/site)",
+    )
     arguments = parser.parse_args()
     try:
         return build(arguments) if arguments.command == "build" else serve(arguments)
