@@ -63,7 +63,7 @@ std::to_chars_result shortest_chars_by_printf(char* first, char* last, double va
     } else {
         fixed += "0." + std::string(size_t(-exponent - 1), '0') + digits;
     }
-    char power[8];
+    char power[16];
     std::snprintf(power, sizeof power, "e%c%02d", exponent < 0 ? '-' : '+', std::abs(exponent));
     const std::string exponential = sign + digits.substr(0, 1) + (count > 1 ? "." + digits.substr(1) : "") + power;
     const std::string& chosen = exponential.size() < fixed.size() ? exponential : fixed;
