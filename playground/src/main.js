@@ -31,7 +31,7 @@ const gallery = document.getElementById("gallery");
 let language = null; // tracer's tables, from the worker
 let scenePath = DEFAULT_SCENE; // the file the text stands for: relative paths start from its folder
 let jobs = 0; // the last render job's id
-let editedAt = 0; // when the job's edit was made (for the edit-to-preview time)
+let editedAt = 0; // when the last edit was made (the status line's edit-to-preview time)
 let renderTimer = 0;
 let lastJob = null;
 
@@ -332,13 +332,12 @@ setInterval(() => {
 }, 250);
 
 function scheduleRender() {
-  editedAt = editedAt || performance.now();
+  editedAt = performance.now();
   clearTimeout(renderTimer);
   renderTimer = setTimeout(() => {
     const text = view.state.doc.toString();
     lastJob = { type: "render", id: ++jobs, path: scenePath, text };
     postJob(lastJob);
-    editedAt = performance.now() - EDIT_PAUSE_MS;
     progress.value = 0;
   }, EDIT_PAUSE_MS);
 }

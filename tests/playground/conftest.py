@@ -3,14 +3,11 @@ built once per run (the WebAssembly module and the page), served on 127.0.0.1, a
 it in a fresh browser. Skipped, with the reason, where emscripten, Node.js, Chromium or its driver
 is missing."""
 
-import functools
-import http.server
 import os
 import pathlib
 import shutil
 import subprocess
 import sys
-import threading
 
 import pytest
 
@@ -60,23 +57,9 @@ def site_folder(tmp_path_factory):
     return folder
 
 
-class Server:
-    """The site served on 127.0.0.1, on a port the system chose, until stopped."""
-
-    def __init__(self, folder):
-        handler = functools.partial(site.SiteHandler, directory=str(folder))
-        self.server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-        threading.Thread(target=self.server.serve_forever, daemon=True).start()
-        self.url = f"http://127.0.0.1:{self.server.server_address[1]}/"
-
-    def stop(self):
-        self.server.shutdown()
-        self.server.server_close()
-
-
 @pytest.fixture(scope="session")
 def site_url(site_folder):
-    server = Server(site_folder)
+    server = site.BackgroundServer(site_folder)
     yield server.url
     server.stop()
 
@@ -84,7 +67,7 @@ def site_url(site_folder):
 @pytest.fixture
 def own_server(site_folder):
     """A server of the site for one test alone (which may stop it)."""
-    server = Server(site_folder)
+    server = site.BackgroundServer(site_folder)
     yield server
     server.stop()
 

@@ -23,9 +23,7 @@ committed in docs/bench/bench-playground.md.
 
 import argparse
 import base64
-import functools
 import gzip
-import http.server
 import json
 import os
 import shutil
@@ -33,7 +31,6 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -103,13 +100,6 @@ def native_rgb(scene: Path, folder: Path) -> bytes:
     return out.read_bytes().split(b"\n", 3)[3]
 
 
-def serve(folder: Path) -> tuple[http.server.ThreadingHTTPServer, str]:
-    handler = functools.partial(site.SiteHandler, directory=str(folder))
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    return server, f"http://127.0.0.1:{server.server_address[1]}/"
-
-
 def site_size(folder: Path) -> tuple[int, int]:
     """The site's gzip -9 bytes without the gallery's meshes, and the meshes' own."""
     total = sum(
@@ -132,7 +122,8 @@ def main() -> int:
         scratch = Path(scratch)
         folder = scratch / "site"
         site.build(argparse.Namespace(out=str(folder), quiet=True))
-        server, url = serve(folder)
+        server = site.BackgroundServer(folder)
+        url = server.url
         print("| target | measured | met |\n|---|---|---|")
         text = TASK2.read_text()
         # 1. task2 in the browser against the command line: one worker against one thread (the
@@ -239,7 +230,7 @@ def main() -> int:
                 + "".join(f"; {p}: {why}" for p, why in differing.items())
                 + f" | {'yes' if not differing else 'no'} |"
             )
-        server.shutdown()
+        server.stop()
     return 0
 
 

@@ -199,10 +199,10 @@ def check_jobs(tracer: str, jobs: list[Job], engine: str = "process", renderer: 
         raise JobError(f"no tracer executable at '{tracer}' (build it: tools/bootstrap)", 3)
     # Each distinct scene (tracer's arguments) is checked and its inputs hashed once; each output
     # folder and format checked once: 10^5 jobs of one scene plan in seconds.
-    checked = {}  # tracer's arguments -> (the checked job, the inputs' digests)
-    outputs = OutputChecks()
     from tracer_tools.farm import resume
 
+    checked = {}  # tracer's arguments -> (the checked job, the inputs' digests)
+    outputs = OutputChecks()
     renderer = renderer or tracer
     tracer_digest = resume.file_digest(renderer)
     for job in jobs:

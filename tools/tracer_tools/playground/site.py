@@ -17,6 +17,7 @@ import pathlib
 import shutil
 import subprocess
 import sys
+import threading
 
 from tracer_tools import ROOT, option_types
 
@@ -144,13 +145,32 @@ class SiteHandler(http.server.SimpleHTTPRequestHandler):
         pass
 
 
+def site_server(folder: str | os.PathLike, port: int = 0) -> http.server.ThreadingHTTPServer:
+    """A server of the site in `folder` on 127.0.0.1:`port` (0: one the system picks), bound but not
+    yet serving; OSError if the port cannot be had."""
+    return http.server.ThreadingHTTPServer(("127.0.0.1", port), functools.partial(SiteHandler, directory=str(folder)))
+
+
+class BackgroundServer:
+    """The site in `folder` served from a thread of its own on a port the system picked (`url`),
+    until stop(): the tests' and the benchmark's server."""
+
+    def __init__(self, folder: str | os.PathLike):
+        self.server = site_server(folder)
+        threading.Thread(target=self.server.serve_forever, daemon=True).start()
+        self.url = f"http://127.0.0.1:{self.server.server_address[1]}/"
+
+    def stop(self) -> None:
+        self.server.shutdown()
+        self.server.server_close()
+
+
 def serve(arguments: argparse.Namespace) -> int:
     folder = pathlib.Path(arguments.folder).resolve()
     if not (folder / "index.html").exists():
         raise PlaygroundError(f"{folder} holds no site: build it first (tools/playground build)")
-    handler = functools.partial(SiteHandler, directory=str(folder))
     try:
-        server = http.server.ThreadingHTTPServer(("127.0.0.1", arguments.port), handler)
+        server = site_server(folder, arguments.port)
     except OSError as error:
         raise PlaygroundError(f"cannot serve on port {arguments.port}: {error.strerror}") from None
     print(f"tools/playground: http://127.0.0.1:{server.server_address[1]}/", flush=True)
