@@ -265,3 +265,15 @@ def test_completion_and_hover_come_from_tracers_tables(site_url, browser, tracer
         lambda b: radius["meaning"]
         in b.execute_script("const t = document.querySelector('.cm-tooltip-hover'); return t ? t.textContent : ''")
     )
+
+
+@pytest.mark.parametrize("fragment", ["#z=", "#z=%%%", "#in=/etc/passwd&z=AAAA", "#z=" + "A" * 100000])
+def test_a_broken_share_link_opens_the_default_scene(site_url, browser, fragment):
+    """A fragment that is not a share link's (empty, not base64, not deflate, huge, a path outside
+    the gallery) opens task2 and renders it, with no error."""
+    browser.get(site_url + fragment)
+    WebDriverWait(browser, WAIT).until(lambda b: b.execute_script("return !!window.tracerPlayground"))
+    state = wait_for_final_of_latest(browser)
+    assert state["diagnostics"] == ""
+    text = browser.execute_script("return window.tracerPlayground.view.state.doc.toString()")
+    assert text == (ROOT / "scenes" / "task2.scn").read_text()
