@@ -1,10 +1,15 @@
 """tools/farm --frames on a local cluster of 2 workers: the frames are the tasks, each file the one
 `tracer --frames` writes alone, byte for byte; resumed runs keep whole frames; bad animations refused."""
 
+import json
+import os
 import subprocess
+import tempfile
 
 import pytest
 from conftest import SCENES, farm
+
+from tracer_tools.farm import worker
 
 # bunny_room with a zoom: every frame differs.
 ANIMATED = (SCENES / "bunny_room.scn").read_text().replace("fovy 45", "fovy 40 + 20 * clock", 1)
@@ -75,6 +80,25 @@ def test_a_resumed_farm_keeps_whole_frames_and_makes_the_rest(tracer_bin, tmp_pa
     assert "4 frames (3 kept)" in result.stderr
     for frame, data in expected.items():
         assert (tmp_path / f"f_{frame:02d}.png").read_bytes() == data, frame
+    # The frames asked for while Dask started were wanted ones (1 and 3): no third process was needed.
+    assert json.loads(timings.read_text())["worker_processes"] == 2
+
+
+def test_frames_asked_for_ahead_are_the_tasks_own_and_unclaimed_ones_are_cleared(tracer_bin, tmp_path, scene):
+    expected = alone(tracer_bin, scene, tmp_path / "alone")
+    command = [tracer_bin, scene, "--width", "64", "--frames", "7", "--frame-list", "--threads", "1", "-q"]
+    job = worker.worker_job("ahead-test", list(map(str, command)), ".png")
+    worker.start_job(job)
+    before = set(os.listdir(tempfile.gettempdir()))
+    worker.ask_ahead(job, 1, 2)  # rendering from here on, before its task runs
+    worker.ask_ahead(job, 5, 5)  # a second process; never claimed
+    asked = {name for name in os.listdir(tempfile.gettempdir()) if name.startswith("tracer-frames-")} - before
+    assert len(asked) == 2
+    frames, _ = worker.render_frames(job, 1, 2)
+    assert frames == [(1, expected[1]), (2, expected[2])]
+    assert worker.render_frames(job, 3, 3)[0] == [(3, expected[3])]  # the first process, given back
+    assert worker.close_job("ahead-test") == 2
+    assert not asked & set(os.listdir(tempfile.gettempdir()))  # both folders removed, the unclaimed one too
 
 
 def test_bad_animations_are_refused_before_any_frame(tracer_bin, tmp_path, scene):

@@ -9,6 +9,7 @@ and the tracer executable (or the package), not this folder."""
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -40,6 +41,7 @@ def _processes() -> types.ModuleType:
         holder.every, holder.idle = {}, {}
         holder.scenes = {}  # the module engine's: key -> {"lock", "scene", "stopped": its renders' stop}
         holder.closed = set()  # the keys of jobs closed here
+        holder.ahead = {}  # (key, first, last) -> (process, folder): runs of frames asked for ahead
         holder.lock = threading.Lock()
         sys.modules["_tracer_farm_processes"] = holder
     return holder
@@ -138,15 +140,28 @@ def _scratch_folder() -> str | None:
         return None
 
 
-def _ask(process: subprocess.Popen, request: str) -> str:
-    """Sends one request line to a kept tracer process and returns its reply line ("" if the
-    process is gone: its stderr then says why)."""
+def _send(process: subprocess.Popen, request: str) -> bool:
+    """Sends one request line to a kept tracer process; False if the process is gone."""
     try:
         process.stdin.write(request + "\n")
         process.stdin.flush()
-        return process.stdout.readline()
+        return True
     except (BrokenPipeError, OSError, ValueError):
+        return False
+
+
+def _reply(process: subprocess.Popen) -> str:
+    """A kept tracer process's reply line to its request ("" if the process is gone: its stderr
+    then says why)."""
+    try:
+        return process.stdout.readline()
+    except (OSError, ValueError):
         return ""
+
+
+def _ask(process: subprocess.Popen, request: str) -> str:
+    """Sends one request line to a kept tracer process and returns its reply line."""
+    return _reply(process) if _send(process, request) else ""
 
 
 def render_tile(job: dict, region_text: str) -> tuple[object, float]:
@@ -180,6 +195,7 @@ def close_job(key: str, at_once: bool = False) -> int:
         processes = holder.every.pop(key, [])
         holder.idle.pop(key, None)
         scene = holder.scenes.pop(key, None)
+        ahead = [holder.ahead.pop(run) for run in list(holder.ahead) if run[0] == key]
         holder.closed.add(key)
     if scene is not None and at_once:
         scene["stopped"].set()  # renders under way stop within 20 ms (RenderStopped)
@@ -191,7 +207,26 @@ def close_job(key: str, at_once: bool = False) -> int:
             process.wait(timeout=30)
         except (OSError, subprocess.TimeoutExpired):
             process.kill()
+    for _, folder in ahead:
+        shutil.rmtree(folder, ignore_errors=True)
     return len(processes) + (scene is not None)
+
+
+def _frames_request(first: int, last: int, folder: str, suffix: str) -> str:
+    """The --frame-list request line for frames `first` to `last`, written into `folder`."""
+    return f"{first} {last} {os.path.join(folder, 'frame_#######' + suffix)}"
+
+
+def ask_ahead(job: dict, first: int, last: int) -> None:
+    """Asks one of this process's tracer processes of the job for frames `first` to `last` before
+    their task comes (a local cluster's workers are threads of this process: the farm asks while
+    Dask starts); render_frames of that run then waits for this reply instead of asking."""
+    process = _take(job)
+    folder = tempfile.mkdtemp(prefix="tracer-frames-")
+    holder = _processes()
+    with holder.lock:
+        holder.ahead[(job["key"], first, last)] = (process, folder)
+    _send(process, _frames_request(first, last, folder, job["tile_suffix"]))  # if it fails, the task says so
 
 
 def render_frames(job: dict, first: int, last: int) -> tuple[list[tuple[int, bytes]], float]:
@@ -200,10 +235,17 @@ def render_frames(job: dict, first: int, last: int) -> tuple[list[tuple[int, byt
     built once per process, for every run it is sent): each frame's number and file bytes (the job's
     tile_suffix is the frames' extension), and the seconds it took here."""
     start = time.perf_counter()
-    process = _take(job)
-    with tempfile.TemporaryDirectory(prefix="tracer-frames-", dir=_scratch_folder()) as folder:
-        pattern = os.path.join(folder, "frame_#######" + job["tile_suffix"])
-        reply = _ask(process, f"{first} {last} {pattern}")
+    holder = _processes()
+    with holder.lock:
+        ahead = holder.ahead.pop((job["key"], first, last), None)
+    if ahead is not None:  # asked for already (ask_ahead)
+        process, folder = ahead
+        reply = _reply(process)
+    else:
+        process = _take(job)
+        folder = tempfile.mkdtemp(prefix="tracer-frames-", dir=_scratch_folder())
+        reply = _ask(process, _frames_request(first, last, folder, job["tile_suffix"]))
+    try:
         if not reply.startswith("done "):
             if reply.startswith("error: "):  # a request it refused: the process is still good
                 _give_back(job, process)
@@ -215,3 +257,5 @@ def render_frames(job: dict, first: int, last: int) -> tuple[list[tuple[int, byt
             with open(os.path.join(folder, f"frame_{frame:07d}{job['tile_suffix']}"), "rb") as file:
                 frames.append((frame, file.read()))
         return frames, time.perf_counter() - start
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
