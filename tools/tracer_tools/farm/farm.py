@@ -19,7 +19,7 @@ import tempfile
 import time
 import zipfile
 from concurrent.futures import Future, ThreadPoolExecutor
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
 import tracer_tools
 from tracer_tools import option_types
@@ -475,7 +475,7 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def command() -> int:
+def command() -> NoReturn:
     """tools/farm: main(), then the process ends at once. Everything is written and closed by then;
     Python's own teardown of Dask's modules and threads would add 0.07 s to every run."""
     code = main()
