@@ -19,9 +19,10 @@ void Bvh::expand(const std::vector<uint32_t>& first_entry) {
     start[order_.size()] = uint32_t(entries.size());
     std::visit([&start](auto& tree) { tree.renumber_leaves(start); }, tree_);
     order_ = std::move(entries);
+    stats_ = counted_stats();
 }
 
-BvhStats Bvh::stats() const {
+BvhStats Bvh::counted_stats() const {
     BvhStats s;
     s.nodes = wide() ? wide()->nodes().size() : binary()->nodes().size();
     s.min_leaf = std::numeric_limits<size_t>::max();

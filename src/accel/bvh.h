@@ -103,7 +103,8 @@ public:
     std::vector<uint32_t> take_order() { return std::move(order_); }
     // The box around every primitive (empty if there are none).
     const Bounds& bounds() const { return root_box_; }
-    BvhStats stats() const;
+    // The tree's shape (counted once, when it is built).
+    const BvhStats& stats() const { return stats_; }
     // Bytes held by the nodes and the leaf order.
     size_t memory_bytes() const {
         return std::visit([](const auto& tree) { return tree.memory_bytes(); }, tree_) +
@@ -143,11 +144,14 @@ public:
     }
 
 private:
+    // Walks the tree's leaves: their number, sizes and depth.
+    BvhStats counted_stats() const;
     // Builds the tree over the references (rounded bounds and ids), freeing them once read.
     void build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, int threads, int leaf_lanes,
                const LeafGathering& gathering = {}, uint32_t direct_wide_from = kDirectWideFrom);
 
     std::variant<BinaryBvh, WideBvh> tree_;
+    BvhStats stats_;  // counted_stats() of the tree as built
     std::vector<uint32_t> order_;
     Bounds root_box_;
 };

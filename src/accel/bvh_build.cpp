@@ -353,11 +353,13 @@ Bvh::Bvh(LargeArray<Bounds> primitives, BvhBuild method, int leaf_size, int thre
         [&](size_t first, size_t count, Bounds* out) { std::copy_n(primitives.data() + first, count, out); }, threads);
     primitives = LargeArray<Bounds>();
     build(refs, method, leaf_size, threads, leaf_lanes, gathering, direct_wide_from);
+    stats_ = counted_stats();
 }
 
 Bvh::Bvh(size_t count, const BoundsSource& source, BvhBuild method, int leaf_size, int threads, int leaf_lanes) {
     LargeArray<BvhBuildRef> refs = float_refs(count, source, threads);
     build(refs, method, leaf_size, threads, leaf_lanes);
+    stats_ = counted_stats();
 }
 
 void Bvh::build(LargeArray<BvhBuildRef>& refs, BvhBuild method, int leaf_size, int threads, int leaf_lanes,
