@@ -124,11 +124,12 @@ def check_animation(tracer: str, job: Job, arguments: argparse.Namespace) -> tup
     warnings = check_job(tracer, job, ("--subset", arguments.subset) if arguments.subset is not None else ())
     if warnings:
         sys.stderr.write(warnings)
-    OutputChecks().check(Job(job.scene, frame_path(job.output, frame_range(arguments)[0])))
     first, last = frame_range(arguments)
-    frames = list(range(first, last + 1))
+    OutputChecks().check(Job(job.scene, frame_path(job.output, first)))
+    frames = range(first, last + 1)
     kept = [f for f in frames if arguments.resume and whole_frame(frame_path(job.output, f), job.width, job.height)]
-    return kept, [f for f in frames if f not in set(kept)]
+    kept_set = set(kept)
+    return kept, [f for f in frames if f not in kept_set]
 
 
 def check_and_ask_ahead(

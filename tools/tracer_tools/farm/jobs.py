@@ -125,8 +125,9 @@ def check_job(tracer: str, job: Job, extra: tuple[str, ...] = ()) -> str:
     return result.stderr
 
 
-# The formats tracer writes without OpenImageIO (libpng, its own PPM writer): no need to load
-# OpenImageIO's 260 libraries (0.03 s) to know they can be written.
+# The formats tracer writes without OpenImageIO (libpng, its own PPM writer; OpenImageIO, which
+# writes the tiles' images, always has both): no need to load its 260 libraries (0.03 s) to know
+# they can be written.
 TRACERS_OWN_FORMATS = (".png", ".ppm")
 
 
