@@ -497,9 +497,12 @@ const BlockSpec kAreaLight{
                    "each), seen from every point as the disc of its outline."),
                {"rectangle", "disc", "sphere"}),
         key("jitter", ValueType::Boolean, "false",
-            "Each sample at random in its cell of the rectangle, anew at every point shaded (soft noise for bands)."),
+            "Each sample at random in its cell of the rectangle, multi-jittered (along each edge alone the samples "
+            "fill its N x M strips one each), anew at every point shaded (soft noise for bands)."),
         key("adaptive", ValueType::Boolean, "false",
-            "Corners first: a part of the grid whose corner samples agree is taken to be as they say."),
+            "Corners first: a part of the light whose corner samples are blocked by one convex shape is taken "
+            "as blocked, and one whose corners are lit as lit where every shape that may block it is wider than "
+            "the gaps between them."),
         FADE_KEYS
     },
     "area_light {\n  position (0, 4, 0)\n  edge1 (1, 0, 0)\n  edge2 (0, 0, 1)\n  samples1 8\n  samples2 8\n}\n",

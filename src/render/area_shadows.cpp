@@ -1,5 +1,6 @@
 #include "render/area_shadows.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -57,20 +58,18 @@ public:
             return;
         }
         // Step 1: the corners; one convex opaque shape across all four blocks the whole region
-        // (where they are the hull's corners); adaptive sampling takes a region whose corners lie
-        // at most a quarter of the light apart along each edge to be as they agree (POV-Ray's
-        // `adaptive 2`: its first look is 5 x 5 samples).
+        // (where they are the hull's corners; adaptive sampling takes it to wherever they lie).
+        // Adaptive sampling also takes a region whose four corners are lit to be lit when every
+        // shape that may block it is wider, seen from the point, than the gaps between them.
         const int corner_i[4] = {i0, i1, i1, i0}, corner_j[4] = {j0, j0, j1, j1};
         for (int k = 0; k < 4; ++k) test(corner_i[k], corner_j[k], candidates, true);
         const uint32_t first = blocker(i0, j0);
-        bool one_blocker = first != World::ConvexBlocker::kNone && samples_.corners_are_samples();
+        bool one_blocker = first != World::ConvexBlocker::kNone && (samples_.corners_are_samples() || light_.adaptive);
         for (int k = 1; k < 4 && one_blocker; ++k) one_blocker = blocker(corner_i[k], corner_j[k]) == first;
-        const bool trusted =
-            light_.adaptive && (i1 - i0) * 4 <= light_.samples1 - 1 && (j1 - j0) * 4 <= light_.samples2 - 1;
-        const Seen agreed = trusted ? corners_agree(corner_i, corner_j) : Seen::Unknown;
-        if (one_blocker || agreed != Seen::Unknown) {
+        const bool lit = light_.adaptive && all_lit(corner_i, corner_j) && all_wide(i0, i1, j0, j1, candidates);
+        if (one_blocker || lit) {
             for (int i = i0; i <= i1; ++i)
-                for (int j = j0; j <= j1; ++j) mark(i, j, one_blocker ? Seen::Blocked : agreed);
+                for (int j = j0; j <= j1; ++j) mark(i, j, one_blocker ? Seen::Blocked : Seen::Lit);
             return;
         }
         // Step 2: the two halves across the longer side (each pyramid holds its own samples).
@@ -143,13 +142,60 @@ private:
     static constexpr int kSmallestRegion = 32;
     static constexpr int kSmallestAdaptiveRegion = 4;
 
-    // What the four corners agree on, all lit or all blocked whole; else Unknown.
-    Seen corners_agree(const int (&corner_i)[4], const int (&corner_j)[4]) const {
-        const Seen first = seen_[index(corner_i[0], corner_j[0])];
-        if (first != Seen::Lit && first != Seen::Blocked) return Seen::Unknown;
-        for (int k = 1; k < 4; ++k)
-            if (seen_[index(corner_i[k], corner_j[k])] != first) return Seen::Unknown;
-        return first;
+    // True if the four corners' shadow rays all reached the light.
+    bool all_lit(const int (&corner_i)[4], const int (&corner_j)[4]) const {
+        for (int k = 0; k < 4; ++k)
+            if (seen_[index(corner_i[k], corner_j[k])] != Seen::Lit) return false;
+        return true;
+    }
+
+    // True if every candidate's box, seen from the origin, is wider in every direction than the
+    // region's hull is across at the box's depth (the gaps between the corners' rays there):
+    // then it cannot pass between them. Planes are never between (a plane that meets no
+    // corner's ray meets none of the region's); a world listed whole may be.
+    bool all_wide(int i0, int i1, int j0, int j1, const ShadowCandidates& candidates) const {
+        if (candidates.everything || candidates.unbounded) return false;
+        glm::dvec3 hull[4];
+        samples_.hull(i0, i1, j0, j1, hull);
+        const glm::dvec3 origin(origin_), centre = 0.25 * ((hull[0] + hull[1]) + (hull[2] + hull[3]));
+        const glm::dvec3 sides[2] = {hull[1] - hull[0], hull[3] - hull[0]};
+        const double reach = glm::length(centre - origin);
+        const auto wide = [&](const Bounds& box) {
+            // Seen across the line of sight, the box's silhouette is the sum of its three edges
+            // and the hull a parallelogram of its two sides (scaled to the box's depth). Across
+            // each edge of either (where the silhouette is narrowest, or the hull's gaps widest),
+            // the silhouette must be wider than the widest gap between the corners there.
+            const glm::dvec3 lower(box.lower), upper(box.upper), to_box = 0.5 * (lower + upper) - origin;
+            const glm::dvec3 view = glm::normalize(to_box), size = upper - lower;
+            const auto across = [&](const glm::dvec3& v) { return v - glm::dot(v, view) * view; };
+            const double scale = std::min(1.0, glm::length(to_box) / reach);
+            const glm::dvec3 edges[5] = {across({size.x, 0, 0}), across({0, size.y, 0}), across({0, 0, size.z}),
+                                         scale * across(sides[0]), scale * across(sides[1])};
+            for (const glm::dvec3& edge : edges) {
+                const glm::dvec3 normal = glm::cross(view, edge);
+                const double length = glm::length(normal);
+                if (!(length > 0)) continue;
+                const glm::dvec3 w = normal / length;
+                const double width =
+                    std::abs(glm::dot(w, edges[0])) + std::abs(glm::dot(w, edges[1])) + std::abs(glm::dot(w, edges[2]));
+                // The corners along w, in order, and the widest gap between neighbours.
+                const double a = glm::dot(w, edges[3]), b = glm::dot(w, edges[4]);
+                double at[4] = {0, a, b, a + b};
+                std::sort(at, at + 4);
+                const double gap = std::max({at[1] - at[0], at[2] - at[1], at[3] - at[2]});
+                if (!(width > gap)) return false;  // NaN: not wide
+            }
+            return true;
+        };
+        for (int i = 0; i < candidates.count; ++i) {
+            if (candidates.leaf_count[i] == ShadowCandidates::kWholeMesh) {
+                if (!wide(candidates.boxes[i])) return false;
+                continue;
+            }
+            for (int leaf = 0; leaf < candidates.leaf_count[i]; ++leaf)
+                if (!wide(candidates.leaf_boxes[candidates.leaf_first[i] + leaf])) return false;
+        }
+        return true;
     }
 
     // x^n of the material's exponent n, for x >= 0: by squaring when n is a whole number from 1

@@ -1,7 +1,9 @@
 #include "render/light_samples.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -48,6 +50,25 @@ static const double* grid_steps(int n) {
     return steps.data();
 }
 
+// Multi-jittered sub-cells (Chiu, Shirley and Wang 1994): column i's samples take the sub-columns
+// across1[i n2 + j], a shuffle of 0 .. n2-1, and row j's the sub-rows across2[j n1 + i], a shuffle
+// of 0 .. n1-1; Fisher-Yates, t from n - 1 down to 1 swapping t with floor(draw (t + 1)), the
+// draws from 2 n1 n2 on, columns first.
+static void shuffle_sub_cells(uint64_t h, int n1, int n2, std::vector<int>& across1, std::vector<int>& across2) {
+    uint64_t next = 2 * uint64_t(n1) * uint64_t(n2);
+    const auto shuffle = [&](int* order, int n) {
+        for (int t = 0; t < n; ++t) order[t] = t;
+        for (int t = n - 1; t >= 1; --t) {
+            const int r = std::min(t, int(LightSamples::draw(h, next++) * (t + 1)));
+            std::swap(order[t], order[r]);
+        }
+    };
+    across1.resize(size_t(n1) * size_t(n2));
+    across2.resize(across1.size());
+    for (int i = 0; i < n1; ++i) shuffle(&across1[size_t(i) * size_t(n2)], n2);
+    for (int j = 0; j < n2; ++j) shuffle(&across2[size_t(j) * size_t(n1)], n1);
+}
+
 void LightSamples::concentric(double x, double y, double& u, double& v) {
     constexpr double kQuarterPi = 0.78539816339744830962;
     if (x == 0 && y == 0) {
@@ -80,11 +101,17 @@ LightSamples::LightSamples(const Light& light, size_t light_index, const Vec3& p
     each1.resize(size_t(n1) * size_t(n2));
     each2.resize(each1.size());
     const uint64_t h = light.jitter ? seed(glm::dvec3(point), light_index) : 0;
+    thread_local std::vector<int> across1, across2;  // each column's, each row's shuffled sub-cells
+    if (light.jitter) shuffle_sub_cells(h, n1, n2, across1, across2);
     for (int i = 0; i < n1; ++i)
         for (int j = 0; j < n2; ++j) {
             const size_t k = index(i, j);
             double a = grid1_[size_t(i)], b = grid2_[size_t(j)];
-            if (light.jitter) a = (i + draw(h, 2 * k)) / n1 - 0.5, b = (j + draw(h, 2 * k + 1)) / n2 - 0.5;
+            if (light.jitter) {
+                const double u = draw(h, 2 * k), v = draw(h, 2 * k + 1);
+                a = (i + (across1[k] + u) / n2) / n1 - 0.5;
+                b = (j + (across2[size_t(j) * size_t(n1) + size_t(i)] + v) / n1) / n2 - 0.5;
+            }
             if (light.shape != Light::Shape::Rectangle) {
                 concentric(2 * a, 2 * b, a, b);
                 a *= 0.5, b *= 0.5;

@@ -1,7 +1,8 @@
 // Where an area light's samples lie, seen from one shaded point (docs/guide/lights.md): on the
 // grid, corner to corner (Light::sample); or jittered, each at a random place in its cell of
-// the rectangle, the random numbers drawn from the point's coordinates and the light's index,
-// so that an image is the same on any number of threads, tiles, regions or farm workers.
+// the rectangle and, along each edge alone, in a strip of its own (multi-jittered), the random
+// numbers drawn from the point's coordinates and the light's index, so that an image is the
+// same on any number of threads, tiles, regions or farm workers.
 #pragma once
 
 #include <cstddef>
@@ -21,9 +22,12 @@ public:
     // tables are the calling thread's: one LightSamples at a time on a thread.
     LightSamples(const Light& light, size_t light_index, const Vec3& point);
 
-    // Sample (i, j) (0 <= i < samples1, 0 <= j < samples2): centre + a edge1 + b edge2. On the
-    // grid of a rectangle, Light::sample(i, j) bit for bit; jittered, a = (i + u) / samples1 - 1/2,
-    // b = (j + v) / samples2 - 1/2, (u, v) sample k = i samples2 + j's draws 2k and 2k + 1. On a
+    // Sample (i, j) (0 <= i < samples1 = N, 0 <= j < samples2 = M): centre + a edge1 + b edge2.
+    // On the grid of a rectangle, Light::sample(i, j) bit for bit; jittered (Chiu, Shirley and
+    // Wang's multi-jittering), a = (i + (s + u) / M) / N - 1/2, b = (j + (t + v) / N) / M - 1/2,
+    // (u, v) sample k = i M + j's draws 2k and 2k + 1, s and t its sub-column and sub-row
+    // (light_samples.cpp's shuffle_sub_cells: each column's a shuffle of 0 .. M-1, each row's of
+    // 0 .. N-1, so that along each edge alone the N M samples fill the N M strips one each). On a
     // disc or a sphere, (a, b) mapped by concentric(2a, 2b) / 2 onto the inscribed disc; a sphere's
     // edges are those of the disc of its outline facing the point.
     glm::dvec3 position(int i, int j) const { return light_.position + along1(i, j) * edge1_ + along2(i, j) * edge2_; }

@@ -1,8 +1,8 @@
 // Jittered and adaptive area lights (issue 56): the generator's draws against values an
 // independent implementation of its documented definition gives (Python, the same formulas);
 // jittered samples stay in their cells; a jittered image is the same on 1, 2 and 4 threads and
-// in any window of the frame; adaptive sampling trusts no region of an 8 x 8 grid (its corners
-// lie more than a quarter of the light apart) and on 16 x 16 traces fewer rays than the grid.
+// in any window of the frame; multi-jittered places fill each edge's strips one sample each;
+// adaptive sampling saves rays past wide shapes and traces every sample past a thin bar.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,6 +64,37 @@ TEST(LightSampling, JitteredSamplesStayInTheirCellsAndTheGridIsLightSample) {
     const double here = jittered.along1(1, 1);
     const LightSamples elsewhere(light, 0, Vec3(0.5, 0, 0.75));
     EXPECT_NE(here, elsewhere.along1(1, 1));
+}
+
+TEST(LightSampling, JitteredSamplesAreTheDocumentedMultiJitteredPlaces) {
+    // From the definition in light_samples.h, in Python: a 2 x 3 light, the point and light
+    // index of the generator's test; (i, j) -> (a, b).
+    Light light;
+    light.edge1 = {1, 0, 0}, light.edge2 = {0, 1, 0}, light.samples1 = 2, light.samples2 = 3, light.jitter = true;
+    const LightSamples jittered(light, 2, Vec3(0.25, -1.5, 3.0));
+    const double expected[2][3][2] = {
+        {{-0.034252037561892934, -0.35230321939872605},
+         {-0.47491167764557873, 0.01915610946416646},
+         {-0.3232356169660132, 0.39231317992170356}},
+        {{0.009086979883593416, -0.2944963000543107},
+         {0.3469053701726843, -0.07102878143947394},
+         {0.23680308306552267, 0.1851149859483544}},
+    };
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 3; ++j) {
+            EXPECT_EQ(jittered.along1(i, j), expected[i][j][0]) << i << ", " << j;
+            EXPECT_EQ(jittered.along2(i, j), expected[i][j][1]) << i << ", " << j;
+        }
+    // Along each edge alone, the 3 x 5 samples of a larger light fill the 15 strips one each.
+    light.samples1 = 3, light.samples2 = 5;
+    const LightSamples larger(light, 0, Vec3(0.5, 0, 0.5));
+    bool strip1[15] = {}, strip2[15] = {};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 5; ++j) {
+            strip1[int((larger.along1(i, j) + 0.5) * 15)] = true;
+            strip2[int((larger.along2(i, j) + 0.5) * 15)] = true;
+        }
+    for (int k = 0; k < 15; ++k) EXPECT_TRUE(strip1[k] && strip2[k]) << k;
 }
 
 TEST(LightSampling, ADiscLightsSamplesAreTheGridMappedOntoTheDisc) {
@@ -145,15 +176,28 @@ TEST(LightSampling, AJitteredImageIsTheSameOnAnyThreadsAndInAnyWindow) {
     EXPECT_FALSE(one.rgb == render_text(lamp(6, "")).rgb);
 }
 
-TEST(LightSampling, AdaptiveTrustsNoRegionOfASmallGridAndSavesRaysOnALargeOne) {
-    EXPECT_TRUE(render_text(lamp(8, "adaptive true")).rgb == render_text(lamp(8, "")).rgb);
+TEST(LightSampling, AdaptiveTakesARegionWhoseCornersAgreeOnlyWhenNothingThinLiesBetween) {
+    // A wide sphere and a box: regions lit at their corners are taken whole, some traced rays saved.
     RenderStats grid_stats, adaptive_stats;
-    const Image grid = render_text(lamp(16, ""), 2, {}, &grid_stats);
-    const Image adaptive = render_text(lamp(16, "adaptive true"), 2, {}, &adaptive_stats);
-    EXPECT_LT(adaptive_stats.rays.shadow, grid_stats.rays.shadow);
+    const Image grid = render_text(lamp(8, ""), 2, {}, &grid_stats);
+    const Image adaptive = render_text(lamp(8, "adaptive true"), 2, {}, &adaptive_stats);
+    EXPECT_LT(adaptive_stats.rays.shadow, grid_stats.rays.shadow * 3 / 4);
     double largest = 0;
     for (size_t k = 0; k < grid.rgb.size(); ++k) largest = std::max(largest, std::abs(grid.rgb[k] - adaptive.rgb[k]));
-    EXPECT_LT(largest, 0.1);  // a region taken whole is off by the samples it got wrong, a few of 256
+    EXPECT_LT(largest, 0.1);  // a region taken whole is off by the samples it got wrong, a few of 64
+    // A bar thinner than the gaps between the whole light's corners, seen from the floor: every
+    // region it may cross is traced sample by sample, so the bar's shadow is the grid's exactly
+    // (the old rule, corners alone, took the whole light as lit at points that see it past both
+    // ends of the bar).
+    const std::string bar = R"(
+render { width 40 height 30 }
+camera { eye (0, 5, 3) lookat (0, 0, 0) fovy 50 }
+plane { point (0, 0, 0) normal (0, 1, 0) material { kd 0.8 } }
+box { min (-3, 1.5, -0.03) max (3, 1.55, 0.03) material { kd 0.5 } }
+)";
+    const std::string light = "area_light { position (0, 4, 0) edge1 (2, 0, 0) edge2 (0, 0, 2) samples1 8 samples2 8 ";
+    EXPECT_TRUE(render_scene_text(bar + light + "adaptive true }\n", 2).rgb ==
+                render_scene_text(bar + light + "}\n", 2).rgb);
 }
 
 }  // namespace
