@@ -38,8 +38,11 @@ Color direct_light(const ShadingPoint& point, std::span<Occluder> last_blockers,
     const Vec3 reflected_light = 2 * n_dot_l * point.normal - to_light;  // R = 2(N.L)N - L
     const Real r_dot_v = std::max(Real(0), glm::dot(reflected_light, point.to_viewer));
     const Color diffuse = point.kd * double(std::max(Real(0), n_dot_l));
-    const Color specular =
-        point.material.ks == Color(0.0) ? Color(0.0) : point.material.ks * std::pow(double(r_dot_v), point.material.n);
+    // pow(+0, n) is +0 for every n > 0: no call where R points away from the viewer.
+    const bool dark = r_dot_v == 0 && point.material.n > 0;
+    const Color specular = point.material.ks == Color(0.0) ? Color(0.0)
+                           : dark                          ? point.material.ks * 0.0
+                                  : point.material.ks * std::pow(double(r_dot_v), point.material.n);
     return color * (diffuse + specular);
 }
 
