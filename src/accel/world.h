@@ -174,6 +174,8 @@ public:
         int material = -1;
     };
     ConvexBlocker convex_blocker(const Occluder& blocker) const;
+    // The object of a candidate's entry (ShadowCandidates::entries), as object_left_behind names it.
+    uint32_t candidate_object(uint32_t entry) const { return bounded_[entry].object; }
     // A number no other World of this process has (for caches kept between rays).
     uint64_t serial() const { return serial_; }
     // False only if the ray's line misses a bounding sphere of every bounded object, and there

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include "render/light_samples.h"
 
@@ -149,10 +150,11 @@ private:
         return true;
     }
 
-    // True if every candidate's box, seen from the origin, is wider in every direction than the
-    // region's hull is across at the box's depth (the gaps between the corners' rays there):
-    // then it cannot pass between them. Planes are never between (a plane that meets no
-    // corner's ray meets none of the region's); a world listed whole may be.
+    // True if every candidate's box, seen from the origin, is wider than the gaps between the
+    // corners' rays at its depth (see `wide`): then, if it fills its box, it cannot pass between
+    // them. The object left behind is met by no ray; a box around the origin is never wide;
+    // planes are never between (a plane that meets no corner's ray meets none of the region's);
+    // a world listed whole may be.
     bool all_wide(int i0, int i1, int j0, int j1, const ShadowCandidates& candidates) const {
         if (candidates.everything || candidates.unbounded) return false;
         glm::dvec3 hull[4];
@@ -166,6 +168,7 @@ private:
             // each edge of either (where the silhouette is narrowest, or the hull's gaps widest),
             // the silhouette must be wider than the widest gap between the corners there.
             const glm::dvec3 lower(box.lower), upper(box.upper), to_box = 0.5 * (lower + upper) - origin;
+            if (glm::all(glm::lessThan(lower, origin)) && glm::all(glm::lessThan(origin, upper))) return false;
             const glm::dvec3 view = glm::normalize(to_box), size = upper - lower;
             const auto across = [&](const glm::dvec3& v) { return v - glm::dot(v, view) * view; };
             const double scale = std::min(1.0, glm::length(to_box) / reach);
@@ -188,6 +191,7 @@ private:
             return true;
         };
         for (int i = 0; i < candidates.count; ++i) {
+            if (world_.candidate_object(candidates.entries[i]) == left_behind_) continue;  // no ray meets it
             if (candidates.leaf_count[i] == ShadowCandidates::kWholeMesh) {
                 if (!wide(candidates.boxes[i])) return false;
                 continue;
