@@ -173,6 +173,12 @@ MeshAccel::MeshAccel(PlacedTriangles&& mesh, const SearchSettings& settings) : b
     const std::vector<uint32_t> order = brute_force_ ? std::vector<uint32_t>{} : bvh_.take_order();
     store_triangles(mesh, order, settings.threads);
     store_hit_records(mesh, order, settings.threads);
+    size_t leaves = 0;
+    bvh_.for_each_leaf([&](const Bounds&, uint32_t first, uint32_t count, int) {
+        ++leaves;
+        one_leaf_ = first == 0 && count == n;
+    });
+    one_leaf_ = one_leaf_ && leaves == 1 && !brute_force_;
     mesh = PlacedTriangles();
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -480,7 +486,7 @@ unsigned MeshAccel::intersect_packet(const Ray* const* rays, int count, Interval
 
 template <bool kAny, typename TestLeaf>
 bool MeshAccel::search(const Ray& ray, Interval& range, TraversalCounts& counts, TestLeaf test_leaf) const {
-    if (brute_force_) {
+    if (brute_force_ || one_leaf_) {
         counts.primitive_tests += triangle_count_;
         return test_leaf(0, uint32_t(triangle_count_), range);
     }

@@ -135,6 +135,8 @@ public:
     size_t triangle_count() const { return triangle_count_; }
     const Bvh& bvh() const { return bvh_; }
     bool brute_force() const { return brute_force_; }
+    // True if the BVH is a single leaf holding every triangle (searched without traversal).
+    bool one_leaf() const { return one_leaf_; }
     // True if every vertex has the same coordinate on one axis: a ray leaving the mesh's plane
     // never comes back to it (World skips such a mesh for rays that leave it, when it is one
     // object placed as built).
@@ -166,6 +168,9 @@ private:
     void store_hit_records(const PlacedTriangles& mesh, const std::vector<uint32_t>& order, int threads);
 
     bool brute_force_;
+    // The BVH is one leaf of every triangle (a quad, a box): a search tests them at once, without
+    // the box test the world made already (World::may_meet_entry) or a traversal's set-up.
+    bool one_leaf_ = false;
     Bvh bvh_;
     // What ties and shading need of a hit, in leaf order too, where the mesh's own arrays
     // would cost a cache miss each for a big mesh.

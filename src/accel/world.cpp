@@ -111,6 +111,9 @@ World::World(const SceneDescription& scene, const SceneMeshes& meshes, int threa
         for (const Material& material : materials_)
             uv_materials_.push_back(tracer::maps_by_uv(patterns_, material.ka_pattern) ||
                                     tracer::maps_by_uv(patterns_, material.kd_pattern));
+    if (!patterns_.empty())
+        for (const Material& material : materials_)
+            ka_scales_kd_.push_back(same_but_multiply(patterns_, material.ka_pattern, material.kd_pattern));
     // Step 1: spheres and planes (room for them at once: a million spheres would otherwise
     // leave up to a million records' room unused).
     objects_.reserve(scene.spheres.size() + scene.planes.size());
@@ -258,9 +261,10 @@ void World::build_top_level(const SearchSettings& settings) {
         sphere_radius2_ = radius * radius;
     }
     linear_ = settings.brute_force || bounded_.size() - extra_entries_ <= kLinearObjects;
-    packet_search_possible_ = linear_ && std::any_of(bounded_.begin(), bounded_.end(), [](const Bounded& b) {
-                                  return b.kind == ObjectKind::MeshInstance;
-                              });
+    packet_search_possible_ =
+        linear_ && std::any_of(bounded_.begin(), bounded_.end(), [&](const Bounded& b) {
+            return b.kind == ObjectKind::MeshInstance && !meshes_[instances_[b.index].mesh].one_leaf();
+        });
     for (const MeshInstance& instance : instances_)
         largest_mesh_triangles_ = std::max(largest_mesh_triangles_, meshes_[instance.mesh].triangle_count());
     if (!linear_) {

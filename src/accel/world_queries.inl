@@ -246,7 +246,7 @@ inline bool World::occluder_blocks(const Occluder& occluder, const Ray& ray, Int
     out.t = hit.t;
     out.material = object.material;
     // The naive rule (TRACER_ROBUST=OFF) takes the point along the ray and needs no error bound.
-    if constexpr (!kRobust) out.point = ray.at(hit.t);
+    if constexpr (!kRobust) out.point = ray.at(hit.t), out.error = Vec3(0);
     switch (object.kind) {
         case ObjectKind::Sphere: sphere_surface(ray, hit, out); break;
         case ObjectKind::Plane: {

@@ -46,10 +46,16 @@ static std::span<Occluder> shadow_cache(const World& world) {
     const glm::dvec3 point = material.to_object(glm::dvec3(hit.point));
     const glm::dvec3 uv_point(
         world.maps_by_uv(hit.material) ? world.surface_uv(found, hit, material.to_object.linear) : glm::dvec2(0.0), 0);
-    if (material.ka_pattern >= 0)
-        ka = pattern_color(world.patterns(), world.images(), material.ka_pattern, point, uv_point);
-    if (material.kd_pattern >= 0)
-        kd = pattern_color(world.patterns(), world.images(), material.kd_pattern, point, uv_point);
+    const std::vector<Pattern>& patterns = world.patterns();
+    if (world.ka_scales_kd(hit.material)) {  // `ka 0.1 * squares  kd squares`: the squares once
+        const glm::dvec3 unscaled =
+            unscaled_pattern_color(patterns, world.images(), material.kd_pattern, point, uv_point);
+        ka = patterns[size_t(material.ka_pattern)].multiply * unscaled;
+        kd = patterns[size_t(material.kd_pattern)].multiply * unscaled;
+        return;
+    }
+    if (material.ka_pattern >= 0) ka = pattern_color(patterns, world.images(), material.ka_pattern, point, uv_point);
+    if (material.kd_pattern >= 0) kd = pattern_color(patterns, world.images(), material.kd_pattern, point, uv_point);
 }
 
 // The refracted direction of unit `direction` through a surface whose unit `normal` faces it,

@@ -185,17 +185,20 @@ bool maps_by_uv(std::span<const Pattern> patterns, int index) {
            maps_by_uv(patterns, pattern.odd.pattern);
 }
 
-// pattern_color before the pattern's `multiply`.
-static dvec3 unscaled_color(std::span<const Pattern> patterns, std::span<const ImageFile> images, int index,
-                            const dvec3& point, const dvec3& uv);
+bool same_but_multiply(std::span<const Pattern> patterns, int a, int b) {
+    if (a < 0 || b < 0) return false;
+    Pattern scaled_like_a = patterns[size_t(b)];
+    scaled_like_a.multiply = patterns[size_t(a)].multiply;
+    return patterns[size_t(a)] == scaled_like_a;
+}
 
 dvec3 pattern_color(std::span<const Pattern> patterns, std::span<const ImageFile> images, int index, const dvec3& point,
                     const dvec3& uv) {
-    return patterns[size_t(index)].multiply * unscaled_color(patterns, images, index, point, uv);
+    return patterns[size_t(index)].multiply * unscaled_pattern_color(patterns, images, index, point, uv);
 }
 
-static dvec3 unscaled_color(std::span<const Pattern> patterns, std::span<const ImageFile> images, int index,
-                            const dvec3& point, const dvec3& uv) {
+dvec3 unscaled_pattern_color(std::span<const Pattern> patterns, std::span<const ImageFile> images, int index,
+                             const dvec3& point, const dvec3& uv) {
     const Pattern& pattern = patterns[size_t(index)];
     const dvec3 own_point = pattern.to_pattern(point);
     // The surface's (u, v) in this pattern's space, where it or a pattern inside it reads them.

@@ -48,6 +48,7 @@ bool wrap_from_name(std::string_view name, Wrap& out);
 struct ColorStop {
     double at = 0;
     glm::dvec3 color{0.0};
+    bool operator==(const ColorStop&) const = default;
 };
 
 // The most stops a colour map may hold.
@@ -61,6 +62,7 @@ struct Paint {
     glm::dvec3 color{0.0};
     int pattern = -1;
     bool patterned() const { return pattern >= 0; }
+    bool operator==(const Paint&) const = default;
 };
 
 struct Pattern {
@@ -76,6 +78,7 @@ struct Pattern {
     int image = -1;                  // image: index into SceneDescription::images
     Wrap wrap = Wrap::Repeat;        // image
     glm::dvec3 multiply{1.0};        // every colour it gives, times this (0.1 * pattern)
+    bool operator==(const Pattern&) const = default;
 };
 
 // An image's texels as read: 8-bit files keep their bytes (decoded from sRGB on lookup), others
@@ -113,6 +116,12 @@ bool maps_by_uv(std::span<const Pattern> patterns, int index);
 glm::dvec3 pattern_color(std::span<const Pattern> patterns, std::span<const ImageFile> images, int index,
                          const glm::dvec3& point, const glm::dvec3& uv);
 
+// True if patterns[a] and patterns[b] give the same colours but for their `multiply` (a
+// material's `ka 0.1 * squares  kd squares`): one unscaled_pattern_color serves both.
+bool same_but_multiply(std::span<const Pattern> patterns, int a, int b);
+// pattern_color before patterns[index]'s own `multiply` (pattern_color is multiply times it).
+glm::dvec3 unscaled_pattern_color(std::span<const Pattern> patterns, std::span<const ImageFile> images, int index,
+                                  const glm::dvec3& point, const glm::dvec3& uv);
 // The colour map's colour at `value`: the first stop's below it, the last's above, linear
 // between two stops (the later of stops at one value wins above it); black if empty. Stepped
 // (stripes): the colour of the last stop at or below `value`, the first's below them all.

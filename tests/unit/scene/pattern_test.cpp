@@ -44,6 +44,28 @@ TEST(Pattern, CheckerAlternatesByTheSumOfFloors) {
     EXPECT_EQ(color_at(small, {0.75, 0.25, 0.25}), dvec3(0, 0, 1));
 }
 
+TEST(Pattern, ScaledCopiesShareTheirUnscaledColour) {
+    Pattern squares;
+    squares.even = {dvec3(1, 0.85, 0.1)};
+    squares.odd = {dvec3(0.9, 0.08, 0.05)};
+    Pattern tenth = squares;  // `0.1 * squares`
+    tenth.multiply = dvec3(0.1);
+    Pattern moved = tenth;
+    moved.to_pattern.offset = dvec3(0.5, 0, 0);
+    Pattern recoloured = squares;
+    recoloured.odd.color = dvec3(0);
+    const std::vector<Pattern> patterns{squares, tenth, moved, recoloured};
+    EXPECT_TRUE(same_but_multiply(patterns, 1, 0));
+    EXPECT_TRUE(same_but_multiply(patterns, 0, 1));
+    EXPECT_FALSE(same_but_multiply(patterns, 2, 0));  // placed elsewhere
+    EXPECT_FALSE(same_but_multiply(patterns, 3, 0));  // another colour
+    EXPECT_FALSE(same_but_multiply(patterns, -1, 0));
+    const dvec3 point(1.5, 0.5, 0.5);
+    EXPECT_EQ(pattern_color(patterns, {}, 1, point, dvec3(0)),
+              dvec3(0.1) * unscaled_pattern_color(patterns, {}, 0, point, dvec3(0)));
+    EXPECT_EQ(unscaled_pattern_color(patterns, {}, 1, point, dvec3(0)), dvec3(0.9, 0.08, 0.05));
+}
+
 TEST(Pattern, NestedCheckerIsEvaluatedInTheOuterSpace) {
     Pattern outer, inner;
     outer.even = {dvec3(0), 1};
