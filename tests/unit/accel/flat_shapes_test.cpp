@@ -249,6 +249,46 @@ TEST(FlatShapes, SmallShapesAreBuiltWhole) {
     EXPECT_TRUE(small_shapes(mixed).empty());  // 14 primitives for 25 triangles: not halved
 }
 
+TEST(FlatShapes, ALoneBoxIsOneLeafSearchedWithoutItsTreeAndAgrees) {
+    // One box: its twelve triangles are the BVH's only leaf, searched without traversal (no
+    // mesh box test), with the answers of testing every triangle: hit, t, (u, v), shadows.
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> unit(0, 1);
+    SceneDescription scene = one_material();
+    Box b = random_box(random, 0.5, 1.0);
+    b.steps = {step(TransformStep::Kind::Rotate, glm::normalize(dvec3(1, 2, 3)), 30)};
+    scene.boxes = {b};
+    const World world(scene);
+    scene.render.accel = Accelerator::None;
+    const World brute(scene);
+    ASSERT_TRUE(world.meshes()[0].one_leaf());
+    ASSERT_FALSE(brute.meshes()[0].one_leaf());
+    EXPECT_FALSE(world.frame_takes_tiles(1 << 20));  // a packet has nothing to share but the box
+    SearchCounts counts;
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const dvec3 origin = dvec3(unit(random), unit(random), unit(random)) * 8.0 - dvec3(4);
+        const dvec3 target = dvec3(unit(random), unit(random), unit(random)) * 3.0 - dvec3(1.5);
+        const Ray ray{Vec3(origin), Vec3(glm::normalize(target - origin))};
+        SearchCounts brute_counts;
+        const auto expected = brute.nearest_hit(ray, {0, kInfinity}, brute_counts);
+        const auto found = world.nearest_hit(ray, {0, kInfinity}, counts);
+        ASSERT_EQ(found.has_value(), expected.has_value());
+        const Interval shadow{0, Real(glm::length(target - origin))};
+        Occluder first, second;
+        ASSERT_EQ(world.occluded(ray, shadow, counts, first), brute.occluded(ray, shadow, brute_counts, second));
+        if (!found) continue;
+        ++hits;
+        ASSERT_EQ(found->t, expected->t);
+        ASSERT_EQ(world.meshes()[0].triangle_of(found->primitive), brute.meshes()[0].triangle_of(expected->primitive));
+        ASSERT_EQ(found->u, expected->u);
+        ASSERT_EQ(found->v, expected->v);
+    }
+    EXPECT_GT(hits, 1000);
+    EXPECT_EQ(counts.triangles.box_tests, 0u);
+    EXPECT_GT(counts.triangles.primitive_tests, 0u);
+}
+
 TEST(FlatShapes, BoxesBuiltWholeAgreeWithTestingEveryTriangle) {
     // 2,000 boxes from a loop: the BVH's leaves hold one box each, and the nearest hit and the
     // shadow test agree with testing every triangle.
