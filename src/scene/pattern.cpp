@@ -197,9 +197,22 @@ dvec3 pattern_color(std::span<const Pattern> patterns, std::span<const ImageFile
     return patterns[size_t(index)].multiply * unscaled_pattern_color(patterns, images, index, point, uv);
 }
 
+// A checker's square at q of its space: even where floor(x) + floor(y) + floor(z) is even.
+[[gnu::always_inline]] static inline const Paint& checker_square(const Pattern& pattern, const dvec3& q) {
+    const double sum =
+        std::floor(q.x + kCheckerNudge) + std::floor(q.y + kCheckerNudge) + std::floor(q.z + kCheckerNudge);
+    const double half = 0.5 * sum;  // even: a whole number of pairs
+    return half == std::floor(half) ? pattern.even : pattern.odd;
+}
+
 dvec3 unscaled_pattern_color(std::span<const Pattern> patterns, std::span<const ImageFile> images, int index,
                              const dvec3& point, const dvec3& uv) {
     const Pattern& pattern = patterns[size_t(index)];
+    // A solid checker of two colours (a floor's squares), its point kept in registers: through
+    // the general path below it went by the stack, and its loads waited on wider stores.
+    if (pattern.kind == PatternKind::Checker && pattern.mapping == Mapping::Solid && !pattern.even.patterned() &&
+        !pattern.odd.patterned())
+        return checker_square(pattern, pattern.to_pattern(point)).color;
     const dvec3 own_point = pattern.to_pattern(point);
     // The surface's (u, v) in this pattern's space, where it or a pattern inside it reads them.
     const bool uv_read = pattern.mapping == Mapping::Uv || pattern.even.patterned() || pattern.odd.patterned();
@@ -207,10 +220,7 @@ dvec3 unscaled_pattern_color(std::span<const Pattern> patterns, std::span<const 
     const dvec3 q = pattern.mapping == Mapping::Uv ? own_uv : mapped(pattern.mapping, own_point);
     switch (pattern.kind) {
         case PatternKind::Checker: {
-            const double sum =
-                std::floor(q.x + kCheckerNudge) + std::floor(q.y + kCheckerNudge) + std::floor(q.z + kCheckerNudge);
-            const double half = 0.5 * sum;  // even: a whole number of pairs
-            const Paint& square = half == std::floor(half) ? pattern.even : pattern.odd;
+            const Paint& square = checker_square(pattern, q);
             return square.patterned() ? pattern_color(patterns, images, square.pattern, own_point, own_uv)
                                       : square.color;
         }

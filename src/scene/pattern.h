@@ -25,7 +25,14 @@ namespace tracer {
 struct Affine {
     glm::dmat3 linear{1.0};
     glm::dvec3 offset{0.0};
-    glm::dvec3 operator()(const glm::dvec3& p) const { return linear * p + offset; }
+    // linear * p + offset in glm's order, inlined: as glm's call, every pattern lookup waited
+    // on the vector it returned through memory.
+    [[gnu::always_inline]] glm::dvec3 operator()(const glm::dvec3& p) const {
+        const glm::dmat3& m = linear;
+        return glm::dvec3(m[0][0] * p.x + m[1][0] * p.y + m[2][0] * p.z, m[0][1] * p.x + m[1][1] * p.y + m[2][1] * p.z,
+                          m[0][2] * p.x + m[1][2] * p.y + m[2][2] * p.z) +
+               offset;
+    }
     bool operator==(const Affine&) const = default;
 };
 
