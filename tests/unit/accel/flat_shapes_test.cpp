@@ -36,6 +36,16 @@ Box random_box(std::mt19937& random, double least, double spread) {
     return b;
 }
 
+// A ray from a random point of the cube [shift, shift + spread]^3 towards one of the cube of
+// the target's, and the shadow range that ends at the target.
+std::pair<Ray, Interval> random_ray(std::mt19937& random, double spread, double shift, double target_spread,
+                                    double target_shift) {
+    std::uniform_real_distribution<double> unit(0, 1);
+    const dvec3 origin = dvec3(unit(random), unit(random), unit(random)) * spread + dvec3(shift);
+    const dvec3 target = dvec3(unit(random), unit(random), unit(random)) * target_spread + dvec3(target_shift);
+    return {{Vec3(origin), Vec3(glm::normalize(target - origin))}, {0, Real(glm::length(target - origin))}};
+}
+
 std::optional<SurfaceHit> shoot(const World& world, dvec3 origin, dvec3 direction) {
     SearchCounts counts;
     return nearest_surface(world, {Vec3(origin), Vec3(glm::normalize(direction))}, {0, kInfinity}, counts);
@@ -253,7 +263,6 @@ TEST(FlatShapes, ALoneBoxIsOneLeafSearchedWithoutItsTreeAndAgrees) {
     // One box: its twelve triangles are the BVH's only leaf, searched without traversal (no
     // mesh box test), with the answers of testing every triangle: hit, t, (u, v), shadows.
     std::mt19937 random(5);
-    std::uniform_real_distribution<double> unit(0, 1);
     SceneDescription scene = one_material();
     Box b = random_box(random, 0.5, 1.0);
     b.steps = {step(TransformStep::Kind::Rotate, glm::normalize(dvec3(1, 2, 3)), 30)};
@@ -267,14 +276,11 @@ TEST(FlatShapes, ALoneBoxIsOneLeafSearchedWithoutItsTreeAndAgrees) {
     SearchCounts counts;
     int hits = 0;
     for (int i = 0; i < 4000; ++i) {
-        const dvec3 origin = dvec3(unit(random), unit(random), unit(random)) * 8.0 - dvec3(4);
-        const dvec3 target = dvec3(unit(random), unit(random), unit(random)) * 3.0 - dvec3(1.5);
-        const Ray ray{Vec3(origin), Vec3(glm::normalize(target - origin))};
+        const auto [ray, shadow] = random_ray(random, 8.0, -4.0, 3.0, -1.5);
         SearchCounts brute_counts;
         const auto expected = brute.nearest_hit(ray, {0, kInfinity}, brute_counts);
         const auto found = world.nearest_hit(ray, {0, kInfinity}, counts);
         ASSERT_EQ(found.has_value(), expected.has_value());
-        const Interval shadow{0, Real(glm::length(target - origin))};
         Occluder first, second;
         ASSERT_EQ(world.occluded(ray, shadow, counts, first), brute.occluded(ray, shadow, brute_counts, second));
         if (!found) continue;
@@ -314,14 +320,11 @@ TEST(FlatShapes, BoxesBuiltWholeAgreeWithTestingEveryTriangle) {
     int hits = 0, blocked = 0;
     const int rays = int(sweep(40000));  // fewer under the sanitizers
     for (int i = 0; i < rays; ++i) {
-        const dvec3 origin = dvec3(unit(random), unit(random), unit(random)) * 40.0 - dvec3(10);
-        const dvec3 target = dvec3(unit(random), unit(random), unit(random)) * 20.0;
-        const Ray ray{Vec3(origin), Vec3(glm::normalize(target - origin))};
+        const auto [ray, shadow] = random_ray(random, 40.0, -10.0, 20.0, 0.0);
         SearchCounts counts;
         const auto expected = brute.nearest_hit(ray, {0, kInfinity}, counts);
         const auto found = world.nearest_hit(ray, {0, kInfinity}, counts);
         ASSERT_EQ(found.has_value(), expected.has_value());
-        const Interval shadow{0, Real(glm::length(target - origin))};
         Occluder a, b;
         const bool in_way = world.occluded(ray, shadow, counts, a);
         ASSERT_EQ(in_way, brute.occluded(ray, shadow, counts, b));
