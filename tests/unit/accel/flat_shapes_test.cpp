@@ -36,8 +36,8 @@ Box random_box(std::mt19937& random, double least, double spread) {
     return b;
 }
 
-// A ray from a random point of the cube [shift, shift + spread]^3 towards one of the cube of
-// the target's, and the shadow range that ends at the target.
+// A ray from a random point of the cube [shift, shift + spread]^3 towards a random point of
+// [target_shift, target_shift + target_spread]^3, and the shadow range that ends at that point.
 std::pair<Ray, Interval> random_ray(std::mt19937& random, double spread, double shift, double target_spread,
                                     double target_shift) {
     std::uniform_real_distribution<double> unit(0, 1);
